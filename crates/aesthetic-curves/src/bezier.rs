@@ -1,0 +1,545 @@
+//! Bézier curves of degree 1 to 20, polynomial ([`Bezier`]) and rational ([`RationalBezier`]).
+//!
+//! Naming follows one scheme for every curve of the library: `eval` (point), `eval_d`,
+//! `eval_dd`, `eval_ddd` (derivatives in the curve's parameter), `derivs` (all of them at once),
+//! `kappa` (signed curvature, positive for counter-clockwise turning) and `dkappa_ds`
+//! (derivative of curvature by arc length).
+//!
+//! Evaluation is by de Casteljau's algorithm throughout (convex combinations, stable on
+//! [0, 1]); derivatives come from the last levels of the same triangle, so one pass gives the
+//! point and three derivatives. Rational curves are evaluated in homogeneous coordinates and
+//! their derivatives follow from the quotient rule.
+
+use crate::bernstein::Bernstein;
+use crate::error::{Error, Result};
+use kurbo::{Point, Vec2};
+
+/// The largest supported degree.
+pub const MAX_BEZIER_DEGREE: usize = 20;
+
+/// Point and first three derivatives at one parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Derivs {
+    /// The point.
+    pub p: Point,
+    /// First derivative.
+    pub d1: Vec2,
+    /// Second derivative.
+    pub d2: Vec2,
+    /// Third derivative.
+    pub d3: Vec2,
+}
+
+impl Derivs {
+    /// Signed curvature `det(x', x'') / |x'|^3` (NaN-free: 0/0 gives an infinite or NaN value
+    /// only at a cusp, which callers check with [`Derivs::is_regular`]).
+    pub fn kappa(&self) -> f64 {
+        let s = self.d1.hypot();
+        self.d1.cross(self.d2) / (s * s * s)
+    }
+
+    /// `dkappa/ds = (det(x',x''') |x'|^2 - 3 det(x',x'') (x'.x'')) / |x'|^6` (math.md §1).
+    pub fn dkappa_ds(&self) -> f64 {
+        let s2 = self.d1.hypot2();
+        (self.d1.cross(self.d3) * s2 - 3.0 * self.d1.cross(self.d2) * self.d1.dot(self.d2))
+            / (s2 * s2 * s2)
+    }
+
+    /// Whether the first derivative is non-zero (curvature defined).
+    pub fn is_regular(&self) -> bool {
+        self.d1.hypot2() > 0.0
+    }
+}
+
+fn check_points(points: &[Point]) -> Result<()> {
+    if points.len() < 2 || points.len() > MAX_BEZIER_DEGREE + 1 {
+        return Err(Error::invalid(
+            "control_points",
+            format!(
+                "need 2 to {} control points (degree 1 to {}), got {}",
+                MAX_BEZIER_DEGREE + 1,
+                MAX_BEZIER_DEGREE,
+                points.len()
+            ),
+        ));
+    }
+    if let Some(i) = points.iter().position(|p| !p.is_finite()) {
+        return Err(Error::invalid(
+            "control_points",
+            format!("control point {i} is not finite"),
+        ));
+    }
+    Ok(())
+}
+
+/// de Casteljau on 3-vectors (homogeneous or xy + dummy), keeping the last four levels:
+/// returns `[q0..q3]` at level n-3 reduced to the value and derivative combinations.
+fn casteljau_derivs<const D: usize>(pts: &[[f64; D]], t: f64) -> [[f64; D]; 4] {
+    // Returns [value, d1, d2, d3] (derivatives with the n, n(n-1), ... factors applied).
+    let n = pts.len() - 1;
+    let mut buf: smallvec::SmallVec<[[f64; D]; 24]> = smallvec::SmallVec::from_slice(pts);
+    let s = 1.0 - t;
+    // Reduce to level n-3 (4 points) when n >= 3.
+    let stop = n.saturating_sub(3);
+    for k in 0..stop {
+        for i in 0..n - k {
+            for c in 0..D {
+                buf[i][c] = s * buf[i][c] + t * buf[i + 1][c];
+            }
+        }
+    }
+    let m = n - stop; // remaining degree: min(n, 3)
+    let q = &buf[..=m];
+    let nf = n as f64;
+    let mut out = [[0.0; D]; 4];
+    match m {
+        0 => out[0] = q[0],
+        1 => {
+            for c in 0..D {
+                out[0][c] = s * q[0][c] + t * q[1][c];
+                out[1][c] = nf * (q[1][c] - q[0][c]);
+            }
+        }
+        2 => {
+            for c in 0..D {
+                let r0 = s * q[0][c] + t * q[1][c];
+                let r1 = s * q[1][c] + t * q[2][c];
+                out[0][c] = s * r0 + t * r1;
+                out[1][c] = nf * (r1 - r0);
+                out[2][c] = nf * (nf - 1.0) * (q[2][c] - 2.0 * q[1][c] + q[0][c]);
+            }
+        }
+        _ => {
+            for c in 0..D {
+                let (a, b, cc, d) = (q[0][c], q[1][c], q[2][c], q[3][c]);
+                let r0 = s * a + t * b;
+                let r1 = s * b + t * cc;
+                let r2 = s * cc + t * d;
+                let u0 = s * r0 + t * r1;
+                let u1 = s * r1 + t * r2;
+                out[0][c] = s * u0 + t * u1;
+                out[1][c] = nf * (u1 - u0);
+                out[2][c] = nf * (nf - 1.0) * (r2 - 2.0 * r1 + r0);
+                out[3][c] = nf * (nf - 1.0) * (nf - 2.0) * (d - 3.0 * cc + 3.0 * b - a);
+            }
+        }
+    }
+    out
+}
+
+fn split_points<const D: usize>(pts: &[[f64; D]], t: f64) -> (Vec<[f64; D]>, Vec<[f64; D]>) {
+    let n = pts.len();
+    let mut work = pts.to_vec();
+    let mut left = Vec::with_capacity(n);
+    let mut right = vec![[0.0; D]; n];
+    let s = 1.0 - t;
+    left.push(work[0]);
+    right[n - 1] = work[n - 1];
+    for k in 1..n {
+        for i in 0..n - k {
+            let next = work[i + 1];
+            for (c, v) in work[i].iter_mut().enumerate() {
+                *v = s * *v + t * next[c];
+            }
+        }
+        left.push(work[0]);
+        right[n - 1 - k] = work[n - 1 - k];
+    }
+    (left, right)
+}
+
+fn elevate_points<const D: usize>(pts: &[[f64; D]]) -> Vec<[f64; D]> {
+    let n = pts.len() - 1;
+    let nf = (n + 1) as f64;
+    (0..=n + 1)
+        .map(|i| {
+            let a = i as f64 / nf;
+            let mut v = [0.0; D];
+            for (c, vc) in v.iter_mut().enumerate() {
+                let prev = if i > 0 { pts[i - 1][c] } else { 0.0 };
+                let cur = if i <= n { pts[i][c] } else { 0.0 };
+                *vc = a * prev + (1.0 - a) * cur;
+            }
+            v
+        })
+        .collect()
+}
+
+/// A polynomial Bézier curve `x(t) = sum B_i^n(t) b_i`, t in [0, 1], degree 1 to 20.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bezier {
+    points: Vec<Point>,
+}
+
+impl Bezier {
+    /// A curve from its control points (2 to 21 finite points).
+    pub fn new(points: Vec<Point>) -> Result<Self> {
+        check_points(&points)?;
+        Ok(Bezier { points })
+    }
+
+    /// The degree n (control points minus one).
+    pub fn degree(&self) -> usize {
+        self.points.len() - 1
+    }
+
+    /// The control points.
+    pub fn points(&self) -> &[Point] {
+        &self.points
+    }
+
+    fn xy(&self) -> smallvec::SmallVec<[[f64; 2]; 24]> {
+        self.points.iter().map(|p| [p.x, p.y]).collect()
+    }
+
+    /// Point and derivatives up to third order at `t`, in one de Casteljau pass.
+    pub fn derivs(&self, t: f64) -> Derivs {
+        let o = casteljau_derivs(&self.xy(), t);
+        Derivs {
+            p: Point::new(o[0][0], o[0][1]),
+            d1: Vec2::new(o[1][0], o[1][1]),
+            d2: Vec2::new(o[2][0], o[2][1]),
+            d3: Vec2::new(o[3][0], o[3][1]),
+        }
+    }
+
+    /// The point at `t`.
+    pub fn eval(&self, t: f64) -> Point {
+        self.derivs(t).p
+    }
+    /// First derivative at `t`.
+    pub fn eval_d(&self, t: f64) -> Vec2 {
+        self.derivs(t).d1
+    }
+    /// Second derivative at `t`.
+    pub fn eval_dd(&self, t: f64) -> Vec2 {
+        self.derivs(t).d2
+    }
+    /// Third derivative at `t`.
+    pub fn eval_ddd(&self, t: f64) -> Vec2 {
+        self.derivs(t).d3
+    }
+    /// Signed curvature at `t`.
+    pub fn kappa(&self, t: f64) -> f64 {
+        self.derivs(t).kappa()
+    }
+    /// dkappa/ds at `t`.
+    pub fn dkappa_ds(&self, t: f64) -> f64 {
+        self.derivs(t).dkappa_ds()
+    }
+
+    /// The hodograph control vectors `n (b_{i+1} - b_i)` (a curve of degree n-1).
+    pub fn hodograph(&self) -> Vec<Vec2> {
+        let n = self.degree() as f64;
+        self.points.windows(2).map(|w| n * (w[1] - w[0])).collect()
+    }
+
+    /// Split at `t` into the curves on [0, t] and [t, 1].
+    pub fn subdivide(&self, t: f64) -> (Bezier, Bezier) {
+        let (l, r) = split_points(&self.xy(), t);
+        let mk = |v: Vec<[f64; 2]>| Bezier {
+            points: v.into_iter().map(|p| Point::new(p[0], p[1])).collect(),
+        };
+        (mk(l), mk(r))
+    }
+
+    /// The same curve with degree n+1 (fails past degree 20).
+    pub fn elevate(&self) -> Result<Bezier> {
+        let e = elevate_points(&self.xy());
+        Bezier::new(e.into_iter().map(|p| Point::new(p[0], p[1])).collect())
+    }
+
+    /// The coordinate functions in Bernstein form.
+    pub fn components(&self) -> (Bernstein, Bernstein) {
+        let x: Vec<f64> = self.points.iter().map(|p| p.x).collect();
+        let y: Vec<f64> = self.points.iter().map(|p| p.y).collect();
+        (Bernstein::new(&x), Bernstein::new(&y))
+    }
+
+    /// Power-basis coefficients: `x(t) = sum a_k t^k`.
+    pub fn to_power(&self) -> Vec<Vec2> {
+        let (x, y) = self.components();
+        x.to_power()
+            .into_iter()
+            .zip(y.to_power())
+            .map(|(a, b)| Vec2::new(a, b))
+            .collect()
+    }
+
+    /// The curve with power-basis coefficients `a` (`x(t) = sum a_k t^k`).
+    pub fn from_power(a: &[Vec2]) -> Result<Bezier> {
+        let x = Bernstein::from_power(&a.iter().map(|v| v.x).collect::<Vec<_>>());
+        let y = Bernstein::from_power(&a.iter().map(|v| v.y).collect::<Vec<_>>());
+        Bezier::new(
+            x.coeffs()
+                .iter()
+                .zip(y.coeffs())
+                .map(|(a, b)| Point::new(*a, *b))
+                .collect(),
+        )
+    }
+
+    /// This curve as a rational curve with unit weights.
+    pub fn to_rational(&self) -> RationalBezier {
+        RationalBezier {
+            points: self.points.clone(),
+            weights: vec![1.0; self.points.len()],
+        }
+    }
+}
+
+/// A rational Bézier curve `x(t) = sum B_i^n w_i b_i / sum B_i^n w_i`, degree 1 to 20,
+/// all weights positive.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RationalBezier {
+    points: Vec<Point>,
+    weights: Vec<f64>,
+}
+
+impl RationalBezier {
+    /// A curve from control points and weights (same count, weights finite and > 0).
+    pub fn new(points: Vec<Point>, weights: Vec<f64>) -> Result<Self> {
+        check_points(&points)?;
+        if weights.len() != points.len() {
+            return Err(Error::invalid(
+                "weights",
+                format!(
+                    "need one weight per control point ({}), got {}",
+                    points.len(),
+                    weights.len()
+                ),
+            ));
+        }
+        if let Some(i) = weights.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
+            return Err(Error::invalid(
+                "weights",
+                format!(
+                    "weight {i} is {}: weights must be finite and > 0",
+                    weights[i]
+                ),
+            ));
+        }
+        Ok(RationalBezier { points, weights })
+    }
+
+    /// The degree n.
+    pub fn degree(&self) -> usize {
+        self.points.len() - 1
+    }
+    /// The control points.
+    pub fn points(&self) -> &[Point] {
+        &self.points
+    }
+    /// The weights.
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// Homogeneous control points `(w x, w y, w)`.
+    pub fn homogeneous(&self) -> smallvec::SmallVec<[[f64; 3]; 24]> {
+        self.points
+            .iter()
+            .zip(&self.weights)
+            .map(|(p, w)| [w * p.x, w * p.y, *w])
+            .collect()
+    }
+
+    /// Point and derivatives up to third order at `t` (homogeneous de Casteljau + quotient rule).
+    pub fn derivs(&self, t: f64) -> Derivs {
+        let h = casteljau_derivs(&self.homogeneous(), t);
+        let v = |k: usize| Vec2::new(h[k][0], h[k][1]);
+        let (w, w1, w2, w3) = (h[0][2], h[1][2], h[2][2], h[3][2]);
+        let x = v(0) / w;
+        let x1 = (v(1) - x * w1) / w;
+        let x2 = (v(2) - 2.0 * w1 * x1 - w2 * x) / w;
+        let x3 = (v(3) - 3.0 * w1 * x2 - 3.0 * w2 * x1 - w3 * x) / w;
+        Derivs {
+            p: x.to_point(),
+            d1: x1,
+            d2: x2,
+            d3: x3,
+        }
+    }
+
+    /// The point at `t`.
+    pub fn eval(&self, t: f64) -> Point {
+        let h = casteljau_derivs(&self.homogeneous(), t);
+        Point::new(h[0][0] / h[0][2], h[0][1] / h[0][2])
+    }
+    /// First derivative at `t`.
+    pub fn eval_d(&self, t: f64) -> Vec2 {
+        self.derivs(t).d1
+    }
+    /// Second derivative at `t`.
+    pub fn eval_dd(&self, t: f64) -> Vec2 {
+        self.derivs(t).d2
+    }
+    /// Third derivative at `t`.
+    pub fn eval_ddd(&self, t: f64) -> Vec2 {
+        self.derivs(t).d3
+    }
+    /// Signed curvature at `t`.
+    pub fn kappa(&self, t: f64) -> f64 {
+        self.derivs(t).kappa()
+    }
+    /// dkappa/ds at `t`.
+    pub fn dkappa_ds(&self, t: f64) -> f64 {
+        self.derivs(t).dkappa_ds()
+    }
+
+    /// Curvature at t = 0 by the closed form of math.md §1:
+    /// `((n-1)/n) (w0 w2 / w1^2) det(b1-b0, b2-b1) / |b1-b0|^3`.
+    pub fn kappa_start(&self) -> f64 {
+        end_curvature(&self.points, &self.weights)
+    }
+
+    /// Curvature at t = 1 (the closed form applied to the reversed curve, sign restored).
+    pub fn kappa_end(&self) -> f64 {
+        let p: Vec<Point> = self.points.iter().rev().copied().collect();
+        let w: Vec<f64> = self.weights.iter().rev().copied().collect();
+        -end_curvature(&p, &w)
+    }
+
+    fn from_homogeneous(h: Vec<[f64; 3]>) -> RationalBezier {
+        RationalBezier {
+            points: h
+                .iter()
+                .map(|v| Point::new(v[0] / v[2], v[1] / v[2]))
+                .collect(),
+            weights: h.iter().map(|v| v[2]).collect(),
+        }
+    }
+
+    /// Split at `t` into the curves on [0, t] and [t, 1].
+    pub fn subdivide(&self, t: f64) -> (RationalBezier, RationalBezier) {
+        let (l, r) = split_points(&self.homogeneous(), t);
+        (Self::from_homogeneous(l), Self::from_homogeneous(r))
+    }
+
+    /// The same curve with degree n+1 (fails past degree 20).
+    pub fn elevate(&self) -> Result<RationalBezier> {
+        if self.degree() >= MAX_BEZIER_DEGREE {
+            return Err(Error::invalid(
+                "degree",
+                format!("cannot elevate past degree {MAX_BEZIER_DEGREE}"),
+            ));
+        }
+        Ok(Self::from_homogeneous(elevate_points(&self.homogeneous())))
+    }
+
+    /// Reparametrise by the standard Möbius map so that the end weights become 1 (the same
+    /// curve; weights `w_i * c^i` scaled). Fails never for positive weights.
+    pub fn normalized(&self) -> RationalBezier {
+        let n = self.degree();
+        let w0 = self.weights[0];
+        let wn = self.weights[n];
+        let c = (w0 / wn).powf(1.0 / n as f64);
+        let weights = self
+            .weights
+            .iter()
+            .enumerate()
+            .map(|(i, w)| w * c.powi(i as i32) / w0)
+            .collect();
+        RationalBezier {
+            points: self.points.clone(),
+            weights,
+        }
+    }
+
+    /// Numerator components and the weight function in Bernstein form: `(X, Y, W)`.
+    pub fn components(&self) -> (Bernstein, Bernstein, Bernstein) {
+        let h = self.homogeneous();
+        let col = |c: usize| Bernstein::new(&h.iter().map(|v| v[c]).collect::<Vec<_>>());
+        (col(0), col(1), col(2))
+    }
+}
+
+fn end_curvature(p: &[Point], w: &[f64]) -> f64 {
+    let n = p.len() - 1;
+    if n < 2 {
+        return 0.0;
+    }
+    let d0 = p[1] - p[0];
+    let d1 = p[2] - p[1];
+    let l = d0.hypot();
+    ((n as f64 - 1.0) / n as f64) * (w[0] * w[2] / (w[1] * w[1])) * d0.cross(d1) / (l * l * l)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pts(v: &[(f64, f64)]) -> Vec<Point> {
+        v.iter().map(|&(x, y)| Point::new(x, y)).collect()
+    }
+
+    #[test]
+    fn cubic_derivatives_match_power_form() {
+        let b = Bezier::new(pts(&[(0.0, 0.0), (1.0, 2.0), (3.0, 3.0), (4.0, 0.0)])).unwrap();
+        let a = b.to_power();
+        for i in 0..=8 {
+            let t = i as f64 / 8.0;
+            let d = b.derivs(t);
+            let p = a[0] + a[1] * t + a[2] * t * t + a[3] * t * t * t;
+            let d1 = a[1] + 2.0 * a[2] * t + 3.0 * a[3] * t * t;
+            let d2 = 2.0 * a[2] + 6.0 * a[3] * t;
+            let d3 = 6.0 * a[3];
+            assert!((d.p.to_vec2() - p).hypot() < 1e-13);
+            assert!((d.d1 - d1).hypot() < 1e-12);
+            assert!((d.d2 - d2).hypot() < 1e-12);
+            assert!((d.d3 - d3).hypot() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn rational_quadratic_circle_has_constant_curvature() {
+        // Quarter circle of radius 2: weights 1, cos(45deg), 1.
+        let r = RationalBezier::new(
+            pts(&[(2.0, 0.0), (2.0, 2.0), (0.0, 2.0)]),
+            vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0],
+        )
+        .unwrap();
+        for i in 0..=10 {
+            let t = i as f64 / 10.0;
+            assert!((r.eval(t).to_vec2().hypot() - 2.0).abs() < 1e-14);
+            assert!((r.kappa(t) - 0.5).abs() < 1e-13);
+            assert!(r.dkappa_ds(t).abs() < 1e-12);
+        }
+        assert!((r.kappa_start() - 0.5).abs() < 1e-14);
+        assert!((r.kappa_end() - 0.5).abs() < 1e-14);
+    }
+
+    #[test]
+    fn subdivision_elevation_and_normalisation_keep_the_curve() {
+        let r = RationalBezier::new(
+            pts(&[(0.0, 0.0), (1.0, 2.0), (3.0, 3.0), (4.0, 0.0)]),
+            vec![1.0, 2.0, 0.5, 3.0],
+        )
+        .unwrap();
+        let (l, rr) = r.subdivide(0.4);
+        let e = r.elevate().unwrap();
+        let nrm = r.normalized();
+        for i in 0..=10 {
+            let t = i as f64 / 10.0;
+            assert!((l.eval(t) - r.eval(0.4 * t)).hypot() < 1e-13);
+            assert!((rr.eval(t) - r.eval(0.4 + 0.6 * t)).hypot() < 1e-13);
+            assert!((e.eval(t) - r.eval(t)).hypot() < 1e-13);
+            assert!((e.kappa(t) - r.kappa(t)).abs() < 1e-10 * r.kappa(t).abs().max(1.0));
+        }
+        // The normalised curve is a reparametrisation: same points at other parameters,
+        // same curvature at the ends.
+        assert!((nrm.weights()[0] - 1.0).abs() < 1e-15 && (nrm.weights()[3] - 1.0).abs() < 1e-14);
+        assert!((nrm.kappa_start() - r.kappa_start()).abs() < 1e-12);
+        assert!((r.kappa_start() - r.kappa(0.0)).abs() < 1e-12 * r.kappa(0.0).abs());
+        assert!((r.kappa_end() - r.kappa(1.0)).abs() < 1e-12 * r.kappa(1.0).abs());
+    }
+
+    #[test]
+    fn rejects_bad_input() {
+        assert!(Bezier::new(pts(&[(0.0, 0.0)])).is_err());
+        assert!(Bezier::new(pts(&[(0.0, f64::NAN), (1.0, 0.0)])).is_err());
+        assert!(Bezier::new(vec![Point::ZERO; 22]).is_err());
+        assert!(RationalBezier::new(pts(&[(0.0, 0.0), (1.0, 0.0)]), vec![1.0, 0.0]).is_err());
+        assert!(RationalBezier::new(pts(&[(0.0, 0.0), (1.0, 0.0)]), vec![1.0]).is_err());
+    }
+}

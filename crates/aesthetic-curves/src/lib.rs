@@ -1,0 +1,27 @@
+//! # aesthetic-curves
+//!
+//! Curves whose curvature varies monotonically, and the tools to design, check and export
+//! them. The mathematics follows `shared/spec/math.md` (the five seed papers, corrected).
+//!
+//! - [`bernstein`]: polynomials in Bernstein form (products, subdivision, degree elevation,
+//!   sign analysis with rounding bounds, root isolation).
+//! - [`bezier`]: polynomial and rational Bézier curves of degree 1 to 20: evaluation,
+//!   derivatives, curvature, dkappa/ds, subdivision, elevation, power basis.
+//! - [`monotone`]: the exact curvature-monotonicity test (Bernstein form of dkappa/ds plus
+//!   subdivision) and the sampling test.
+//!
+//! Points and vectors are [`kurbo::Point`] and [`kurbo::Vec2`]; angles are radians; signed
+//! curvature is positive where the curve turns counter-clockwise.
+
+#![warn(missing_docs)]
+
+pub mod bernstein;
+pub mod bezier;
+pub mod error;
+pub mod monotone;
+pub mod samples;
+
+pub use bezier::{Bezier, RationalBezier};
+pub use error::{Error, Result};
+pub use kurbo::{Point, Vec2};
+pub use monotone::{MonotoneReport, SampledReport, Trend};

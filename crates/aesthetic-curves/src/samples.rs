@@ -1,0 +1,78 @@
+//! Reproducible sets of curves for benchmarks, demos and tests.
+//!
+//! A small SplitMix64 generator (no dependency) drives two families in equal parts:
+//! control polygons with points uniform in a box (mostly not curvature-monotone), and
+//! "class A"-like spirals whose edges are scaled and rotated by a constant with a small
+//! jitter (mostly monotone). The same seed always gives the same curves.
+
+use crate::bezier::{Bezier, RationalBezier};
+use kurbo::{Point, Vec2};
+
+/// SplitMix64: a tiny, well-distributed, reproducible generator.
+#[derive(Clone, Debug)]
+pub struct SplitMix64(u64);
+
+impl SplitMix64 {
+    /// A generator from a seed.
+    pub fn new(seed: u64) -> Self {
+        SplitMix64(seed)
+    }
+    /// Next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub fn next_f64(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next_f64()
+    }
+}
+
+fn polygon(rng: &mut SplitMix64, degree: usize) -> Vec<Point> {
+    if rng.next_u64() & 1 == 0 {
+        (0..=degree)
+            .map(|_| Point::new(rng.range(-8.0, 8.0), rng.range(-8.0, 8.0)))
+            .collect()
+    } else {
+        let scale = rng.range(0.55, 1.0);
+        let rot = rng.range(-0.7, 0.7);
+        let mut e = Vec2::from_angle(rng.range(0.0, std::f64::consts::TAU)) * rng.range(1.0, 3.0);
+        let mut p = Point::ZERO;
+        let mut out = vec![p];
+        for _ in 0..degree {
+            p += e + Vec2::new(rng.range(-0.05, 0.05), rng.range(-0.05, 0.05));
+            out.push(p);
+            e = Vec2::from_angle(rot).rotate_scale(e) * scale;
+        }
+        out
+    }
+}
+
+/// `count` polynomial Bézier curves of the given degree (1 to 20).
+pub fn random_curves(degree: usize, count: usize, seed: u64) -> Vec<Bezier> {
+    let mut rng = SplitMix64::new(seed ^ (degree as u64).wrapping_mul(0x1234_5678_9ABC));
+    (0..count)
+        .map(|_| Bezier::new(polygon(&mut rng, degree)).expect("valid degree"))
+        .collect()
+}
+
+/// `count` rational Bézier curves of the given degree, weights in [0.25, 4].
+pub fn random_rational_curves(degree: usize, count: usize, seed: u64) -> Vec<RationalBezier> {
+    let mut rng = SplitMix64::new(seed ^ (degree as u64).wrapping_mul(0x9876_5432_1FED));
+    (0..count)
+        .map(|_| {
+            let pts = polygon(&mut rng, degree);
+            let w = (0..=degree)
+                .map(|_| 4f64.powf(rng.range(-1.0, 1.0)))
+                .collect();
+            RationalBezier::new(pts, w).expect("valid degree and weights")
+        })
+        .collect()
+}
