@@ -415,14 +415,20 @@ enum CoefSign {
     Zero,
 }
 
-enum Classified {
+/// What the coefficients alone prove about a polynomial on its whole interval.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Classified {
+    /// One sign (or zero within rounding) throughout.
     Settled(Sign),
-    /// Exactly one sign change; the sign at the start of the piece.
+    /// Exactly one sign change; the sign at the start of the interval.
     OneChange(Sign),
+    /// Needs subdivision.
     Undecided,
 }
 
-fn classify(c: &[f64], noise: &[f64]) -> Classified {
+/// Classify coefficients with rounding bounds without subdividing (the first step of
+/// [`analyze_signs`]).
+pub fn classify(c: &[f64], noise: &[f64]) -> Classified {
     let mut any_pos = false;
     let mut any_neg = false;
     for (v, e) in c.iter().zip(noise) {

@@ -34,7 +34,9 @@
 //! sign (differences within `1e-12` of the curvature's size count as zero). It can miss
 //! extrema between samples, and costs grow with N: it exists to reproduce S1's comparison.
 
-use crate::bernstein::{analyze_signs, binomial, subdivide_coeffs, Bernstein, SignOptions};
+use crate::bernstein::{
+    analyze_signs, binomial, classify, Bernstein, Classified, Coeffs, Sign, SignOptions,
+};
 use crate::bezier::{Bezier, Derivs, RationalBezier};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
@@ -93,11 +95,9 @@ pub struct CurvatureVariation {
     /// K(t): same sign as dkappa/ds wherever the curve is regular.
     pub k: Bernstein,
     /// Rounding bound of each coefficient of `k`.
-    pub k_noise: Vec<f64>,
+    pub k_noise: Coeffs,
     /// Squared speed, up to a positive factor: |x'|^2 or |W P' - P W'|^2.
     pub speed2: Bernstein,
-    /// Rounding bound of each coefficient of `speed2`.
-    pub speed2_noise: Vec<f64>,
     /// Largest squared length of the hodograph's control vectors (the speed's scale).
     pub speed2_scale: f64,
     /// Control vectors of the (scaled) hodograph: the tangent is a positive combination.
@@ -106,12 +106,12 @@ pub struct CurvatureVariation {
 
 const EPS: f64 = f64::EPSILON;
 
-fn noise_of(abs: &Bernstein) -> Vec<f64> {
+fn noise_of(abs: &Bernstein) -> Coeffs {
     noise_slice(abs.coeffs())
 }
 
 /// Rounding bound from magnitude bounds: a few ulps per operation level of the products.
-fn noise_slice(abs: &[f64]) -> Vec<f64> {
+fn noise_slice(abs: &[f64]) -> Coeffs {
     let k = 16.0 + 4.0 * (abs.len() - 1) as f64;
     abs.iter().map(|v| k * EPS * v).collect()
 }
@@ -132,141 +132,281 @@ fn deriv_abs(p: &Bernstein) -> Bernstein {
 }
 
 /// K(t) for a polynomial Bézier curve (degree 4n-7 for n >= 3; see the module docs).
-///
-/// Hot path: stack buffers only, products accumulated unnormalised and divided by the
-/// binomial of the result once (the same Bernstein product formula as
-/// [`Bernstein::mul`]), value and magnitude bound computed side by side.
 pub fn curvature_variation(curve: &Bezier) -> CurvatureVariation {
-    const N1: usize = crate::bezier::MAX_BEZIER_DEGREE;
-    const NK: usize = 4 * N1;
-    let b = curve.points();
+    if curve.degree() <= SMALL_DEGREE {
+        poly_k::<SMALL_CAP>(curve.points()).to_variation()
+    } else {
+        poly_k::<LARGE_CAP>(curve.points()).to_variation()
+    }
+}
+
+/// Degrees up to this use the small stack buffers.
+const SMALL_DEGREE: usize = 5;
+const SMALL_CAP: usize = 4 * SMALL_DEGREE - 5;
+const LARGE_CAP: usize = 4 * crate::bezier::MAX_BEZIER_DEGREE;
+
+/// K, its magnitude bounds, |x'|^2 and the hodograph of a polynomial curve, on the stack.
+///
+/// `k`, `ka` and `s` are in *scaled* Bernstein form (`C(d, i) c_i`): products are then plain
+/// convolutions, and signs (with their bounds) are the same as in the unscaled form.
+struct PolyK<const C: usize> {
+    n: usize,
+    k: [f64; C],
+    ka: [f64; C],
+    dk: usize,
+    s: [f64; C],
+    ds: usize,
+    h: [Vec2; C],
+    scale: f64,
+}
+
+impl<const C: usize> PolyK<C> {
+    fn noise(&self) -> [f64; C] {
+        let mut out = [0.0; C];
+        let f = 16.0 + 4.0 * self.dk as f64;
+        for (o, a) in out.iter_mut().zip(&self.ka[..=self.dk]) {
+            *o = f * EPS * a;
+        }
+        out
+    }
+
+    fn to_variation(&self) -> CurvatureVariation {
+        let mut noise = self.noise();
+        let mut k = self.k;
+        let mut s = self.s;
+        unscale(&mut k[..=self.dk]);
+        unscale(&mut noise[..=self.dk]);
+        unscale(&mut s[..=self.ds]);
+        CurvatureVariation {
+            k: Bernstein::new(&k[..=self.dk]),
+            k_noise: Coeffs::from_slice(&noise[..=self.dk]),
+            speed2: Bernstein::new(&s[..=self.ds]),
+            speed2_scale: self.scale,
+            hodograph: SmallVec::from_slice(&self.h[..self.n]),
+        }
+    }
+
+    /// The verdict only, allocation-free.
+    #[inline(always)]
+    fn is_monotone(&self) -> Result<bool> {
+        // Quick regularity proof first: |x'|^2 has positive Bernstein coefficients.
+        let margin2 = DEGENERATE_SPEED_TOL * DEGENERATE_SPEED_TOL * self.scale;
+        if self.scale == 0.0
+            || self.s[..=self.ds]
+                .iter()
+                .enumerate()
+                .any(|(i, v)| *v <= margin2 * binomial(self.ds, i))
+        {
+            check_regular(&self.h[..self.n], self.scale)?;
+        }
+        let mut noise = self.noise();
+        let dk = self.dk;
+        Ok(match classify(&self.k[..=dk], &noise[..=dk]) {
+            Classified::Settled(_) => true,
+            Classified::OneChange(_) => false,
+            Classified::Undecided => {
+                let mut k = self.k;
+                unscale(&mut k[..=dk]);
+                unscale(&mut noise[..=dk]);
+                signs_settle_one_way::<C>(&k[..=dk], &noise[..=dk])
+            }
+        })
+    }
+}
+
+/// From scaled (`C(d, i) c_i`) to plain Bernstein coefficients.
+#[inline]
+fn unscale(c: &mut [f64]) {
+    let d = c.len() - 1;
+    for (i, v) in c.iter_mut().enumerate() {
+        *v /= binomial(d, i);
+    }
+}
+
+/// From plain to scaled Bernstein coefficients.
+#[inline]
+fn rescale(c: &mut [f64]) {
+    let d = c.len() - 1;
+    for (i, v) in c.iter_mut().enumerate() {
+        *v *= binomial(d, i);
+    }
+}
+
+/// `out[i + j] += s a_i b_j`: the product of scaled Bernstein forms is a convolution.
+#[inline(always)]
+fn conv(a: &[f64], b: &[f64], s: f64, out: &mut [f64]) {
+    for (i, &ai) in a.iter().enumerate() {
+        let ai = s * ai;
+        for (o, &bj) in out[i..i + b.len()].iter_mut().zip(b) {
+            *o += ai * bj;
+        }
+    }
+}
+
+/// Stack buffers only, scaled Bernstein forms (products are convolutions), values and
+/// magnitude bounds side by side. Needs `4n - 6 <= C` and `n <= C`.
+#[inline(always)]
+fn poly_k<const C: usize>(b: &[Point]) -> PolyK<C> {
     let n = b.len() - 1;
     let nf = n as f64;
-    // Hodograph n d_i (values and magnitude bounds).
-    let mut hx = [0.0; N1];
-    let mut hy = [0.0; N1];
-    let mut hxa = [0.0; N1];
-    let mut hya = [0.0; N1];
-    let mut hodograph: SmallVec<[Vec2; 24]> = SmallVec::new();
-    let mut speed2_scale = 0.0f64;
+    let m1 = n - 1;
+    // Hodograph n d_i, plain (for regularity) and scaled by C(n-1, i).
+    let mut h = [Vec2::ZERO; C];
+    let (mut hx, mut hy, mut hxa, mut hya) = ([0.0; C], [0.0; C], [0.0; C], [0.0; C]);
+    let mut scale = 0.0f64;
     for i in 0..n {
         let (p, q) = (b[i + 1], b[i]);
         hx[i] = nf * (p.x - q.x);
         hy[i] = nf * (p.y - q.y);
         hxa[i] = nf * (p.x.abs() + q.x.abs());
         hya[i] = nf * (p.y.abs() + q.y.abs());
-        hodograph.push(Vec2::new(hx[i], hy[i]));
-        speed2_scale = speed2_scale.max(hx[i] * hx[i] + hy[i] * hy[i]);
+        h[i] = Vec2::new(hx[i], hy[i]);
+        scale = scale.max(hx[i] * hx[i] + hy[i] * hy[i]);
     }
+    let sc = |v: &[f64; C], off: usize, d: usize| {
+        let mut o = [0.0; C];
+        for i in 0..=d {
+            o[i] = v[i + off] * binomial(d, i);
+        }
+        o
+    };
+    let (hxs, hys, hxas, hyas) = (
+        sc(&hx, 0, m1),
+        sc(&hy, 0, m1),
+        sc(&hxa, 0, m1),
+        sc(&hya, 0, m1),
+    );
     // |x'|^2, degree 2n-2.
-    let ds = 2 * (n - 1);
-    let mut s = [0.0; NK];
-    let mut sa = [0.0; NK];
-    acc_mul(&hx[..n], &hx[..n], 1.0, &mut s);
-    acc_mul(&hy[..n], &hy[..n], 1.0, &mut s);
-    acc_mul(&hxa[..n], &hxa[..n], 1.0, &mut sa);
-    acc_mul(&hya[..n], &hya[..n], 1.0, &mut sa);
-    normalize(&mut s[..=ds]);
-    normalize(&mut sa[..=ds]);
-    let speed2 = Bernstein::new(&s[..=ds]);
-    let speed2_noise = noise_slice(&sa[..=ds]);
+    let ds = 2 * m1;
+    let mut s = [0.0; C];
+    let mut sa = [0.0; C];
+    conv(&hxs[..n], &hxs[..n], 1.0, &mut s);
+    conv(&hys[..n], &hys[..n], 1.0, &mut s);
+    conv(&hxas[..n], &hxas[..n], 1.0, &mut sa);
+    conv(&hyas[..n], &hyas[..n], 1.0, &mut sa);
+    let mut out = PolyK {
+        n,
+        k: [0.0; C],
+        ka: [0.0; C],
+        dk: 0,
+        s,
+        ds,
+        h,
+        scale,
+    };
     if n < 2 {
-        return CurvatureVariation {
-            k: Bernstein::constant(0.0),
-            k_noise: vec![0.0],
-            speed2,
-            speed2_noise,
-            speed2_scale,
-            hodograph,
-        };
+        return out;
     }
-    // det(x', x'') = n^2 (n-1) det(A, B) with A = sum B^{n-2} d_i, B = sum B^{n-2} d_{i+1};
-    // in terms of h = n d: (n-1) det(sum B^{n-2} h_i, sum B^{n-2} h_{i+1}). Degree 2n-4.
+    // det(x', x'') = (n-1) det(sum B^{n-2} h_i, sum B^{n-2} h_{i+1}), degree 2n-4.
     let m = n - 2;
     let dg = 2 * m;
     let c2 = nf - 1.0;
-    let mut g = [0.0; NK];
-    let mut ga = [0.0; NK];
-    acc_mul(&hx[..=m], &hy[1..=m + 1], c2, &mut g);
-    acc_mul(&hy[..=m], &hx[1..=m + 1], -c2, &mut g);
-    acc_mul(&hxa[..=m], &hya[1..=m + 1], c2, &mut ga);
-    acc_mul(&hya[..=m], &hxa[1..=m + 1], c2, &mut ga);
-    normalize(&mut g[..=dg]);
-    normalize(&mut ga[..=dg]);
-    // x'' = (n-1) (h_{i+1} - h_i), degree n-2.
-    let mut x2 = [0.0; N1];
-    let mut y2 = [0.0; N1];
-    let mut x2a = [0.0; N1];
-    let mut y2a = [0.0; N1];
+    let (ax, ay, aax, aay) = (sc(&hx, 0, m), sc(&hy, 0, m), sc(&hxa, 0, m), sc(&hya, 0, m));
+    let (bx, by, bax, bay) = (sc(&hx, 1, m), sc(&hy, 1, m), sc(&hxa, 1, m), sc(&hya, 1, m));
+    let mut g = [0.0; C];
+    let mut ga = [0.0; C];
+    conv(&ax[..=m], &by[..=m], c2, &mut g);
+    conv(&ay[..=m], &bx[..=m], -c2, &mut g);
+    conv(&aax[..=m], &bay[..=m], c2, &mut ga);
+    conv(&aay[..=m], &bax[..=m], c2, &mut ga);
+    // x'' = (n-1) (h_{i+1} - h_i), degree n-2, scaled: (n-1) (B - A).
+    let (mut x2, mut y2, mut x2a, mut y2a) = ([0.0; C], [0.0; C], [0.0; C], [0.0; C]);
     for i in 0..=m {
-        x2[i] = (nf - 1.0) * (hx[i + 1] - hx[i]);
-        y2[i] = (nf - 1.0) * (hy[i + 1] - hy[i]);
-        x2a[i] = (nf - 1.0) * (hxa[i + 1] + hxa[i]);
-        y2a[i] = (nf - 1.0) * (hya[i + 1] + hya[i]);
+        x2[i] = c2 * (bx[i] - ax[i]);
+        y2[i] = c2 * (by[i] - ay[i]);
+        x2a[i] = c2 * (bax[i] + aax[i]);
+        y2a[i] = c2 * (bay[i] + aay[i]);
     }
     // Q = x'.x'', degree 2n-3.
+    let mut qv = [0.0; C];
+    let mut qa = [0.0; C];
+    conv(&hxs[..n], &x2[..=m], 1.0, &mut qv);
+    conv(&hys[..n], &y2[..=m], 1.0, &mut qv);
+    conv(&hxas[..n], &x2a[..=m], 1.0, &mut qa);
+    conv(&hyas[..n], &y2a[..=m], 1.0, &mut qa);
     let dq = 2 * n - 3;
-    let mut qv = [0.0; NK];
-    let mut qa = [0.0; NK];
-    acc_mul(&hx[..n], &x2[..=m], 1.0, &mut qv);
-    acc_mul(&hy[..n], &y2[..=m], 1.0, &mut qv);
-    acc_mul(&hxa[..n], &x2a[..=m], 1.0, &mut qa);
-    acc_mul(&hya[..n], &y2a[..=m], 1.0, &mut qa);
-    normalize(&mut qv[..=dq]);
-    normalize(&mut qa[..=dq]);
-    let mut k = [0.0; NK];
-    let mut ka = [0.0; NK];
-    let dk = if n == 2 {
-        acc_mul(&g[..1], &qv[..=dq], -3.0, &mut k);
-        acc_mul(&ga[..1], &qa[..=dq], 3.0, &mut ka);
+    let (k, ka) = (&mut out.k, &mut out.ka);
+    out.dk = if n == 2 {
+        conv(&g[..1], &qv[..=dq], -3.0, k);
+        conv(&ga[..1], &qa[..=dq], 3.0, ka);
         dq
     } else {
-        // G' (degree 2m-1) and its bound.
-        let mut gd = [0.0; NK];
-        let mut gda = [0.0; NK];
+        // G' (degree 2n-5) and its bound: unscale, differentiate, rescale.
+        unscale(&mut g[..=dg]);
+        unscale(&mut ga[..=dg]);
+        let (mut gd, mut gda) = ([0.0; C], [0.0; C]);
         let mf = dg as f64;
         for i in 0..dg {
             gd[i] = mf * (g[i + 1] - g[i]);
             gda[i] = mf * (ga[i + 1] + ga[i]);
         }
-        acc_mul(&gd[..dg], &s[..=ds], 1.0, &mut k);
-        acc_mul(&g[..=dg], &qv[..=dq], -3.0, &mut k);
-        acc_mul(&gda[..dg], &sa[..=ds], 1.0, &mut ka);
-        acc_mul(&ga[..=dg], &qa[..=dq], 3.0, &mut ka);
+        rescale(&mut gd[..dg]);
+        rescale(&mut gda[..dg]);
+        rescale(&mut g[..=dg]);
+        rescale(&mut ga[..=dg]);
+        conv(&gd[..dg], &out.s[..=ds], 1.0, k);
+        conv(&g[..=dg], &qv[..=dq], -3.0, k);
+        conv(&gda[..dg], &sa[..=ds], 1.0, ka);
+        conv(&ga[..=dg], &qa[..=dq], 3.0, ka);
         dg - 1 + ds
     };
-    normalize(&mut k[..=dk]);
-    normalize(&mut ka[..=dk]);
-    CurvatureVariation {
-        k: Bernstein::new(&k[..=dk]),
-        k_noise: noise_slice(&ka[..=dk]),
-        speed2,
-        speed2_noise,
-        speed2_scale,
-        hodograph,
-    }
+    out
 }
 
-/// `out[i + j] += s C(m, i) C(n, j) a_i b_j`: an unnormalised Bernstein product term.
-#[inline]
-fn acc_mul(a: &[f64], b: &[f64], s: f64, out: &mut [f64]) {
-    let m = a.len() - 1;
-    let n = b.len() - 1;
-    for (i, &ai) in a.iter().enumerate() {
-        let ai = s * ai * binomial(m, i);
-        let row = &mut out[i..=i + n];
-        for (j, (o, &bj)) in row.iter_mut().zip(b).enumerate() {
-            *o += ai * binomial(n, j) * bj;
+/// Monotone verdict by subdivision on fixed stack buffers, stopping at the first proof that
+/// both signs occur (the early-exit form of [`analyze_signs`], for the hot path).
+fn signs_settle_one_way<const C: usize>(c: &[f64], noise: &[f64]) -> bool {
+    fn walk<const C: usize>(c: &[f64], nz: &[f64], depth: u32, pos: &mut bool, neg: &mut bool) {
+        if *pos && *neg {
+            return;
+        }
+        match classify(c, nz) {
+            Classified::Settled(Sign::Positive) => *pos = true,
+            Classified::Settled(Sign::Negative) => *neg = true,
+            Classified::Settled(Sign::Zero) => {}
+            Classified::OneChange(_) => {
+                *pos = true;
+                *neg = true;
+            }
+            Classified::Undecided => {
+                if depth >= SignOptions::default().max_depth {
+                    return;
+                }
+                let n = c.len();
+                let (mut l, mut r, mut w) = ([0.0; C], [0.0; C], [0.0; C]);
+                let (mut ln, mut rn, mut wn) = ([0.0; C], [0.0; C], [0.0; C]);
+                w[..n].copy_from_slice(c);
+                wn[..n].copy_from_slice(nz);
+                l[0] = w[0];
+                r[n - 1] = w[n - 1];
+                ln[0] = wn[0];
+                rn[n - 1] = wn[n - 1];
+                for k in 1..n {
+                    for i in 0..n - k {
+                        w[i] = 0.5 * (w[i] + w[i + 1]);
+                        wn[i] = 0.5 * (wn[i] + wn[i + 1]) * (1.0 + 1e-15);
+                    }
+                    l[k] = w[0];
+                    r[n - 1 - k] = w[n - 1 - k];
+                    ln[k] = wn[0];
+                    rn[n - 1 - k] = wn[n - 1 - k];
+                }
+                walk::<C>(&l[..n], &ln[..n], depth + 1, pos, neg);
+                walk::<C>(&r[..n], &rn[..n], depth + 1, pos, neg);
+            }
         }
     }
+    let (mut pos, mut neg) = (false, false);
+    walk::<C>(c, noise, 0, &mut pos, &mut neg);
+    !(pos && neg)
 }
 
-/// Divide by the binomials of the result's degree (completes [`acc_mul`]).
-#[inline]
-fn normalize(out: &mut [f64]) {
-    let d = out.len() - 1;
-    for (k, v) in out.iter_mut().enumerate() {
-        *v /= binomial(d, k);
+/// The fast verdict for polynomial curves (stack buffers for degree <= 5).
+fn poly_is_monotone(curve: &Bezier) -> Result<bool> {
+    if curve.degree() <= SMALL_DEGREE {
+        poly_k::<SMALL_CAP>(curve.points()).is_monotone()
+    } else {
+        poly_k::<LARGE_CAP>(curve.points()).is_monotone()
     }
 }
 
@@ -304,7 +444,6 @@ pub fn curvature_variation_rational(curve: &RationalBezier) -> CurvatureVariatio
     let (dxa, dya) = (Bernstein::new(&dxa), Bernstein::new(&dya));
     let speed2 = dx.mul(&dx).add(&dy.mul(&dy));
     let speed2_abs = dxa.mul(&dxa).add(&dya.mul(&dya));
-    let speed2_noise = noise_of(&speed2_abs);
     let speed2_scale = dx
         .coeffs()
         .iter()
@@ -320,9 +459,8 @@ pub fn curvature_variation_rational(curve: &RationalBezier) -> CurvatureVariatio
     if n < 2 {
         return CurvatureVariation {
             k: Bernstein::constant(0.0),
-            k_noise: vec![0.0],
+            k_noise: Coeffs::from_elem(0.0, 1),
             speed2,
-            speed2_noise,
             speed2_scale,
             hodograph,
         };
@@ -382,12 +520,11 @@ pub fn curvature_variation_rational(curve: &RationalBezier) -> CurvatureVariatio
     let noise = noise.expect("noise requested");
     // The reduction recurrences amplify rounding at most by the factors already applied to
     // `noise`; double it for the residual of the cancelled top coefficient.
-    let k_noise = noise.coeffs().iter().map(|v| 2.0 * v).collect();
+    let k_noise: Coeffs = noise.coeffs().iter().map(|v| 2.0 * v).collect();
     CurvatureVariation {
         k,
         k_noise,
         speed2,
-        speed2_noise,
         speed2_scale,
         hodograph,
     }
@@ -400,73 +537,126 @@ fn abs_diff(p: Point, q: Point) -> (f64, f64) {
 /// Relative speed below which a curve counts as degenerate (|x'| <= TOL * scale).
 pub const DEGENERATE_SPEED_TOL: f64 = 1e-8;
 
-/// Find a parameter where the squared speed falls to `target` or below, if any.
-fn speed_vanishes(c: &[f64], target: f64, a: f64, b: f64, depth: u32) -> Option<f64> {
-    let min = c.iter().copied().fold(f64::INFINITY, f64::min);
-    if min > target {
-        return None;
+/// Whether some direction v has `v . h_i > margin` for all control vectors (then the
+/// hodograph, their convex combination, stays at least `margin` long). The direction tried
+/// is the mean of the unit control vectors.
+fn cone_is_open(h: &[Vec2], margin: f64) -> bool {
+    let mut s = Vec2::ZERO;
+    for v in h {
+        let l = v.hypot();
+        if l <= margin {
+            return false;
+        }
+        s += *v / l;
     }
-    if c[0] <= target {
+    let l = s.hypot();
+    if l < 1e-9 {
+        return false;
+    }
+    let dir = s / l;
+    h.iter().all(|v| dir.dot(*v) > margin)
+}
+
+/// A parameter where the hodograph (control vectors `h` on [a, b]) is at most `margin` long,
+/// if any: subdivide until every piece's control vectors lie in an open cone.
+fn hodograph_vanishes(h: &[Vec2], margin: f64) -> Option<f64> {
+    if h.len() <= 8 {
+        hodograph_vanishes_in::<8>(h, margin, 0.0, 1.0, 0)
+    } else {
+        hodograph_vanishes_in::<{ 2 * crate::bezier::MAX_BEZIER_DEGREE }>(h, margin, 0.0, 1.0, 0)
+    }
+}
+
+fn hodograph_vanishes_in<const C: usize>(
+    h: &[Vec2],
+    margin: f64,
+    a: f64,
+    b: f64,
+    depth: u32,
+) -> Option<f64> {
+    if h[0].hypot() <= margin {
         return Some(a);
     }
-    if c[c.len() - 1] <= target {
+    if h[h.len() - 1].hypot() <= margin {
         return Some(b);
     }
-    if depth >= 40 {
-        let mid = 0.5 * (a + b);
-        return (crate::bernstein::de_casteljau(c, 0.5) <= target).then_some(mid);
+    if cone_is_open(h, margin) {
+        return None;
     }
-    let (l, r) = subdivide_coeffs(c, 0.5);
+    let n = h.len();
+    let (mut left, mut right, mut work) = ([Vec2::ZERO; C], [Vec2::ZERO; C], [Vec2::ZERO; C]);
+    work[..n].copy_from_slice(h);
+    left[0] = work[0];
+    right[n - 1] = work[n - 1];
+    for k in 1..n {
+        for i in 0..n - k {
+            work[i] = (work[i] + work[i + 1]) * 0.5;
+        }
+        left[k] = work[0];
+        right[n - 1 - k] = work[n - 1 - k];
+    }
     let mid = 0.5 * (a + b);
-    speed_vanishes(&l, target, a, mid, depth + 1)
-        .or_else(|| speed_vanishes(&r, target, mid, b, depth + 1))
+    if depth >= 44 {
+        // A piece of width 2^-44 whose control vectors still span a half-plane: the value in
+        // its middle decides.
+        return (right[0].hypot() <= margin.max(1e-300)).then_some(mid);
+    }
+    hodograph_vanishes_in::<C>(&left[..n], margin, a, mid, depth + 1)
+        .or_else(|| hodograph_vanishes_in::<C>(&right[..n], margin, mid, b, depth + 1))
+}
+
+/// `Err(Degenerate)` when the hodograph (control vectors `h`, squared scale `scale`) gets
+/// shorter than [`DEGENERATE_SPEED_TOL`] of its size somewhere on [0, 1].
+fn check_regular(h: &[Vec2], scale: f64) -> Result<()> {
+    if scale == 0.0 {
+        return Err(Error::Degenerate(
+            "all control points coincide: the curve is a point".into(),
+        ));
+    }
+    let margin = DEGENERATE_SPEED_TOL * scale.sqrt();
+    if let Some(t) = hodograph_vanishes(h, margin) {
+        return Err(Error::Degenerate(format!(
+            "the tangent vanishes at t = {t:.9} (coincident control points or a cusp): \
+             curvature is undefined there"
+        )));
+    }
+    Ok(())
 }
 
 impl CurvatureVariation {
-    /// `Err(Degenerate)` when the speed vanishes (to the tolerance) somewhere on [0, 1].
+    /// `Err(Degenerate)` when the speed vanishes (to [`DEGENERATE_SPEED_TOL`] relative to
+    /// the hodograph's size) somewhere on [0, 1].
     pub fn check_regular(&self) -> Result<()> {
-        let noise = self.speed2_noise.iter().copied().fold(0.0, f64::max);
-        let target = (DEGENERATE_SPEED_TOL * DEGENERATE_SPEED_TOL) * self.speed2_scale + noise;
-        if self.speed2_scale == 0.0 {
-            return Err(Error::Degenerate(
-                "all control points coincide: the curve is a point".into(),
-            ));
-        }
-        if self.tangent_cone_is_open(target.sqrt()) {
-            return Ok(());
-        }
-        if let Some(t) = speed_vanishes(self.speed2.coeffs(), target, 0.0, 1.0, 0) {
-            return Err(Error::Degenerate(format!(
-                "the tangent vanishes at t = {t:.9} (coincident control points or a cusp): \
-                 curvature is undefined there"
-            )));
-        }
-        Ok(())
-    }
-
-    /// Sufficient condition for regularity: some direction v has `v . h_i >= margin` for every
-    /// hodograph control vector, so `|x'(t)| >= margin` on [0, 1] (x' is their convex
-    /// combination). The direction tried is the mean of the unit control vectors.
-    fn tangent_cone_is_open(&self, margin: f64) -> bool {
-        let mut s = Vec2::ZERO;
-        for h in &self.hodograph {
-            let l = h.hypot();
-            if l <= margin {
-                return false;
-            }
-            s += *h / l;
-        }
-        let l = s.hypot();
-        if l < 1e-6 {
-            return false;
-        }
-        let v = s / l;
-        self.hodograph.iter().all(|h| v.dot(*h) > margin)
+        check_regular(&self.hodograph, self.speed2_scale)
     }
 
     /// Run the sign analysis of K and turn it into a verdict.
     pub fn verdict(&self, full: bool) -> MonotoneReport {
         let test_degree = self.k.degree();
+        // Fast paths: most curves are settled by their coefficients alone.
+        match classify(self.k.coeffs(), &self.k_noise) {
+            Classified::Settled(s) => {
+                return MonotoneReport {
+                    monotone: true,
+                    trend: Some(match s {
+                        Sign::Positive => Trend::Increasing,
+                        Sign::Negative => Trend::Decreasing,
+                        Sign::Zero => Trend::Constant,
+                    }),
+                    extrema: Vec::new(),
+                    test_degree,
+                }
+            }
+            Classified::OneChange(_) if !full => {
+                return MonotoneReport {
+                    monotone: false,
+                    trend: None,
+                    extrema: Vec::new(),
+                    test_degree,
+                }
+            }
+            _ => {}
+        }
         let a = analyze_signs(
             self.k.coeffs(),
             &self.k_noise,
@@ -515,13 +705,20 @@ pub trait CurvatureMonotone {
 
     /// The sampling test of S1 §3.1 with `samples` divisions (at least 1).
     fn curvature_monotone_sampled(&self, samples: usize) -> Result<SampledReport> {
-        sampled(|t| self.derivs_at(t), samples)
+        sampled(|t| self.derivs_at(t).kappa(), samples)
     }
 }
 
 impl CurvatureMonotone for Bezier {
     fn curvature_variation(&self) -> CurvatureVariation {
         curvature_variation(self)
+    }
+    fn is_curvature_monotone(&self) -> Result<bool> {
+        poly_is_monotone(self)
+    }
+    fn curvature_monotone_sampled(&self, samples: usize) -> Result<SampledReport> {
+        let k = KappaSampler::new(self);
+        sampled(|t| k.kappa(t), samples)
     }
     fn derivs_at(&self, t: f64) -> Derivs {
         self.derivs(t)
@@ -537,12 +734,58 @@ impl CurvatureMonotone for RationalBezier {
     }
 }
 
-fn sampled(f: impl Fn(f64) -> Derivs, samples: usize) -> Result<SampledReport> {
+/// Curvature of a polynomial curve from its precomputed first and second hodographs: what
+/// the sampling test evaluates N + 1 times (no allocation, no third derivative).
+struct KappaSampler {
+    n: usize,
+    h1: [Vec2; crate::bezier::MAX_BEZIER_DEGREE],
+    h2: [Vec2; crate::bezier::MAX_BEZIER_DEGREE],
+}
+
+impl KappaSampler {
+    fn new(curve: &Bezier) -> Self {
+        let b = curve.points();
+        let n = b.len() - 1;
+        let mut h1 = [Vec2::ZERO; crate::bezier::MAX_BEZIER_DEGREE];
+        let mut h2 = [Vec2::ZERO; crate::bezier::MAX_BEZIER_DEGREE];
+        for i in 0..n {
+            h1[i] = (b[i + 1] - b[i]) * n as f64;
+        }
+        for i in 0..n.saturating_sub(1) {
+            h2[i] = (h1[i + 1] - h1[i]) * (n - 1) as f64;
+        }
+        KappaSampler { n, h1, h2 }
+    }
+
+    #[inline]
+    fn casteljau(mut v: [Vec2; crate::bezier::MAX_BEZIER_DEGREE], len: usize, t: f64) -> Vec2 {
+        if len == 0 {
+            return Vec2::ZERO;
+        }
+        let s = 1.0 - t;
+        for k in 1..len {
+            for i in 0..len - k {
+                v[i] = v[i] * s + v[i + 1] * t;
+            }
+        }
+        v[0]
+    }
+
+    #[inline]
+    fn kappa(&self, t: f64) -> f64 {
+        let d1 = Self::casteljau(self.h1, self.n, t);
+        let d2 = Self::casteljau(self.h2, self.n.saturating_sub(1), t);
+        let s = d1.hypot();
+        d1.cross(d2) / (s * s * s)
+    }
+}
+
+fn sampled(f: impl Fn(f64) -> f64, samples: usize) -> Result<SampledReport> {
     if samples == 0 {
         return Err(Error::invalid("samples", "need at least 1 division"));
     }
     let inv = 1.0 / samples as f64;
-    let mut prev = f(0.0).kappa();
+    let mut prev = f(0.0);
     if !prev.is_finite() {
         return Err(Error::Degenerate(
             "curvature is undefined at t = 0 (vanishing tangent)".into(),
@@ -551,7 +794,7 @@ fn sampled(f: impl Fn(f64) -> Derivs, samples: usize) -> Result<SampledReport> {
     let (mut up, mut down) = (false, false);
     for i in 1..=samples {
         let t = i as f64 * inv;
-        let k = f(t).kappa();
+        let k = f(t);
         if !k.is_finite() {
             return Err(Error::Degenerate(format!(
                 "curvature is undefined at t = {t} (vanishing tangent)"

@@ -214,9 +214,13 @@ fn polynomial_degrees_3_4_5_match_the_exact_reference() {
             let (pts, _) = random_points(&mut rng, degree);
             let curve = Bezier::new(pts.clone()).unwrap();
             let reference = reference_poly(&pts);
+            let full = curve.curvature_monotone();
+            if let Ok(r) = &full {
+                assert_eq!(curve.is_curvature_monotone().ok(), Some(r.monotone));
+            }
             check(
                 &format!("degree {degree} curve {i} {pts:?}"),
-                curve.curvature_monotone(),
+                full,
                 &reference,
                 &mut tally,
             );

@@ -1,0 +1,143 @@
+//! `aecurve batch`: JSON Lines in, one response line per request out, in order, flushed
+//! after each. Blank lines are skipped; a line over the size limit or not UTF-8 gets an error
+//! response and the stream goes on.
+
+use crate::protocol::{error_response, handle_line, ProtoError};
+use serde_json::Value;
+use std::io::{BufRead, Write};
+
+/// Default largest request line, in bytes.
+pub const DEFAULT_MAX_LINE: usize = 16 * 1024 * 1024;
+
+/// Counts of one batch run.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct BatchStats {
+    /// Requests answered.
+    pub requests: usize,
+    /// Of which answered with an error.
+    pub errors: usize,
+}
+
+/// Read one line of at most `max` bytes (the newline excluded). Returns `None` at end of
+/// input, `Some(Err(len))` when the line was longer (it is consumed to its end).
+fn read_line_capped<R: BufRead>(
+    r: &mut R,
+    max: usize,
+    buf: &mut Vec<u8>,
+) -> std::io::Result<Option<Result<(), usize>>> {
+    buf.clear();
+    let mut total = 0usize;
+    let mut any = false;
+    loop {
+        let chunk = r.fill_buf()?;
+        if chunk.is_empty() {
+            return Ok(if any {
+                Some(if total > max { Err(total) } else { Ok(()) })
+            } else {
+                None
+            });
+        }
+        any = true;
+        let (part, done) = match chunk.iter().position(|&b| b == b'\n') {
+            Some(i) => (&chunk[..i], Some(i + 1)),
+            None => (chunk, None),
+        };
+        total += part.len();
+        if total <= max {
+            buf.extend_from_slice(part);
+        }
+        let consumed = done.unwrap_or(chunk.len());
+        r.consume(consumed);
+        if done.is_some() {
+            return Ok(Some(if total > max { Err(total) } else { Ok(()) }));
+        }
+    }
+}
+
+/// Run the batch loop from `input` to `output`.
+pub fn run<R: BufRead, W: Write>(
+    mut input: R,
+    mut output: W,
+    max_line: usize,
+) -> std::io::Result<BatchStats> {
+    let mut stats = BatchStats::default();
+    let mut buf = Vec::new();
+    while let Some(line) = read_line_capped(&mut input, max_line, &mut buf)? {
+        let response: Value = match line {
+            Err(len) => error_response(
+                Value::Null,
+                ProtoError {
+                    kind: "invalid_input",
+                    message: format!(
+                        "request line of {len} bytes is over the limit of {max_line} bytes"
+                    ),
+                },
+            ),
+            Ok(()) => match std::str::from_utf8(&buf) {
+                Err(e) => error_response(
+                    Value::Null,
+                    ProtoError {
+                        kind: "parse",
+                        message: format!("request line is not UTF-8: {e}"),
+                    },
+                ),
+                Ok(text) => {
+                    if text.trim().is_empty() {
+                        continue;
+                    }
+                    handle_line(text)
+                }
+            },
+        };
+        stats.requests += 1;
+        if response["ok"] != Value::Bool(true) {
+            stats.errors += 1;
+        }
+        serde_json::to_writer(&mut output, &response)?;
+        output.write_all(b"\n")?;
+        output.flush()?;
+    }
+    Ok(stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run_str(input: &[u8], max: usize) -> Vec<Value> {
+        let mut out = Vec::new();
+        run(input, &mut out, max).unwrap();
+        String::from_utf8(out)
+            .unwrap()
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect()
+    }
+
+    #[test]
+    fn a_bad_line_never_stops_the_batch() {
+        let input = b"{\"id\":1,\"op\":\"bezier.curvature_monotone\",\"control_points\":[[0,0],[1,0],[2,1]]}\n\
+            garbage\n\n\xff\xfe\n{\"id\":2,\"op\":\"x\"}\n\
+            {\"id\":3,\"op\":\"bezier.curvature_monotone\",\"control_points\":[[0,0],[1,0],[2,1]]}";
+        let r = run_str(input, 1 << 20);
+        assert_eq!(r.len(), 5);
+        assert_eq!(r[0]["ok"], true);
+        assert_eq!(r[1]["error"]["kind"], "parse");
+        assert_eq!(r[2]["error"]["kind"], "parse");
+        assert_eq!(r[3]["error"]["kind"], "unknown_op");
+        assert_eq!(r[4]["id"], 3);
+        assert_eq!(r[4]["ok"], true);
+    }
+
+    #[test]
+    fn over_long_lines_are_refused_and_skipped() {
+        let mut input = vec![b' '; 5000];
+        input.extend_from_slice(
+            b"\n{\"id\":9,\"op\":\"bezier.curvature_monotone\",\"control_points\":[[0,0],[1,0]]}\n",
+        );
+        let r = run_str(&input, 1000);
+        assert_eq!(r.len(), 2);
+        assert_eq!(r[0]["error"]["kind"], "invalid_input");
+        assert_eq!(r[1]["id"], 9);
+    }
+}

@@ -1,0 +1,303 @@
+//! Small SVG plots: line charts (the timing comparison) and curves with their control polygon
+//! and curvature comb. Plain SVG text, no fonts needed to write it.
+
+use crate::protocol::AnyBezier;
+use std::fmt::Write;
+
+/// One line of a chart.
+pub struct Series {
+    /// Legend text.
+    pub name: String,
+    /// (x, y) points, in order.
+    pub points: Vec<(f64, f64)>,
+    /// CSS colour.
+    pub color: &'static str,
+    /// Dashed line.
+    pub dashed: bool,
+}
+
+/// Distinct colours for series.
+pub const PALETTE: [&str; 6] = [
+    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
+];
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+fn nice_ticks(lo: f64, hi: f64, n: usize) -> Vec<f64> {
+    let span = (hi - lo).max(1e-300);
+    let raw = span / n as f64;
+    let mag = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * mag)
+        .find(|s| span / s <= n as f64)
+        .unwrap_or(10.0 * mag);
+    let start = (lo / step).ceil() * step;
+    let mut v = Vec::new();
+    let mut t = start;
+    while t <= hi + 1e-9 * step {
+        v.push(if t.abs() < 1e-12 * step { 0.0 } else { t });
+        t += step;
+    }
+    v
+}
+
+fn fmt_tick(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if v.abs() >= 1e4 || v.abs() < 1e-2 {
+        format!("{v:.0e}")
+    } else {
+        let s = format!("{v:.3}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
+/// A line chart with axes, ticks, grid and legend. `log_y` plots log10(y) with decade ticks.
+pub fn line_chart(
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[Series],
+    log_y: bool,
+) -> String {
+    let (w, h) = (720.0, 460.0);
+    let (l, r, t, b) = (80.0, 190.0, 50.0, 60.0);
+    let ty = |y: f64| if log_y { y.max(1e-300).log10() } else { y };
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|&(x, y)| (x, ty(y))))
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    let (mut x0, mut x1, mut y0, mut y1) = all.iter().fold(
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+    );
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    if x1 - x0 < 1e-12 {
+        x0 -= 0.5;
+        x1 += 0.5;
+    }
+    if log_y {
+        y0 = y0.floor();
+        y1 = y1.ceil().max(y0 + 1.0);
+    } else {
+        let pad = 0.05 * (y1 - y0).max(1e-12);
+        y0 = if y0 >= 0.0 { 0.0 } else { y0 - pad };
+        y1 += pad;
+    }
+    let px = |x: f64| l + (x - x0) / (x1 - x0) * (w - l - r);
+    let py = |y: f64| h - b - (y - y0) / (y1 - y0) * (h - t - b);
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="13">
+<rect width="100%" height="100%" fill="white"/>
+<text x="{}" y="28" text-anchor="middle" font-size="16">{}</text>
+"#,
+        (l + w - r) / 2.0,
+        esc(title)
+    );
+    let yt: Vec<f64> = if log_y {
+        (y0 as i64..=y1 as i64).map(|e| e as f64).collect()
+    } else {
+        nice_ticks(y0, y1, 6)
+    };
+    for v in yt {
+        let y = py(v);
+        let label = if log_y {
+            fmt_tick(10f64.powf(v))
+        } else {
+            fmt_tick(v)
+        };
+        let _ = writeln!(
+            s,
+            r##"<line x1="{l}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#ddd"/><text x="{:.1}" y="{:.1}" text-anchor="end">{label}</text>"##,
+            w - r,
+            l - 6.0,
+            y + 4.0
+        );
+    }
+    for v in nice_ticks(x0, x1, 8) {
+        let x = px(v);
+        let _ = writeln!(
+            s,
+            r##"<line x1="{x:.1}" y1="{t}" x2="{x:.1}" y2="{:.1}" stroke="#eee"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
+            h - b,
+            h - b + 18.0,
+            fmt_tick(v)
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<rect x="{l}" y="{t}" width="{:.1}" height="{:.1}" fill="none" stroke="#333"/>
+<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>
+<text transform="translate(20,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"##,
+        w - l - r,
+        h - t - b,
+        (l + w - r) / 2.0,
+        h - 15.0,
+        esc(xlabel),
+        (t + h - b) / 2.0,
+        esc(ylabel)
+    );
+    for (i, se) in series.iter().enumerate() {
+        let pts: Vec<String> = se
+            .points
+            .iter()
+            .filter(|p| p.0.is_finite() && ty(p.1).is_finite())
+            .map(|&(x, y)| format!("{:.2},{:.2}", px(x), py(ty(y))))
+            .collect();
+        let dash = if se.dashed {
+            r#" stroke-dasharray="6 4""#
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            s,
+            r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="2"{dash}/>"#,
+            pts.join(" "),
+            se.color
+        );
+        for p in &pts {
+            let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
+            let _ = writeln!(
+                s,
+                r#"<circle cx="{x}" cy="{y}" r="3.5" fill="{}"/>"#,
+                se.color
+            );
+        }
+        let ly = t + 20.0 + 22.0 * i as f64;
+        let lx = w - r + 15.0;
+        let _ = writeln!(
+            s,
+            r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{}" stroke-width="2"{dash}/><text x="{}" y="{}">{}</text>"#,
+            lx + 25.0,
+            se.color,
+            lx + 32.0,
+            ly + 4.0,
+            esc(&se.name)
+        );
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+/// The curve, its control polygon and its curvature comb (normals scaled by curvature),
+/// with a caption. `y` points up in the picture.
+pub fn curve_with_comb(
+    curve: &AnyBezier,
+    control: &[aesthetic_curves::Point],
+    caption: &str,
+) -> String {
+    let n = 200;
+    let samples: Vec<(aesthetic_curves::Point, aesthetic_curves::Vec2, f64)> = (0..=n)
+        .map(|i| {
+            let t = i as f64 / n as f64;
+            let d = curve.as_monotone().derivs_at(t);
+            let k = d.kappa();
+            let nrm = d.d1.turn_90() / d.d1.hypot();
+            (d.p, nrm, if k.is_finite() { k } else { 0.0 })
+        })
+        .collect();
+    let (mut x0, mut x1, mut y0, mut y1) = control.iter().fold(
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(a, b, c, d), p| (a.min(p.x), b.max(p.x), c.min(p.y), d.max(p.y)),
+    );
+    let size = (x1 - x0).max(y1 - y0).max(1e-9);
+    let kmax = samples.iter().map(|s| s.2.abs()).fold(0.0, f64::max);
+    // Comb teeth point away from the centre of curvature, longest = 0.25 of the size.
+    let comb = if kmax > 0.0 { -0.25 * size / kmax } else { 0.0 };
+    let tips: Vec<aesthetic_curves::Point> = samples
+        .iter()
+        .map(|(p, nv, k)| *p + *nv * (k * comb))
+        .collect();
+    for p in &tips {
+        x0 = x0.min(p.x);
+        x1 = x1.max(p.x);
+        y0 = y0.min(p.y);
+        y1 = y1.max(p.y);
+    }
+    let (w, h) = (640.0, 480.0);
+    let m = 40.0;
+    let sc =
+        ((w - 2.0 * m) / (x1 - x0).max(1e-12)).min((h - 2.0 * m - 30.0) / (y1 - y0).max(1e-12));
+    let px = |p: aesthetic_curves::Point| (m + (p.x - x0) * sc, h - m - (p.y - y0) * sc);
+    let mut s = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="14">
+<rect width="100%" height="100%" fill="white"/>
+<text x="{}" y="24" text-anchor="middle">{}</text>
+"#,
+        w / 2.0,
+        esc(caption)
+    );
+    for (i, (p, _, _)) in samples.iter().enumerate().step_by(4) {
+        let (a, b) = px(*p);
+        let (c, d) = px(tips[i]);
+        let _ = writeln!(
+            s,
+            r##"<line x1="{a:.1}" y1="{b:.1}" x2="{c:.1}" y2="{d:.1}" stroke="#9ecae1"/>"##
+        );
+    }
+    let tip_pts: Vec<String> = tips
+        .iter()
+        .map(|p| {
+            let (a, b) = px(*p);
+            format!("{a:.1},{b:.1}")
+        })
+        .collect();
+    let _ = writeln!(
+        s,
+        r##"<polyline points="{}" fill="none" stroke="#6baed6"/>"##,
+        tip_pts.join(" ")
+    );
+    let poly: Vec<String> = control
+        .iter()
+        .map(|p| {
+            let (a, b) = px(*p);
+            format!("{a:.1},{b:.1}")
+        })
+        .collect();
+    let _ = writeln!(
+        s,
+        r##"<polyline points="{}" fill="none" stroke="#999" stroke-dasharray="4 3"/>"##,
+        poly.join(" ")
+    );
+    for p in control {
+        let (a, b) = px(*p);
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{a:.1}" cy="{b:.1}" r="4" fill="#666"/>"##
+        );
+    }
+    let cpts: Vec<String> = samples
+        .iter()
+        .map(|(p, _, _)| {
+            let (a, b) = px(*p);
+            format!("{a:.1},{b:.1}")
+        })
+        .collect();
+    let _ = writeln!(
+        s,
+        r##"<polyline points="{}" fill="none" stroke="#d62728" stroke-width="2.5"/>"##,
+        cpts.join(" ")
+    );
+    s.push_str("</svg>\n");
+    s
+}

@@ -1,0 +1,404 @@
+//! The JSON protocol of `aecurve batch` and the editor (`shared/spec/batch-protocol.md`).
+//!
+//! [`handle_line`] turns one request line into one response object and never panics: a line
+//! that is not JSON gets a `parse` error, an unknown op `unknown_op`, a bad parameter
+//! `invalid_input` naming the field, and library errors keep their own kind. Nothing in a
+//! result is NaN or infinite (checked once more before a response leaves).
+
+use aesthetic_curves::monotone::CurvatureMonotone;
+use aesthetic_curves::{Bezier, Error, Point, RationalBezier};
+use serde_json::{json, Map, Value};
+
+/// Largest number of divisions the sampling test accepts from a request.
+pub const MAX_SAMPLES: u64 = 1_000_000;
+
+/// A protocol error: kind and message for a person.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProtoError {
+    /// `parse`, `unknown_op`, `invalid_input`, `degenerate`, `no_segment`, `no_convergence`.
+    pub kind: &'static str,
+    /// What went wrong.
+    pub message: String,
+}
+
+impl ProtoError {
+    fn invalid(field: &str, message: impl std::fmt::Display) -> Self {
+        ProtoError {
+            kind: "invalid_input",
+            message: format!("{field}: {message}"),
+        }
+    }
+}
+
+impl From<Error> for ProtoError {
+    fn from(e: Error) -> Self {
+        ProtoError {
+            kind: e.kind(),
+            message: e.to_string(),
+        }
+    }
+}
+
+/// The ops this build answers, and the ones the protocol names that are not built yet.
+pub const OPS: &[&str] = &["bezier.curvature_monotone"];
+const PLANNED_OPS: &[&str] = &[
+    "lac.point",
+    "lac.segment",
+    "lac.inflection_segment",
+    "lac.rational_approx",
+    "spline.pseudo_elastic",
+    "lcg.estimate",
+    "lac.fit",
+    "sketch.fit",
+];
+
+/// Answer one request line (JSON text) with one response object.
+pub fn handle_line(line: &str) -> Value {
+    match serde_json::from_str::<Value>(line) {
+        Ok(v) => handle_value(&v),
+        Err(e) => {
+            let msg = e.to_string();
+            // serde_json rejects numbers beyond f64's range while parsing: to the protocol
+            // that is an infinite number, i.e. invalid input, not malformed JSON.
+            let kind = if msg.contains("number out of range") {
+                "invalid_input"
+            } else {
+                "parse"
+            };
+            error_response(
+                Value::Null,
+                ProtoError {
+                    kind,
+                    message: format!("request is not valid JSON: {msg}"),
+                },
+            )
+        }
+    }
+}
+
+/// Answer one parsed request.
+pub fn handle_value(v: &Value) -> Value {
+    let Some(obj) = v.as_object() else {
+        return error_response(
+            Value::Null,
+            ProtoError::invalid("request", "must be a JSON object"),
+        );
+    };
+    let id = obj.get("id").cloned().unwrap_or(Value::Null);
+    match dispatch(obj) {
+        Ok(result) => {
+            if let Some(path) = first_non_finite(&result, String::new()) {
+                return error_response(
+                    id,
+                    ProtoError {
+                        kind: "no_convergence",
+                        message: format!("internal: the result has a non-finite value at {path}"),
+                    },
+                );
+            }
+            json!({"id": id, "ok": true, "result": result})
+        }
+        Err(e) => error_response(id, e),
+    }
+}
+
+/// `{"id", "ok": false, "error": {"kind", "message"}}`.
+pub fn error_response(id: Value, e: ProtoError) -> Value {
+    json!({"id": id, "ok": false, "error": {"kind": e.kind, "message": e.message}})
+}
+
+fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let op = match obj.get("op") {
+        Some(Value::String(s)) => s.as_str(),
+        Some(_) => return Err(ProtoError::invalid("op", "must be a string")),
+        None => return Err(ProtoError::invalid("op", "missing")),
+    };
+    match op {
+        "bezier.curvature_monotone" => curvature_monotone(obj),
+        _ if PLANNED_OPS.contains(&op) => Err(ProtoError {
+            kind: "unknown_op",
+            message: format!("op '{op}' is part of the protocol but not implemented in this build"),
+        }),
+        _ => Err(ProtoError {
+            kind: "unknown_op",
+            message: format!("unknown op '{op}'; known: {}", OPS.join(", ")),
+        }),
+    }
+}
+
+fn finite_number(v: &Value, field: &str) -> Result<f64, ProtoError> {
+    match v.as_f64() {
+        Some(x) if x.is_finite() => Ok(x),
+        Some(_) => Err(ProtoError::invalid(field, "must be a finite number")),
+        None => Err(ProtoError::invalid(field, "must be a number")),
+    }
+}
+
+/// A required array of `[x, y]` points with a count in `min..=max`.
+pub fn points_param(
+    obj: &Map<String, Value>,
+    field: &str,
+    min: usize,
+    max: usize,
+) -> Result<Vec<Point>, ProtoError> {
+    let arr = match obj.get(field) {
+        Some(Value::Array(a)) => a,
+        Some(_) => {
+            return Err(ProtoError::invalid(
+                field,
+                "must be an array of [x, y] points",
+            ))
+        }
+        None => return Err(ProtoError::invalid(field, "missing")),
+    };
+    if arr.len() < min || arr.len() > max {
+        return Err(ProtoError::invalid(
+            field,
+            format!("needs {min} to {max} points, got {}", arr.len()),
+        ));
+    }
+    arr.iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let name = format!("{field}[{i}]");
+            match p.as_array() {
+                Some(xy) if xy.len() == 2 => Ok(Point::new(
+                    finite_number(&xy[0], &name)?,
+                    finite_number(&xy[1], &name)?,
+                )),
+                _ => Err(ProtoError::invalid(
+                    &name,
+                    "must be an [x, y] pair of numbers",
+                )),
+            }
+        })
+        .collect()
+}
+
+/// An optional array of `len` finite numbers.
+pub fn numbers_param(
+    obj: &Map<String, Value>,
+    field: &str,
+    len: usize,
+) -> Result<Option<Vec<f64>>, ProtoError> {
+    match obj.get(field) {
+        None | Some(Value::Null) => Ok(None),
+        Some(Value::Array(a)) => {
+            if a.len() != len {
+                return Err(ProtoError::invalid(
+                    field,
+                    format!(
+                        "needs {len} numbers (one per control point), got {}",
+                        a.len()
+                    ),
+                ));
+            }
+            a.iter()
+                .enumerate()
+                .map(|(i, v)| finite_number(v, &format!("{field}[{i}]")))
+                .collect::<Result<Vec<_>, _>>()
+                .map(Some)
+        }
+        Some(_) => Err(ProtoError::invalid(field, "must be an array of numbers")),
+    }
+}
+
+/// An optional positive integer in `1..=max`.
+pub fn count_param(
+    obj: &Map<String, Value>,
+    field: &str,
+    default: u64,
+    max: u64,
+) -> Result<u64, ProtoError> {
+    match obj.get(field) {
+        None | Some(Value::Null) => Ok(default),
+        Some(v) => match v.as_u64() {
+            Some(n) if (1..=max).contains(&n) => Ok(n),
+            _ => Err(ProtoError::invalid(
+                field,
+                format!("must be an integer from 1 to {max}"),
+            )),
+        },
+    }
+}
+
+fn string_param<'a>(
+    obj: &'a Map<String, Value>,
+    field: &str,
+    default: &'a str,
+    allowed: &[&str],
+) -> Result<&'a str, ProtoError> {
+    let s = match obj.get(field) {
+        None | Some(Value::Null) => default,
+        Some(Value::String(s)) => s.as_str(),
+        Some(_) => return Err(ProtoError::invalid(field, "must be a string")),
+    };
+    if allowed.contains(&s) {
+        Ok(s)
+    } else {
+        Err(ProtoError::invalid(
+            field,
+            format!("must be one of {}", allowed.join(", ")),
+        ))
+    }
+}
+
+/// A polynomial or rational curve from a request.
+pub enum AnyBezier {
+    /// Polynomial.
+    Poly(Bezier),
+    /// Rational.
+    Rational(RationalBezier),
+}
+
+impl AnyBezier {
+    /// From control points and optional weights.
+    pub fn new(points: Vec<Point>, weights: Option<Vec<f64>>) -> Result<Self, Error> {
+        Ok(match weights {
+            Some(w) => AnyBezier::Rational(RationalBezier::new(points, w)?),
+            None => AnyBezier::Poly(Bezier::new(points)?),
+        })
+    }
+    /// The curve as the monotonicity trait object.
+    pub fn as_monotone(&self) -> &dyn CurvatureMonotone {
+        match self {
+            AnyBezier::Poly(b) => b,
+            AnyBezier::Rational(r) => r,
+        }
+    }
+    /// Signed curvature at t.
+    pub fn kappa(&self, t: f64) -> f64 {
+        self.as_monotone().derivs_at(t).kappa()
+    }
+    /// Point at t.
+    pub fn eval(&self, t: f64) -> Point {
+        self.as_monotone().derivs_at(t).p
+    }
+}
+
+fn curvature_monotone(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let points = points_param(obj, "control_points", 2, 21)?;
+    let weights = numbers_param(obj, "weights", points.len())?;
+    if let Some(w) = &weights {
+        if let Some(i) = w.iter().position(|v| *v <= 0.0) {
+            return Err(ProtoError::invalid(
+                &format!("weights[{i}]"),
+                "weights must be > 0",
+            ));
+        }
+    }
+    let method = string_param(obj, "method", "exact", &["exact", "sampling"])?;
+    let curve = AnyBezier::new(points, weights)?;
+    let c = curve.as_monotone();
+    if method == "exact" {
+        if obj.get("samples").is_some_and(|v| !v.is_null()) {
+            // Accepted and ignored would hide a mistake: say so.
+            return Err(ProtoError::invalid(
+                "samples",
+                "only applies to method \"sampling\"",
+            ));
+        }
+        let r = c.curvature_monotone()?;
+        Ok(json!({
+            "monotone": r.monotone,
+            "extrema": r.extrema,
+            "test_degree": r.test_degree,
+            "trend": r.trend.map(|t| t.as_str()),
+        }))
+    } else {
+        let n = count_param(obj, "samples", 100, MAX_SAMPLES)?;
+        let r = c.curvature_monotone_sampled(n as usize)?;
+        Ok(json!({
+            "monotone": r.monotone,
+            "samples": r.samples,
+            "trend": r.trend.map(|t| t.as_str()),
+        }))
+    }
+}
+
+fn first_non_finite(v: &Value, path: String) -> Option<String> {
+    match v {
+        Value::Number(n) => match n.as_f64() {
+            Some(x) if !x.is_finite() => Some(path),
+            _ => None,
+        },
+        Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| first_non_finite(x, format!("{path}[{i}]"))),
+        Value::Object(o) => o
+            .iter()
+            .find_map(|(k, x)| first_non_finite(x, format!("{path}.{k}"))),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kind(v: &Value) -> &str {
+        v["error"]["kind"].as_str().unwrap_or("")
+    }
+
+    #[test]
+    fn ok_response_shape() {
+        let r = handle_line(
+            r#"{"id": 7, "op": "bezier.curvature_monotone", "control_points": [[0,0],[1,1],[2,1],[3,0]]}"#,
+        );
+        assert_eq!(r["id"], 7);
+        assert_eq!(r["ok"], true);
+        assert_eq!(r["result"]["monotone"], false);
+        assert_eq!(r["result"]["test_degree"], 5);
+        let e = r["result"]["extrema"].as_array().unwrap();
+        assert_eq!(e.len(), 1);
+        assert!((e[0].as_f64().unwrap() - 0.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn error_kinds() {
+        assert_eq!(kind(&handle_line("{not json")), "parse");
+        assert_eq!(kind(&handle_line("[1,2]")), "invalid_input");
+        assert_eq!(kind(&handle_line(r#"{"op": "nope"}"#)), "unknown_op");
+        assert_eq!(kind(&handle_line(r#"{"op": "lac.point"}"#)), "unknown_op");
+        assert_eq!(
+            kind(&handle_line(r#"{"op": "bezier.curvature_monotone"}"#)),
+            "invalid_input"
+        );
+        let r = handle_line(
+            r#"{"id": "a", "op": "bezier.curvature_monotone", "control_points": [[0,0],[1,1e999]]}"#,
+        );
+        assert_eq!(kind(&r), "invalid_input");
+        let r = handle_line(
+            r#"{"id": "b", "op": "bezier.curvature_monotone", "control_points": [[0,0],[0,0],[1,1],[2,0]]}"#,
+        );
+        assert_eq!(kind(&r), "degenerate");
+        assert_eq!(r["id"], "b");
+        let r = handle_line(
+            r#"{"op": "bezier.curvature_monotone", "control_points": [[0,0],[1,1],[2,0]], "weights": [1, -1, 1]}"#,
+        );
+        assert_eq!(kind(&r), "invalid_input");
+        assert!(r["error"]["message"]
+            .as_str()
+            .unwrap()
+            .contains("weights[1]"));
+        let r = handle_line(
+            r#"{"op": "bezier.curvature_monotone", "control_points": [[0,0],[1,1],[2,0]], "weights": [1, 1]}"#,
+        );
+        assert_eq!(kind(&r), "invalid_input");
+        let r = handle_line(
+            r#"{"op": "bezier.curvature_monotone", "control_points": [[0,0],[1,1],[2,0]], "method": "sampling", "samples": 0}"#,
+        );
+        assert_eq!(kind(&r), "invalid_input");
+    }
+
+    #[test]
+    fn sampling_method() {
+        let r = handle_line(
+            r#"{"op": "bezier.curvature_monotone", "control_points": [[0,0],[1,1],[2,1],[3,0]], "method": "sampling", "samples": 200}"#,
+        );
+        assert_eq!(r["ok"], true, "{r}");
+        assert_eq!(r["result"]["monotone"], false);
+        assert_eq!(r["result"]["samples"], 200);
+    }
+}

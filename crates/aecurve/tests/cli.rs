@@ -1,0 +1,111 @@
+//! End-to-end runs of the `aecurve` binary.
+
+use std::io::Write;
+use std::process::{Command, Stdio};
+
+fn aecurve() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_aecurve"))
+}
+
+#[test]
+fn batch_answers_every_line_in_order() {
+    let mut child = aecurve()
+        .arg("batch")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let input = concat!(
+        r#"{"id": 1, "op": "bezier.curvature_monotone", "control_points": [[0,0],[1,1],[2,1],[3,0]]}"#,
+        "\n\nnot json\n",
+        r#"{"id": 2, "op": "bezier.curvature_monotone", "control_points": [[1,0],[1,1],[0,1]], "weights": [1, 0.7071067811865476, 1]}"#,
+        "\n",
+        r#"{"id": 3, "op": "bezier.curvature_monotone", "control_points": [[0,0],[1,1],[2,1],[3,0]], "method": "sampling", "samples": 50}"#,
+        "\n"
+    );
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success());
+    let lines: Vec<serde_json::Value> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 4);
+    assert_eq!(lines[0]["id"], 1);
+    assert_eq!(lines[0]["result"]["monotone"], false);
+    assert_eq!(lines[1]["error"]["kind"], "parse");
+    assert_eq!(lines[2]["result"]["monotone"], true);
+    assert_eq!(lines[2]["result"]["trend"], "constant");
+    assert_eq!(lines[3]["result"]["samples"], 50);
+}
+
+#[test]
+fn monotone_command_reads_for_a_person_and_fails_clearly() {
+    let out = aecurve()
+        .args(["monotone", "--points", "0,0 1,1 2,1 3,0"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("NOT monotone"), "{text}");
+    assert!(text.contains("t = 0.500000000"), "{text}");
+    let out = aecurve()
+        .args(["monotone", "--points", "0,0 0,0 1,1 2,0"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8(out.stderr)
+        .unwrap()
+        .contains("degenerate"));
+    let out = aecurve()
+        .args(["monotone", "--points", "0,0 1,x"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+}
+
+#[test]
+fn bench_json_has_the_promised_shape() {
+    let dir = std::env::temp_dir().join(format!("aecurve-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("fig.svg");
+    let out = aecurve()
+        .args([
+            "bench",
+            "monotone",
+            "--curves",
+            "60",
+            "--round-ms",
+            "2",
+            "--json",
+            "-o",
+        ])
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rows = v["results"].as_array().unwrap();
+    assert_eq!(rows.len(), 12);
+    for r in rows {
+        assert!(r["ns_per_curve"].as_f64().unwrap() > 0.0);
+        assert!(r["disagreements"].as_u64().is_some());
+        let m = r["method"].as_str().unwrap();
+        assert!(
+            m == "exact" && r["samples"].is_null()
+                || m == "sampling" && r["samples"].as_u64().is_some()
+        );
+    }
+    let chart = std::fs::read_to_string(&svg).unwrap();
+    assert!(chart.starts_with("<svg") && chart.contains("polyline"));
+}

@@ -1,0 +1,134 @@
+//! Property tests: the batch loop never panics, answers every non-blank line exactly once, in
+//! order, with a well-formed response, whatever bytes or JSON it is fed.
+
+use aecurve::batch;
+use proptest::prelude::*;
+use serde_json::{json, Value};
+
+fn responses(input: &[u8]) -> Vec<Value> {
+    let mut out = Vec::new();
+    batch::run(input, &mut out, 4096).expect("io on memory buffers");
+    String::from_utf8(out)
+        .expect("responses are UTF-8")
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("each response line is JSON"))
+        .collect()
+}
+
+fn well_formed(v: &Value) {
+    let ok = v["ok"].as_bool().expect("ok is a bool");
+    assert!(v.get("id").is_some(), "id present: {v}");
+    if ok {
+        assert!(v["result"].is_object(), "{v}");
+    } else {
+        let kind = v["error"]["kind"].as_str().expect("kind");
+        assert!(
+            [
+                "parse",
+                "unknown_op",
+                "invalid_input",
+                "degenerate",
+                "no_segment",
+                "no_convergence"
+            ]
+            .contains(&kind),
+            "{kind}"
+        );
+        assert!(v["error"]["message"]
+            .as_str()
+            .is_some_and(|m| !m.is_empty()));
+    }
+}
+
+fn arb_json() -> impl Strategy<Value = Value> {
+    let leaf = prop_oneof![
+        Just(Value::Null),
+        any::<bool>().prop_map(Value::Bool),
+        any::<f64>()
+            .prop_filter("finite", |v| v.is_finite())
+            .prop_map(|v| json!(v)),
+        any::<i64>().prop_map(|v| json!(v)),
+        "[a-z_.]{0,12}".prop_map(Value::String),
+    ];
+    leaf.prop_recursive(4, 40, 6, |inner| {
+        prop_oneof![
+            prop::collection::vec(inner.clone(), 0..6).prop_map(Value::Array),
+            prop::collection::btree_map("[a-z_]{1,8}", inner, 0..6)
+                .prop_map(|m| Value::Object(m.into_iter().collect())),
+        ]
+    })
+}
+
+fn arb_request() -> impl Strategy<Value = Value> {
+    let point = (any::<f64>(), -1e3f64..1e3).prop_map(|(x, y)| {
+        let x = if x.is_finite() { x % 1e6 } else { 0.5 };
+        json!([x, y])
+    });
+    (
+        prop::collection::vec(point, 0..24),
+        prop::option::of(prop::collection::vec(-2.0f64..4.0, 0..24)),
+        prop::option::of(prop_oneof![Just("exact"), Just("sampling"), Just("other")]),
+        prop::option::of(0u64..2000),
+        arb_json(),
+    )
+        .prop_map(|(pts, w, method, samples, id)| {
+            let mut r = json!({"id": id, "op": "bezier.curvature_monotone", "control_points": pts});
+            if let Some(w) = w {
+                r["weights"] = json!(w);
+            }
+            if let Some(m) = method {
+                r["method"] = json!(m);
+            }
+            if let Some(s) = samples {
+                r["samples"] = json!(s);
+            }
+            r
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    #[test]
+    fn arbitrary_bytes_never_panic(lines in prop::collection::vec(prop::collection::vec(any::<u8>(), 0..200), 1..8)) {
+        let mut input = Vec::new();
+        let mut expected = 0;
+        for l in &lines {
+            let l: Vec<u8> = l.iter().copied().filter(|b| *b != b'\n').collect();
+            let blank = std::str::from_utf8(&l).map(|s| s.trim().is_empty()).unwrap_or(false);
+            if !blank {
+                expected += 1;
+            }
+            input.extend_from_slice(&l);
+            input.push(b'\n');
+        }
+        let r = responses(&input);
+        prop_assert_eq!(r.len(), expected);
+        for v in &r {
+            well_formed(v);
+        }
+    }
+
+    #[test]
+    fn arbitrary_json_never_panics(vals in prop::collection::vec(arb_json(), 1..6)) {
+        let input: String = vals.iter().map(|v| format!("{v}\n")).collect();
+        let r = responses(input.as_bytes());
+        prop_assert_eq!(r.len(), vals.len());
+        for v in &r {
+            well_formed(v);
+        }
+    }
+
+    #[test]
+    fn arbitrary_requests_keep_their_ids(reqs in prop::collection::vec(arb_request(), 1..6)) {
+        let input: String = reqs.iter().map(|v| format!("{v}\n")).collect();
+        let mut out = Vec::new();
+        batch::run(input.as_bytes(), &mut out, 1 << 20).unwrap();
+        let r: Vec<Value> = String::from_utf8(out).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+        prop_assert_eq!(r.len(), reqs.len());
+        for (q, a) in reqs.iter().zip(&r) {
+            well_formed(a);
+            prop_assert_eq!(&q["id"], &a["id"]);
+        }
+    }
+}
