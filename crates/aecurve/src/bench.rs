@@ -55,40 +55,43 @@ impl Default for BenchConfig {
         BenchConfig {
             curves: 2000,
             seed: 2024,
-            rounds: 5,
-            round_time: Duration::from_millis(60),
+            rounds: 7,
+            round_time: Duration::from_millis(40),
             degrees: vec![3, 4, 5],
             samples: vec![100, 200, 400],
         }
     }
 }
 
-fn time_per_curve(curves: &[Bezier], cfg: &BenchConfig, f: &dyn Fn(&Bezier) -> bool) -> f64 {
-    let mut rounds: Vec<f64> = (0..cfg.rounds.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            let mut reps = 0usize;
-            loop {
-                let mut count = 0usize;
-                for c in curves {
-                    count += f(black_box(c)) as usize;
-                }
-                black_box(count);
-                reps += 1;
-                if start.elapsed() >= cfg.round_time {
-                    break;
-                }
-            }
-            start.elapsed().as_nanos() as f64 / (reps * curves.len().max(1)) as f64
-        })
-        .collect();
-    rounds.sort_by(|a, b| a.total_cmp(b));
-    rounds[rounds.len() / 2]
+/// One timing round: the test over the whole set, repeated for at least `round_time`.
+fn round_ns(curves: &[Bezier], round_time: Duration, f: &dyn Fn(&Bezier) -> bool) -> f64 {
+    let start = Instant::now();
+    let mut reps = 0usize;
+    loop {
+        let mut count = 0usize;
+        for c in curves {
+            count += f(black_box(c)) as usize;
+        }
+        black_box(count);
+        reps += 1;
+        if start.elapsed() >= round_time {
+            break;
+        }
+    }
+    start.elapsed().as_nanos() as f64 / (reps * curves.len().max(1)) as f64
 }
 
-/// Run the comparison (progress bar on stderr when it is a terminal).
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+/// Run the comparison (progress bar on stderr when it is a terminal). The methods of one
+/// degree are timed interleaved, round after round, so that a slow spell of this shared
+/// machine hits them alike; each reports the median of its rounds.
 pub fn run(cfg: &BenchConfig) -> Vec<BenchRow> {
-    let tasks = cfg.degrees.len() * (1 + cfg.samples.len());
+    let rounds = cfg.rounds.max(1);
+    let tasks = cfg.degrees.len() * rounds;
     let pb = ProgressBar::new(tasks as u64);
     pb.set_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
@@ -106,47 +109,40 @@ pub fn run(cfg: &BenchConfig) -> Vec<BenchRow> {
             }
         }
         let monotone = verdicts.iter().filter(|v| **v).count();
-        pb.set_message(format!("degree {degree}: exact"));
-        let ns = time_per_curve(&curves, cfg, &|c| {
-            c.is_curvature_monotone().unwrap_or(false)
-        });
-        rows.push(BenchRow {
-            degree,
-            method: "exact",
-            samples: None,
-            ns_per_curve: ns,
-            disagreements: 0,
-            curves: curves.len(),
-            monotone,
-        });
-        pb.inc(1);
-        for &n in &cfg.samples {
-            pb.set_message(format!("degree {degree}: sampling {n}"));
+        // Method 0 is the exact test, then one per sampling count.
+        let methods: Vec<Option<usize>> = std::iter::once(None)
+            .chain(cfg.samples.iter().map(|&n| Some(n)))
+            .collect();
+        let test = |m: Option<usize>, c: &Bezier| match m {
+            None => c.is_curvature_monotone().unwrap_or(false),
+            Some(n) => c
+                .curvature_monotone_sampled(n)
+                .map(|r| r.monotone)
+                .unwrap_or(false),
+        };
+        let mut times: Vec<Vec<f64>> = vec![Vec::new(); methods.len()];
+        for r in 0..rounds {
+            pb.set_message(format!("degree {degree}: round {}", r + 1));
+            for (k, &m) in methods.iter().enumerate() {
+                times[k].push(round_ns(&curves, cfg.round_time, &|c| test(m, c)));
+            }
+            pb.inc(1);
+        }
+        for (k, &m) in methods.iter().enumerate() {
             let disagreements = curves
                 .iter()
                 .zip(&verdicts)
-                .filter(|(c, v)| {
-                    c.curvature_monotone_sampled(n)
-                        .map(|r| r.monotone)
-                        .unwrap_or(false)
-                        != **v
-                })
+                .filter(|(c, v)| test(m, c) != **v)
                 .count();
-            let ns = time_per_curve(&curves, cfg, &|c| {
-                c.curvature_monotone_sampled(n)
-                    .map(|r| r.monotone)
-                    .unwrap_or(false)
-            });
             rows.push(BenchRow {
                 degree,
-                method: "sampling",
-                samples: Some(n),
-                ns_per_curve: ns,
+                method: if m.is_some() { "sampling" } else { "exact" },
+                samples: m,
+                ns_per_curve: median(std::mem::take(&mut times[k])),
                 disagreements,
                 curves: curves.len(),
                 monotone,
             });
-            pb.inc(1);
         }
     }
     pb.finish_and_clear();

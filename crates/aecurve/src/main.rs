@@ -74,8 +74,8 @@ enum BenchCmd {
         /// Seed of the random curve set.
         #[arg(long, default_value_t = 2024)]
         seed: u64,
-        /// Minimum milliseconds per timing round (5 rounds, median reported).
-        #[arg(long, default_value_t = 60)]
+        /// Minimum milliseconds per timing round (7 interleaved rounds, median reported).
+        #[arg(long, default_value_t = 40)]
         round_ms: u64,
         /// Print JSON instead of the table.
         #[arg(long)]

@@ -31,8 +31,10 @@
 //! ## The sampling test (S1 §3.1)
 //!
 //! Curvature at `N + 1` uniform parameters; monotone when consecutive differences keep one
-//! sign (differences within `1e-12` of the curvature's size count as zero). It can miss
-//! extrema between samples, and costs grow with N: it exists to reproduce S1's comparison.
+//! sign (differences within `1e-12` of the curvature's size count as zero). As in S1, all
+//! `N + 1` samples are evaluated before the check (S1 Fig. 4: time linear in N and in the
+//! degree), so a non-monotone curve costs as much as a monotone one. It can miss extrema
+//! between samples: it exists to reproduce S1's comparison.
 
 use crate::bernstein::{
     analyze_signs, binomial, classify, Bernstein, Classified, Coeffs, Sign, SignOptions,
@@ -134,9 +136,9 @@ fn deriv_abs(p: &Bernstein) -> Bernstein {
 /// K(t) for a polynomial Bézier curve (degree 4n-7 for n >= 3; see the module docs).
 pub fn curvature_variation(curve: &Bezier) -> CurvatureVariation {
     if curve.degree() <= SMALL_DEGREE {
-        poly_k::<SMALL_CAP>(curve.points()).to_variation()
+        poly_k::<SMALL_CAP>(curve.points(), true).to_variation()
     } else {
-        poly_k::<LARGE_CAP>(curve.points()).to_variation()
+        poly_k::<LARGE_CAP>(curve.points(), true).to_variation()
     }
 }
 
@@ -186,10 +188,9 @@ impl<const C: usize> PolyK<C> {
         }
     }
 
-    /// The verdict only, allocation-free.
+    /// Regularity, with the quick proof first: |x'|^2 has positive Bernstein coefficients.
     #[inline(always)]
-    fn is_monotone(&self) -> Result<bool> {
-        // Quick regularity proof first: |x'|^2 has positive Bernstein coefficients.
+    fn check_speed(&self) -> Result<()> {
         let margin2 = DEGENERATE_SPEED_TOL * DEGENERATE_SPEED_TOL * self.scale;
         if self.scale == 0.0
             || self.s[..=self.ds]
@@ -199,6 +200,13 @@ impl<const C: usize> PolyK<C> {
         {
             check_regular(&self.h[..self.n], self.scale)?;
         }
+        Ok(())
+    }
+
+    /// The verdict only, allocation-free.
+    #[inline(always)]
+    fn is_monotone(&self) -> Result<bool> {
+        self.check_speed()?;
         let mut noise = self.noise();
         let dk = self.dk;
         Ok(match classify(&self.k[..=dk], &noise[..=dk]) {
@@ -246,7 +254,7 @@ fn conv(a: &[f64], b: &[f64], s: f64, out: &mut [f64]) {
 /// Stack buffers only, scaled Bernstein forms (products are convolutions), values and
 /// magnitude bounds side by side. Needs `4n - 6 <= C` and `n <= C`.
 #[inline(always)]
-fn poly_k<const C: usize>(b: &[Point]) -> PolyK<C> {
+fn poly_k<const C: usize>(b: &[Point], bounds: bool) -> PolyK<C> {
     let n = b.len() - 1;
     let nf = n as f64;
     let m1 = n - 1;
@@ -282,8 +290,10 @@ fn poly_k<const C: usize>(b: &[Point]) -> PolyK<C> {
     let mut sa = [0.0; C];
     conv(&hxs[..n], &hxs[..n], 1.0, &mut s);
     conv(&hys[..n], &hys[..n], 1.0, &mut s);
-    conv(&hxas[..n], &hxas[..n], 1.0, &mut sa);
-    conv(&hyas[..n], &hyas[..n], 1.0, &mut sa);
+    if bounds {
+        conv(&hxas[..n], &hxas[..n], 1.0, &mut sa);
+        conv(&hyas[..n], &hyas[..n], 1.0, &mut sa);
+    }
     let mut out = PolyK {
         n,
         k: [0.0; C],
@@ -307,8 +317,10 @@ fn poly_k<const C: usize>(b: &[Point]) -> PolyK<C> {
     let mut ga = [0.0; C];
     conv(&ax[..=m], &by[..=m], c2, &mut g);
     conv(&ay[..=m], &bx[..=m], -c2, &mut g);
-    conv(&aax[..=m], &bay[..=m], c2, &mut ga);
-    conv(&aay[..=m], &bax[..=m], c2, &mut ga);
+    if bounds {
+        conv(&aax[..=m], &bay[..=m], c2, &mut ga);
+        conv(&aay[..=m], &bax[..=m], c2, &mut ga);
+    }
     // x'' = (n-1) (h_{i+1} - h_i), degree n-2, scaled: (n-1) (B - A).
     let (mut x2, mut y2, mut x2a, mut y2a) = ([0.0; C], [0.0; C], [0.0; C], [0.0; C]);
     for i in 0..=m {
@@ -322,13 +334,17 @@ fn poly_k<const C: usize>(b: &[Point]) -> PolyK<C> {
     let mut qa = [0.0; C];
     conv(&hxs[..n], &x2[..=m], 1.0, &mut qv);
     conv(&hys[..n], &y2[..=m], 1.0, &mut qv);
-    conv(&hxas[..n], &x2a[..=m], 1.0, &mut qa);
-    conv(&hyas[..n], &y2a[..=m], 1.0, &mut qa);
+    if bounds {
+        conv(&hxas[..n], &x2a[..=m], 1.0, &mut qa);
+        conv(&hyas[..n], &y2a[..=m], 1.0, &mut qa);
+    }
     let dq = 2 * n - 3;
     let (k, ka) = (&mut out.k, &mut out.ka);
     out.dk = if n == 2 {
         conv(&g[..1], &qv[..=dq], -3.0, k);
-        conv(&ga[..1], &qa[..=dq], 3.0, ka);
+        if bounds {
+            conv(&ga[..1], &qa[..=dq], 3.0, ka);
+        }
         dq
     } else {
         // G' (degree 2n-5) and its bound: unscale, differentiate, rescale.
@@ -346,8 +362,10 @@ fn poly_k<const C: usize>(b: &[Point]) -> PolyK<C> {
         rescale(&mut ga[..=dg]);
         conv(&gd[..dg], &out.s[..=ds], 1.0, k);
         conv(&g[..=dg], &qv[..=dq], -3.0, k);
-        conv(&gda[..dg], &sa[..=ds], 1.0, ka);
-        conv(&ga[..=dg], &qa[..=dq], 3.0, ka);
+        if bounds {
+            conv(&gda[..dg], &sa[..=ds], 1.0, ka);
+            conv(&ga[..=dg], &qa[..=dq], 3.0, ka);
+        }
         dg - 1 + ds
     };
     out
@@ -401,13 +419,59 @@ fn signs_settle_one_way<const C: usize>(c: &[f64], noise: &[f64]) -> bool {
     !(pos && neg)
 }
 
-/// The fast verdict for polynomial curves (stack buffers for degree <= 5).
+/// The fast verdict for polynomial curves (stack buffers sized for the degree).
 fn poly_is_monotone(curve: &Bezier) -> Result<bool> {
     if curve.degree() <= SMALL_DEGREE {
-        poly_k::<SMALL_CAP>(curve.points()).is_monotone()
+        poly_is_monotone_cap::<SMALL_CAP>(curve.points())
     } else {
-        poly_k::<LARGE_CAP>(curve.points()).is_monotone()
+        poly_is_monotone_cap::<LARGE_CAP>(curve.points())
     }
+}
+
+/// A bound on the rounding of the end coefficients of K (scaled form), from the largest
+/// hodograph magnitudes: every magnitude polynomial of [`poly_k`] is bounded coefficient-wise
+/// by its maximum times the binomials (Vandermonde), so the end coefficients' bounds are at
+/// most `(2 dg GA SA + 3 GA QA)` with the maxima below; times the same factor as `noise`.
+fn loose_k_bound(b: &[Point], dk: usize) -> f64 {
+    let n = b.len() - 1;
+    let nf = n as f64;
+    let (mut hxa, mut hya) = (0.0f64, 0.0f64);
+    for w in b.windows(2) {
+        hxa = hxa.max(nf * (w[0].x.abs() + w[1].x.abs()));
+        hya = hya.max(nf * (w[0].y.abs() + w[1].y.abs()));
+    }
+    let c2 = nf - 1.0;
+    let dg = 2.0 * (nf - 2.0);
+    let sa = hxa * hxa + hya * hya;
+    let ga = 2.0 * c2 * hxa * hya;
+    let qa = 2.0 * c2 * sa;
+    let bound = 2.0 * dg * ga * sa + 3.0 * ga * qa;
+    (16.0 + 4.0 * dk as f64) * EPS * bound * 4.0
+}
+
+/// One instance per buffer size, kept out of line so that the small case does not pay for
+/// the large case's stack frame.
+#[inline(never)]
+fn poly_is_monotone_cap<const C: usize>(b: &[Point]) -> Result<bool> {
+    // Values first: K with all coefficients of one strict sign is settled whatever the
+    // rounding bounds (they only decide what counts as zero). Otherwise redo with bounds.
+    let pk = poly_k::<C>(b, false);
+    let k = &pk.k[..=pk.dk];
+    if k.iter().all(|v| *v > 0.0) || k.iter().all(|v| *v < 0.0) {
+        pk.check_speed()?;
+        return Ok(true);
+    }
+    // Ends of opposite sign, each beyond a cheap global rounding bound (looser than the
+    // per-coefficient one, so strict here is strict there): not monotone.
+    let (k0, km) = (k[0], k[pk.dk]);
+    if k0 * km < 0.0 && pk.n >= 2 {
+        let loose = loose_k_bound(b, pk.dk);
+        if k0.abs() > loose && km.abs() > loose {
+            pk.check_speed()?;
+            return Ok(false);
+        }
+    }
+    poly_k::<C>(b, true).is_monotone()
 }
 
 /// K(t) for a rational Bézier curve (degree 8n-12 for n >= 2; see the module docs).
@@ -580,7 +644,13 @@ fn hodograph_vanishes_in<const C: usize>(
     if h[h.len() - 1].hypot() <= margin {
         return Some(b);
     }
-    if cone_is_open(h, margin) {
+    // Cheapest proofs first: one coordinate of the hodograph keeps a strict sign.
+    if h.iter().all(|v| v.x > margin)
+        || h.iter().all(|v| v.x < -margin)
+        || h.iter().all(|v| v.y > margin)
+        || h.iter().all(|v| v.y < -margin)
+        || cone_is_open(h, margin)
+    {
         return None;
     }
     let n = h.len();
@@ -807,22 +877,16 @@ fn sampled(f: impl Fn(f64) -> f64, samples: usize) -> Result<SampledReport> {
         } else if d < -tol {
             down = true;
         }
-        if up && down {
-            return Ok(SampledReport {
-                monotone: false,
-                trend: None,
-                samples,
-            });
-        }
         prev = k;
     }
-    let trend = Some(match (up, down) {
-        (true, _) => Trend::Increasing,
-        (_, true) => Trend::Decreasing,
-        _ => Trend::Constant,
-    });
+    let trend = match (up, down) {
+        (true, true) => None,
+        (true, false) => Some(Trend::Increasing),
+        (false, true) => Some(Trend::Decreasing),
+        (false, false) => Some(Trend::Constant),
+    };
     Ok(SampledReport {
-        monotone: true,
+        monotone: trend.is_some(),
         trend,
         samples,
     })
