@@ -611,30 +611,62 @@ pub fn analyze_signs(c: &[f64], noise: &[f64], opts: SignOptions) -> SignAnalysi
     if !c.is_empty() {
         w.walk(c, noise, 0.0, 1.0, 0);
     }
-    let changes = sign_changes(&w.pieces);
+    let changes = sign_changes(&w.pieces, c);
     SignAnalysis {
         pieces: w.pieces,
         changes,
     }
 }
 
-/// Where consecutive strict pieces have opposite signs: at their common end, or in the
-/// middle of the zero-within-rounding stretch between them.
-fn sign_changes(pieces: &[SignPiece]) -> Vec<f64> {
+/// Where consecutive strict pieces have opposite signs. A piece is settled up to rounding, so
+/// the crossing may sit near the boundary inside either piece (a coefficient within its bound
+/// can still be of the other sign): it is located by bisection on the values of `c` between
+/// the middles of the two pieces when the values there differ in sign, else at their common
+/// end (or the middle of the zero-within-rounding stretch between them).
+fn sign_changes(pieces: &[SignPiece], c: &[f64]) -> Vec<f64> {
     let mut out = Vec::new();
-    let mut last: Option<(Sign, f64)> = None;
+    let mut last: Option<SignPiece> = None;
     for p in pieces {
         if p.sign == Sign::Zero {
             continue;
         }
-        if let Some((s, end)) = last {
-            if s != p.sign {
-                out.push(if end == p.a { end } else { 0.5 * (end + p.a) });
+        if let Some(q) = last {
+            if q.sign != p.sign {
+                let guess = if q.b == p.a { q.b } else { 0.5 * (q.b + p.a) };
+                // From the middle of one piece to the middle of the next: brackets of
+                // successive changes never overlap.
+                let (lo, hi) = (0.5 * (q.a + q.b), 0.5 * (p.a + p.b));
+                out.push(bisect_values(c, lo, hi).unwrap_or(guess));
             }
         }
-        last = Some((p.sign, p.b));
+        last = Some(*p);
     }
     out
+}
+
+/// A sign change of the polynomial's values in [lo, hi] when the ends differ in sign.
+fn bisect_values(c: &[f64], mut lo: f64, mut hi: f64) -> Option<f64> {
+    let flo = de_casteljau(c, lo);
+    let fhi = de_casteljau(c, hi);
+    if !(flo * fhi < 0.0) {
+        return None;
+    }
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        let v = de_casteljau(c, mid);
+        if v == 0.0 {
+            return Some(mid);
+        }
+        if (v > 0.0) == (flo > 0.0) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(0.5 * (lo + hi))
 }
 
 /// Real roots of odd multiplicity in (0, 1) of a polynomial given exactly (noise bounds
