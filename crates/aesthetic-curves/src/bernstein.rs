@@ -648,7 +648,8 @@ fn sign_changes(pieces: &[SignPiece], c: &[f64]) -> Vec<f64> {
 fn bisect_values(c: &[f64], mut lo: f64, mut hi: f64) -> Option<f64> {
     let flo = de_casteljau(c, lo);
     let fhi = de_casteljau(c, hi);
-    if !(flo * fhi < 0.0) {
+    let prod = flo * fhi;
+    if prod.is_nan() || prod >= 0.0 {
         return None;
     }
     for _ in 0..80 {
