@@ -241,8 +241,15 @@ fn monotone(
     }
     for path in output {
         let caption = format!("{kind} degree {degree}: curvature comb");
-        std::fs::write(path, plot::curve_with_comb(&curve, &pts, &caption))
-            .with_context(|| format!("writing {}", path.display()))?;
+        let extrema = match method {
+            Method::Exact => c.curvature_monotone()?.extrema,
+            Method::Sampling => Vec::new(),
+        };
+        std::fs::write(
+            path,
+            plot::curve_with_comb(&curve, &pts, &extrema, &caption),
+        )
+        .with_context(|| format!("writing {}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())
@@ -287,7 +294,7 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
         },
         Example {
             name: "quintic",
-            text: "A quintic with two curvature extrema: the exact test finds both.",
+            text: "A wavy quintic: the exact test finds every curvature extremum (circled).",
             points: vec![(0.0, 0.0), (1.0, 0.8), (2.0, -0.4), (3.0, 1.2), (4.0, 0.2), (5.0, 1.0)],
             weights: None,
         },
@@ -329,11 +336,12 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
         let file = format!("{}.svg", ex.name);
         std::fs::write(
             out.join(&file),
-            plot::curve_with_comb(&curve, &pts, &format!("{}: {verdict}", ex.name)),
+            plot::curve_with_comb(&curve, &pts, &r.extrema, &format!("{}: {verdict}", ex.name)),
         )?;
         html += &format!(
             "<figure><img src=\"{file}\" alt=\"{}\"><figcaption>{} Exact test: {verdict} \
-             (Bernstein polynomial of degree {}).</figcaption></figure>\n",
+             (Bernstein polynomial of degree {}). Blue: curvature comb; circles: curvature \
+             extrema.</figcaption></figure>\n",
             ex.name, ex.text, r.test_degree
         );
     }

@@ -129,7 +129,11 @@ pub fn line_chart(
             y + 4.0
         );
     }
-    for v in nice_ticks(x0, x1, 8) {
+    let integer_x = all.iter().all(|p| p.0.fract() == 0.0);
+    for v in nice_ticks(x0, x1, 8)
+        .into_iter()
+        .filter(|v| !integer_x || v.fract() == 0.0)
+    {
         let x = px(v);
         let _ = writeln!(
             s,
@@ -199,6 +203,7 @@ pub fn line_chart(
 pub fn curve_with_comb(
     curve: &AnyBezier,
     control: &[aesthetic_curves::Point],
+    extrema: &[f64],
     caption: &str,
 ) -> String {
     let n = 200;
@@ -298,6 +303,13 @@ pub fn curve_with_comb(
         r##"<polyline points="{}" fill="none" stroke="#d62728" stroke-width="2.5"/>"##,
         cpts.join(" ")
     );
+    for &t in extrema {
+        let (a, b) = px(curve.eval(t));
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{a:.1}" cy="{b:.1}" r="6" fill="none" stroke="#000" stroke-width="2"/>"##
+        );
+    }
     s.push_str("</svg>\n");
     s
 }
