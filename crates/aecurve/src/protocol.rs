@@ -40,9 +40,8 @@ impl From<Error> for ProtoError {
 }
 
 /// The ops this build answers, and the ones the protocol names that are not built yet.
-pub const OPS: &[&str] = &["bezier.curvature_monotone"];
+pub const OPS: &[&str] = &["bezier.curvature_monotone", "lac.point"];
 const PLANNED_OPS: &[&str] = &[
-    "lac.point",
     "lac.segment",
     "lac.inflection_segment",
     "lac.rational_approx",
@@ -115,6 +114,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     };
     match op {
         "bezier.curvature_monotone" => curvature_monotone(obj),
+        "lac.point" => lac_point(obj),
         _ if PLANNED_OPS.contains(&op) => Err(ProtoError {
             kind: "unknown_op",
             message: format!("op '{op}' is part of the protocol but not implemented in this build"),
@@ -316,6 +316,53 @@ fn curvature_monotone(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     }
 }
 
+/// Largest number of parameters in one request.
+pub const MAX_THETAS: usize = 100_000;
+
+fn number_param(obj: &Map<String, Value>, field: &str) -> Result<f64, ProtoError> {
+    match obj.get(field) {
+        Some(v) => finite_number(v, field),
+        None => Err(ProtoError::invalid(field, "missing")),
+    }
+}
+
+fn lac_point(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let alpha = number_param(obj, "alpha")?;
+    let lambda = number_param(obj, "lambda")?;
+    let thetas: Vec<f64> = match obj.get("theta") {
+        Some(Value::Array(a)) => {
+            if a.len() > MAX_THETAS {
+                return Err(ProtoError::invalid(
+                    "theta",
+                    format!("at most {MAX_THETAS} values, got {}", a.len()),
+                ));
+            }
+            a.iter()
+                .enumerate()
+                .map(|(i, v)| finite_number(v, &format!("theta[{i}]")))
+                .collect::<Result<_, _>>()?
+        }
+        Some(v) if v.is_number() => vec![finite_number(v, "theta")?],
+        Some(_) => return Err(ProtoError::invalid("theta", "must be an array of numbers")),
+        None => return Err(ProtoError::invalid("theta", "missing")),
+    };
+    let c = aesthetic_curves::lac::LacStandard::new(alpha, lambda)?;
+    let points = c.eval_many(&thetas)?;
+    let arc: Vec<f64> = thetas
+        .iter()
+        .map(|t| c.arc_length(*t))
+        .collect::<Result<_, _>>()?;
+    let kappa: Vec<f64> = thetas
+        .iter()
+        .map(|t| c.kappa(*t))
+        .collect::<Result<_, _>>()?;
+    Ok(json!({
+        "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+        "arc_length": arc,
+        "curvature": kappa,
+    }))
+}
+
 fn first_non_finite(v: &Value, path: String) -> Option<String> {
     match v {
         Value::Number(n) => match n.as_f64() {
@@ -360,7 +407,18 @@ mod tests {
         assert_eq!(kind(&handle_line("{not json")), "parse");
         assert_eq!(kind(&handle_line("[1,2]")), "invalid_input");
         assert_eq!(kind(&handle_line(r#"{"op": "nope"}"#)), "unknown_op");
-        assert_eq!(kind(&handle_line(r#"{"op": "lac.point"}"#)), "unknown_op");
+        assert_eq!(kind(&handle_line(r#"{"op": "lac.segment"}"#)), "unknown_op");
+        assert_eq!(
+            kind(&handle_line(r#"{"op": "lac.point"}"#)),
+            "invalid_input"
+        );
+        let r =
+            handle_line(r#"{"op": "lac.point", "alpha": -1, "lambda": 0.5, "theta": [0.5, 3.0]}"#);
+        assert_eq!(kind(&r), "invalid_input");
+        assert!(
+            r["error"]["message"].as_str().unwrap().contains("domain"),
+            "{r}"
+        );
         assert_eq!(
             kind(&handle_line(r#"{"op": "bezier.curvature_monotone"}"#)),
             "invalid_input"
@@ -390,6 +448,19 @@ mod tests {
             r#"{"op": "bezier.curvature_monotone", "control_points": [[0,0],[1,1],[2,0]], "method": "sampling", "samples": 0}"#,
         );
         assert_eq!(kind(&r), "invalid_input");
+    }
+
+    #[test]
+    fn lac_point_values() {
+        let r = handle_line(
+            r#"{"id": 1, "op": "lac.point", "alpha": 2, "lambda": 0.5, "theta": [0, 1.5707963267948966]}"#,
+        );
+        assert_eq!(r["ok"], true, "{r}");
+        let p = &r["result"]["points"][1];
+        assert!((p[0].as_f64().unwrap() - (std::f64::consts::FRAC_PI_4 + 0.5)).abs() < 1e-13);
+        assert!((p[1].as_f64().unwrap() - 1.5).abs() < 1e-13);
+        assert_eq!(r["result"]["curvature"][0].as_f64().unwrap(), 1.0);
+        assert_eq!(r["result"]["arc_length"][0].as_f64().unwrap(), 0.0);
     }
 
     #[test]

@@ -7,6 +7,8 @@
 //!   sign analysis with rounding bounds, root isolation).
 //! - [`bezier`]: polynomial and rational Bézier curves of degree 1 to 20: evaluation,
 //!   derivatives, curvature, dkappa/ds, subdivision, elevation, power basis.
+//! - [`lac`]: log-aesthetic curves in standard form (point, curvature, arc length).
+//! - [`quadrature`]: adaptive Gauss–Kronrod quadrature.
 //! - [`monotone`]: the exact curvature-monotonicity test (Bernstein form of dkappa/ds plus
 //!   subdivision) and the sampling test.
 //!
@@ -18,7 +20,9 @@
 pub mod bernstein;
 pub mod bezier;
 pub mod error;
+pub mod lac;
 pub mod monotone;
+pub mod quadrature;
 pub mod samples;
 
 pub use bezier::{Bezier, RationalBezier};

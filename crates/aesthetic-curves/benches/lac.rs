@@ -1,0 +1,24 @@
+//! Criterion benchmarks of log-aesthetic curve evaluation (issue target: 1000 samples of a
+//! solved segment under 100 µs).
+
+use aesthetic_curves::lac::LacStandard;
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use std::hint::black_box;
+
+fn bench_lac(c: &mut Criterion) {
+    let mut g = c.benchmark_group("lac/standard");
+    for (alpha, lambda) in [(-1.0, 0.3), (0.5, 0.3), (1.0, 0.5), (2.0, 0.5)] {
+        let curve = LacStandard::new(alpha, lambda).unwrap();
+        let thetas: Vec<f64> = (0..1000).map(|i| i as f64 * 1.5 / 999.0).collect();
+        g.bench_with_input(BenchmarkId::new("point", alpha), &curve, |b, c| {
+            b.iter(|| c.eval(black_box(1.5)).unwrap())
+        });
+        g.bench_with_input(BenchmarkId::new("samples1000", alpha), &curve, |b, c| {
+            b.iter(|| c.eval_many(black_box(&thetas)).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench_lac);
+criterion_main!(benches);

@@ -1,0 +1,34 @@
+//! Standard-form LAC points against mpmath references at 40 digits
+//! (`tools/lac_reference.py`): alpha from -20 to 20, near-singular ends, several turns.
+
+use aesthetic_curves::lac::LacStandard;
+
+#[test]
+fn standard_form_matches_high_precision_reference() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/lac_reference.csv");
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut worst = (0.0f64, String::new());
+    let mut n = 0;
+    for line in text.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|s| s.parse().unwrap()).collect();
+        let (a, l, t, x, y) = (v[0], v[1], v[2], v[3], v[4]);
+        let p = LacStandard::new(a, l)
+            .unwrap()
+            .eval(t)
+            .unwrap_or_else(|e| panic!("alpha {a} lambda {l} theta {t}: {e}"));
+        let err = ((p.x - x).powi(2) + (p.y - y).powi(2)).sqrt() / (x * x + y * y).sqrt();
+        if err > worst.0 {
+            worst = (err, line.to_string());
+        }
+        assert!(
+            err < 1e-12,
+            "alpha {a} lambda {l} theta {t}: relative error {err:e} ({p:?} vs {x}, {y})"
+        );
+        n += 1;
+    }
+    println!(
+        "{n} reference points, worst relative error {:e} at {}",
+        worst.0, worst.1
+    );
+    assert!(n > 150);
+}
