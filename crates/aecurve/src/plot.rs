@@ -210,7 +210,7 @@ pub fn curve_with_comb(
     let samples: Vec<(aesthetic_curves::Point, aesthetic_curves::Vec2, f64)> = (0..=n)
         .map(|i| {
             let t = i as f64 / n as f64;
-            let d = curve.as_monotone().derivs_at(t);
+            let d = curve.as_monotone().derivs(t);
             let k = d.kappa();
             let nrm = d.d1.turn_90() / d.d1.hypot();
             (d.p, nrm, if k.is_finite() { k } else { 0.0 })
@@ -260,25 +260,20 @@ pub fn curve_with_comb(
             r##"<line x1="{a:.1}" y1="{b:.1}" x2="{c:.1}" y2="{d:.1}" stroke="#9ecae1"/>"##
         );
     }
-    let tip_pts: Vec<String> = tips
-        .iter()
-        .map(|p| {
-            let (a, b) = px(*p);
+    let coords = |pts: &mut dyn Iterator<Item = aesthetic_curves::Point>| -> Vec<String> {
+        pts.map(|p| {
+            let (a, b) = px(p);
             format!("{a:.1},{b:.1}")
         })
-        .collect();
+        .collect()
+    };
+    let tip_pts = coords(&mut tips.iter().copied());
     let _ = writeln!(
         s,
         r##"<polyline points="{}" fill="none" stroke="#6baed6"/>"##,
         tip_pts.join(" ")
     );
-    let poly: Vec<String> = control
-        .iter()
-        .map(|p| {
-            let (a, b) = px(*p);
-            format!("{a:.1},{b:.1}")
-        })
-        .collect();
+    let poly = coords(&mut control.iter().copied());
     let _ = writeln!(
         s,
         r##"<polyline points="{}" fill="none" stroke="#999" stroke-dasharray="4 3"/>"##,
@@ -291,13 +286,7 @@ pub fn curve_with_comb(
             r##"<circle cx="{a:.1}" cy="{b:.1}" r="4" fill="#666"/>"##
         );
     }
-    let cpts: Vec<String> = samples
-        .iter()
-        .map(|(p, _, _)| {
-            let (a, b) = px(*p);
-            format!("{a:.1},{b:.1}")
-        })
-        .collect();
+    let cpts = coords(&mut samples.iter().map(|s| s.0));
     let _ = writeln!(
         s,
         r##"<polyline points="{}" fill="none" stroke="#d62728" stroke-width="2.5"/>"##,

@@ -268,11 +268,11 @@ impl AnyBezier {
     }
     /// Signed curvature at t.
     pub fn kappa(&self, t: f64) -> f64 {
-        self.as_monotone().derivs_at(t).kappa()
+        self.as_monotone().kappa(t)
     }
     /// Point at t.
     pub fn eval(&self, t: f64) -> Point {
-        self.as_monotone().derivs_at(t).p
+        self.as_monotone().eval(t)
     }
 }
 

@@ -192,8 +192,7 @@ impl Bezier {
         self.points.iter().map(|p| [p.x, p.y]).collect()
     }
 
-    /// Point and derivatives up to third order at `t`, in one de Casteljau pass.
-    pub fn derivs(&self, t: f64) -> Derivs {
+    fn derivs_impl(&self, t: f64) -> Derivs {
         let o = casteljau_derivs(&self.xy(), t);
         Derivs {
             p: Point::new(o[0][0], o[0][1]),
@@ -201,31 +200,6 @@ impl Bezier {
             d2: Vec2::new(o[2][0], o[2][1]),
             d3: Vec2::new(o[3][0], o[3][1]),
         }
-    }
-
-    /// The point at `t`.
-    pub fn eval(&self, t: f64) -> Point {
-        self.derivs(t).p
-    }
-    /// First derivative at `t`.
-    pub fn eval_d(&self, t: f64) -> Vec2 {
-        self.derivs(t).d1
-    }
-    /// Second derivative at `t`.
-    pub fn eval_dd(&self, t: f64) -> Vec2 {
-        self.derivs(t).d2
-    }
-    /// Third derivative at `t`.
-    pub fn eval_ddd(&self, t: f64) -> Vec2 {
-        self.derivs(t).d3
-    }
-    /// Signed curvature at `t`.
-    pub fn kappa(&self, t: f64) -> f64 {
-        self.derivs(t).kappa()
-    }
-    /// dkappa/ds at `t`.
-    pub fn dkappa_ds(&self, t: f64) -> f64 {
-        self.derivs(t).dkappa_ds()
     }
 
     /// The hodograph control vectors `n (b_{i+1} - b_i)` (a curve of degree n-1).
@@ -344,8 +318,7 @@ impl RationalBezier {
             .collect()
     }
 
-    /// Point and derivatives up to third order at `t` (homogeneous de Casteljau + quotient rule).
-    pub fn derivs(&self, t: f64) -> Derivs {
+    fn derivs_impl(&self, t: f64) -> Derivs {
         let h = casteljau_derivs(&self.homogeneous(), t);
         let v = |k: usize| Vec2::new(h[k][0], h[k][1]);
         let (w, w1, w2, w3) = (h[0][2], h[1][2], h[2][2], h[3][2]);
@@ -361,30 +334,9 @@ impl RationalBezier {
         }
     }
 
-    /// The point at `t`.
-    pub fn eval(&self, t: f64) -> Point {
+    fn eval_impl(&self, t: f64) -> Point {
         let h = casteljau_derivs(&self.homogeneous(), t);
         Point::new(h[0][0] / h[0][2], h[0][1] / h[0][2])
-    }
-    /// First derivative at `t`.
-    pub fn eval_d(&self, t: f64) -> Vec2 {
-        self.derivs(t).d1
-    }
-    /// Second derivative at `t`.
-    pub fn eval_dd(&self, t: f64) -> Vec2 {
-        self.derivs(t).d2
-    }
-    /// Third derivative at `t`.
-    pub fn eval_ddd(&self, t: f64) -> Vec2 {
-        self.derivs(t).d3
-    }
-    /// Signed curvature at `t`.
-    pub fn kappa(&self, t: f64) -> f64 {
-        self.derivs(t).kappa()
-    }
-    /// dkappa/ds at `t`.
-    pub fn dkappa_ds(&self, t: f64) -> f64 {
-        self.derivs(t).dkappa_ds()
     }
 
     /// Curvature at t = 0 by the closed form of math.md §1:
@@ -451,6 +403,54 @@ impl RationalBezier {
         let h = self.homogeneous();
         let col = |c: usize| Bernstein::new(&h.iter().map(|v| v[c]).collect::<Vec<_>>());
         (col(0), col(1), col(2))
+    }
+}
+
+/// The one evaluation interface of the library's parametric curves (`eval`, `eval_d`,
+/// `eval_dd`, `eval_ddd`, `kappa`, `dkappa_ds`), all derived from [`PlanarCurve::derivs`].
+pub trait PlanarCurve {
+    /// Point and derivatives up to third order at `t`.
+    fn derivs(&self, t: f64) -> Derivs;
+    /// The point at `t`.
+    fn eval(&self, t: f64) -> Point {
+        self.derivs(t).p
+    }
+    /// First derivative at `t`.
+    fn eval_d(&self, t: f64) -> Vec2 {
+        self.derivs(t).d1
+    }
+    /// Second derivative at `t`.
+    fn eval_dd(&self, t: f64) -> Vec2 {
+        self.derivs(t).d2
+    }
+    /// Third derivative at `t`.
+    fn eval_ddd(&self, t: f64) -> Vec2 {
+        self.derivs(t).d3
+    }
+    /// Signed curvature at `t`.
+    fn kappa(&self, t: f64) -> f64 {
+        self.derivs(t).kappa()
+    }
+    /// dkappa/ds at `t`.
+    fn dkappa_ds(&self, t: f64) -> f64 {
+        self.derivs(t).dkappa_ds()
+    }
+}
+
+impl PlanarCurve for Bezier {
+    /// One de Casteljau pass.
+    fn derivs(&self, t: f64) -> Derivs {
+        self.derivs_impl(t)
+    }
+}
+
+impl PlanarCurve for RationalBezier {
+    /// Homogeneous de Casteljau and the quotient rule.
+    fn derivs(&self, t: f64) -> Derivs {
+        self.derivs_impl(t)
+    }
+    fn eval(&self, t: f64) -> Point {
+        self.eval_impl(t)
     }
 }
 

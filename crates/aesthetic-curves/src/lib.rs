@@ -25,7 +25,7 @@ pub mod monotone;
 pub mod quadrature;
 pub mod samples;
 
-pub use bezier::{Bezier, RationalBezier};
+pub use bezier::{Bezier, PlanarCurve, RationalBezier};
 pub use error::{Error, Result};
 pub use kurbo::{Point, Vec2};
 pub use monotone::{MonotoneReport, SampledReport, Trend};

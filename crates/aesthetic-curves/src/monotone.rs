@@ -39,7 +39,7 @@
 use crate::bernstein::{
     analyze_signs, binomial, classify, Bernstein, Classified, Coeffs, Sign, SignOptions,
 };
-use crate::bezier::{Bezier, Derivs, RationalBezier};
+use crate::bezier::{Bezier, PlanarCurve, RationalBezier};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 use smallvec::SmallVec;
@@ -753,11 +753,9 @@ impl CurvatureVariation {
 }
 
 /// Curves the monotonicity tests apply to.
-pub trait CurvatureMonotone {
+pub trait CurvatureMonotone: PlanarCurve {
     /// The numerator of dkappa/ds in Bernstein form.
     fn curvature_variation(&self) -> CurvatureVariation;
-    /// Point and derivatives at `t`.
-    fn derivs_at(&self, t: f64) -> Derivs;
 
     /// The exact test with the curvature extrema located (to about 1e-15 in t).
     fn curvature_monotone(&self) -> Result<MonotoneReport> {
@@ -775,7 +773,7 @@ pub trait CurvatureMonotone {
 
     /// The sampling test of S1 §3.1 with `samples` divisions (at least 1).
     fn curvature_monotone_sampled(&self, samples: usize) -> Result<SampledReport> {
-        sampled(|t| self.derivs_at(t).kappa(), samples)
+        sampled(|t| self.kappa(t), samples)
     }
 }
 
@@ -790,17 +788,11 @@ impl CurvatureMonotone for Bezier {
         let k = KappaSampler::new(self);
         sampled(|t| k.kappa(t), samples)
     }
-    fn derivs_at(&self, t: f64) -> Derivs {
-        self.derivs(t)
-    }
 }
 
 impl CurvatureMonotone for RationalBezier {
     fn curvature_variation(&self) -> CurvatureVariation {
         curvature_variation_rational(self)
-    }
-    fn derivs_at(&self, t: f64) -> Derivs {
-        self.derivs(t)
     }
 }
 

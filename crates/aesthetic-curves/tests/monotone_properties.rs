@@ -4,7 +4,7 @@
 
 use aesthetic_curves::monotone::{CurvatureMonotone, Trend};
 use aesthetic_curves::samples::random_curves;
-use aesthetic_curves::{Bezier, Error, Point, RationalBezier};
+use aesthetic_curves::{Bezier, Error, PlanarCurve, Point, RationalBezier};
 use proptest::prelude::*;
 
 fn transform(pts: &[Point], angle: f64, scale: f64, dx: f64, dy: f64, mirror: bool) -> Vec<Point> {
