@@ -40,9 +40,8 @@ impl From<Error> for ProtoError {
 }
 
 /// The ops this build answers, and the ones the protocol names that are not built yet.
-pub const OPS: &[&str] = &["bezier.curvature_monotone", "lac.point"];
+pub const OPS: &[&str] = &["bezier.curvature_monotone", "lac.point", "lac.segment"];
 const PLANNED_OPS: &[&str] = &[
-    "lac.segment",
     "lac.inflection_segment",
     "lac.rational_approx",
     "spline.pseudo_elastic",
@@ -115,6 +114,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     match op {
         "bezier.curvature_monotone" => curvature_monotone(obj),
         "lac.point" => lac_point(obj),
+        "lac.segment" => lac_segment(obj),
         _ if PLANNED_OPS.contains(&op) => Err(ProtoError {
             kind: "unknown_op",
             message: format!("op '{op}' is part of the protocol but not implemented in this build"),
@@ -363,6 +363,30 @@ fn lac_point(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     }))
 }
 
+/// Largest number of samples of a segment.
+pub const MAX_SEGMENT_SAMPLES: u64 = 100_000;
+
+fn lac_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let alpha = number_param(obj, "alpha")?;
+    let control = points_param(obj, "control", 3, 3)?;
+    let samples = count_param(obj, "samples", 65, MAX_SEGMENT_SAMPLES)?;
+    if samples < 2 {
+        return Err(ProtoError::invalid("samples", "must be at least 2"));
+    }
+    let seg = aesthetic_curves::lac::LacSegment::new(alpha, [control[0], control[1], control[2]])?;
+    let (points, curvature) = seg.sample(samples as usize)?;
+    let (k0, k1) = seg.end_curvatures()?;
+    Ok(json!({
+        "lambda": seg.lambda(),
+        "theta_d": seg.theta_d,
+        "arc_length": seg.arc_length()?,
+        "curvature_start": k0,
+        "curvature_end": k1,
+        "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+        "curvature": curvature,
+    }))
+}
+
 fn first_non_finite(v: &Value, path: String) -> Option<String> {
     match v {
         Value::Number(n) => match n.as_f64() {
@@ -407,7 +431,24 @@ mod tests {
         assert_eq!(kind(&handle_line("{not json")), "parse");
         assert_eq!(kind(&handle_line("[1,2]")), "invalid_input");
         assert_eq!(kind(&handle_line(r#"{"op": "nope"}"#)), "unknown_op");
-        assert_eq!(kind(&handle_line(r#"{"op": "lac.segment"}"#)), "unknown_op");
+        assert_eq!(kind(&handle_line(r#"{"op": "lac.fit"}"#)), "unknown_op");
+        assert_eq!(
+            kind(&handle_line(r#"{"op": "lac.segment"}"#)),
+            "invalid_input"
+        );
+        let r =
+            handle_line(r#"{"op": "lac.segment", "alpha": -1, "control": [[0,0],[1,0],[1,0.3]]}"#);
+        assert_eq!(kind(&r), "no_segment");
+        assert!(
+            r["error"]["message"]
+                .as_str()
+                .unwrap()
+                .contains("must lie in"),
+            "{r}"
+        );
+        let r =
+            handle_line(r#"{"op": "lac.segment", "alpha": -1, "control": [[0,0],[1,0],[2,0]]}"#);
+        assert_eq!(kind(&r), "degenerate");
         assert_eq!(
             kind(&handle_line(r#"{"op": "lac.point"}"#)),
             "invalid_input"
@@ -461,6 +502,21 @@ mod tests {
         assert!((p[1].as_f64().unwrap() - 1.5).abs() < 1e-13);
         assert_eq!(r["result"]["curvature"][0].as_f64().unwrap(), 1.0);
         assert_eq!(r["result"]["arc_length"][0].as_f64().unwrap(), 0.0);
+    }
+
+    #[test]
+    fn lac_segment_values() {
+        let r = handle_line(
+            r#"{"id": "s", "op": "lac.segment", "alpha": -1, "control": [[0,0],[10,0],[16,9]], "samples": 5}"#,
+        );
+        assert_eq!(r["ok"], true, "{r}");
+        let res = &r["result"];
+        assert_eq!(res["points"].as_array().unwrap().len(), 5);
+        assert_eq!(res["points"][0][0], 0.0);
+        assert_eq!(res["points"][4][1], 9.0);
+        assert!(res["lambda"].as_f64().unwrap() > 0.0);
+        assert!(res["curvature_start"].as_f64().unwrap() > 0.0);
+        assert!(res["arc_length"].as_f64().unwrap() > (16f64.hypot(9.0)));
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! Criterion benchmarks of log-aesthetic curve evaluation (issue target: 1000 samples of a
 //! solved segment under 100 µs).
 
-use aesthetic_curves::lac::LacStandard;
+use aesthetic_curves::lac::{LacSegment, LacStandard};
+use aesthetic_curves::Point;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
 
@@ -15,6 +16,18 @@ fn bench_lac(c: &mut Criterion) {
         });
         g.bench_with_input(BenchmarkId::new("samples1000", alpha), &curve, |b, c| {
             b.iter(|| c.eval_many(black_box(&thetas)).unwrap())
+        });
+    }
+    g.finish();
+    let mut g = c.benchmark_group("lac/segment");
+    let tri = [
+        Point::new(0.0, 0.0),
+        Point::new(10.0, 0.0),
+        Point::new(16.0, 9.0),
+    ];
+    for alpha in [-1.0, 0.5, 1.0, 2.0] {
+        g.bench_with_input(BenchmarkId::new("solve", alpha), &alpha, |b, &a| {
+            b.iter(|| LacSegment::new(black_box(a), tri).unwrap())
         });
     }
     g.finish();

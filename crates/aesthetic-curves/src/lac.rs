@@ -264,6 +264,59 @@ impl LacStandard {
     }
 }
 
+impl LacStandard {
+    /// Where the domain ends on the side of `t0`'s sign... the finite end θ* = -1/((α-1)Λ)
+    /// of the domain, when there is one.
+    pub fn domain_end(&self) -> Option<f64> {
+        let c = self.c();
+        (self.alpha != 1.0 && c != 0.0).then(|| -1.0 / c)
+    }
+
+    /// `∫_{t0}^{θ*} ρ e^{iψ} dψ` up to the finite end θ* of the domain, where ρ → ∞ (α < 0)
+    /// or ρ → 0 (α > 1); both integrable (for 0 <= α < 1 the integral diverges: error). In
+    /// `w = ln u` the last stretch runs to -∞ with an exponentially decaying integrand,
+    /// truncated where the tail is below 1e-17 of the result.
+    pub fn integral_to_domain_end(&self, t0: f64) -> Result<Vec2> {
+        let (a, c) = (self.alpha, self.c());
+        let Some(t_end) = self.domain_end() else {
+            return Err(Error::invalid("lambda", "the domain has no finite end"));
+        };
+        let p1 = a / (a - 1.0);
+        if p1 <= 0.0 {
+            return Err(Error::invalid(
+                "alpha",
+                "for 0 <= alpha <= 1 the curve is infinitely long at the end of its domain",
+            ));
+        }
+        // Last quarter turn handled in w down to the truncation point.
+        let q = std::f64::consts::FRAC_PI_2;
+        let t_last = if (t_end - t0).abs() > q {
+            t_end - q * (t_end - t0).signum()
+        } else {
+            t0
+        };
+        let head = self.integral(t0, t_last)?;
+        let w0 = self.log_u(t_last);
+        let w_trunc = w0.min((1e-18 * p1).ln() / p1 + w0.min(0.0));
+        let len = self.arc_length(t_last)?.abs() + (p1 * w0).exp() / (p1 * c.abs());
+        let opts = QuadOptions {
+            accuracy: (1e-15 * len * c.abs()).max(f64::MIN_POSITIVE),
+            max_panels: 4_000,
+        };
+        let tail = integrate(
+            |w| {
+                let mag = (p1 * w).exp();
+                let psi = w.exp_m1() / c;
+                Vec2::new(mag * psi.cos(), mag * psi.sin())
+            },
+            w0,
+            w_trunc,
+            opts,
+        )?;
+        Ok(head + tail / c)
+    }
+}
+
 /// `a + b` as `(sum, rounding error)`.
 fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
@@ -286,6 +339,307 @@ fn log_spiral(l: f64, theta: f64) -> Vec2 {
     // divide by (l + i): multiply by (l - i)/(l^2 + 1)
     let d = l * l + 1.0;
     Vec2::new((num.x * l + num.y) / d, (num.y * l - num.x) / d)
+}
+
+/// A log-aesthetic segment fitted into a control triangle (math.md §3.1; Yoshida & Saito
+/// 2006): start, tangent intersection, end.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LacSegment {
+    /// The standard-form curve (Λ >= 0).
+    pub standard: LacStandard,
+    /// Turning angle θ_d in (0, π).
+    pub theta_d: f64,
+    /// The standard interval: [0, θ_d] for α <= 1, [-θ_d, 0] for α > 1.
+    pub interval: (f64, f64),
+    /// The three control points as given.
+    pub control: [Point; 3],
+    /// True when the standard start (high-curvature end) maps to `control[2]`.
+    pub reversed: bool,
+    /// The similarity from the standard form to the input: `z -> offset + scale * z` in
+    /// complex numbers, after complex conjugation when `mirrored`.
+    map_offset: Vec2,
+    map_factor: Vec2,
+    mirrored: bool,
+}
+
+fn cmul(a: Vec2, b: Vec2) -> Vec2 {
+    Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
+}
+fn cdiv(a: Vec2, b: Vec2) -> Vec2 {
+    let d = b.hypot2();
+    Vec2::new((a.x * b.x + a.y * b.y) / d, (a.y * b.x - a.x * b.y) / d)
+}
+fn conj(a: Vec2) -> Vec2 {
+    Vec2::new(a.x, -a.y)
+}
+
+/// Angle between two vectors in [0, π].
+fn angle_between(a: Vec2, b: Vec2) -> f64 {
+    a.cross(b).abs().atan2(a.dot(b))
+}
+
+impl LacSegment {
+    /// The standard interval and the chord's base angle at its start (the high-curvature
+    /// end) for Λ; `at_limit` evaluates the limiting curve Λ = Λ_max (α < 0 or α > 1).
+    fn base_angle(alpha: f64, lambda: f64, theta_d: f64, at_limit: bool) -> Result<f64> {
+        let c = LacStandard::new(alpha, lambda)?;
+        let (ta, tb) = if alpha <= 1.0 {
+            (0.0, theta_d)
+        } else {
+            (-theta_d, 0.0)
+        };
+        let chord = if !at_limit {
+            c.integral(ta, tb)?
+        } else if alpha <= 1.0 {
+            // θ* = θ_d: from 0 to the end of the domain.
+            c.integral_to_domain_end(ta)?
+        } else {
+            // θ* = -θ_d: the start is the singular end; integrate end -> start and negate.
+            -c.integral_to_domain_end(tb)?
+        };
+        Ok(chord.y.atan2(chord.x) - ta)
+    }
+
+    /// `Λ_max = 1/(|α-1| θ_d)` (infinite for α = 1).
+    pub fn lambda_max(alpha: f64, theta_d: f64) -> f64 {
+        if alpha == 1.0 {
+            f64::INFINITY
+        } else {
+            1.0 / ((alpha - 1.0).abs() * theta_d)
+        }
+    }
+
+    /// θ_lim(α, θ_d): the supremum of the high-curvature end's base angle.
+    pub fn theta_lim(alpha: f64, theta_d: f64) -> Result<f64> {
+        if (0.0..=1.0).contains(&alpha) {
+            return Ok(theta_d);
+        }
+        Self::base_angle(alpha, Self::lambda_max(alpha, theta_d), theta_d, true)
+    }
+
+    /// Solve Λ with base angle `phi` at the high-curvature end, `θ_d/2 <= phi < θ_lim`, by
+    /// bisection on [0, Λ_max) to 1e-15 relative (φ increases strictly with Λ).
+    pub fn solve_lambda(alpha: f64, theta_d: f64, phi: f64) -> Result<f64> {
+        let half = 0.5 * theta_d;
+        if (phi - half).abs() <= 1e-15 * theta_d {
+            return Ok(0.0);
+        }
+        let lim = Self::theta_lim(alpha, theta_d)?;
+        if !(phi > half && phi < lim) {
+            return Err(Error::NoSegment(format!(
+                "the base angle at the high-curvature end is {:.9} rad ({:.6} deg); for alpha = \
+                 {alpha} and turning angle {:.6} deg it must lie in [{:.9}, {:.9}) rad \
+                 ([{:.6}, {:.6}) deg)",
+                phi,
+                phi.to_degrees(),
+                theta_d.to_degrees(),
+                half,
+                lim,
+                half.to_degrees(),
+                lim.to_degrees()
+            )));
+        }
+        let mut hi = Self::lambda_max(alpha, theta_d);
+        if !hi.is_finite() {
+            hi = 1.0;
+            while Self::base_angle(alpha, hi, theta_d, false)? < phi {
+                hi *= 2.0;
+                if hi > 1e6 {
+                    return Err(Error::NoConvergence(
+                        "lambda bracket for alpha = 1 exceeded 1e6".into(),
+                    ));
+                }
+            }
+        }
+        // Illinois (regula falsi with halving) on f(Λ) = φ(Λ) - phi, bracketed; bisection
+        // steps every fourth iteration. f(0) = θ_d/2 - phi < 0; at a finite Λ_max, f is the
+        // limit θ_lim - phi > 0 (the curve itself is not evaluated there).
+        let (mut lo, mut flo) = (0.0, half - phi);
+        let mut fhi = if hi == Self::lambda_max(alpha, theta_d) {
+            lim - phi
+        } else {
+            Self::base_angle(alpha, hi, theta_d, false)? - phi
+        };
+        let mut side = 0i32;
+        for it in 0..200 {
+            if hi - lo <= 1e-15 * hi {
+                break;
+            }
+            let mut x = (lo * fhi - hi * flo) / (fhi - flo);
+            if it % 4 == 3 || !(x > lo && x < hi) {
+                x = 0.5 * (lo + hi);
+            }
+            let fx = Self::base_angle(alpha, x, theta_d, false)? - phi;
+            if fx == 0.0 {
+                return Ok(x);
+            }
+            if fx < 0.0 {
+                lo = x;
+                flo = fx;
+                if side == -1 {
+                    fhi *= 0.5;
+                }
+                side = -1;
+            } else {
+                hi = x;
+                fhi = fx;
+                if side == 1 {
+                    flo *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        Ok(0.5 * (lo + hi))
+    }
+
+    /// The segment of shape `alpha` in the triangle `control` = [start, tangent
+    /// intersection, end].
+    pub fn new(alpha: f64, control: [Point; 3]) -> Result<Self> {
+        if !alpha.is_finite() || alpha.abs() > MAX_ABS_ALPHA {
+            return Err(Error::invalid("alpha", "must be a finite number"));
+        }
+        if control.iter().any(|p| !p.is_finite()) {
+            return Err(Error::invalid("control", "control points must be finite"));
+        }
+        let (p0, p1, p2) = (control[0], control[1], control[2]);
+        let (u, v, w) = (p1 - p0, p2 - p1, p2 - p0);
+        let size = u.hypot().max(v.hypot());
+        if u.hypot() <= 1e-12 * size || v.hypot() <= 1e-12 * size || size == 0.0 {
+            return Err(Error::Degenerate(
+                "coincident control points: the end tangents are undefined".into(),
+            ));
+        }
+        let theta_d = angle_between(u, v);
+        if theta_d <= 1e-9 || theta_d >= std::f64::consts::PI - 1e-9 {
+            return Err(Error::Degenerate(format!(
+                "collinear control points (turning angle {:.3e} rad): no segment turns between \
+                 these tangents",
+                theta_d
+            )));
+        }
+        let theta_e = angle_between(u, w);
+        let theta_f = angle_between(w, v);
+        let reversed = theta_f > theta_e;
+        let phi = theta_e.max(theta_f);
+        let lambda = Self::solve_lambda(alpha, theta_d, phi)?;
+        let standard = LacStandard::new(alpha, lambda)?;
+        let interval = if alpha <= 1.0 {
+            (0.0, theta_d)
+        } else {
+            (-theta_d, 0.0)
+        };
+        let a = standard.eval(interval.0)?.to_vec2();
+        let b = a + standard.integral(interval.0, interval.1)?;
+        // Tangent intersection of the standard segment.
+        let da = Vec2::from_angle(interval.0);
+        let db = Vec2::from_angle(interval.1);
+        let t_std = a + da * ((b - a).cross(db) / da.cross(db));
+        let (x, y) = if reversed { (p2, p0) } else { (p0, p2) };
+        let (x, y) = (x.to_vec2(), y.to_vec2());
+        let mut best: Option<(f64, Vec2, Vec2, bool)> = None;
+        for mirrored in [false, true] {
+            let (aa, bb, tt) = if mirrored {
+                (conj(a), conj(b), conj(t_std))
+            } else {
+                (a, b, t_std)
+            };
+            let factor = cdiv(y - x, bb - aa);
+            let offset = x - cmul(aa, factor);
+            let miss = (offset + cmul(tt, factor) - p1.to_vec2()).hypot();
+            if best.is_none_or(|b| miss < b.0) {
+                best = Some((miss, offset, factor, mirrored));
+            }
+        }
+        let (_, map_offset, map_factor, mirrored) = best.expect("two candidates");
+        Ok(LacSegment {
+            standard,
+            theta_d,
+            interval,
+            control,
+            reversed,
+            map_offset,
+            map_factor,
+            mirrored,
+        })
+    }
+
+    /// The tangent intersection of the fitted curve, mapped to the input: equals
+    /// `control[1]` up to the accuracy of Λ (a check, not a copy).
+    pub fn tangent_intersection(&self) -> Result<Point> {
+        let (ta, tb) = self.interval;
+        let a = self.standard.eval(ta)?.to_vec2();
+        let b = a + self.standard.integral(ta, tb)?;
+        let (da, db) = (Vec2::from_angle(ta), Vec2::from_angle(tb));
+        Ok(self.map(a + da * ((b - a).cross(db) / da.cross(db))))
+    }
+
+    /// Λ of the standard form.
+    pub fn lambda(&self) -> f64 {
+        self.standard.lambda()
+    }
+
+    /// Scale factor from the standard form to the input.
+    pub fn scale(&self) -> f64 {
+        self.map_factor.hypot()
+    }
+
+    fn map(&self, z: Vec2) -> Point {
+        let z = if self.mirrored { conj(z) } else { z };
+        (self.map_offset + cmul(z, self.map_factor)).to_point()
+    }
+
+    /// +1 when the segment turns counter-clockwise from control[0] to control[2].
+    fn turn_sign(&self) -> f64 {
+        let c = self.control;
+        (c[1] - c[0]).cross(c[2] - c[1]).signum()
+    }
+
+    /// Arc length in input units.
+    pub fn arc_length(&self) -> Result<f64> {
+        let (a, b) = self.interval;
+        Ok((self.standard.arc_length(b)? - self.standard.arc_length(a)?).abs() * self.scale())
+    }
+
+    /// Standard-form parameters of `n >= 2` samples from control[0] to control[2], evenly
+    /// spaced in tangent angle.
+    fn sample_thetas(&self, n: usize) -> Vec<f64> {
+        let (a, b) = if self.reversed {
+            (self.interval.1, self.interval.0)
+        } else {
+            self.interval
+        };
+        (0..n)
+            .map(|i| a + (b - a) * (i as f64 / (n - 1) as f64))
+            .collect()
+    }
+
+    /// `n >= 2` points from control[0] to control[2] (ends exact) and their signed curvature.
+    pub fn sample(&self, n: usize) -> Result<(Vec<Point>, Vec<f64>)> {
+        if n < 2 {
+            return Err(Error::invalid("samples", "need at least 2"));
+        }
+        let th = self.sample_thetas(n);
+        let pts = self.standard.eval_many(&th)?;
+        let mut out: Vec<Point> = pts.iter().map(|p| self.map(p.to_vec2())).collect();
+        out[0] = self.control[0];
+        out[n - 1] = self.control[2];
+        let sign = self.turn_sign();
+        let k = th
+            .iter()
+            .map(|t| Ok(sign * self.standard.kappa(*t)? / self.scale()))
+            .collect::<Result<Vec<f64>>>()?;
+        Ok((out, k))
+    }
+
+    /// Signed curvature at control[0] and control[2].
+    pub fn end_curvatures(&self) -> Result<(f64, f64)> {
+        let th = self.sample_thetas(2);
+        let s = self.turn_sign() / self.scale();
+        Ok((
+            s * self.standard.kappa(th[0])?,
+            s * self.standard.kappa(th[1])?,
+        ))
+    }
 }
 
 #[cfg(test)]
@@ -340,6 +694,77 @@ mod tests {
             .unwrap();
             assert!((s - q.x).abs() < 1e-13 * s, "{a} {l}: {s} vs {}", q.x);
         }
+    }
+
+    #[test]
+    fn math_md_segment_values() {
+        let d = FRAC_PI_2;
+        let lim = LacSegment::theta_lim(-1.0, d).unwrap().to_degrees();
+        assert!((lim - 60.6663).abs() < 1e-4, "{lim}");
+        let lim = LacSegment::theta_lim(2.0, d).unwrap().to_degrees();
+        assert!((lim - 60.2824).abs() < 1e-4, "{lim}");
+        let phi = 50f64.to_radians();
+        let l = LacSegment::solve_lambda(-1.0, d, phi).unwrap();
+        assert!((l - 0.233593243048).abs() < 1e-11, "{l}");
+        let l = LacSegment::solve_lambda(1.0, d, phi).unwrap();
+        assert!((l - 0.409925293631).abs() < 1e-11, "{l}");
+    }
+
+    #[test]
+    fn segment_fits_its_triangle_and_refuses_outside() {
+        let pts = [
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 0.0),
+            Point::new(16.0, 9.0),
+        ];
+        for alpha in [-1.0, 0.0, 0.5, 1.0, 2.0] {
+            let seg = LacSegment::new(alpha, pts).unwrap();
+            let (p, k) = seg.sample(65).unwrap();
+            assert_eq!(p[0], pts[0]);
+            assert_eq!(p[64], pts[2]);
+            // The mapped end (before snapping) matches: check the next-to-last sample is close.
+            assert!((p[63] - pts[2]).hypot() < 1.0);
+            assert!(k.iter().all(|v| *v > 0.0), "counter-clockwise: {k:?}");
+            let t = seg.tangent_intersection().unwrap();
+            assert!((t - pts[1]).hypot() < 1e-10 * 16.0, "alpha {alpha}: {t:?}");
+            // Mirrored triangle: same curve mirrored, negative curvature.
+            let m = pts.map(|p| Point::new(p.x, -p.y));
+            let sm = LacSegment::new(alpha, m).unwrap();
+            let (pm, km) = sm.sample(65).unwrap();
+            for i in 0..65 {
+                assert!((pm[i] - Point::new(p[i].x, -p[i].y)).hypot() < 1e-10 * 16.0);
+                assert!((km[i] + k[i]).abs() < 1e-10 * k[i].abs());
+            }
+            // Reversed triangle: same points in reverse order.
+            let r = [pts[2], pts[1], pts[0]];
+            let (pr, kr) = LacSegment::new(alpha, r).unwrap().sample(65).unwrap();
+            for i in 0..65 {
+                assert!((pr[i] - p[64 - i]).hypot() < 1e-10 * 16.0);
+                assert!((kr[i] + k[64 - i]).abs() < 1e-10 * k[64 - i].abs());
+            }
+            // Tangent at the start points at P1.
+            let d = p[1] - p[0];
+            assert!(d.cross(pts[1] - pts[0]).abs() / (d.hypot() * 10.0) < 0.05);
+        }
+        // Base angle too large for alpha = -1 (theta_lim ~ 60.67 deg at 90 deg turning).
+        let bad = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 0.3),
+        ];
+        assert!(matches!(
+            LacSegment::new(-1.0, bad),
+            Err(Error::NoSegment(_))
+        ));
+        let line = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(2.0, 0.0),
+        ];
+        assert!(matches!(
+            LacSegment::new(-1.0, line),
+            Err(Error::Degenerate(_))
+        ));
     }
 
     #[test]
