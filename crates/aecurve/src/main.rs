@@ -48,6 +48,25 @@ enum Cmd {
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
+    /// A log-aesthetic segment in a control triangle: summary, and the curve with its
+    /// curvature comb (SVG) with -o.
+    Lac {
+        /// Shape parameter alpha.
+        #[arg(long, allow_hyphen_values = true)]
+        alpha: f64,
+        /// Control triangle: "x,y x,y x,y" (start, tangent intersection, end).
+        #[arg(long, allow_hyphen_values = true)]
+        control: String,
+        /// Samples along the curve.
+        #[arg(long, default_value_t = 65)]
+        samples: usize,
+        /// Print the protocol's JSON result.
+        #[arg(long)]
+        json: bool,
+        /// Write the curve with its curvature comb (SVG).
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+    },
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
@@ -143,6 +162,13 @@ fn run() -> Result<()> {
             }
         }
         Cmd::Demo { out, quick } => demo(&out, quick)?,
+        Cmd::Lac {
+            alpha,
+            control,
+            samples,
+            json,
+            output,
+        } => lac(alpha, &control, samples, json, &output)?,
     }
     Ok(())
 }
@@ -250,6 +276,49 @@ fn monotone(
             plot::curve_with_comb(&curve, &pts, &extrema, &caption),
         )
         .with_context(|| format!("writing {}", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn lac(alpha: f64, control: &str, samples: usize, json: bool, output: &[PathBuf]) -> Result<()> {
+    let pts = parse_points(control).context("--control")?;
+    anyhow::ensure!(
+        pts.len() == 3,
+        "--control needs exactly 3 points, got {}",
+        pts.len()
+    );
+    let seg = aesthetic_curves::lac::LacSegment::new(alpha, [pts[0], pts[1], pts[2]])?;
+    let (points, kappa) = seg.sample(samples.max(2))?;
+    let (k0, k1) = seg.end_curvatures()?;
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({"lambda": seg.lambda(), "theta_d": seg.theta_d,
+                "arc_length": seg.arc_length()?, "curvature_start": k0, "curvature_end": k1,
+                "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                "curvature": kappa})
+        );
+    } else {
+        println!("log-aesthetic segment, alpha = {alpha}");
+        println!("  turning angle  {:.6} deg", seg.theta_d.to_degrees());
+        println!("  lambda         {:.12}", seg.lambda());
+        println!("  arc length     {:.9}", seg.arc_length()?);
+        println!("  curvature      {k0:.9} at the start, {k1:.9} at the end");
+        println!(
+            "  high-curvature end at {}",
+            if seg.reversed {
+                "the end point"
+            } else {
+                "the start point"
+            }
+        );
+    }
+    for path in output {
+        let caption = format!("LAC alpha = {alpha}, lambda = {:.6}", seg.lambda());
+        let samples = plot::polyline_samples(&points, &kappa);
+        std::fs::write(path, plot::comb_svg(&samples, &pts, &[], &caption))
+            .with_context(|| format!("writing {}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())

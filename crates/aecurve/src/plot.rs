@@ -207,7 +207,7 @@ pub fn curve_with_comb(
     caption: &str,
 ) -> String {
     let n = 200;
-    let samples: Vec<(aesthetic_curves::Point, aesthetic_curves::Vec2, f64)> = (0..=n)
+    let samples: Vec<CombSample> = (0..=n)
         .map(|i| {
             let t = i as f64 / n as f64;
             let d = curve.as_monotone().derivs(t);
@@ -216,6 +216,38 @@ pub fn curve_with_comb(
             (d.p, nrm, if k.is_finite() { k } else { 0.0 })
         })
         .collect();
+    let marks: Vec<aesthetic_curves::Point> = extrema.iter().map(|t| curve.eval(*t)).collect();
+    comb_svg(&samples, control, &marks, caption)
+}
+
+/// A sample of a curve for the comb: point, unit left normal, signed curvature.
+pub type CombSample = (aesthetic_curves::Point, aesthetic_curves::Vec2, f64);
+
+/// Comb samples of a polyline with known curvature at its points (normals from neighbours).
+pub fn polyline_samples(points: &[aesthetic_curves::Point], kappa: &[f64]) -> Vec<CombSample> {
+    let n = points.len();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (points[i.saturating_sub(1)], points[(i + 1).min(n - 1)]);
+            let d = b - a;
+            let l = d.hypot();
+            let nrm = if l > 0.0 {
+                d.turn_90() / l
+            } else {
+                aesthetic_curves::Vec2::ZERO
+            };
+            (points[i], nrm, kappa[i])
+        })
+        .collect()
+}
+
+/// The curve (as comb samples), its control polygon, its curvature comb and circled marks.
+pub fn comb_svg(
+    samples: &[CombSample],
+    control: &[aesthetic_curves::Point],
+    marks: &[aesthetic_curves::Point],
+    caption: &str,
+) -> String {
     let (mut x0, mut x1, mut y0, mut y1) = control.iter().fold(
         (
             f64::INFINITY,
@@ -292,8 +324,8 @@ pub fn curve_with_comb(
         r##"<polyline points="{}" fill="none" stroke="#d62728" stroke-width="2.5"/>"##,
         cpts.join(" ")
     );
-    for &t in extrema {
-        let (a, b) = px(curve.eval(t));
+    for &m in marks {
+        let (a, b) = px(m);
         let _ = writeln!(
             s,
             r##"<circle cx="{a:.1}" cy="{b:.1}" r="6" fill="none" stroke="#000" stroke-width="2"/>"##

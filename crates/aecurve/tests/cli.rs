@@ -109,3 +109,36 @@ fn bench_json_has_the_promised_shape() {
     let chart = std::fs::read_to_string(&svg).unwrap();
     assert!(chart.starts_with("<svg") && chart.contains("polyline"));
 }
+
+#[test]
+fn lac_command_summarises_and_refuses_outside_the_region() {
+    let out = aecurve()
+        .args([
+            "lac",
+            "--alpha",
+            "-1",
+            "--control",
+            "0,0 10,0 16,9",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["lambda"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["points"].as_array().unwrap().len(), 65);
+    let out = aecurve()
+        .args(["lac", "--alpha", "-1", "--control", "0,0 1,0 1,0.3"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("no segment") && err.contains("60.666"),
+        "{err}"
+    );
+}
