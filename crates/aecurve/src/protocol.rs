@@ -40,9 +40,13 @@ impl From<Error> for ProtoError {
 }
 
 /// The ops this build answers, and the ones the protocol names that are not built yet.
-pub const OPS: &[&str] = &["bezier.curvature_monotone", "lac.point", "lac.segment"];
-const PLANNED_OPS: &[&str] = &[
+pub const OPS: &[&str] = &[
+    "bezier.curvature_monotone",
+    "lac.point",
+    "lac.segment",
     "lac.inflection_segment",
+];
+const PLANNED_OPS: &[&str] = &[
     "lac.rational_approx",
     "spline.pseudo_elastic",
     "lcg.estimate",
@@ -115,6 +119,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "bezier.curvature_monotone" => curvature_monotone(obj),
         "lac.point" => lac_point(obj),
         "lac.segment" => lac_segment(obj),
+        "lac.inflection_segment" => lac_inflection_segment(obj),
         _ if PLANNED_OPS.contains(&op) => Err(ProtoError {
             kind: "unknown_op",
             message: format!("op '{op}' is part of the protocol but not implemented in this build"),
@@ -387,6 +392,25 @@ fn lac_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     }))
 }
 
+fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let control = points_param(obj, "control", 3, 3)?;
+    let samples = count_param(obj, "samples", 65, MAX_SEGMENT_SAMPLES)?;
+    if samples < 2 {
+        return Err(ProtoError::invalid("samples", "must be at least 2"));
+    }
+    let seg =
+        aesthetic_curves::lac::LacInflectionSegment::new([control[0], control[1], control[2]])?;
+    let (points, curvature) = seg.sample(samples as usize)?;
+    Ok(json!({
+        "alpha": seg.alpha,
+        "theta_d": seg.theta_d,
+        "arc_length": seg.arc_length(),
+        "curvature_end": curvature[curvature.len() - 1],
+        "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+        "curvature": curvature,
+    }))
+}
+
 fn first_non_finite(v: &Value, path: String) -> Option<String> {
     match v {
         Value::Number(n) => match n.as_f64() {
@@ -517,6 +541,18 @@ mod tests {
         assert!(res["lambda"].as_f64().unwrap() > 0.0);
         assert!(res["curvature_start"].as_f64().unwrap() > 0.0);
         assert!(res["arc_length"].as_f64().unwrap() > (16f64.hypot(9.0)));
+    }
+
+    #[test]
+    fn lac_inflection_segment_values() {
+        let r = handle_line(
+            r#"{"op": "lac.inflection_segment", "control": [[0,0],[1,0],[1,0.5773502691896257]], "samples": 9}"#,
+        );
+        assert_eq!(r["ok"], true, "{r}");
+        assert!((r["result"]["alpha"].as_f64().unwrap() + 1.066636984).abs() < 1e-8);
+        assert_eq!(r["result"]["curvature"][0].as_f64().unwrap(), 0.0);
+        let r = handle_line(r#"{"op": "lac.inflection_segment", "control": [[0,0],[1,0],[1,2]]}"#);
+        assert_eq!(kind(&r), "no_segment");
     }
 
     #[test]

@@ -642,6 +642,224 @@ impl LacSegment {
     }
 }
 
+/// A log-aesthetic segment with an inflection point at its start (math.md §3.2; S4 §2.2):
+/// `C(s) = ∫_0^s e^{i t^q} dt`, `q = (α-1)/α > 1` (α < 0), tangent angle `θ = s^q`,
+/// curvature `q s^(q-1)`, zero at s = 0. Given the triangle, α follows from the base angle at
+/// the inflection end, which runs from 0 (α → 0-) to θ_d/2 (α → -∞, a circle).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LacInflectionSegment {
+    /// The shape parameter (< 0).
+    pub alpha: f64,
+    /// Turning angle θ_d in (0, π).
+    pub theta_d: f64,
+    /// Control triangle; control[0] is the inflection end.
+    pub control: [Point; 3],
+    map_offset: Vec2,
+    map_factor: Vec2,
+    mirrored: bool,
+}
+
+/// `∫_{θ0}^{θ1} u^(r-1) e^{iu} du` with `r = 1/q` in (0, 1], taken in `v = ln u`
+/// (θ0 = 0 allowed: the integrable singularity becomes exponential decay).
+fn inflection_integral(r: f64, th0: f64, th1: f64) -> Result<Vec2> {
+    let f = |v: f64| {
+        let u = v.exp();
+        let m = (r * v).exp();
+        Vec2::new(m * u.cos(), m * u.sin())
+    };
+    let v1 = th1.ln();
+    let v0 = if th0 > 0.0 {
+        th0.ln()
+    } else {
+        // Tail below 1e-18 of the result: e^{r v}/r < 1e-18 θ1^r.
+        v1.min(0.0) + (1e-18 * r).ln() / r
+    };
+    let scale = th1.powf(r) / r;
+    integrate(
+        f,
+        v0,
+        v1,
+        QuadOptions {
+            accuracy: 1e-16 * scale,
+            max_panels: 4000,
+        },
+    )
+}
+
+impl LacInflectionSegment {
+    /// Base angle at the inflection end for `r = 1/q = α/(α-1)` in (0, 1).
+    fn base_angle_r(r: f64, theta_d: f64) -> Result<f64> {
+        let c = inflection_integral(r, 0.0, theta_d)?;
+        Ok(c.y.atan2(c.x))
+    }
+
+    /// Base angle at the inflection end of the segment of shape `alpha` (< 0) turning `theta_d`.
+    pub fn base_angle(alpha: f64, theta_d: f64) -> Result<f64> {
+        if !(alpha < 0.0 && alpha.is_finite()) {
+            return Err(Error::invalid(
+                "alpha",
+                "inflection-end segments need alpha < 0",
+            ));
+        }
+        Self::base_angle_r(alpha / (alpha - 1.0), theta_d)
+    }
+
+    /// The segment in the triangle `control` (control[0] = inflection end).
+    pub fn new(control: [Point; 3]) -> Result<Self> {
+        if control.iter().any(|p| !p.is_finite()) {
+            return Err(Error::invalid("control", "control points must be finite"));
+        }
+        let (p0, p1, p2) = (control[0], control[1], control[2]);
+        let (u, v, w) = (p1 - p0, p2 - p1, p2 - p0);
+        let size = u.hypot().max(v.hypot());
+        if size == 0.0 || u.hypot() <= 1e-12 * size || v.hypot() <= 1e-12 * size {
+            return Err(Error::Degenerate(
+                "coincident control points: the end tangents are undefined".into(),
+            ));
+        }
+        let theta_d = angle_between(u, v);
+        if theta_d <= 1e-9 || theta_d >= std::f64::consts::PI - 1e-9 {
+            return Err(Error::Degenerate(format!(
+                "collinear control points (turning angle {theta_d:.3e} rad)"
+            )));
+        }
+        let phi = angle_between(u, w);
+        let half = 0.5 * theta_d;
+        if !(phi > 0.0 && phi < half) {
+            return Err(Error::NoSegment(format!(
+                "the base angle at the inflection end is {:.6} deg; with turning angle {:.6} deg \
+                 it must lie in (0, {:.6}) deg",
+                phi.to_degrees(),
+                theta_d.to_degrees(),
+                half.to_degrees()
+            )));
+        }
+        // Illinois on r in (0, 1): f(0+) = -phi, f(1) = θ_d/2 - phi.
+        let (mut lo, mut flo, mut hi, mut fhi) = (0.0, -phi, 1.0, half - phi);
+        let mut side = 0;
+        for it in 0..200 {
+            if hi - lo <= 1e-16 {
+                break;
+            }
+            let mut x = (lo * fhi - hi * flo) / (fhi - flo);
+            if it % 4 == 3 || !(x > lo && x < hi) {
+                x = 0.5 * (lo + hi);
+            }
+            let fx = Self::base_angle_r(x, theta_d)? - phi;
+            if fx == 0.0 {
+                lo = x;
+                hi = x;
+                break;
+            }
+            if fx < 0.0 {
+                lo = x;
+                flo = fx;
+                if side == -1 {
+                    fhi *= 0.5;
+                }
+                side = -1;
+            } else {
+                hi = x;
+                fhi = fx;
+                if side == 1 {
+                    flo *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        let r = 0.5 * (lo + hi);
+        let alpha = r / (r - 1.0);
+        let mut seg = LacInflectionSegment {
+            alpha,
+            theta_d,
+            control,
+            map_offset: Vec2::ZERO,
+            map_factor: Vec2::new(1.0, 0.0),
+            mirrored: false,
+        };
+        let (b, t) = seg.standard_end_and_corner()?;
+        let mut best: Option<(f64, Vec2, Vec2, bool)> = None;
+        for mirrored in [false, true] {
+            let (bb, tt) = if mirrored { (conj(b), conj(t)) } else { (b, t) };
+            let factor = cdiv(w, bb);
+            let offset = p0.to_vec2();
+            let miss = (offset + cmul(tt, factor) - p1.to_vec2()).hypot();
+            if best.is_none_or(|x| miss < x.0) {
+                best = Some((miss, offset, factor, mirrored));
+            }
+        }
+        let (_, o, f, m) = best.expect("two candidates");
+        seg.map_offset = o;
+        seg.map_factor = f;
+        seg.mirrored = m;
+        Ok(seg)
+    }
+
+    fn r(&self) -> f64 {
+        self.alpha / (self.alpha - 1.0)
+    }
+
+    /// Standard end point C(s1) and tangent intersection (start tangent is +x).
+    fn standard_end_and_corner(&self) -> Result<(Vec2, Vec2)> {
+        let r = self.r();
+        let b = inflection_integral(r, 0.0, self.theta_d)? * r;
+        let db = Vec2::from_angle(self.theta_d);
+        // Intersection of the x-axis with the line through b along db.
+        let t = Vec2::new(b.x - b.y * db.x / db.y, 0.0);
+        Ok((b, t))
+    }
+
+    fn map(&self, z: Vec2) -> Point {
+        let z = if self.mirrored { conj(z) } else { z };
+        (self.map_offset + cmul(z, self.map_factor)).to_point()
+    }
+
+    /// Scale from the standard form to the input.
+    pub fn scale(&self) -> f64 {
+        self.map_factor.hypot()
+    }
+
+    /// The mapped tangent intersection (equals control[1] up to the accuracy of α).
+    pub fn tangent_intersection(&self) -> Result<Point> {
+        Ok(self.map(self.standard_end_and_corner()?.1))
+    }
+
+    /// Arc length `s1 = θ_d^(1/q)` in input units.
+    pub fn arc_length(&self) -> f64 {
+        self.theta_d.powf(self.r()) * self.scale()
+    }
+
+    /// `n >= 2` points from the inflection end to control[2], evenly spaced in tangent angle,
+    /// and their signed curvature (0 at the start).
+    pub fn sample(&self, n: usize) -> Result<(Vec<Point>, Vec<f64>)> {
+        if n < 2 {
+            return Err(Error::invalid("samples", "need at least 2"));
+        }
+        let r = self.r();
+        let q = 1.0 / r;
+        let sign = (self.control[1] - self.control[0])
+            .cross(self.control[2] - self.control[1])
+            .signum();
+        let mut pts = Vec::with_capacity(n);
+        let mut k = Vec::with_capacity(n);
+        let mut acc = Vec2::ZERO;
+        let mut prev = 0.0;
+        for i in 0..n {
+            let th = self.theta_d * (i as f64 / (n - 1) as f64);
+            if th > prev {
+                acc += inflection_integral(r, prev, th)? * r;
+            }
+            prev = th;
+            pts.push(self.map(acc));
+            // kappa(s) = q s^(q-1) with s = θ^(1/q): q θ^(1 - 1/q).
+            k.push(sign * q * th.powf(1.0 - r) / self.scale());
+        }
+        pts[0] = self.control[0];
+        pts[n - 1] = self.control[2];
+        Ok((pts, k))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -764,6 +982,35 @@ mod tests {
         assert!(matches!(
             LacSegment::new(-1.0, line),
             Err(Error::Degenerate(_))
+        ));
+    }
+
+    #[test]
+    fn inflection_segment_values_and_identity() {
+        let d = FRAC_PI_2;
+        // math.md: 90 deg turning, 30 deg at the inflection end: alpha = -1.066636984.
+        // Build a triangle with base angles 30 (at P0) and 60 deg: P2 on the ray at 30 deg
+        // from P0 and on the ray at 90 deg from P1.
+        let p2 = Point::new(1.0, 30f64.to_radians().tan());
+        let seg = LacInflectionSegment::new([Point::ZERO, Point::new(1.0, 0.0), p2]).unwrap();
+        assert!((seg.alpha + 1.066636984).abs() < 1e-8, "{}", seg.alpha);
+        let t = seg.tangent_intersection().unwrap();
+        assert!((t - Point::new(1.0, 0.0)).hypot() < 1e-10, "{t:?}");
+        let (p, k) = seg.sample(33).unwrap();
+        assert_eq!(k[0], 0.0);
+        assert!(k.windows(2).all(|w| w[1] > w[0]));
+        assert!((p[16].y) > 0.0);
+        // theta_lim(alpha) + inflection angle(alpha) = theta_d.
+        for alpha in [-0.3, -1.0, -4.0] {
+            let lim = LacSegment::theta_lim(alpha, d).unwrap();
+            let inf = LacInflectionSegment::base_angle(alpha, d).unwrap();
+            assert!((lim + inf - d).abs() < 1e-10, "{alpha}: {lim} + {inf}");
+        }
+        // Outside: base angle at the inflection end must be below theta_d / 2.
+        let bad = [Point::ZERO, Point::new(1.0, 0.0), Point::new(1.0, 2.0)];
+        assert!(matches!(
+            LacInflectionSegment::new(bad),
+            Err(Error::NoSegment(_))
         ));
     }
 
