@@ -132,3 +132,68 @@ proptest! {
         }
     }
 }
+
+fn has_null(v: &Value) -> bool {
+    match v {
+        Value::Null => true,
+        Value::Array(a) => a.iter().any(has_null),
+        Value::Object(o) => o.values().any(has_null),
+        _ => false,
+    }
+}
+
+fn arb_number() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        -30.0f64..30.0,
+        -1e6f64..1e6,
+        Just(0.0),
+        Just(1.0),
+        Just(-1.0),
+        Just(2.0),
+        Just(1e300),
+        Just(-1e300),
+        Just(1e-300),
+    ]
+}
+
+fn arb_lac_request() -> impl Strategy<Value = Value> {
+    (
+        0usize..3,
+        arb_number(),
+        arb_number(),
+        prop::collection::vec(arb_number(), 0..6),
+        prop::collection::vec((arb_number(), arb_number()), 3..4),
+        prop::option::of(0u64..300),
+    )
+        .prop_map(|(op, alpha, lambda, theta, control, samples)| {
+            let control: Vec<Value> = control.iter().map(|(x, y)| json!([x, y])).collect();
+            let mut r = match op {
+                0 => json!({"id": 1, "op": "lac.point", "alpha": alpha, "lambda": lambda, "theta": theta}),
+                1 => json!({"id": 2, "op": "lac.segment", "alpha": alpha, "control": control}),
+                _ => json!({"id": 3, "op": "lac.inflection_segment", "control": control}),
+            };
+            if let Some(s) = samples {
+                r["samples"] = json!(s);
+            }
+            r
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn lac_requests_never_panic_or_produce_non_finite(reqs in prop::collection::vec(arb_lac_request(), 1..4)) {
+        let input: String = reqs.iter().map(|v| format!("{v}\n")).collect();
+        let mut out = Vec::new();
+        batch::run(input.as_bytes(), &mut out, 1 << 20).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let r: Vec<Value> = text.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+        prop_assert_eq!(r.len(), reqs.len());
+        for a in &r {
+            well_formed(a);
+            // serde_json writes a non-finite number as null: results must have none.
+            prop_assert!(!has_null(&a["result"]) || a["ok"] == false, "{}", a);
+        }
+    }
+}

@@ -31,6 +31,9 @@ pub struct LacStandard {
 /// Longest stretch of one integral, in quarter turns (1000 full turns).
 pub const MAX_QUARTER_TURNS: f64 = 4000.0;
 
+/// Largest ratio of end curvatures of a segment that is evaluated (see [`LacSegment::new`]).
+pub const MAX_CURVATURE_RATIO: f64 = 1e10;
+
 /// Largest |α| accepted.
 pub const MAX_ABS_ALPHA: f64 = 1e6;
 
@@ -87,11 +90,16 @@ impl LacStandard {
     fn check(&self, theta: f64) -> Result<()> {
         if !self.in_domain(theta) {
             let (lo, hi) = self.domain();
+            let range = if lo.is_finite() {
+                format!("theta > {lo}")
+            } else {
+                format!("theta < {hi}")
+            };
             return Err(Error::invalid(
                 "theta",
                 format!(
                     "theta = {theta} is outside the domain (alpha-1) lambda theta + 1 > 0, \
-                     i.e. {lo} < theta < {hi}"
+                     i.e. {range}"
                 ),
             ));
         }
@@ -124,21 +132,27 @@ impl LacStandard {
     /// Radius of curvature ρ(θ).
     pub fn rho(&self, theta: f64) -> Result<f64> {
         self.check(theta)?;
-        Ok(if self.alpha == 1.0 {
-            (self.lambda * theta).exp()
-        } else {
-            (self.log_u(theta) / (self.alpha - 1.0)).exp()
-        })
+        finite_or_err(
+            theta,
+            if self.alpha == 1.0 {
+                (self.lambda * theta).exp()
+            } else {
+                (self.log_u(theta) / (self.alpha - 1.0)).exp()
+            },
+        )
     }
 
     /// Curvature 1/ρ(θ) (positive: the standard form turns counter-clockwise).
     pub fn kappa(&self, theta: f64) -> Result<f64> {
         self.check(theta)?;
-        Ok(if self.alpha == 1.0 {
-            (-self.lambda * theta).exp()
-        } else {
-            (-self.log_u(theta) / (self.alpha - 1.0)).exp()
-        })
+        finite_or_err(
+            theta,
+            if self.alpha == 1.0 {
+                (-self.lambda * theta).exp()
+            } else {
+                (-self.log_u(theta) / (self.alpha - 1.0)).exp()
+            },
+        )
     }
 
     /// Signed arc length from θ = 0 (negative for θ < 0), closed form:
@@ -146,15 +160,18 @@ impl LacStandard {
     pub fn arc_length(&self, theta: f64) -> Result<f64> {
         self.check(theta)?;
         let (a, l) = (self.alpha, self.lambda);
-        Ok(if l == 0.0 {
-            theta
-        } else if a == 1.0 {
-            (l * theta).exp_m1() / l
-        } else if a == 0.0 {
-            -(-l * theta).ln_1p() / l
-        } else {
-            (a / (a - 1.0) * self.log_u(theta)).exp_m1() / (a * l)
-        })
+        finite_or_err(
+            theta,
+            if l == 0.0 {
+                theta
+            } else if a == 1.0 {
+                (l * theta).exp_m1() / l
+            } else if a == 0.0 {
+                -(-l * theta).ln_1p() / l
+            } else {
+                (a / (a - 1.0) * self.log_u(theta)).exp_m1() / (a * l)
+            },
+        )
     }
 
     /// The point P(θ).
@@ -207,6 +224,15 @@ impl LacStandard {
         self.check(t1)?;
         if t0 == t1 {
             return Ok(Vec2::ZERO);
+        }
+        if (t1 - t0).abs() > MAX_QUARTER_TURNS * std::f64::consts::FRAC_PI_2 {
+            return Err(Error::invalid(
+                "theta",
+                format!(
+                    "the curve from theta = {t0} to {t1} turns more than {} times",
+                    MAX_QUARTER_TURNS / 4.0
+                ),
+            ));
         }
         let (a, l) = (self.alpha, self.lambda);
         if l == 0.0 {
@@ -314,6 +340,18 @@ impl LacStandard {
             opts,
         )?;
         Ok(head + tail / c)
+    }
+}
+
+/// `Ok(v)` for a finite value, else the error that the curve overflows f64 at θ.
+fn finite_or_err(theta: f64, v: f64) -> Result<f64> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::invalid(
+            "theta",
+            format!("the curve's curvature or length overflows f64 at theta = {theta}"),
+        ))
     }
 }
 
@@ -439,10 +477,18 @@ impl LacSegment {
                 lim.to_degrees()
             )));
         }
+        // A valid triangle whose curve overflows f64 is a limit of this library, not bad input.
+        let phi_at = |l: f64| {
+            Self::base_angle(alpha, l, theta_d, false).map_err(|e| {
+                Error::NoConvergence(format!(
+                    "the segment for this triangle is too extreme to evaluate (lambda = {l:.3e}): {e}"
+                ))
+            })
+        };
         let mut hi = Self::lambda_max(alpha, theta_d);
         if !hi.is_finite() {
             hi = 1.0;
-            while Self::base_angle(alpha, hi, theta_d, false)? < phi {
+            while phi_at(hi)? < phi {
                 hi *= 2.0;
                 if hi > 1e6 {
                     return Err(Error::NoConvergence(
@@ -458,7 +504,7 @@ impl LacSegment {
         let mut fhi = if hi == Self::lambda_max(alpha, theta_d) {
             lim - phi
         } else {
-            Self::base_angle(alpha, hi, theta_d, false)? - phi
+            phi_at(hi)? - phi
         };
         let mut side = 0i32;
         for it in 0..200 {
@@ -469,7 +515,7 @@ impl LacSegment {
             if it % 4 == 3 || !(x > lo && x < hi) {
                 x = 0.5 * (lo + hi);
             }
-            let fx = Self::base_angle(alpha, x, theta_d, false)? - phi;
+            let fx = phi_at(x)? - phi;
             if fx == 0.0 {
                 return Ok(x);
             }
@@ -528,6 +574,19 @@ impl LacSegment {
         } else {
             (-theta_d, 0.0)
         };
+        // Points are computed in the standard form and mapped: a curvature ratio beyond
+        // MAX_CURVATURE_RATIO would lose the short end's digits to the long end's scale.
+        let ratio = match (standard.rho(interval.0), standard.rho(interval.1)) {
+            (Ok(a), Ok(b)) if a > 0.0 && b > 0.0 => (b / a).max(a / b),
+            _ => f64::INFINITY,
+        };
+        if ratio.is_nan() || ratio > MAX_CURVATURE_RATIO {
+            return Err(Error::NoConvergence(format!(
+                "this triangle needs a segment whose curvature varies by a factor of {ratio:.3e} \
+                 (lambda = {lambda:.6e}); beyond {MAX_CURVATURE_RATIO:.0e} it cannot be evaluated \
+                 to the library's accuracy"
+            )));
+        }
         let a = standard.eval(interval.0)?.to_vec2();
         let b = a + standard.integral(interval.0, interval.1)?;
         // Tangent intersection of the standard segment.
@@ -628,6 +687,11 @@ impl LacSegment {
             .iter()
             .map(|t| Ok(sign * self.standard.kappa(*t)? / self.scale()))
             .collect::<Result<Vec<f64>>>()?;
+        if out.iter().any(|p| !p.is_finite()) || k.iter().any(|v| !v.is_finite()) {
+            return Err(Error::NoConvergence(
+                "the segment's samples overflow f64 (triangle too extreme)".into(),
+            ));
+        }
         Ok((out, k))
     }
 
@@ -1012,6 +1076,31 @@ mod tests {
             LacInflectionSegment::new(bad),
             Err(Error::NoSegment(_))
         ));
+    }
+
+    #[test]
+    fn extreme_triangles_give_finite_curves_or_a_clear_error() {
+        for alpha in [-1.0, 0.5, 1.0, 3.0] {
+            for turn in [0.012f64, 0.5, 3.0] {
+                for split in [0.6f64, 0.99, 0.999999] {
+                    let te = split * turn;
+                    let t = te.sin() / (turn - te).sin();
+                    let tri = [
+                        Point::ZERO,
+                        Point::new(1.0, 0.0),
+                        Point::new(1.0 + t * turn.cos(), t * turn.sin()),
+                    ];
+                    match LacSegment::new(alpha, tri).and_then(|s| s.sample(33)) {
+                        Ok((p, k)) => {
+                            assert!(p.iter().all(|q| q.is_finite()));
+                            assert!(k.iter().all(|v| v.is_finite() && *v != 0.0));
+                        }
+                        Err(Error::NoSegment(_)) | Err(Error::NoConvergence(_)) => {}
+                        Err(e) => panic!("{alpha} {turn} {split}: {e}"),
+                    }
+                }
+            }
+        }
     }
 
     #[test]
