@@ -580,8 +580,14 @@ impl LacSegment {
         } else {
             (-theta_d, 0.0)
         };
-        let a = standard.eval(interval.0)?.to_vec2();
-        let b = a + standard.integral(interval.0, interval.1)?;
+        let extreme = |e: Error| {
+            Error::NoConvergence(format!(
+                "the segment for this triangle is too extreme to evaluate in f64 \
+                 (lambda = {lambda:.3e}): {e}"
+            ))
+        };
+        let a = standard.eval(interval.0).map_err(extreme)?.to_vec2();
+        let b = a + standard.integral(interval.0, interval.1).map_err(extreme)?;
         // Tangent intersection of the standard segment.
         let da = Vec2::from_angle(interval.0);
         let db = Vec2::from_angle(interval.1);
