@@ -482,42 +482,13 @@ pub fn classify(c: &[f64], noise: &[f64]) -> Classified {
     }
 }
 
-/// Refine the single sign change of `c` on [0, 1] (c(0) and c(1) of opposite strict sign):
-/// the Illinois variant of regula falsi (superlinear, always bracketed), with bisection
-/// steps whenever it stalls.
+/// Refine the single sign change of `c` on [0, 1] (c(0) and c(1) of opposite strict sign)
+/// with [`crate::roots::illinois`]. It cannot fail: the bracket straddles the change and
+/// every fourth step bisects, so 400 steps reach the tolerance.
 fn refine_root(c: &[f64]) -> f64 {
-    let (mut a, mut b) = (0.0f64, 1.0f64);
-    let (mut fa, mut fb) = (c[0], c[c.len() - 1]);
-    let mut side = 0i32;
-    for _ in 0..200 {
-        if b - a <= 1e-15 {
-            break;
-        }
-        let mut x = (a * fb - b * fa) / (fb - fa);
-        if !(x > a && x < b) {
-            x = 0.5 * (a + b);
-        }
-        let fx = de_casteljau(c, x);
-        if fx == 0.0 {
-            return x;
-        }
-        if (fx > 0.0) == (fa > 0.0) {
-            a = x;
-            fa = fx;
-            if side == -1 {
-                fb *= 0.5;
-            }
-            side = -1;
-        } else {
-            b = x;
-            fb = fx;
-            if side == 1 {
-                fa *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    0.5 * (a + b)
+    let (f0, f1) = (c[0], c[c.len() - 1]);
+    crate::roots::illinois(|x| Ok(de_casteljau(c, x)), (0.0, f0), (1.0, f1), 1e-15, 400)
+        .unwrap_or(0.5)
 }
 
 fn opposite(s: Sign) -> Sign {

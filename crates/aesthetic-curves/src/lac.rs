@@ -19,6 +19,7 @@
 
 use crate::error::{Error, Result};
 use crate::quadrature::{integrate, QuadOptions};
+use crate::roots::illinois;
 use kurbo::{Point, Vec2};
 
 /// A log-aesthetic curve in standard form.
@@ -503,45 +504,14 @@ impl LacSegment {
                 }
             }
         }
-        // Illinois (regula falsi with halving) on f(Λ) = φ(Λ) - phi, bracketed; bisection
-        // steps every fourth iteration. f(0) = θ_d/2 - phi < 0; at a finite Λ_max, f is the
-        // limit θ_lim - phi > 0 (the curve itself is not evaluated there).
-        let (mut lo, mut flo) = (0.0, half - phi);
-        let mut fhi = if hi == Self::lambda_max(alpha, theta_d) {
+        // f(0) = θ_d/2 - phi < 0; at a finite Λ_max, f is the limit θ_lim - phi > 0 (the
+        // curve itself is not evaluated there).
+        let fhi = if hi == Self::lambda_max(alpha, theta_d) {
             lim - phi
         } else {
             f_at(hi)?
         };
-        let mut side = 0i32;
-        for it in 0..200 {
-            if hi - lo <= 1e-15 * hi {
-                break;
-            }
-            let mut x = (lo * fhi - hi * flo) / (fhi - flo);
-            if it % 4 == 3 || !(x > lo && x < hi) {
-                x = 0.5 * (lo + hi);
-            }
-            let fx = f_at(x)?;
-            if fx == 0.0 {
-                return Ok(x);
-            }
-            if fx < 0.0 {
-                lo = x;
-                flo = fx;
-                if side == -1 {
-                    fhi *= 0.5;
-                }
-                side = -1;
-            } else {
-                hi = x;
-                fhi = fx;
-                if side == 1 {
-                    flo *= 0.5;
-                }
-                side = 1;
-            }
-        }
-        Ok(0.5 * (lo + hi))
+        illinois(f_at, (0.0, half - phi), (hi, fhi), 1e-15 * hi, 400)
     }
 
     /// The segment of shape `alpha` in the triangle `control` = [start, tangent
@@ -808,40 +778,14 @@ impl LacInflectionSegment {
                 half.to_degrees()
             )));
         }
-        // Illinois on r in (0, 1): f(0+) = -phi, f(1) = θ_d/2 - phi.
-        let (mut lo, mut flo, mut hi, mut fhi) = (0.0, -phi, 1.0, half - phi);
-        let mut side = 0;
-        for it in 0..200 {
-            if hi - lo <= 1e-16 {
-                break;
-            }
-            let mut x = (lo * fhi - hi * flo) / (fhi - flo);
-            if it % 4 == 3 || !(x > lo && x < hi) {
-                x = 0.5 * (lo + hi);
-            }
-            let fx = Self::base_angle_r(x, theta_d)? - phi;
-            if fx == 0.0 {
-                lo = x;
-                hi = x;
-                break;
-            }
-            if fx < 0.0 {
-                lo = x;
-                flo = fx;
-                if side == -1 {
-                    fhi *= 0.5;
-                }
-                side = -1;
-            } else {
-                hi = x;
-                fhi = fx;
-                if side == 1 {
-                    flo *= 0.5;
-                }
-                side = 1;
-            }
-        }
-        let r = 0.5 * (lo + hi);
+        // r = 1/q in (0, 1): f(0+) = -phi, f(1) = θ_d/2 - phi.
+        let r = illinois(
+            |x| Ok(Self::base_angle_r(x, theta_d)? - phi),
+            (0.0, -phi),
+            (1.0, half - phi),
+            1e-16,
+            400,
+        )?;
         let alpha = r / (r - 1.0);
         let mut seg = LacInflectionSegment {
             alpha,

@@ -23,6 +23,7 @@ pub mod error;
 pub mod lac;
 pub mod monotone;
 pub mod quadrature;
+pub mod roots;
 pub mod samples;
 
 pub use bezier::{Bezier, PlanarCurve, RationalBezier};
