@@ -463,10 +463,20 @@ fn poly_is_monotone_cap<const C: usize>(b: &[Point]) -> Result<bool> {
     }
     // Ends of opposite sign, each beyond a cheap global rounding bound (looser than the
     // per-coefficient one, so strict here is strict there): not monotone.
-    let (k0, km) = (k[0], k[pk.dk]);
-    if k0 * km < 0.0 && pk.n >= 2 {
+    if pk.n >= 2 {
         let loose = loose_k_bound(b, pk.dk);
-        if k0.abs() > loose && km.abs() > loose {
+        let (k0, km) = (k[0], k[pk.dk]);
+        if k0 * km < 0.0 && k0.abs() > loose && km.abs() > loose {
+            pk.check_speed()?;
+            return Ok(false);
+        }
+        // Subdivide with the loose bound (the same for every coefficient, unscaled, and kept
+        // by subdivision): both strict signs found there are strict under the precise
+        // bounds too. Anything less is decided by the precise pass below.
+        let mut ku = pk.k;
+        unscale(&mut ku[..=pk.dk]);
+        let noise = [loose; C];
+        if !signs_settle_one_way::<C>(&ku[..=pk.dk], &noise[..=pk.dk]) {
             pk.check_speed()?;
             return Ok(false);
         }

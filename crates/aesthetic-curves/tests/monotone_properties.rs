@@ -175,3 +175,18 @@ fn huge_and_tiny_coordinates_give_the_same_verdicts() {
         }
     }
 }
+
+#[test]
+fn fast_verdict_agrees_with_the_full_analysis() {
+    // `is_curvature_monotone` takes shortcuts (value-only pass, a loose global rounding
+    // bound); it must never disagree with the full per-coefficient analysis.
+    for degree in 2..=12 {
+        for c in random_curves(degree, 400, 77) {
+            match (c.curvature_monotone(), c.is_curvature_monotone()) {
+                (Ok(full), Ok(fast)) => assert_eq!(full.monotone, fast, "{:?}", c.points()),
+                (Err(_), Err(_)) => {}
+                (a, b) => panic!("degree {degree}: {a:?} vs {b:?}"),
+            }
+        }
+    }
+}
