@@ -272,16 +272,7 @@ impl LacStandard {
                 t0 + (t1 - t0) * (k as f64 / n as f64)
             };
             let w = self.log_u(t);
-            sum += integrate(
-                |w| {
-                    let mag = (p1 * w).exp();
-                    let psi = w.exp_m1() / c;
-                    Vec2::new(mag * psi.cos(), mag * psi.sin())
-                },
-                w_prev,
-                w,
-                opts,
-            )?;
+            sum += integrate(w_integrand(p1, c), w_prev, w, opts)?;
             w_prev = w;
         }
         Ok(sum / c)
@@ -327,17 +318,18 @@ impl LacStandard {
             accuracy: (1e-15 * len * c.abs()).max(f64::MIN_POSITIVE),
             max_panels: 4_000,
         };
-        let tail = integrate(
-            |w| {
-                let mag = (p1 * w).exp();
-                let psi = w.exp_m1() / c;
-                Vec2::new(mag * psi.cos(), mag * psi.sin())
-            },
-            w0,
-            w_trunc,
-            opts,
-        )?;
+        let tail = integrate(w_integrand(p1, c), w0, w_trunc, opts)?;
         Ok(head + tail / c)
+    }
+}
+
+/// The integrand in `w = ln u`: `e^{(p+1) w} e^{i expm1(w)/c}` (the integral is then divided
+/// by c), with `p1 = p + 1 = α/(α-1)` and `c = (α-1) Λ`.
+fn w_integrand(p1: f64, c: f64) -> impl Fn(f64) -> Vec2 {
+    move |w| {
+        let mag = (p1 * w).exp();
+        let psi = w.exp_m1() / c;
+        Vec2::new(mag * psi.cos(), mag * psi.sin())
     }
 }
 
@@ -407,6 +399,43 @@ fn cdiv(a: Vec2, b: Vec2) -> Vec2 {
 }
 fn conj(a: Vec2) -> Vec2 {
     Vec2::new(a.x, -a.y)
+}
+
+/// The angles of a control triangle [start, tangent intersection, end].
+struct TriangleAngles {
+    /// Turning angle between the end tangents, in (0, π).
+    theta_d: f64,
+    /// Base angle at the start.
+    theta_e: f64,
+    /// Base angle at the end.
+    theta_f: f64,
+}
+
+/// Validate a control triangle (finite, no coincident points, not collinear) and measure it.
+fn triangle_angles(control: &[Point; 3]) -> Result<TriangleAngles> {
+    if control.iter().any(|p| !p.is_finite()) {
+        return Err(Error::invalid("control", "control points must be finite"));
+    }
+    let (p0, p1, p2) = (control[0], control[1], control[2]);
+    let (u, v, w) = (p1 - p0, p2 - p1, p2 - p0);
+    let size = u.hypot().max(v.hypot());
+    if size == 0.0 || u.hypot() <= 1e-12 * size || v.hypot() <= 1e-12 * size {
+        return Err(Error::Degenerate(
+            "coincident control points: the end tangents are undefined".into(),
+        ));
+    }
+    let theta_d = angle_between(u, v);
+    if theta_d <= 1e-9 || theta_d >= std::f64::consts::PI - 1e-9 {
+        return Err(Error::Degenerate(format!(
+            "collinear control points (turning angle {theta_d:.3e} rad): no segment turns \
+             between these tangents"
+        )));
+    }
+    Ok(TriangleAngles {
+        theta_d,
+        theta_e: angle_between(u, w),
+        theta_f: angle_between(w, v),
+    })
 }
 
 /// Angle between two vectors in [0, π].
@@ -520,27 +549,12 @@ impl LacSegment {
         if !alpha.is_finite() || alpha.abs() > MAX_ABS_ALPHA {
             return Err(Error::invalid("alpha", "must be a finite number"));
         }
-        if control.iter().any(|p| !p.is_finite()) {
-            return Err(Error::invalid("control", "control points must be finite"));
-        }
+        let TriangleAngles {
+            theta_d,
+            theta_e,
+            theta_f,
+        } = triangle_angles(&control)?;
         let (p0, p1, p2) = (control[0], control[1], control[2]);
-        let (u, v, w) = (p1 - p0, p2 - p1, p2 - p0);
-        let size = u.hypot().max(v.hypot());
-        if u.hypot() <= 1e-12 * size || v.hypot() <= 1e-12 * size || size == 0.0 {
-            return Err(Error::Degenerate(
-                "coincident control points: the end tangents are undefined".into(),
-            ));
-        }
-        let theta_d = angle_between(u, v);
-        if theta_d <= 1e-9 || theta_d >= std::f64::consts::PI - 1e-9 {
-            return Err(Error::Degenerate(format!(
-                "collinear control points (turning angle {:.3e} rad): no segment turns between \
-                 these tangents",
-                theta_d
-            )));
-        }
-        let theta_e = angle_between(u, w);
-        let theta_f = angle_between(w, v);
         let reversed = theta_f > theta_e;
         let phi = theta_e.max(theta_f);
         let lambda = Self::solve_lambda(alpha, theta_d, phi)?;
@@ -750,24 +764,13 @@ impl LacInflectionSegment {
 
     /// The segment in the triangle `control` (control[0] = inflection end).
     pub fn new(control: [Point; 3]) -> Result<Self> {
-        if control.iter().any(|p| !p.is_finite()) {
-            return Err(Error::invalid("control", "control points must be finite"));
-        }
-        let (p0, p1, p2) = (control[0], control[1], control[2]);
-        let (u, v, w) = (p1 - p0, p2 - p1, p2 - p0);
-        let size = u.hypot().max(v.hypot());
-        if size == 0.0 || u.hypot() <= 1e-12 * size || v.hypot() <= 1e-12 * size {
-            return Err(Error::Degenerate(
-                "coincident control points: the end tangents are undefined".into(),
-            ));
-        }
-        let theta_d = angle_between(u, v);
-        if theta_d <= 1e-9 || theta_d >= std::f64::consts::PI - 1e-9 {
-            return Err(Error::Degenerate(format!(
-                "collinear control points (turning angle {theta_d:.3e} rad)"
-            )));
-        }
-        let phi = angle_between(u, w);
+        let TriangleAngles {
+            theta_d,
+            theta_e: phi,
+            ..
+        } = triangle_angles(&control)?;
+        let (p0, p1) = (control[0], control[1]);
+        let w = control[2] - p0;
         let half = 0.5 * theta_d;
         if !(phi > 0.0 && phi < half) {
             return Err(Error::NoSegment(format!(
