@@ -383,11 +383,8 @@ pub struct LacSegment {
     pub control: [Point; 3],
     /// True when the standard start (high-curvature end) maps to `control[2]`.
     pub reversed: bool,
-    /// The similarity from the standard form to the input: `z -> offset + scale * z` in
-    /// complex numbers, after complex conjugation when `mirrored`.
-    map_offset: Vec2,
-    map_factor: Vec2,
-    mirrored: bool,
+    /// From the standard form to the input.
+    map: Similarity,
 }
 
 fn cmul(a: Vec2, b: Vec2) -> Vec2 {
@@ -399,6 +396,54 @@ fn cdiv(a: Vec2, b: Vec2) -> Vec2 {
 }
 fn conj(a: Vec2) -> Vec2 {
     Vec2::new(a.x, -a.y)
+}
+
+/// A similarity of the plane (possibly with a reflection): `z -> offset + factor z` in complex
+/// numbers, after complex conjugation when `mirrored`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Similarity {
+    offset: Vec2,
+    factor: Vec2,
+    mirrored: bool,
+}
+
+impl Similarity {
+    /// The similarity taking `from[0] -> to[0]` and `from[1] -> to[1]`, with or without a
+    /// reflection, whichever takes the corner `from[2]` closer to `to[2]`.
+    fn fit(from: [Vec2; 3], to: [Point; 3]) -> Result<Similarity> {
+        let (x, y, target) = (to[0].to_vec2(), to[1].to_vec2(), to[2]);
+        let candidate = |mirrored: bool| {
+            let [a, b, _] = if mirrored { from.map(conj) } else { from };
+            let factor = cdiv(y - x, b - a);
+            let map = Similarity {
+                offset: x - cmul(a, factor),
+                factor,
+                mirrored,
+            };
+            ((map.apply(from[2]) - target).hypot(), map)
+        };
+        let (plain, mirror) = (candidate(false), candidate(true));
+        let map = if mirror.0 < plain.0 {
+            mirror.1
+        } else {
+            plain.1
+        };
+        if !(map.factor.is_finite() && map.scale() > 0.0) {
+            return Err(Error::NoConvergence(
+                "the segment for this triangle spans a range of sizes beyond f64".into(),
+            ));
+        }
+        Ok(map)
+    }
+
+    fn apply(&self, z: Vec2) -> Point {
+        let z = if self.mirrored { conj(z) } else { z };
+        (self.offset + cmul(z, self.factor)).to_point()
+    }
+
+    fn scale(&self) -> f64 {
+        self.factor.hypot()
+    }
 }
 
 /// The angles of a control triangle [start, tangent intersection, end].
@@ -577,36 +622,14 @@ impl LacSegment {
         let db = Vec2::from_angle(interval.1);
         let t_std = a + da * ((b - a).cross(db) / da.cross(db));
         let (x, y) = if reversed { (p2, p0) } else { (p0, p2) };
-        let (x, y) = (x.to_vec2(), y.to_vec2());
-        let mut best: Option<(f64, Vec2, Vec2, bool)> = None;
-        for mirrored in [false, true] {
-            let (aa, bb, tt) = if mirrored {
-                (conj(a), conj(b), conj(t_std))
-            } else {
-                (a, b, t_std)
-            };
-            let factor = cdiv(y - x, bb - aa);
-            let offset = x - cmul(aa, factor);
-            let miss = (offset + cmul(tt, factor) - p1.to_vec2()).hypot();
-            if best.is_none_or(|b| miss < b.0) {
-                best = Some((miss, offset, factor, mirrored));
-            }
-        }
-        let (_, map_offset, map_factor, mirrored) = best.expect("two candidates");
-        if !(map_factor.is_finite() && map_factor.hypot() > 0.0) {
-            return Err(Error::NoConvergence(
-                "the segment for this triangle spans a range of sizes beyond f64".into(),
-            ));
-        }
+        let map = Similarity::fit([a, b, t_std], [x, y, p1])?;
         Ok(LacSegment {
             standard,
             theta_d,
             interval,
             control,
             reversed,
-            map_offset,
-            map_factor,
-            mirrored,
+            map,
         })
     }
 
@@ -617,7 +640,7 @@ impl LacSegment {
         let a = self.standard.eval(ta)?.to_vec2();
         let b = a + self.standard.integral(ta, tb)?;
         let (da, db) = (Vec2::from_angle(ta), Vec2::from_angle(tb));
-        Ok(self.map(a + da * ((b - a).cross(db) / da.cross(db))))
+        Ok(self.map.apply(a + da * ((b - a).cross(db) / da.cross(db))))
     }
 
     /// Λ of the standard form.
@@ -627,12 +650,7 @@ impl LacSegment {
 
     /// Scale factor from the standard form to the input.
     pub fn scale(&self) -> f64 {
-        self.map_factor.hypot()
-    }
-
-    fn map(&self, z: Vec2) -> Point {
-        let z = if self.mirrored { conj(z) } else { z };
-        (self.map_offset + cmul(z, self.map_factor)).to_point()
+        self.map.scale()
     }
 
     /// +1 when the segment turns counter-clockwise from control[0] to control[2].
@@ -667,7 +685,7 @@ impl LacSegment {
         }
         let th = self.sample_thetas(n);
         let pts = self.standard.eval_many(&th)?;
-        let mut out: Vec<Point> = pts.iter().map(|p| self.map(p.to_vec2())).collect();
+        let mut out: Vec<Point> = pts.iter().map(|p| self.map.apply(p.to_vec2())).collect();
         out[0] = self.control[0];
         out[n - 1] = self.control[2];
         let sign = self.turn_sign();
@@ -712,9 +730,8 @@ pub struct LacInflectionSegment {
     pub theta_d: f64,
     /// Control triangle; control[0] is the inflection end.
     pub control: [Point; 3],
-    map_offset: Vec2,
-    map_factor: Vec2,
-    mirrored: bool,
+    /// From the standard form to the input.
+    map: Similarity,
 }
 
 /// `∫_{θ0}^{θ1} u^(r-1) e^{iu} du` with `r = 1/q` in (0, 1], taken in `v = ln u`
@@ -769,8 +786,6 @@ impl LacInflectionSegment {
             theta_e: phi,
             ..
         } = triangle_angles(&control)?;
-        let (p0, p1) = (control[0], control[1]);
-        let w = control[2] - p0;
         let half = 0.5 * theta_d;
         if !(phi > 0.0 && phi < half) {
             return Err(Error::NoSegment(format!(
@@ -790,30 +805,14 @@ impl LacInflectionSegment {
             400,
         )?;
         let alpha = r / (r - 1.0);
-        let mut seg = LacInflectionSegment {
+        let (b, t) = Self::standard_end_and_corner(r, theta_d)?;
+        let map = Similarity::fit([Vec2::ZERO, b, t], [control[0], control[2], control[1]])?;
+        Ok(LacInflectionSegment {
             alpha,
             theta_d,
             control,
-            map_offset: Vec2::ZERO,
-            map_factor: Vec2::new(1.0, 0.0),
-            mirrored: false,
-        };
-        let (b, t) = seg.standard_end_and_corner()?;
-        let mut best: Option<(f64, Vec2, Vec2, bool)> = None;
-        for mirrored in [false, true] {
-            let (bb, tt) = if mirrored { (conj(b), conj(t)) } else { (b, t) };
-            let factor = cdiv(w, bb);
-            let offset = p0.to_vec2();
-            let miss = (offset + cmul(tt, factor) - p1.to_vec2()).hypot();
-            if best.is_none_or(|x| miss < x.0) {
-                best = Some((miss, offset, factor, mirrored));
-            }
-        }
-        let (_, o, f, m) = best.expect("two candidates");
-        seg.map_offset = o;
-        seg.map_factor = f;
-        seg.mirrored = m;
-        Ok(seg)
+            map,
+        })
     }
 
     fn r(&self) -> f64 {
@@ -821,28 +820,24 @@ impl LacInflectionSegment {
     }
 
     /// Standard end point C(s1) and tangent intersection (start tangent is +x).
-    fn standard_end_and_corner(&self) -> Result<(Vec2, Vec2)> {
-        let r = self.r();
-        let b = inflection_integral(r, 0.0, self.theta_d)? * r;
-        let db = Vec2::from_angle(self.theta_d);
+    fn standard_end_and_corner(r: f64, theta_d: f64) -> Result<(Vec2, Vec2)> {
+        let b = inflection_integral(r, 0.0, theta_d)? * r;
+        let db = Vec2::from_angle(theta_d);
         // Intersection of the x-axis with the line through b along db.
         let t = Vec2::new(b.x - b.y * db.x / db.y, 0.0);
         Ok((b, t))
     }
 
-    fn map(&self, z: Vec2) -> Point {
-        let z = if self.mirrored { conj(z) } else { z };
-        (self.map_offset + cmul(z, self.map_factor)).to_point()
-    }
-
     /// Scale from the standard form to the input.
     pub fn scale(&self) -> f64 {
-        self.map_factor.hypot()
+        self.map.scale()
     }
 
     /// The mapped tangent intersection (equals control[1] up to the accuracy of α).
     pub fn tangent_intersection(&self) -> Result<Point> {
-        Ok(self.map(self.standard_end_and_corner()?.1))
+        Ok(self
+            .map
+            .apply(Self::standard_end_and_corner(self.r(), self.theta_d)?.1))
     }
 
     /// Arc length `s1 = θ_d^(1/q)` in input units.
@@ -871,7 +866,7 @@ impl LacInflectionSegment {
                 acc += inflection_integral(r, prev, th)? * r;
             }
             prev = th;
-            pts.push(self.map(acc));
+            pts.push(self.map.apply(acc));
             // kappa(s) = q s^(q-1) with s = θ^(1/q): q θ^(1 - 1/q).
             k.push(sign * q * th.powf(1.0 - r) / self.scale());
         }
