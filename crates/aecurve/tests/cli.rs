@@ -7,6 +7,17 @@ fn aecurve() -> Command {
     Command::new(env!("CARGO_BIN_EXE_aecurve"))
 }
 
+/// Run a command that must succeed and print one JSON value.
+fn json_output(cmd: &mut Command) -> serde_json::Value {
+    let out = cmd.output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
 #[test]
 fn batch_answers_every_line_in_order() {
     let mut child = aecurve()
@@ -75,26 +86,12 @@ fn bench_json_has_the_promised_shape() {
     let dir = std::env::temp_dir().join(format!("aecurve-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let svg = dir.join("fig.svg");
-    let out = aecurve()
-        .args([
-            "bench",
-            "monotone",
-            "--curves",
-            "60",
-            "--round-ms",
-            "2",
-            "--json",
-            "-o",
-        ])
-        .arg(&svg)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let v = json_output(
+        aecurve()
+            .args(["bench", "monotone", "--curves", "60", "--round-ms", "2"])
+            .args(["--json", "-o"])
+            .arg(&svg),
     );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let rows = v["results"].as_array().unwrap();
     assert_eq!(rows.len(), 12);
     for r in rows {
@@ -112,23 +109,14 @@ fn bench_json_has_the_promised_shape() {
 
 #[test]
 fn lac_command_summarises_and_refuses_outside_the_region() {
-    let out = aecurve()
-        .args([
-            "lac",
-            "--alpha",
-            "-1",
-            "--control",
-            "0,0 10,0 16,9",
-            "--json",
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = json_output(aecurve().args([
+        "lac",
+        "--alpha",
+        "-1",
+        "--control",
+        "0,0 10,0 16,9",
+        "--json",
+    ]));
     assert!(v["lambda"].as_f64().unwrap() > 0.0);
     assert_eq!(v["points"].as_array().unwrap().len(), 65);
     let out = aecurve()
