@@ -201,6 +201,8 @@ pub fn chart(rows: &[BenchRow]) -> String {
                 .collect(),
             color: crate::plot::PALETTE[i % crate::plot::PALETTE.len()],
             dashed: m.is_some(),
+            line: true,
+            markers: true,
         })
         .collect();
     crate::plot::line_chart(

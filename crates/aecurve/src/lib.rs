@@ -41,3 +41,71 @@ pub fn parse_numbers(s: &str) -> anyhow::Result<Vec<f64>> {
         })
         .collect()
 }
+
+/// Read an ordered point sequence from a file: CSV or whitespace-separated `x,y` / `x y`
+/// rows (a header line, blank lines and `#` comments are skipped), or a JSON array of
+/// `[x, y]` pairs. Errors name the line.
+pub fn read_points_file(path: &std::path::Path) -> anyhow::Result<Vec<aesthetic_curves::Point>> {
+    use anyhow::Context;
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    parse_points_text(&text).with_context(|| format!("in {}", path.display()))
+}
+
+/// [`read_points_file`] on text.
+pub fn parse_points_text(text: &str) -> anyhow::Result<Vec<aesthetic_curves::Point>> {
+    let trimmed = text.trim_start();
+    if trimmed.starts_with('[') {
+        let v: Vec<[f64; 2]> = serde_json::from_str(trimmed)
+            .map_err(|e| anyhow::anyhow!("not a JSON array of [x, y] pairs: {e}"))?;
+        anyhow::ensure!(
+            v.iter().all(|p| p[0].is_finite() && p[1].is_finite()),
+            "coordinates must be finite"
+        );
+        return Ok(v
+            .into_iter()
+            .map(|p| aesthetic_curves::Point::new(p[0], p[1]))
+            .collect());
+    }
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> = line
+            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+            .collect();
+        let nums: Option<Vec<f64>> = fields.iter().map(|f| f.parse().ok()).collect();
+        match nums {
+            Some(v) if v.len() >= 2 => {
+                anyhow::ensure!(
+                    v[0].is_finite() && v[1].is_finite(),
+                    "line {}: coordinates must be finite",
+                    i + 1
+                );
+                out.push(aesthetic_curves::Point::new(v[0], v[1]));
+            }
+            _ if out.is_empty() && i == 0 => {} // header
+            _ => anyhow::bail!("line {}: expected 'x,y', got '{line}'", i + 1),
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn points_text_forms() {
+        let a = parse_points_text("x,y\n1,2\n\n# c\n3 4\n").unwrap();
+        assert_eq!(a.len(), 2);
+        assert_eq!(a[1], aesthetic_curves::Point::new(3.0, 4.0));
+        let b = parse_points_text(" [[1,2],[3,4.5]]").unwrap();
+        assert_eq!(b[1].y, 4.5);
+        assert!(parse_points_text("1,2\nfoo\n").is_err());
+        assert!(parse_points_text("[[1,2],[3]]").is_err());
+    }
+}

@@ -51,9 +51,17 @@ enum Cmd {
     /// A log-aesthetic segment in a control triangle: summary, and the curve with its
     /// curvature comb (SVG) with -o.
     Lac {
-        /// Shape parameter alpha.
-        #[arg(long, allow_hyphen_values = true)]
-        alpha: f64,
+        /// Shape parameter alpha (not with --inflection, where the triangle fixes it).
+        #[arg(
+            long,
+            allow_hyphen_values = true,
+            required_unless_present = "inflection"
+        )]
+        alpha: Option<f64>,
+        /// A segment with an inflection point at the first control point (math.md §3.2):
+        /// alpha < 0 comes from the triangle.
+        #[arg(long, conflicts_with = "alpha")]
+        inflection: bool,
         /// Control triangle: "x,y x,y x,y" (start, tangent intersection, end).
         #[arg(long, allow_hyphen_values = true)]
         control: String,
@@ -64,6 +72,34 @@ enum Cmd {
         #[arg(long)]
         json: bool,
         /// Write the curve with its curvature comb (SVG).
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+    },
+    /// The logarithmic curvature graph and alpha: of a point sequence (--points or
+    /// --input), of a LAC segment (--alpha and --control) or of a Bézier curve (--bezier).
+    Lcg {
+        /// Ordered points "x,y x,y ..." (at least 8).
+        #[arg(long, allow_hyphen_values = true, group = "source")]
+        points: Option<String>,
+        /// File of ordered points: CSV / whitespace rows "x,y", or a JSON array of pairs.
+        #[arg(long, group = "source")]
+        input: Option<PathBuf>,
+        /// Control points of a Bézier curve "x,y x,y ...".
+        #[arg(long, allow_hyphen_values = true, group = "source")]
+        bezier: Option<String>,
+        /// Weights of the Bézier curve (rational).
+        #[arg(long, requires = "bezier")]
+        weights: Option<String>,
+        /// Control triangle of a LAC segment (with --alpha).
+        #[arg(long, allow_hyphen_values = true, group = "source", requires = "alpha")]
+        control: Option<String>,
+        /// Alpha of the LAC segment.
+        #[arg(long, allow_hyphen_values = true, requires = "control")]
+        alpha: Option<f64>,
+        /// Print the protocol's JSON result.
+        #[arg(long)]
+        json: bool,
+        /// Write the graph with its fitted line (SVG).
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -164,11 +200,49 @@ fn run() -> Result<()> {
         Cmd::Demo { out, quick } => demo(&out, quick)?,
         Cmd::Lac {
             alpha,
+            inflection,
             control,
             samples,
             json,
             output,
-        } => lac(alpha, &control, samples, json, &output)?,
+        } => match (alpha, inflection) {
+            (Some(a), false) => lac(a, &control, samples, json, &output)?,
+            _ => lac_inflection(&control, samples, json, &output)?,
+        },
+        Cmd::Lcg {
+            points,
+            input,
+            bezier,
+            weights,
+            control,
+            alpha,
+            json,
+            output,
+        } => {
+            let source = match (points, input, bezier, control) {
+                (Some(p), _, _, _) => LcgSource::Points(parse_points(&p).context("--points")?),
+                (_, Some(f), _, _) => LcgSource::Points(aecurve::read_points_file(&f)?),
+                (_, _, Some(b), _) => {
+                    let w = weights
+                        .as_deref()
+                        .map(parse_numbers)
+                        .transpose()
+                        .context("--weights")?;
+                    LcgSource::Bezier(AnyBezier::new(parse_points(&b).context("--bezier")?, w)?)
+                }
+                (_, _, _, Some(c)) => {
+                    let pts = parse_points(&c).context("--control")?;
+                    anyhow::ensure!(pts.len() == 3, "--control needs exactly 3 points");
+                    let a = alpha.context("--alpha is needed with --control")?;
+                    LcgSource::Lac(aesthetic_curves::lac::LacSegment::new(
+                        a,
+                        [pts[0], pts[1], pts[2]],
+                    )?)
+                }
+                _ => anyhow::bail!("give --points, --input, --bezier or --alpha with --control"),
+            };
+            lcg(source, json, &output)?
+        }
     }
     Ok(())
 }
@@ -318,6 +392,86 @@ fn lac(alpha: f64, control: &str, samples: usize, json: bool, output: &[PathBuf]
         let caption = format!("LAC alpha = {alpha}, lambda = {:.6}", seg.lambda());
         let samples = plot::polyline_samples(&points, &kappa);
         std::fs::write(path, plot::comb_svg(&samples, &pts, &[], &caption))
+            .with_context(|| format!("writing {}", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn lac_inflection(control: &str, samples: usize, json: bool, output: &[PathBuf]) -> Result<()> {
+    let pts = parse_points(control).context("--control")?;
+    anyhow::ensure!(
+        pts.len() == 3,
+        "--control needs exactly 3 points, got {}",
+        pts.len()
+    );
+    let seg = aesthetic_curves::lac::LacInflectionSegment::new([pts[0], pts[1], pts[2]])?;
+    let (points, kappa) = seg.sample(samples.max(2))?;
+    let k1 = kappa[kappa.len() - 1];
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({"alpha": seg.alpha, "theta_d": seg.theta_d,
+                "arc_length": seg.arc_length(), "curvature_end": k1,
+                "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                "curvature": kappa})
+        );
+    } else {
+        println!("log-aesthetic segment with an inflection at the start point");
+        println!("  alpha          {:.10}", seg.alpha);
+        println!("  turning angle  {:.6} deg", seg.theta_d.to_degrees());
+        println!("  arc length     {:.9}", seg.arc_length());
+        println!("  curvature      0 at the start, {k1:.9} at the end");
+    }
+    for path in output {
+        let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha);
+        let samples = plot::polyline_samples(&points, &kappa);
+        std::fs::write(path, plot::comb_svg(&samples, &pts, &[], &caption))
+            .with_context(|| format!("writing {}", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+enum LcgSource {
+    Points(Vec<aesthetic_curves::Point>),
+    Bezier(AnyBezier),
+    Lac(aesthetic_curves::lac::LacSegment),
+}
+
+fn lcg(source: LcgSource, json: bool, output: &[PathBuf]) -> Result<()> {
+    use aesthetic_curves::lcg;
+    let (what, fit) = match &source {
+        LcgSource::Points(p) => (
+            format!("{} sampled points", p.len()),
+            lcg::estimate_from_points(p)?,
+        ),
+        LcgSource::Bezier(b) => (
+            "the Bézier curve (analytic)".to_string(),
+            lcg::fit_line(lcg::curve_lcg(b.as_monotone(), 201))?,
+        ),
+        LcgSource::Lac(seg) => (
+            format!("the LAC segment, alpha = {}", seg.standard.alpha()),
+            lcg::fit_line(seg.lcg(201)?)?,
+        ),
+    };
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({"alpha": fit.alpha, "r_squared": fit.r_squared,
+                "intercept": fit.intercept, "rms_residual": fit.rms_residual,
+                "graph": fit.graph.iter().map(|p| [p.log_rho, p.log_rho_ds_drho]).collect::<Vec<_>>()})
+        );
+    } else {
+        println!("logarithmic curvature graph of {what}");
+        println!("  alpha (slope)  {:.9}", fit.alpha);
+        println!("  intercept      {:.9}", fit.intercept);
+        println!("  r squared      {:.12}", fit.r_squared);
+        println!("  rms residual   {:.3e}", fit.rms_residual);
+        println!("  graph points   {}", fit.graph.len());
+    }
+    for path in output {
+        std::fs::write(path, plot::lcg_chart(&fit, &format!("LCG of {what}")))
             .with_context(|| format!("writing {}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }

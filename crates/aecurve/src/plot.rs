@@ -14,6 +14,24 @@ pub struct Series {
     pub color: &'static str,
     /// Dashed line.
     pub dashed: bool,
+    /// Draw the polyline through the points.
+    pub line: bool,
+    /// Draw a dot at each point.
+    pub markers: bool,
+}
+
+impl Series {
+    /// A solid line with a dot at each point.
+    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>, color: &'static str) -> Self {
+        Series {
+            name: name.into(),
+            points,
+            color,
+            dashed: false,
+            line: true,
+            markers: true,
+        }
+    }
 }
 
 /// Distinct colours for series.
@@ -57,13 +75,30 @@ fn fmt_tick(v: f64) -> String {
     }
 }
 
-/// A line chart with axes, ticks, grid and legend. `log_y` plots log10(y) with decade ticks.
+/// A line chart with axes, ticks, grid and legend. `log_y` plots log10(y) with decade ticks;
+/// otherwise a y range that is all positive starts at zero.
 pub fn line_chart(
     title: &str,
     xlabel: &str,
     ylabel: &str,
     series: &[Series],
     log_y: bool,
+) -> String {
+    chart(title, xlabel, ylabel, series, log_y, true)
+}
+
+/// Like [`line_chart`], the y range fitted to the data (no forced zero).
+pub fn fitted_chart(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> String {
+    chart(title, xlabel, ylabel, series, false, false)
+}
+
+fn chart(
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[Series],
+    log_y: bool,
+    y_from_zero: bool,
 ) -> String {
     let (w, h) = (720.0, 460.0);
     let (l, r, t, b) = (80.0, 190.0, 50.0, 60.0);
@@ -94,7 +129,11 @@ pub fn line_chart(
         y1 = y1.ceil().max(y0 + 1.0);
     } else {
         let pad = 0.05 * (y1 - y0).max(1e-12);
-        y0 = if y0 >= 0.0 { 0.0 } else { y0 - pad };
+        y0 = if y0 >= 0.0 && y_from_zero {
+            0.0
+        } else {
+            y0 - pad
+        };
         y1 += pad;
     }
     let px = |x: f64| l + (x - x0) / (x1 - x0) * (w - l - r);
@@ -168,13 +207,15 @@ pub fn line_chart(
         } else {
             ""
         };
-        let _ = writeln!(
-            s,
-            r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="2"{dash}/>"#,
-            pts.join(" "),
-            se.color
-        );
-        for p in &pts {
+        if se.line {
+            let _ = writeln!(
+                s,
+                r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="2"{dash}/>"#,
+                pts.join(" "),
+                se.color
+            );
+        }
+        for p in pts.iter().filter(|_| se.markers) {
             let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
             let _ = writeln!(
                 s,
@@ -184,11 +225,24 @@ pub fn line_chart(
         }
         let ly = t + 20.0 + 22.0 * i as f64;
         let lx = w - r + 15.0;
+        if se.line {
+            let _ = writeln!(
+                s,
+                r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{}" stroke-width="2"{dash}/>"#,
+                lx + 25.0,
+                se.color,
+            );
+        } else {
+            let _ = writeln!(
+                s,
+                r#"<circle cx="{}" cy="{ly}" r="3.5" fill="{}"/>"#,
+                lx + 12.5,
+                se.color,
+            );
+        }
         let _ = writeln!(
             s,
-            r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{}" stroke-width="2"{dash}/><text x="{}" y="{}">{}</text>"#,
-            lx + 25.0,
-            se.color,
+            r#"<text x="{}" y="{}">{}</text>"#,
             lx + 32.0,
             ly + 4.0,
             esc(&se.name)
@@ -333,4 +387,27 @@ pub fn comb_svg(
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// The logarithmic curvature graph (dots) with its fitted line.
+pub fn lcg_chart(fit: &aesthetic_curves::lcg::LcgFit, title: &str) -> String {
+    let pts: Vec<(f64, f64)> = fit
+        .graph
+        .iter()
+        .map(|p| (p.log_rho, p.log_rho_ds_drho))
+        .collect();
+    let (lo, hi) = pts
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let line = vec![
+        (lo, fit.alpha * lo + fit.intercept),
+        (hi, fit.alpha * hi + fit.intercept),
+    ];
+    let mut dots = Series::new("graph points", pts, PALETTE[1]);
+    dots.line = false;
+    let mut fitted = Series::new(format!("fit: slope {:.4}", fit.alpha), line, PALETTE[0]);
+    fitted.markers = false;
+    fitted_chart(title, "log ρ", "log(ρ ds/dρ)", &[dots, fitted])
 }

@@ -45,11 +45,11 @@ pub const OPS: &[&str] = &[
     "lac.point",
     "lac.segment",
     "lac.inflection_segment",
+    "lcg.estimate",
 ];
 const PLANNED_OPS: &[&str] = &[
     "lac.rational_approx",
     "spline.pseudo_elastic",
-    "lcg.estimate",
     "lac.fit",
     "sketch.fit",
 ];
@@ -120,6 +120,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "lac.point" => lac_point(obj),
         "lac.segment" => lac_segment(obj),
         "lac.inflection_segment" => lac_inflection_segment(obj),
+        "lcg.estimate" => lcg_estimate(obj),
         _ if PLANNED_OPS.contains(&op) => Err(ProtoError {
             kind: "unknown_op",
             message: format!("op '{op}' is part of the protocol but not implemented in this build"),
@@ -408,6 +409,26 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
         "curvature_end": curvature[curvature.len() - 1],
         "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
         "curvature": curvature,
+    }))
+}
+
+/// Largest point sampling `lcg.estimate` accepts.
+pub const MAX_LCG_POINTS: usize = 100_000;
+
+fn lcg_estimate(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let points = points_param(
+        obj,
+        "points",
+        aesthetic_curves::lcg::MIN_POINTS,
+        MAX_LCG_POINTS,
+    )?;
+    let fit = aesthetic_curves::lcg::estimate_from_points(&points)?;
+    Ok(json!({
+        "alpha": fit.alpha,
+        "r_squared": fit.r_squared,
+        "intercept": fit.intercept,
+        "rms_residual": fit.rms_residual,
+        "graph": fit.graph.iter().map(|p| [p.log_rho, p.log_rho_ds_drho]).collect::<Vec<_>>(),
     }))
 }
 

@@ -130,3 +130,83 @@ fn lac_command_summarises_and_refuses_outside_the_region() {
         "{err}"
     );
 }
+
+#[test]
+fn lcg_command_reads_a_file_and_plots() {
+    let dir = std::env::temp_dir().join(format!("aecurve-lcg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // Samples of a LAC segment (alpha = 2) written as CSV, read back by `lcg --input`.
+    let seg = json_output(aecurve().args([
+        "lac",
+        "--alpha",
+        "2",
+        "--control",
+        "0,0 4,0 7,3",
+        "--samples",
+        "150",
+        "--json",
+    ]));
+    let mut csv = String::from("x,y\n");
+    for p in seg["points"].as_array().unwrap() {
+        csv += &format!("{},{}\n", p[0], p[1]);
+    }
+    let input = dir.join("pts.csv");
+    std::fs::write(&input, csv).unwrap();
+    let svg = dir.join("lcg.svg");
+    let v = json_output(aecurve().args([
+        "lcg",
+        "--input",
+        input.to_str().unwrap(),
+        "--json",
+        "-o",
+        svg.to_str().unwrap(),
+    ]));
+    assert!(
+        (v["alpha"].as_f64().unwrap() - 2.0).abs() < 1e-4,
+        "{}",
+        v["alpha"]
+    );
+    let chart = std::fs::read_to_string(&svg).unwrap();
+    assert!(chart.starts_with("<svg") && chart.contains("circle"));
+    // The analytic graph of the segment itself.
+    let v =
+        json_output(aecurve().args(["lcg", "--alpha", "-1", "--control", "0,0 4,0 7,3", "--json"]));
+    assert!((v["alpha"].as_f64().unwrap() + 1.0).abs() < 1e-9);
+    // A circle has no LCG slope: a clear error, not a number.
+    let circle: Vec<String> = (0..12)
+        .map(|i| {
+            let a = 0.1 * i as f64;
+            format!("{},{}", a.cos(), a.sin())
+        })
+        .collect();
+    let out = aecurve()
+        .args(["lcg", "--points", &circle.join(" ")])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn lac_inflection_form() {
+    let v = json_output(aecurve().args([
+        "lac",
+        "--inflection",
+        "--control",
+        "0,0 1,0 1,0.5773502691896257",
+        "--json",
+    ]));
+    // 90 degrees of turning, 30 degrees at the inflection end: math.md's check value.
+    assert!(
+        (v["alpha"].as_f64().unwrap() + 1.066636984).abs() < 1e-8,
+        "{}",
+        v["alpha"]
+    );
+    // 45 degrees at the inflection end is outside the region (it must be below 45).
+    let out = aecurve()
+        .args(["lac", "--inflection", "--control", "0,0 1,0 1,1"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no segment"));
+}

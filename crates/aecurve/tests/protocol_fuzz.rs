@@ -158,19 +158,20 @@ fn arb_number() -> impl Strategy<Value = f64> {
 
 fn arb_lac_request() -> impl Strategy<Value = Value> {
     (
-        0usize..3,
+        0usize..4,
         arb_number(),
         arb_number(),
         prop::collection::vec(arb_number(), 0..6),
-        prop::collection::vec((arb_number(), arb_number()), 3..4),
+        prop::collection::vec((arb_number(), arb_number()), 3..14),
         prop::option::of(0u64..300),
     )
         .prop_map(|(op, alpha, lambda, theta, control, samples)| {
             let control: Vec<Value> = control.iter().map(|(x, y)| json!([x, y])).collect();
             let mut r = match op {
                 0 => json!({"id": 1, "op": "lac.point", "alpha": alpha, "lambda": lambda, "theta": theta}),
-                1 => json!({"id": 2, "op": "lac.segment", "alpha": alpha, "control": control}),
-                _ => json!({"id": 3, "op": "lac.inflection_segment", "control": control}),
+                1 => json!({"id": 2, "op": "lac.segment", "alpha": alpha, "control": control[..3]}),
+                2 => json!({"id": 3, "op": "lac.inflection_segment", "control": control[..3]}),
+                _ => json!({"id": 4, "op": "lcg.estimate", "points": control}),
             };
             if let Some(s) = samples {
                 r["samples"] = json!(s);

@@ -127,6 +127,19 @@ impl LacStandard {
         }
     }
 
+    /// ln ρ(θ), without overflow where ρ itself would overflow.
+    pub fn log_rho(&self, theta: f64) -> Result<f64> {
+        self.check(theta)?;
+        finite_or_err(
+            theta,
+            if self.alpha == 1.0 {
+                self.lambda * theta
+            } else {
+                self.log_u(theta) / (self.alpha - 1.0)
+            },
+        )
+    }
+
     /// Radius of curvature ρ(θ).
     pub fn rho(&self, theta: f64) -> Result<f64> {
         self.check(theta)?;
@@ -699,6 +712,33 @@ impl LacSegment {
             ));
         }
         Ok((out, k))
+    }
+
+    /// The logarithmic curvature graph at the `n >= 2` sample points of [`Self::sample`],
+    /// in this segment's units, from the closed form `log(rho ds/drho) = alpha log rho -
+    /// log Lambda` of the standard form. A circular arc (Λ = 0) has none: [`Error::Degenerate`].
+    pub fn lcg(&self, n: usize) -> Result<Vec<crate::lcg::LcgPoint>> {
+        if n < 2 {
+            return Err(Error::invalid("samples", "need at least 2"));
+        }
+        let lambda = self.lambda();
+        if lambda <= 0.0 {
+            return Err(Error::Degenerate(
+                "a circular arc (isosceles triangle) has constant curvature: no LCG".into(),
+            ));
+        }
+        let lc = self.scale().ln();
+        let (a, ll) = (self.standard.alpha(), lambda.ln());
+        self.sample_thetas(n)
+            .iter()
+            .map(|t| {
+                let lr = self.standard.log_rho(*t)?;
+                Ok(crate::lcg::LcgPoint {
+                    log_rho: lr + lc,
+                    log_rho_ds_drho: a * lr - ll + lc,
+                })
+            })
+            .collect()
     }
 
     /// Signed curvature at control[0] and control[2].

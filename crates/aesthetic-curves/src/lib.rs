@@ -7,7 +7,9 @@
 //!   sign analysis with rounding bounds, root isolation).
 //! - [`bezier`]: polynomial and rational Bézier curves of degree 1 to 20: evaluation,
 //!   derivatives, curvature, dkappa/ds, subdivision, elevation, power basis.
-//! - [`lac`]: log-aesthetic curves in standard form (point, curvature, arc length).
+//! - [`lac`]: log-aesthetic curves: standard form, segments from three control points,
+//!   segments with an inflection end.
+//! - [`lcg`]: the logarithmic curvature graph and alpha estimation.
 //! - [`quadrature`]: adaptive Gauss–Kronrod quadrature.
 //! - [`monotone`]: the exact curvature-monotonicity test (Bernstein form of dkappa/ds plus
 //!   subdivision) and the sampling test.
@@ -21,6 +23,7 @@ pub mod bernstein;
 pub mod bezier;
 pub mod error;
 pub mod lac;
+pub mod lcg;
 pub mod monotone;
 pub mod quadrature;
 pub mod roots;
