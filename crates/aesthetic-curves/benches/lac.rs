@@ -29,6 +29,10 @@ fn bench_lac(c: &mut Criterion) {
         g.bench_with_input(BenchmarkId::new("solve", alpha), &alpha, |b, &a| {
             b.iter(|| LacSegment::new(black_box(a), tri).unwrap())
         });
+        let seg = LacSegment::new(alpha, tri).unwrap();
+        g.bench_with_input(BenchmarkId::new("sample1000", alpha), &seg, |b, s| {
+            b.iter(|| s.sample(black_box(1000)).unwrap())
+        });
     }
     g.finish();
 }

@@ -32,3 +32,35 @@ fn standard_form_matches_high_precision_reference() {
     );
     assert!(n > 150);
 }
+
+/// The same references reached by a dense polyline: `eval_many` on 1000 uniform theta from
+/// 0 (every step integrated on its own, mostly by the fast fixed rules), so the end point
+/// carries the sum of all step errors.
+#[test]
+fn dense_polyline_ends_on_the_reference() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/lac_reference.csv");
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut worst = 0.0f64;
+    for line in text.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|s| s.parse().unwrap()).collect();
+        let (a, l, t, x, y) = (v[0], v[1], v[2], v[3], v[4]);
+        let c = LacStandard::new(a, l).unwrap();
+        let mut th: Vec<f64> = (0..1000).map(|i| t * (i as f64 / 999.0)).collect();
+        th[999] = t;
+        let pts = c
+            .eval_many(&th)
+            .unwrap_or_else(|e| panic!("alpha {a} lambda {l} theta {t}: {e}"));
+        let p = pts[999];
+        let err = ((p.x - x).powi(2) + (p.y - y).powi(2)).sqrt() / (x * x + y * y).sqrt();
+        worst = worst.max(err);
+        assert!(
+            err < 1e-12,
+            "alpha {a} lambda {l} theta {t}: relative error {err:e} ({p:?} vs {x}, {y})"
+        );
+        // Every intermediate point is the single-point evaluation too (spot check).
+        let q = c.eval(th[500]).unwrap();
+        let scale = (x * x + y * y).sqrt();
+        assert!((pts[500] - q).hypot() < 1e-12 * scale.max(q.to_vec2().hypot()));
+    }
+    println!("dense polylines: worst relative error at the end {worst:e}");
+}
