@@ -34,6 +34,23 @@ fn bench_lac(c: &mut Criterion) {
             b.iter(|| s.sample(black_box(1000)).unwrap())
         });
     }
+    // Triangles near the edge of the existence region (base angle 1e-3 rad below θ_lim),
+    // where Λ approaches Λ_max and the curve nears its singular end.
+    for alpha in [-1.0, 2.0] {
+        let td = std::f64::consts::FRAC_PI_2;
+        let phi = LacSegment::theta_lim(alpha, td).unwrap() - 1e-3;
+        let other = td - phi;
+        // Start (0,0), tangent intersection (1,0); the end on the ray at angle td from P1,
+        // at the distance that gives base angle `phi` at the start.
+        let d = phi.sin() / other.sin();
+        let end = Point::new(1.0 + d * td.cos(), d * td.sin());
+        let tri = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), end];
+        g.bench_with_input(
+            BenchmarkId::new("solve_near_limit", alpha),
+            &alpha,
+            |b, &a| b.iter(|| LacSegment::new(black_box(a), tri).unwrap()),
+        );
+    }
     g.finish();
 }
 

@@ -372,7 +372,7 @@ impl LacStandard {
         let u0 = 1.0 + c * t0;
         let u1 = 1.0 + c * t1;
         let umin = u0.min(u1);
-        if !(umin > 0.0) || h.abs() > 0.5 {
+        if umin.is_nan() || umin <= 0.0 || h.abs() > 0.5 {
             return self.integral(t0, t1);
         }
         let r = c.abs() / umin;
@@ -471,7 +471,7 @@ impl LacStandard {
                 t0 + (t1 - t0) * (k as f64 / n as f64)
             };
             let w = self.log_u(t);
-            sum += integrate(w_integrand(p1, c), w_prev, w, opts)?;
+            sum += w_integral(p1, c, w_prev, w, opts)?;
             w_prev = w;
         }
         Ok(sum / c)
@@ -488,8 +488,8 @@ impl LacStandard {
 
     /// `∫_{t0}^{θ*} ρ e^{iψ} dψ` up to the finite end θ* of the domain, where ρ → ∞ (α < 0)
     /// or ρ → 0 (α > 1); both integrable (for 0 <= α < 1 the integral diverges: error). In
-    /// `w = ln u` the last stretch runs to -∞ with an exponentially decaying integrand,
-    /// truncated where the tail is below 1e-17 of the result.
+    /// `w = ln u` the last stretch runs to -∞ with an exponentially decaying integrand:
+    /// quadrature down to e^w = |c|/2, then a convergent series in closed form.
     pub fn integral_to_domain_end(&self, t0: f64) -> Result<Vec2> {
         let (a, c) = (self.alpha, self.c());
         let Some(t_end) = self.domain_end() else {
@@ -511,13 +511,16 @@ impl LacStandard {
         };
         let head = self.integral(t0, t_last)?;
         let w0 = self.log_u(t_last);
-        let w_trunc = w0.min((1e-18 * p1).ln() / p1 + w0.min(0.0));
+        // Down to -∞: quadrature where e^w/|c| > 1/2, the series of `w_series` below.
         let len = self.arc_length(t_last)?.abs() + (p1 * w0).exp() / (p1 * c.abs());
         let opts = QuadOptions {
             accuracy: (1e-15 * len * c.abs()).max(f64::MIN_POSITIVE),
             max_panels: 4_000,
         };
-        let tail = integrate(w_integrand(p1, c), w0, w_trunc, opts)?;
+        let w_s = w0.min(series_edge(c));
+        let middle = w_integral(p1, c, w0, w_s, opts)?;
+        let below = w_series(p1, c, f64::NEG_INFINITY, w_s);
+        let tail = middle - below;
         Ok(head + tail / c)
     }
 }
@@ -592,6 +595,56 @@ const GL5_W: [f64; 5] = [
     0.478_628_670_499_366_5,
     0.236_926_885_056_189_1,
 ];
+
+/// Below this w (e^w <= |c|/2) the w-integral is summed as a series ([`w_series`]).
+fn series_edge(c: f64) -> f64 {
+    (0.5 * c.abs()).ln()
+}
+
+/// `∫_{wa}^{wb}` of [`w_integrand`]: adaptive quadrature where e^w > |c|/2, the series
+/// [`w_series`] below, where the integrand (near the singular end of the domain) is costly
+/// to integrate numerically.
+fn w_integral(p1: f64, c: f64, wa: f64, wb: f64, opts: QuadOptions) -> Result<Vec2> {
+    let (lo, hi, sign) = if wa <= wb {
+        (wa, wb, 1.0)
+    } else {
+        (wb, wa, -1.0)
+    };
+    let edge = series_edge(c);
+    let mut v = Vec2::ZERO;
+    if lo < edge {
+        v += w_series(p1, c, lo, hi.min(edge));
+    }
+    if hi > edge {
+        v += integrate(w_integrand(p1, c), lo.max(edge), hi, opts)?;
+    }
+    Ok(v * sign)
+}
+
+/// `∫_{lo}^{hi} e^{p1 w} e^{i expm1(w)/c} dw` for hi <= ln(|c|/2) (lo may be -∞ when
+/// p1 > 0), in closed form: `e^{-i/c} Σ_k (i/c)^k/k! ∫ e^{(p1+k) w} dw`. Successive terms
+/// shrink by e^w/|c| <= 1/2 over k, so 60 terms reach rounding.
+fn w_series(p1: f64, c: f64, lo: f64, hi: f64) -> Vec2 {
+    let delta = hi - lo;
+    let mut sum = Vec2::ZERO;
+    let mut coef = Vec2::new(1.0, 0.0); // (i/c)^k / k!
+    for k in 0..80 {
+        let x = p1 + k as f64;
+        let ek = if x == 0.0 {
+            delta
+        } else {
+            (x * hi).exp() * -(-x * delta).exp_m1() / x
+        };
+        let term = coef * ek;
+        sum += term;
+        if x > 0.0 && term.hypot() <= 1e-18 * sum.hypot() {
+            break;
+        }
+        coef = cmul(coef, Vec2::new(0.0, 1.0 / c)) / (k as f64 + 1.0);
+    }
+    let (sn, cs) = (-1.0 / c).sin_cos();
+    cmul(Vec2::new(cs, sn), sum)
+}
 
 /// The integrand in `w = ln u`: `e^{(p+1) w} e^{i expm1(w)/c}` (the integral is then divided
 /// by c), with `p1 = p + 1 = α/(α-1)` and `c = (α-1) Λ`.
@@ -852,7 +905,29 @@ impl LacSegment {
                 Err(e) => Err(e),
             }
         };
-        let mut hi = Self::lambda_max(alpha, theta_d);
+        let lmax = Self::lambda_max(alpha, theta_d);
+        let p1 = alpha / (alpha - 1.0);
+        if lmax.is_finite() && p1 > 0.0 {
+            // α < 0 or α > 1: near Λ_max the base angle behaves like θ_lim - K δ^p1,
+            // δ = 1 - Λ/Λ_max. Solve in z = δ^p1 ∈ [0, 1] (z = 1: Λ = 0, the circular arc;
+            // z = 0: the limit), where it is close to linear, and carry z near 0 at full
+            // relative precision.
+            let lambda_of = |z: f64| lmax * -(z.ln() / p1).exp_m1();
+            let z = illinois(
+                |z| {
+                    if z <= 0.0 {
+                        return Ok(lim - phi);
+                    }
+                    f_at(lambda_of(z))
+                },
+                (0.0, lim - phi),
+                (1.0, half - phi),
+                1e-16,
+                400,
+            )?;
+            return Ok(lambda_of(z));
+        }
+        let mut hi = lmax;
         if !hi.is_finite() {
             hi = 1.0;
             while f_at(hi)? < 0.0 {

@@ -64,3 +64,28 @@ fn dense_polyline_ends_on_the_reference() {
     }
     println!("dense polylines: worst relative error at the end {worst:e}");
 }
+
+/// θ_lim (the base angle of the limiting segment Λ = Λ_max, an integral up to the singular
+/// end of the domain) against mpmath (`tools/lac_theta_lim.py`).
+#[test]
+fn theta_lim_matches_high_precision_reference() {
+    use aesthetic_curves::lac::LacSegment;
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/lac_theta_lim.csv");
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut worst = 0.0f64;
+    let mut n = 0;
+    for line in text.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|s| s.parse().unwrap()).collect();
+        let (a, td, want) = (v[0], v[1], v[2]);
+        let got = LacSegment::theta_lim(a, td).unwrap();
+        let err = (got - want).abs() / want;
+        worst = worst.max(err);
+        assert!(
+            err < 1e-12,
+            "alpha {a} theta_d {td}: {got} vs {want} ({err:e})"
+        );
+        n += 1;
+    }
+    println!("{n} theta_lim references, worst relative error {worst:e}");
+    assert!(n >= 60);
+}
