@@ -44,7 +44,7 @@ enum Cmd {
         /// Print the protocol's JSON result instead of text.
         #[arg(long)]
         json: bool,
-        /// Write the curve with its curvature comb (SVG).
+        /// Write the curve with its curvature comb (.svg or .png; repeatable).
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -71,7 +71,7 @@ enum Cmd {
         /// Print the protocol's JSON result.
         #[arg(long)]
         json: bool,
-        /// Write the curve with its curvature comb (SVG).
+        /// Write the curve with its curvature comb (.svg or .png; repeatable).
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -99,7 +99,7 @@ enum Cmd {
         /// Print the protocol's JSON result.
         #[arg(long)]
         json: bool,
-        /// Write the graph with its fitted line (SVG).
+        /// Write the graph with its fitted line (.svg or .png; repeatable).
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -135,7 +135,7 @@ enum BenchCmd {
         /// Print JSON instead of the table.
         #[arg(long)]
         json: bool,
-        /// Write the chart (SVG).
+        /// Write the chart (.svg or .png).
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
@@ -155,7 +155,17 @@ fn main() {
 }
 
 fn run() -> Result<()> {
-    match Cli::parse().cmd {
+    let cli = Cli::parse();
+    match &cli.cmd {
+        Cmd::Monotone { output, .. } | Cmd::Lac { output, .. } | Cmd::Lcg { output, .. } => {
+            plot::check_picture_paths(output)?
+        }
+        Cmd::Bench {
+            what: BenchCmd::Monotone { output, .. },
+        } => plot::check_picture_paths(output.as_slice())?,
+        _ => {}
+    }
+    match cli.cmd {
         Cmd::Batch { max_line_bytes } => {
             let stdin = std::io::stdin();
             let stdout = std::io::stdout();
@@ -192,8 +202,7 @@ fn run() -> Result<()> {
                 print!("{}", bench::table(&rows));
             }
             if let Some(path) = output {
-                std::fs::write(&path, bench::chart(&rows))
-                    .with_context(|| format!("writing {}", path.display()))?;
+                plot::write_picture(&path, &bench::chart(&rows))?;
                 eprintln!("wrote {}", path.display());
             }
         }
@@ -345,11 +354,10 @@ fn monotone(
             Method::Exact => c.curvature_monotone()?.extrema,
             Method::Sampling => Vec::new(),
         };
-        std::fs::write(
+        plot::write_picture(
             path,
-            plot::curve_with_comb(&curve, &pts, &extrema, &caption),
-        )
-        .with_context(|| format!("writing {}", path.display()))?;
+            &plot::curve_with_comb(&curve, &pts, &extrema, &caption),
+        )?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())
@@ -391,8 +399,7 @@ fn lac(alpha: f64, control: &str, samples: usize, json: bool, output: &[PathBuf]
     for path in output {
         let caption = format!("LAC alpha = {alpha}, lambda = {:.6}", seg.lambda());
         let samples = plot::polyline_samples(&points, &kappa);
-        std::fs::write(path, plot::comb_svg(&samples, &pts, &[], &caption))
-            .with_context(|| format!("writing {}", path.display()))?;
+        plot::write_picture(path, &plot::comb_svg(&samples, &pts, &[], &caption))?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())
@@ -426,8 +433,7 @@ fn lac_inflection(control: &str, samples: usize, json: bool, output: &[PathBuf])
     for path in output {
         let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha);
         let samples = plot::polyline_samples(&points, &kappa);
-        std::fs::write(path, plot::comb_svg(&samples, &pts, &[], &caption))
-            .with_context(|| format!("writing {}", path.display()))?;
+        plot::write_picture(path, &plot::comb_svg(&samples, &pts, &[], &caption))?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())
@@ -448,11 +454,11 @@ fn lcg(source: LcgSource, json: bool, output: &[PathBuf]) -> Result<()> {
         ),
         LcgSource::Bezier(b) => (
             "the Bézier curve (analytic)".to_string(),
-            lcg::fit_line(lcg::curve_lcg(b.as_monotone(), 201))?,
+            lcg::fit_line(lcg::curve_lcg(b.as_monotone(), 81))?,
         ),
         LcgSource::Lac(seg) => (
             format!("the LAC segment, alpha = {}", seg.standard.alpha()),
-            lcg::fit_line(seg.lcg(201)?)?,
+            lcg::fit_line(seg.lcg(81)?)?,
         ),
     };
     if json {
@@ -471,8 +477,7 @@ fn lcg(source: LcgSource, json: bool, output: &[PathBuf]) -> Result<()> {
         println!("  graph points   {}", fit.graph.len());
     }
     for path in output {
-        std::fs::write(path, plot::lcg_chart(&fit, &format!("LCG of {what}")))
-            .with_context(|| format!("writing {}", path.display()))?;
+        plot::write_picture(path, &plot::lcg_chart(&fit, &format!("LCG of {what}")))?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())

@@ -411,3 +411,64 @@ pub fn lcg_chart(fit: &aesthetic_curves::lcg::LcgFit, title: &str) -> String {
     fitted.markers = false;
     fitted_chart(title, "log ρ", "log(ρ ds/dρ)", &[dots, fitted])
 }
+
+/// The font the PNG renderer uses for all text (DejaVu Sans, embedded: no system fonts needed).
+const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+
+/// Rasterise an SVG document to PNG bytes at `scale` (2.0: twice the SVG's pixel size).
+pub fn svg_to_png(svg: &str, scale: f32) -> anyhow::Result<Vec<u8>> {
+    use resvg::{tiny_skia, usvg};
+    let mut opt = usvg::Options::default();
+    opt.fontdb_mut().load_font_data(FONT.to_vec());
+    opt.font_family = "DejaVu Sans".into();
+    let tree = usvg::Tree::from_str(
+        &svg.replace("font-family=\"sans-serif\"", "font-family=\"DejaVu Sans\""),
+        &opt,
+    )?;
+    let size = tree
+        .size()
+        .to_int_size()
+        .scale_by(scale)
+        .ok_or_else(|| anyhow::anyhow!("image too large"))?;
+    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height()).ok_or_else(|| {
+        anyhow::anyhow!("cannot allocate a {}x{} image", size.width(), size.height())
+    })?;
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(scale, scale),
+        &mut pixmap.as_mut(),
+    );
+    Ok(pixmap.encode_png()?)
+}
+
+/// Fail early (before any computation) on an output path that is not `.svg` or `.png`.
+pub fn check_picture_paths(paths: &[std::path::PathBuf]) -> anyhow::Result<()> {
+    for p in paths {
+        let ext = p
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase());
+        if !matches!(ext.as_deref(), Some("svg") | Some("png")) {
+            anyhow::bail!("{}: unknown picture format (use .svg or .png)", p.display());
+        }
+    }
+    Ok(())
+}
+
+/// Write a picture: `.svg` as is, `.png` rasterised; any other extension is an error.
+pub fn write_picture(path: &std::path::Path, svg: &str) -> anyhow::Result<()> {
+    use anyhow::Context;
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    let bytes = match ext.as_deref() {
+        Some("svg") => svg.as_bytes().to_vec(),
+        Some("png") => svg_to_png(svg, 2.0)?,
+        _ => anyhow::bail!(
+            "{}: unknown picture format (use .svg or .png)",
+            path.display()
+        ),
+    };
+    std::fs::write(path, bytes).with_context(|| format!("writing {}", path.display()))
+}

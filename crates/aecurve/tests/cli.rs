@@ -210,3 +210,47 @@ fn lac_inflection_form() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("no segment"));
 }
+
+#[test]
+fn pictures_follow_the_extension() {
+    let dir = std::env::temp_dir().join(format!("aecurve-png-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("c.png");
+    let svg = dir.join("c.svg");
+    let out = aecurve()
+        .args(["lac", "--alpha", "0", "--control", "0,0 3,0 5,2", "-o"])
+        .arg(&png)
+        .arg("-o")
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    assert!(
+        bytes.len() > 5000,
+        "an empty picture? {} bytes",
+        bytes.len()
+    );
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    // An unknown extension fails before any work, naming the file.
+    let out = aecurve()
+        .args([
+            "lac",
+            "--alpha",
+            "0",
+            "--control",
+            "0,0 3,0 5,2",
+            "-o",
+            "x.jpeg",
+        ])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("x.jpeg"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -226,6 +226,15 @@ impl LacStandard {
     /// Points at many θ, integrating only between neighbours (sorted internally), so a
     /// polyline costs about as much as its last point.
     pub fn eval_many(&self, thetas: &[f64]) -> Result<Vec<Point>> {
+        Ok(self.eval_many_impl(thetas, false)?.0)
+    }
+
+    /// [`Self::eval_many`] and the curvature at the same θ.
+    pub fn eval_many_with_kappa(&self, thetas: &[f64]) -> Result<(Vec<Point>, Vec<f64>)> {
+        self.eval_many_impl(thetas, true)
+    }
+
+    fn eval_many_impl(&self, thetas: &[f64], want_kappa: bool) -> Result<(Vec<Point>, Vec<f64>)> {
         // The domain is an interval: its extremes decide (NaN is caught by the check).
         if let Some(t) = thetas.iter().find(|t| !t.is_finite()) {
             self.check(*t)?;
@@ -238,35 +247,54 @@ impl LacStandard {
         }
         if self.alpha == 1.0 || self.lambda == 0.0 {
             // Closed forms: no need to accumulate.
-            return thetas.iter().map(|t| self.eval(*t)).collect();
+            let pts = thetas
+                .iter()
+                .map(|t| self.eval(*t))
+                .collect::<Result<Vec<_>>>()?;
+            let k = if want_kappa {
+                self.kappa_many(thetas)?
+            } else {
+                Vec::new()
+            };
+            return Ok((pts, k));
         }
         let mut order: Vec<usize> = (0..thetas.len()).collect();
         order.sort_by(|&i, &j| thetas[i].total_cmp(&thetas[j]));
         let mut out = vec![Point::ZERO; thetas.len()];
+        let mut kappa = if want_kappa {
+            vec![0.0; thetas.len()]
+        } else {
+            Vec::new()
+        };
         // Walk outward from θ = 0 in both directions.
         let split = order.partition_point(|&i| thetas[i] < 0.0);
-        let mut acc = Vec2::ZERO;
-        let mut prev = 0.0;
         let mut cache = RotationCache::default();
-        for &i in &order[split..] {
-            acc += self.integral_step(prev, thetas[i], &mut cache)?;
-            prev = thetas[i];
-            out[i] = acc.to_point();
+        let upward = order[split..].iter();
+        let downward = order[..split].iter().rev();
+        let walks: [&mut dyn Iterator<Item = &usize>; 2] = [&mut { upward }, &mut { downward }];
+        for walk in walks {
+            let mut acc = Vec2::ZERO;
+            let mut prev = 0.0;
+            for &i in walk {
+                let (step, rho) = self.integral_step(prev, thetas[i], &mut cache)?;
+                acc += step;
+                prev = thetas[i];
+                out[i] = acc.to_point();
+                if want_kappa {
+                    kappa[i] = match rho {
+                        Some(r) => 1.0 / r,
+                        None => self.kappa(thetas[i])?,
+                    };
+                }
+            }
         }
-        acc = Vec2::ZERO;
-        prev = 0.0;
-        for &i in order[..split].iter().rev() {
-            acc += self.integral_step(prev, thetas[i], &mut cache)?;
-            prev = thetas[i];
-            out[i] = acc.to_point();
-        }
-        if out.iter().any(|p| !p.is_finite()) {
+        if out.iter().any(|p| !p.is_finite()) || kappa.iter().any(|k| !k.is_finite()) {
             return Err(Error::invalid(
                 "theta",
                 "the curve at these theta is too large for f64",
             ));
         }
-        Ok(out)
+        Ok((out, kappa))
     }
 
     /// The Gauss–Legendre rule with symmetric nodes `xs` (ascending) on [t0, t1]. ρ at the
@@ -282,7 +310,7 @@ impl LacStandard {
         xs: &[f64],
         ws: &[f64],
         cache: &mut RotationCache,
-    ) -> Vec2 {
+    ) -> (Vec2, f64) {
         let mid = 0.5 * (t0 + t1);
         let half = 0.5 * (t1 - t0);
         let (xu, xe) = self.x_dd(mid);
@@ -325,33 +353,15 @@ impl LacStandard {
             let w = ws[n - 1 - j];
             let delta = half * x;
             let eps = c * delta / (u + ue);
-            let (plus, minus) = if eps.abs() <= 0.25 && (a * eps).abs() <= 0.25 {
-                // (1 ± ε)^a = even ± odd parts of the binomial series; successive terms
-                // shrink by at least max(|a|, 1) |ε| <= 1/4, so the tail is below the last
-                // term.
-                let (mut even, mut odd) = (1.0, 0.0);
-                let mut term = 1.0;
-                let mut fi = 0.0;
-                for inv in INV_INT.chunks_exact(2) {
-                    term *= (a - fi) * inv[0] * eps;
-                    odd += term;
-                    term *= (a - fi - 1.0) * inv[1] * eps;
-                    even += term;
-                    fi += 2.0;
-                    if term.abs() <= 1e-18 * even {
-                        break;
-                    }
-                }
-                (even + odd, even - odd)
-            } else {
-                ((a * eps.ln_1p()).exp(), (a * (-eps).ln_1p()).exp())
-            };
+            let (plus, minus) = binomial_pair(a, eps);
             let rot = cache.rot[j];
             let ep = cmul(e_mid, rot);
             let em = cmul(e_mid, conj(rot));
             sum += (ep * plus + em * minus) * (w * rho_mid);
         }
-        sum * half
+        // ρ(t1) = ρ(mid) (1 + c half / U(mid))^a: the curvature at the step's end for free.
+        let (rho_end, _) = binomial_pair(a, c * half / (u + ue));
+        (sum * half, rho_mid * rho_end)
     }
 
     /// One step of a polyline: a fixed Gauss–Legendre rule (3, 4 or 5 nodes) when its
@@ -361,10 +371,15 @@ impl LacStandard {
     /// |ρ^(k)| <= ρ |a (a-1) ... (a-k+1)| r^k, so by Leibniz f = ρ e^{iψ} has
     /// |f^(m)| <= ρ_max Σ_k C(m,k) |a (a-1) ... (a-k+1)| r^k; the n-point rule errs by at most
     /// √2 (n!)^4 / ((2n+1) ((2n)!)^3) h^(2n+1) max|f^(2n)| (real and imaginary parts).
-    fn integral_step(&self, t0: f64, t1: f64, cache: &mut RotationCache) -> Result<Vec2> {
+    fn integral_step(
+        &self,
+        t0: f64,
+        t1: f64,
+        cache: &mut RotationCache,
+    ) -> Result<(Vec2, Option<f64>)> {
         let (alpha, l) = (self.alpha, self.lambda);
         if alpha == 1.0 || l == 0.0 || t0 == t1 {
-            return self.integral(t0, t1);
+            return Ok((self.integral(t0, t1)?, None));
         }
         let c = self.c();
         let a = 1.0 / (alpha - 1.0);
@@ -373,13 +388,13 @@ impl LacStandard {
         let u1 = 1.0 + c * t1;
         let umin = u0.min(u1);
         if umin.is_nan() || umin <= 0.0 || h.abs() > 0.5 {
-            return self.integral(t0, t1);
+            return Ok((self.integral(t0, t1)?, None));
         }
         let r = c.abs() / umin;
         // ρ_max/ρ_min = (U_max/U_min)^|a| <= e^{|a| r |h|}.
         let spread = a.abs() * r * h.abs();
         if spread > 1.0 {
-            return self.integral(t0, t1);
+            return Ok((self.integral(t0, t1)?, None));
         }
         let ratio = 1.0 + 2.0 * spread; // >= e^spread for spread <= 1
         const RULES: [(&[f64], &[f64], f64); 3] = [
@@ -398,10 +413,11 @@ impl LacStandard {
             }
             // Relative to the step's own length |h| ρ_min: √2 k h^m D ρ_max/ρ_min <= 2e-17.
             if 1.5 * k * h.abs().powi(m as i32) * d * ratio <= 2e-17 {
-                return Ok(self.gauss_step(t0, t1, a, c, xs, ws, cache));
+                let (v, rho) = self.gauss_step(t0, t1, a, c, xs, ws, cache);
+                return Ok((v, Some(rho)));
             }
         }
-        self.integral(t0, t1)
+        Ok((self.integral(t0, t1)?, None))
     }
 
     /// `∫_{t0}^{t1} ρ(ψ) e^{iψ} dψ` as a complex number (x = real part).
@@ -522,6 +538,30 @@ impl LacStandard {
         let below = w_series(p1, c, f64::NEG_INFINITY, w_s);
         let tail = middle - below;
         Ok(head + tail / c)
+    }
+}
+
+/// `((1 + ε)^a, (1 - ε)^a)`: the even and odd parts of the binomial series when it
+/// converges fast (|ε| <= 1/4 and |a ε| <= 1/4: successive terms shrink by at least
+/// max(|a|, 1) |ε| <= 1/4, so the tail is below the last term), else through logarithms.
+fn binomial_pair(a: f64, eps: f64) -> (f64, f64) {
+    if eps.abs() <= 0.25 && (a * eps).abs() <= 0.25 {
+        let (mut even, mut odd) = (1.0, 0.0);
+        let mut term = 1.0;
+        let mut fi = 0.0;
+        for inv in INV_INT.chunks_exact(2) {
+            term *= (a - fi) * inv[0] * eps;
+            odd += term;
+            term *= (a - fi - 1.0) * inv[1] * eps;
+            even += term;
+            fi += 2.0;
+            if term.abs() <= 1e-18 * even {
+                break;
+            }
+        }
+        (even + odd, even - odd)
+    } else {
+        ((a * eps.ln_1p()).exp(), (a * (-eps).ln_1p()).exp())
     }
 }
 
@@ -1045,12 +1085,11 @@ impl LacSegment {
             return Err(Error::invalid("samples", "need at least 2"));
         }
         let th = self.sample_thetas(n);
-        let pts = self.standard.eval_many(&th)?;
+        let (pts, mut k) = self.standard.eval_many_with_kappa(&th)?;
         let mut out: Vec<Point> = pts.iter().map(|p| self.map.apply(p.to_vec2())).collect();
         out[0] = self.control[0];
         out[n - 1] = self.control[2];
         let f = self.turn_sign() / self.scale();
-        let mut k = self.standard.kappa_many(&th)?;
         for v in &mut k {
             *v *= f;
         }
@@ -1439,6 +1478,27 @@ mod tests {
                         Err(e) => panic!("{alpha} {turn} {split}: {e}"),
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn eval_many_with_kappa_matches_kappa() {
+        for &(alpha, lambda) in &[(-1.0, 0.3), (0.5, 0.4), (2.0, 0.5), (1.0, 0.5), (5.0, 0.1)] {
+            let c = LacStandard::new(alpha, lambda).unwrap();
+            let (lo, hi) = c.domain();
+            let (lo, hi) = (lo.max(-3.0) * 0.99, hi.min(3.0) * 0.99);
+            let th: Vec<f64> = (0..500)
+                .map(|i| lo + (hi - lo) * i as f64 / 499.0)
+                .collect();
+            let (p, k) = c.eval_many_with_kappa(&th).unwrap();
+            assert_eq!(p, c.eval_many(&th).unwrap());
+            for (t, kv) in th.iter().zip(&k) {
+                let want = c.kappa(*t).unwrap();
+                assert!(
+                    (kv - want).abs() <= 1e-14 * want,
+                    "{alpha} {t}: {kv} vs {want}"
+                );
             }
         }
     }
