@@ -756,7 +756,8 @@ pub struct LacSegment {
     pub standard: LacStandard,
     /// Turning angle θ_d in (0, π).
     pub theta_d: f64,
-    /// The standard interval: [0, θ_d] for α <= 1, [-θ_d, 0] for α > 1.
+    /// The standard-form θ interval: [0, θ_d] for α <= 1, [-θ_d, 0] for α > 1 (a
+    /// [`LacSegment::sub_segment`] keeps the parent's curve and takes a part of this).
     pub interval: (f64, f64),
     /// The three control points as given.
     pub control: [Point; 3],
@@ -1126,6 +1127,71 @@ impl LacSegment {
                 })
             })
             .collect()
+    }
+
+    /// Standard-form θ at turning angle `tau` from control[0].
+    fn theta_at_turning(&self, tau: f64) -> f64 {
+        if self.reversed {
+            self.interval.1 - tau
+        } else {
+            self.interval.0 + tau
+        }
+    }
+
+    /// Points and derivatives dP/dτ (length = radius of curvature, direction = tangent) at
+    /// turning angles τ measured from control[0] (τ = 0) to control[2] (τ = θ_d); τ outside
+    /// [0, θ_d] is clamped.
+    pub fn eval_turning(&self, taus: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+        if let Some(i) = taus.iter().position(|t| !t.is_finite()) {
+            return Err(Error::invalid(format!("tau[{i}]"), "must be finite"));
+        }
+        let th: Vec<f64> = taus
+            .iter()
+            .map(|t| self.theta_at_turning(t.clamp(0.0, self.theta_d)))
+            .collect();
+        let (pts, kappa) = self.standard.eval_many_with_kappa(&th)?;
+        let dir = if self.reversed { -1.0 } else { 1.0 };
+        let o = self.map.apply(Vec2::ZERO);
+        let points = pts.iter().map(|p| self.map.apply(p.to_vec2())).collect();
+        let derivs = th
+            .iter()
+            .zip(&kappa)
+            .map(|(t, k)| self.map.apply(Vec2::from_angle(*t) * (dir / k)) - o)
+            .collect();
+        Ok((points, derivs))
+    }
+
+    /// The part of this segment between turning angles `ta < tb` (from control[0]): the same
+    /// curve (no new solve), with its own control triangle.
+    pub fn sub_segment(&self, ta: f64, tb: f64) -> Result<LacSegment> {
+        if !(ta.is_finite() && tb.is_finite() && 0.0 <= ta && ta < tb && tb <= self.theta_d) {
+            return Err(Error::invalid(
+                "turning",
+                format!(
+                    "need 0 <= ta < tb <= theta_d = {}, got {ta}, {tb}",
+                    self.theta_d
+                ),
+            ));
+        }
+        let (pts, der) = self.eval_turning(&[ta, tb])?;
+        let (p0, p2) = (pts[0], pts[1]);
+        let denom = der[0].cross(der[1]);
+        let x = p0 + der[0] * ((p2 - p0).cross(der[1]) / denom);
+        let (a, b) = (self.theta_at_turning(ta), self.theta_at_turning(tb));
+        let seg = LacSegment {
+            standard: self.standard,
+            theta_d: tb - ta,
+            interval: (a.min(b), a.max(b)),
+            control: [p0, x, p2],
+            reversed: self.reversed,
+            map: self.map,
+        };
+        if !x.is_finite() {
+            return Err(Error::Degenerate(
+                "the sub-segment's end tangents are parallel".into(),
+            ));
+        }
+        Ok(seg)
     }
 
     /// Signed curvature at control[0] and control[2].

@@ -3,6 +3,8 @@
 //! Curves whose curvature varies monotonically, and the tools to design, check and export
 //! them. The mathematics follows `shared/spec/math.md` (the five seed papers, corrected).
 //!
+//! - [`approx`]: one rational cubic per LAC segment (G2 ends, proven monotone curvature,
+//!   global optimum), and rational cubic B-splines for longer segments.
 //! - [`bernstein`]: polynomials in Bernstein form (products, subdivision, degree elevation,
 //!   sign analysis with rounding bounds, root isolation).
 //! - [`bezier`]: polynomial and rational Bézier curves of degree 1 to 20: evaluation,
@@ -19,6 +21,7 @@
 
 #![warn(missing_docs)]
 
+pub mod approx;
 pub mod bernstein;
 pub mod bezier;
 pub mod error;

@@ -737,6 +737,17 @@ impl CurvatureVariation {
             }
             _ => {}
         }
+        // The end coefficients are K(0) and K(1): strictly opposite signs prove a change.
+        let (c, nz) = (self.k.coeffs(), &self.k_noise);
+        let last = c.len() - 1;
+        if !full && c[0] * c[last] < 0.0 && c[0].abs() > nz[0] && c[last].abs() > nz[last] {
+            return MonotoneReport {
+                monotone: false,
+                trend: None,
+                extrema: Vec::new(),
+                test_degree,
+            };
+        }
         let a = analyze_signs(
             self.k.coeffs(),
             &self.k_noise,

@@ -1,0 +1,851 @@
+//! One rational cubic Bézier per log-aesthetic segment (math.md §4; S0 §5–6, S3), and
+//! rational cubic B-splines for segments that need several pieces.
+//!
+//! **Construction** ([`construct`]): for a segment with control triangle P0, P1, P2,
+//! `b0 = P0`, `b3 = P2`, `b1 = P0 + f0 (P1 - P0)`, `b2 = P2 + f1 (P1 - P2)`,
+//! `w1 = w2 = (2 cos(θ_d/2) + 1)/3` (the degree-elevated circular arc), and `w0`, `w3` from
+//! the end-curvature formula `κ0 = (2/3)(w0 w2 / w1²) det(v0, v1)/|v0|³` (and its mirror) so
+//! that the ends match the segment's points, tangents and curvatures: G2 at both ends for
+//! every (f0, f1) in (0, 1)². An isosceles triangle with `f0 = f1 = 2c/(1+2c)`,
+//! `c = cos(θ_d/2)`, is the exact circular arc.
+//!
+//! **Error** ([`approximation_error`]): for each of `n` uniform t, the LAC point with the
+//! same turning angle from P0 as x(t); distances divided by the segment's arc length; rms and
+//! maximum.
+//!
+//! **Optimisation** ([`fit_rational_cubic`]): the error surface over (f0, f1) has several
+//! local minima (S3), so a local optimiser from a fixed start jumps between them as the
+//! input moves. Here:
+//! 1. the LAC is tabulated against turning angle once (positions and exact derivatives,
+//!    cubic Hermite interpolation: relative error about 1e-10), so an objective evaluation
+//!    costs a few nanoseconds per sample;
+//! 2. a grid over (0, 1)² finds every basin the grid resolves; its local minima (up to
+//!    [`ApproxOptions::starts`]) start Levenberg–Marquardt on the residual vector;
+//! 3. the candidates are ranked by error and checked by the exact monotonicity test
+//!    ([`crate::monotone`]); when the unconstrained minima are not curvature-monotone, the
+//!    search restarts from the best monotone grid points with steps into the non-monotone
+//!    region refused;
+//! 4. the winner's error is measured on the exact LAC (no table), and it is returned only if
+//!    the exact test proves its curvature monotone; otherwise [`Error::NoSegment`].
+//!
+//! The result is the global optimum of the family up to the grid's resolution of basins,
+//! so it moves continuously with the input except where the global optimum itself jumps
+//! to another basin.
+
+use crate::bezier::RationalBezier;
+use crate::error::{Error, Result};
+use crate::lac::LacSegment;
+use crate::monotone::CurvatureMonotone;
+use kurbo::{Point, Vec2};
+
+/// Tuning of [`fit_rational_cubic`].
+#[derive(Clone, Debug)]
+pub struct ApproxOptions {
+    /// Grid points per axis of the global search over (f0, f1).
+    pub grid: usize,
+    /// Samples of the error during the grid search.
+    pub grid_samples: usize,
+    /// Samples of the error during local refinement.
+    pub refine_samples: usize,
+    /// Samples (uniform t, both ends included) of the reported error; at least 200.
+    pub report_samples: usize,
+    /// Local minima of the grid refined (the best ones).
+    pub starts: usize,
+    /// Iteration limit of each local refinement.
+    pub max_iter: usize,
+}
+
+impl Default for ApproxOptions {
+    fn default() -> Self {
+        ApproxOptions {
+            grid: 12,
+            grid_samples: 16,
+            refine_samples: 32,
+            report_samples: 201,
+            starts: 3,
+            max_iter: 60,
+        }
+    }
+}
+
+/// A rational cubic approximating one LAC segment.
+#[derive(Clone, Debug)]
+pub struct RationalCubicFit {
+    /// The curve: control points b0..b3 and weights w0..w3 (all > 0).
+    pub curve: RationalBezier,
+    /// `|b1 - b0| / |P1 - P0|`.
+    pub f0: f64,
+    /// `|b2 - b3| / |P1 - P2|`.
+    pub f1: f64,
+    /// Root mean square of the distances, divided by the LAC's arc length.
+    pub rms: f64,
+    /// Largest distance, divided by the LAC's arc length.
+    pub max_error: f64,
+    /// Proven by the exact test (always true for a returned fit).
+    pub monotone: bool,
+    /// Objective evaluations spent.
+    pub evaluations: usize,
+}
+
+/// The §4 rational cubic for (f0, f1) in (0, 1)².
+pub fn construct(seg: &LacSegment, f0: f64, f1: f64) -> Result<RationalBezier> {
+    let p = Problem::new(seg, 0)?;
+    let (b, w) = p.cubic(f0, f1).ok_or_else(|| {
+        Error::invalid(
+            "f0, f1",
+            format!("({f0}, {f1}) gives no valid cubic: both must lie in (0, 1)"),
+        )
+    })?;
+    RationalBezier::new(b.to_vec(), w.to_vec())
+}
+
+/// Rms and maximum error of `curve` against `seg` at `n >= 2` uniform t (both ends
+/// included), distances by turning-angle correspondence, divided by the segment's arc length.
+pub fn approximation_error(
+    seg: &LacSegment,
+    curve: &RationalBezier,
+    n: usize,
+) -> Result<(f64, f64)> {
+    if n < 2 {
+        return Err(Error::invalid("samples", "need at least 2"));
+    }
+    let len = seg.arc_length()?;
+    let d0 = seg.control[1] - seg.control[0];
+    let sign = turn_sign(seg);
+    let mut pts = Vec::with_capacity(n);
+    let mut taus = Vec::with_capacity(n);
+    for i in 0..n {
+        let t = i as f64 / (n - 1) as f64;
+        let d = crate::bezier::PlanarCurve::derivs(curve, t);
+        pts.push(d.p);
+        taus.push(turning(d0, d.d1, sign));
+    }
+    let (lac, _) = seg.eval_turning(&taus)?;
+    let mut sum = 0.0;
+    let mut max = 0.0f64;
+    for (a, b) in pts.iter().zip(&lac) {
+        let e = (*a - *b).hypot() / len;
+        sum += e * e;
+        max = max.max(e);
+    }
+    Ok(((sum / n as f64).sqrt(), max))
+}
+
+/// The turning angle of direction `d` from `d0`, in the segment's turning sense.
+fn turning(d0: Vec2, d: Vec2, sign: f64) -> f64 {
+    (sign * d0.cross(d)).atan2(d0.dot(d))
+}
+
+fn turn_sign(seg: &LacSegment) -> f64 {
+    let c = seg.control;
+    (c[1] - c[0]).cross(c[2] - c[1]).signum()
+}
+
+/// The optimisation problem of one segment: its triangle, end curvatures and a table of
+/// the LAC against turning angle (or, with `exact`, the segment itself).
+struct Problem<'a> {
+    seg: &'a LacSegment,
+    exact: bool,
+    p: [Point; 3],
+    k0: f64,
+    k1: f64,
+    w1: f64,
+    d0: Vec2,
+    sign: f64,
+    len: f64,
+    /// The LAC at the table nodes (uniform in the variable of [`TableVar`]).
+    table: Vec<Node>,
+}
+
+/// One node of the LAC table: turning angle, point, dP/dτ and the unit tangent.
+#[derive(Clone, Copy)]
+struct Node {
+    tau: f64,
+    p: Point,
+    d: Vec2,
+    u: Vec2,
+}
+
+/// The variable the LAC table is uniform in. Near a singular end of the domain ρ varies
+/// like a power of U = 1 + cθ, which no uniform τ grid interpolates well; in x = ln U the
+/// curve is smooth (the w of [`crate::lac`]), so the table is uniform in x whenever c ≠ 0.
+#[derive(Clone, Copy)]
+enum TableVar {
+    /// x = τ (circle, logarithmic spiral).
+    Tau,
+    /// x = ln(1 + c θ(τ)), θ(τ) = θ_start + dir τ.
+    LogU { c: f64, theta_start: f64, dir: f64 },
+}
+
+impl TableVar {
+    fn x(&self, tau: f64) -> f64 {
+        match *self {
+            TableVar::Tau => tau,
+            TableVar::LogU {
+                c,
+                theta_start,
+                dir,
+            } => (c * (theta_start + dir * tau)).ln_1p(),
+        }
+    }
+    fn tau(&self, x: f64) -> f64 {
+        match *self {
+            TableVar::Tau => x,
+            TableVar::LogU {
+                c,
+                theta_start,
+                dir,
+            } => (x.exp_m1() / c - theta_start) * dir,
+        }
+    }
+}
+
+impl<'a> Problem<'a> {
+    fn new(seg: &'a LacSegment, table_intervals: usize) -> Result<Problem<'a>> {
+        let (k0, k1) = seg.end_curvatures()?;
+        let theta_d = seg.theta_d;
+        let m = table_intervals;
+        let c = (seg.standard.alpha() - 1.0) * seg.standard.lambda();
+        let var = if c == 0.0 || seg.standard.alpha() == 1.0 {
+            TableVar::Tau
+        } else if seg.reversed {
+            TableVar::LogU {
+                c,
+                theta_start: seg.interval.1,
+                dir: -1.0,
+            }
+        } else {
+            TableVar::LogU {
+                c,
+                theta_start: seg.interval.0,
+                dir: 1.0,
+            }
+        };
+        let table = if m > 0 {
+            let (x0, x1) = (var.x(0.0), var.x(theta_d));
+            let mut taus: Vec<f64> = (0..=m)
+                .map(|i| var.tau(x0 + (x1 - x0) * i as f64 / m as f64))
+                .collect();
+            taus[0] = 0.0;
+            taus[m] = theta_d;
+            let (pts, der) = seg.eval_turning(&taus)?;
+            taus.iter()
+                .zip(pts)
+                .zip(der)
+                .map(|((tau, p), d)| Node {
+                    tau: *tau,
+                    p,
+                    d,
+                    u: d / d.hypot(),
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        Ok(Problem {
+            seg,
+            exact: false,
+            p: seg.control,
+            k0,
+            k1,
+            w1: (2.0 * (0.5 * theta_d).cos() + 1.0) / 3.0,
+            d0: seg.control[1] - seg.control[0],
+            sign: turn_sign(seg),
+            len: seg.arc_length()?,
+            table,
+        })
+    }
+
+    /// Control points and weights for (f0, f1); None outside (0, 1)² or where a weight is
+    /// not positive and finite.
+    fn cubic(&self, f0: f64, f1: f64) -> Option<([Point; 4], [f64; 4])> {
+        if !(f0 > 0.0 && f0 < 1.0 && f1 > 0.0 && f1 < 1.0) {
+            return None;
+        }
+        let [p0, p1, p2] = self.p;
+        let b = [p0, p0 + (p1 - p0) * f0, p2 + (p1 - p2) * f1, p2];
+        let (v0, v1, v2) = (b[1] - b[0], b[2] - b[1], b[3] - b[2]);
+        let w1 = self.w1;
+        // κ0 = (2/3) (w0 w2 / w1²) det(v0, v1) / |v0|³ with w1 = w2.
+        let w0 = 1.5 * self.k0 * w1 * v0.hypot().powi(3) / v0.cross(v1);
+        let w3 = 1.5 * self.k1 * w1 * v2.hypot().powi(3) / v1.cross(v2);
+        if !(w0 > 0.0 && w3 > 0.0 && w0.is_finite() && w3.is_finite()) {
+            return None;
+        }
+        Some((b, [w0, w1, w1, w3]))
+    }
+
+    /// The LAC point whose tangent has the direction of `v`, from the table: the node
+    /// interval is found by walking from `k` (the samples come in order along the curve),
+    /// the angle past the node from a short arctangent series, the point by cubic Hermite
+    /// interpolation in τ. No atan2 and no logarithm per sample.
+    fn lac_at_dir(&self, v: Vec2, k: &mut usize) -> Point {
+        let t = &self.table;
+        let m = t.len() - 1;
+        let s = self.sign;
+        while *k + 1 < m && s * t[*k + 1].u.cross(v) > 0.0 {
+            *k += 1;
+        }
+        while *k > 0 && s * t[*k].u.cross(v) < 0.0 {
+            *k -= 1;
+        }
+        let (a, b) = (t[*k], t[*k + 1]);
+        let z = s * a.u.cross(v) / a.u.dot(v);
+        let delta = if z.abs() <= 0.1 {
+            // atan z = z - z³/3 + z⁵/5 - ... to z¹⁷ (|z| <= 0.1: truncation below 1e-20).
+            let z2 = z * z;
+            let mut acc = 1.0 / 17.0;
+            for c in [15.0, 13.0, 11.0, 9.0, 7.0, 5.0, 3.0] {
+                acc = 1.0 / c - z2 * acc;
+            }
+            z * (1.0 - z2 * acc)
+        } else {
+            (s * a.u.cross(v)).atan2(a.u.dot(v))
+        };
+        let h = b.tau - a.tau;
+        let x = (delta / h).clamp(
+            if *k == 0 { 0.0 } else { -0.5 },
+            if *k + 1 == m { 1.0 } else { 1.5 },
+        );
+        let x2 = x * x;
+        let x3 = x2 * x;
+        let h00 = 2.0 * x3 - 3.0 * x2 + 1.0;
+        let h10 = x3 - 2.0 * x2 + x;
+        let h01 = -2.0 * x3 + 3.0 * x2;
+        let h11 = x3 - x2;
+        (a.p.to_vec2() * h00 + a.d * (h10 * h) + b.p.to_vec2() * h01 + b.d * (h11 * h)).to_point()
+    }
+
+    /// Residuals (x(t) - LAC(τ(t))) / length at `ts`, appended to `out`; None for an
+    /// invalid (f0, f1).
+    fn residuals(&self, f0: f64, f1: f64, ts: &[f64], out: &mut Vec<f64>) -> Option<()> {
+        let (b, w) = self.cubic(f0, f1)?;
+        let h: [(f64, f64, f64); 4] = std::array::from_fn(|i| (b[i].x * w[i], b[i].y * w[i], w[i]));
+        out.clear();
+        let mut pts = Vec::new();
+        let mut taus = Vec::new();
+        let mut k = 0;
+        for &t in ts {
+            let u = 1.0 - t;
+            let (c0, c1, c2, c3) = (u * u * u, 3.0 * t * u * u, 3.0 * t * t * u, t * t * t);
+            let hx = c0 * h[0].0 + c1 * h[1].0 + c2 * h[2].0 + c3 * h[3].0;
+            let hy = c0 * h[0].1 + c1 * h[1].1 + c2 * h[2].1 + c3 * h[3].1;
+            let hw = c0 * h[0].2 + c1 * h[1].2 + c2 * h[2].2 + c3 * h[3].2;
+            let (e0, e1, e2) = (u * u, 2.0 * t * u, t * t);
+            let dx = e0 * (h[1].0 - h[0].0) + e1 * (h[2].0 - h[1].0) + e2 * (h[3].0 - h[2].0);
+            let dy = e0 * (h[1].1 - h[0].1) + e1 * (h[2].1 - h[1].1) + e2 * (h[3].1 - h[2].1);
+            let dw = e0 * (h[1].2 - h[0].2) + e1 * (h[2].2 - h[1].2) + e2 * (h[3].2 - h[2].2);
+            // x' ∝ H'_xy w - H_xy w' (the positive factor 3/w² does not change the angle).
+            let tangent = Vec2::new(dx * hw - hx * dw, dy * hw - hy * dw);
+            let p = Point::new(hx / hw, hy / hw);
+            if self.exact {
+                pts.push(p);
+                taus.push(turning(self.d0, tangent, self.sign));
+            } else {
+                let q = self.lac_at_dir(tangent, &mut k);
+                out.push((p.x - q.x) / self.len);
+                out.push((p.y - q.y) / self.len);
+            }
+        }
+        if self.exact {
+            let (lac, _) = self.seg.eval_turning(&taus).ok()?;
+            for (p, q) in pts.iter().zip(&lac) {
+                out.push((p.x - q.x) / self.len);
+                out.push((p.y - q.y) / self.len);
+            }
+        }
+        Some(())
+    }
+
+    /// Mean square residual at `ts` (infinite for an invalid (f0, f1)).
+    fn cost(&self, f0: f64, f1: f64, ts: &[f64], buf: &mut Vec<f64>) -> f64 {
+        match self.residuals(f0, f1, ts, buf) {
+            Some(()) => buf.iter().map(|r| r * r).sum::<f64>() / ts.len() as f64,
+            None => f64::INFINITY,
+        }
+    }
+
+    fn is_monotone(&self, f0: f64, f1: f64) -> bool {
+        self.cubic(f0, f1)
+            .and_then(|(b, w)| RationalBezier::new(b.to_vec(), w.to_vec()).ok())
+            .and_then(|c| c.is_curvature_monotone().ok())
+            .unwrap_or(false)
+    }
+}
+
+/// Minimise the cost along one grid line: `axis` 0 fixes f0 = `fixed` and varies f1 from
+/// `start` within `± width`, axis 1 the other way round. Gauss–Newton in one variable with
+/// step halving. Returns the minimiser, its cost and the evaluations spent.
+fn line_min(
+    prob: &Problem,
+    axis: usize,
+    fixed: f64,
+    start: f64,
+    width: f64,
+    ts: &[f64],
+    buf: &mut Vec<f64>,
+) -> (f64, f64, usize) {
+    let pt = |x: f64| if axis == 0 { (fixed, x) } else { (x, fixed) };
+    let (lo, hi) = ((start - width).max(1e-9), (start + width).min(1.0 - 1e-9));
+    let mut r = Vec::new();
+    let mut evals = 1;
+    let mut x = start;
+    let (a, b) = pt(x);
+    if prob.residuals(a, b, ts, &mut r).is_none() {
+        return (x, f64::INFINITY, evals);
+    }
+    let mut cost: f64 = r.iter().map(|v| v * v).sum();
+    // A few Gauss–Newton steps put the point on the valley floor well enough to rank it;
+    // the 2-D refinement does the rest.
+    for _ in 0..4 {
+        let h = if x + 1e-7 < hi { 1e-7 } else { -1e-7 };
+        let (a, b) = pt(x + h);
+        if prob.residuals(a, b, ts, buf).is_none() {
+            break;
+        }
+        evals += 1;
+        let (mut jj, mut jr) = (0.0, 0.0);
+        for (rp, r0) in buf.iter().zip(&r) {
+            let j = (rp - r0) / h;
+            jj += j * j;
+            jr += j * r0;
+        }
+        if jj.is_nan() || jj <= 0.0 {
+            break;
+        }
+        let mut step = -jr / jj;
+        let mut accepted = false;
+        for _ in 0..4 {
+            let nx = (x + step).clamp(lo, hi);
+            let (a, b) = pt(nx);
+            if prob.residuals(a, b, ts, buf).is_some() {
+                evals += 1;
+                let c: f64 = buf.iter().map(|v| v * v).sum();
+                if c < cost {
+                    accepted = (nx - x).abs() > 1e-9;
+                    x = nx;
+                    cost = c;
+                    std::mem::swap(&mut r, buf);
+                    break;
+                }
+            }
+            step *= 0.5;
+        }
+        if !accepted {
+            break;
+        }
+    }
+    (x, cost / ts.len() as f64, evals)
+}
+
+/// Compass search from a feasible `start`: try the eight neighbours at distance `h`, move to
+/// the best improvement, halve `h` when none improves, stop below 1e-9.
+fn compass_search(
+    prob: &Problem,
+    start: (f64, f64),
+    ts: &[f64],
+    feasible: &dyn Fn(f64, f64) -> bool,
+    mut h: f64,
+) -> ((f64, f64), f64, usize) {
+    let mut buf = Vec::new();
+    let mut x = start;
+    let mut cost = prob.cost(x.0, x.1, ts, &mut buf);
+    let mut evals = 1;
+    while h > 1e-9 && evals < 2000 {
+        let mut best = (cost, x);
+        for (d0, d1) in [
+            (1.0, 0.0),
+            (-1.0, 0.0),
+            (0.0, 1.0),
+            (0.0, -1.0),
+            (1.0, 1.0),
+            (-1.0, -1.0),
+            (1.0, -1.0),
+            (-1.0, 1.0),
+        ] {
+            let y = (x.0 + d0 * h, x.1 + d1 * h);
+            let c = prob.cost(y.0, y.1, ts, &mut buf);
+            evals += 1;
+            if c < best.0 && feasible(y.0, y.1) {
+                best = (c, y);
+            }
+        }
+        if best.0 < cost {
+            (cost, x) = best;
+            h *= 2.0;
+        } else {
+            h *= 0.5;
+        }
+    }
+    (x, cost, evals)
+}
+
+fn interior_ts(n: usize) -> Vec<f64> {
+    (0..n).map(|i| (i as f64 + 0.5) / n as f64).collect()
+}
+
+/// Levenberg–Marquardt on the residual vector from `start`; steps where `feasible` is false
+/// are refused. A run still above `abandon_above` (mean square) after 8 iterations is
+/// abandoned: it is crawling along a valley towards a minimum far worse than one already
+/// found. Returns the point, its cost and the evaluations spent.
+fn refine(
+    prob: &Problem,
+    start: (f64, f64),
+    ts: &[f64],
+    max_iter: usize,
+    feasible: &dyn Fn(f64, f64) -> bool,
+    abandon_above: f64,
+) -> ((f64, f64), f64, usize) {
+    let mut evals = 0;
+    let mut r = Vec::new();
+    let mut rp = Vec::new();
+    let (mut f0, mut f1) = start;
+    if prob.residuals(f0, f1, ts, &mut r).is_none() {
+        return (start, f64::INFINITY, 1);
+    }
+    evals += 1;
+    let mut cost: f64 = r.iter().map(|v| v * v).sum();
+    let mut mu = 1e-3;
+    let step = 1e-7;
+    let mut j0 = Vec::new();
+    let mut j1 = Vec::new();
+    for iter in 0..max_iter {
+        if iter >= 8 && cost / ts.len() as f64 > abandon_above {
+            break;
+        }
+        // Forward-difference Jacobian, stepping inward from the bounds.
+        let s0 = if f0 + step < 1.0 { step } else { -step };
+        let s1 = if f1 + step < 1.0 { step } else { -step };
+        if prob.residuals(f0 + s0, f1, ts, &mut rp).is_none() {
+            break;
+        }
+        j0.clear();
+        j0.extend(rp.iter().zip(&r).map(|(a, b)| (a - b) / s0));
+        if prob.residuals(f0, f1 + s1, ts, &mut rp).is_none() {
+            break;
+        }
+        j1.clear();
+        j1.extend(rp.iter().zip(&r).map(|(a, b)| (a - b) / s1));
+        evals += 2;
+        let (mut a00, mut a01, mut a11, mut g0, mut g1) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for k in 0..r.len() {
+            a00 += j0[k] * j0[k];
+            a01 += j0[k] * j1[k];
+            a11 += j1[k] * j1[k];
+            g0 += j0[k] * r[k];
+            g1 += j1[k] * r[k];
+        }
+        let mut improved = false;
+        for _ in 0..12 {
+            let (m00, m11) = (a00 * (1.0 + mu), a11 * (1.0 + mu));
+            let det = m00 * m11 - a01 * a01;
+            if det.is_nan() || det <= 0.0 {
+                mu *= 10.0;
+                continue;
+            }
+            let d0 = -(m11 * g0 - a01 * g1) / det;
+            let d1 = -(m00 * g1 - a01 * g0) / det;
+            let (n0, n1) = (f0 + d0, f1 + d1);
+            let ok = n0 > 0.0 && n0 < 1.0 && n1 > 0.0 && n1 < 1.0 && feasible(n0, n1);
+            let new_cost = if ok && prob.residuals(n0, n1, ts, &mut rp).is_some() {
+                evals += 1;
+                rp.iter().map(|v| v * v).sum()
+            } else {
+                f64::INFINITY
+            };
+            if new_cost < cost {
+                // Converged: a step below 1e-9 in f (the error changes to second order), or
+                // no more than 1e-12 of relative progress.
+                let small = (d0.abs() + d1.abs()) < 1e-9 || cost - new_cost <= 1e-12 * cost;
+                f0 = n0;
+                f1 = n1;
+                cost = new_cost;
+                std::mem::swap(&mut r, &mut rp);
+                mu = (mu * 0.3).max(1e-12);
+                improved = !small;
+                break;
+            }
+            mu *= 10.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+    ((f0, f1), cost / ts.len() as f64, evals)
+}
+
+/// The best curvature-monotone rational cubic of the §4 family for `seg` (see the module
+/// documentation). Errors: [`Error::NoSegment`] when no candidate is curvature-monotone.
+pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<RationalCubicFit> {
+    if opts.grid < 3 || opts.grid > 1000 || opts.grid_samples < 4 || opts.refine_samples < 4 {
+        return Err(Error::invalid(
+            "options",
+            "grid must be 3 to 1000 and the sample counts at least 4",
+        ));
+    }
+    let prob = Problem::new(seg, 256)?;
+    let n = opts.grid;
+    let tg = interior_ts(opts.grid_samples);
+    let tr = interior_ts(opts.refine_samples);
+    let mut buf = Vec::new();
+    let mut evals = 0;
+    let at = |i: usize| (i as f64 + 0.5) / n as f64;
+    let mut grid = vec![f64::INFINITY; n * n];
+    for i in 0..n {
+        for j in 0..n {
+            grid[i * n + j] = prob.cost(at(i), at(j), &tg, &mut buf);
+            evals += 1;
+        }
+    }
+    // Valleys narrower than a grid cell (near-exact fits form a curve of them, S3's error
+    // surface is such a valley) are found by minimising along every grid row and column:
+    // the profile minima lie on the valley floors, at the grid's spacing along them.
+    let mut points: Vec<(f64, (f64, f64))> = Vec::new();
+    for axis in 0..2 {
+        for i in 0..n {
+            let cell = |j: usize| {
+                if axis == 0 {
+                    grid[i * n + j]
+                } else {
+                    grid[j * n + i]
+                }
+            };
+            let Some(j) = (0..n)
+                .filter(|j| cell(*j).is_finite())
+                .min_by(|a, b| cell(*a).total_cmp(&cell(*b)))
+            else {
+                continue;
+            };
+            let (x, c, e) = line_min(&prob, axis, at(i), at(j), 1.0 / n as f64, &tg, &mut buf);
+            evals += e;
+            let pt = if axis == 0 { (at(i), x) } else { (x, at(i)) };
+            points.push((c, pt));
+        }
+    }
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut minima: Vec<(f64, f64)> = Vec::new();
+    for &(_, pt) in &points {
+        if minima.len() >= opts.starts.max(1) {
+            break;
+        }
+        let far = minima
+            .iter()
+            .all(|m| (m.0 - pt.0).abs().max((m.1 - pt.1).abs()) > 1.5 / n as f64);
+        if far {
+            minima.push(pt);
+        }
+    }
+    let mut candidates: Vec<((f64, f64), f64)> = Vec::new();
+    let mut best_cost = f64::INFINITY;
+    for &start in &minima {
+        let (x, c, e) = refine(
+            &prob,
+            start,
+            &tr,
+            opts.max_iter,
+            &|_, _| true,
+            100.0 * best_cost,
+        );
+        evals += e;
+        best_cost = best_cost.min(c);
+        candidates.push((x, c));
+    }
+    candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let mut best: Option<((f64, f64), f64)> = None;
+    for &(x, c) in &candidates {
+        if c.is_finite() && prob.is_monotone(x.0, x.1) {
+            best = Some((x, c));
+            break;
+        }
+    }
+    let unconstrained_best = candidates.first().map(|c| c.1).unwrap_or(f64::INFINITY);
+    if best.is_none_or(|b| b.1 > unconstrained_best * (1.0 + 1e-9)) {
+        // The best minimum is not curvature-monotone: search the monotone region, starting
+        // from its best points, refusing steps out of it. The region can be smaller than a
+        // grid cell (near the edge of the segment's existence region), so the profile
+        // points come first, then ever finer grids, each in order of increasing error.
+        let mut starts: Vec<(f64, f64)> = Vec::new();
+        let want = opts.starts.max(1);
+        for &(_, pt) in &points {
+            if starts.len() < want && prob.is_monotone(pt.0, pt.1) {
+                starts.push(pt);
+            }
+        }
+        let mut m = n;
+        while starts.len() < want && m <= 8 * n {
+            let atm = |i: usize| (i as f64 + 0.5) / m as f64;
+            let mut cells: Vec<(f64, (f64, f64))> = Vec::with_capacity(m * m);
+            for i in 0..m {
+                for j in 0..m {
+                    let c = prob.cost(atm(i), atm(j), &tg, &mut buf);
+                    if c.is_finite() {
+                        cells.push((c, (atm(i), atm(j))));
+                    }
+                }
+            }
+            evals += m * m;
+            cells.sort_by(|a, b| a.0.total_cmp(&b.0));
+            for (_, pt) in cells {
+                if starts.len() >= want {
+                    break;
+                }
+                let distinct = starts
+                    .iter()
+                    .all(|s| (s.0 - pt.0).abs().max((s.1 - pt.1).abs()) > 0.5 / m as f64);
+                if distinct && prob.is_monotone(pt.0, pt.1) {
+                    starts.push(pt);
+                }
+            }
+            m *= 2;
+        }
+        let feasible = |a: f64, b: f64| prob.is_monotone(a, b);
+        for s in starts {
+            let (x, _, e) = refine(&prob, s, &tr, opts.max_iter, &feasible, f64::INFINITY);
+            evals += e;
+            // The constrained optimum usually lies on the region's boundary, where refused
+            // steps stall Levenberg–Marquardt: finish with a compass search.
+            let (x, c, e) = compass_search(&prob, x, &tr, &feasible, 0.5 / n as f64);
+            evals += e;
+            if best.is_none_or(|b| c < b.1) {
+                best = Some((x, c));
+            }
+        }
+    }
+    let Some(((mut f0, mut f1), _)) = best else {
+        return Err(Error::NoSegment(format!(
+            "no curvature-monotone rational cubic of the §4 family approximates this segment \
+             (turning angle {:.3} deg): split it into shorter pieces",
+            seg.theta_d.to_degrees()
+        )));
+    };
+    // Polish on the exact LAC: the table's interpolation error (about 1e-13 of the size for
+    // a circle) would otherwise stay in the result.
+    let exact = Problem {
+        exact: true,
+        ..Problem::new(seg, 0)?
+    };
+    let was_monotone = prob.is_monotone(f0, f1);
+    let feasible = |a: f64, b: f64| !was_monotone || exact.is_monotone(a, b);
+    let ((p0, p1), pc, e) = refine(&exact, (f0, f1), &tr, 4, &feasible, f64::INFINITY);
+    evals += e;
+    if pc.is_finite() {
+        (f0, f1) = (p0, p1);
+    }
+    let curve = construct(seg, f0, f1)?;
+    let report = curve.curvature_monotone()?;
+    if !report.monotone {
+        return Err(Error::NoSegment(
+            "the optimal rational cubic is not curvature-monotone".into(),
+        ));
+    }
+    let (rms, max_error) = approximation_error(seg, &curve, opts.report_samples.max(200))?;
+    Ok(RationalCubicFit {
+        curve,
+        f0,
+        f1,
+        rms,
+        max_error,
+        monotone: true,
+        evaluations: evals,
+    })
+}
+
+/// The error map of S3 Fig. 3 and 5 (see [`error_map`]).
+#[derive(Clone, Debug)]
+pub struct ErrorMap {
+    /// Cells per axis; cell (i, j) is centred at f0 = (i + 1/2)/n, f1 = (j + 1/2)/n.
+    pub n: usize,
+    /// Rms error of cell (i, j) at index `i * n + j` (infinite where no cubic exists).
+    pub rms: Vec<f64>,
+    /// Curvature monotonicity (exact test) of cell (i, j) at index `i * n + j`.
+    pub monotone: Vec<bool>,
+}
+
+/// Rms error (table measure, `samples` interior t) and exact curvature monotonicity at the
+/// centres of an `n` x `n` grid over (f0, f1).
+pub fn error_map(seg: &LacSegment, n: usize, samples: usize) -> Result<ErrorMap> {
+    if !(2..=2000).contains(&n) || samples < 4 {
+        return Err(Error::invalid(
+            "grid",
+            "needs 2 to 2000 cells per axis and 4 samples",
+        ));
+    }
+    let prob = Problem::new(seg, 256)?;
+    let ts = interior_ts(samples);
+    let mut buf = Vec::new();
+    let at = |i: usize| (i as f64 + 0.5) / n as f64;
+    let mut rms = vec![0.0; n * n];
+    let mut monotone = vec![false; n * n];
+    for i in 0..n {
+        for j in 0..n {
+            rms[i * n + j] = prob.cost(at(i), at(j), &ts, &mut buf).sqrt();
+            monotone[i * n + j] = prob.is_monotone(at(i), at(j));
+        }
+    }
+    Ok(ErrorMap { n, rms, monotone })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bezier::PlanarCurve;
+
+    fn tri(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> [Point; 3] {
+        [
+            Point::new(a.0, a.1),
+            Point::new(b.0, b.1),
+            Point::new(c.0, c.1),
+        ]
+    }
+
+    #[test]
+    fn construction_matches_ends() {
+        let seg = LacSegment::new(-1.0, tri((0.0, 0.0), (10.0, 0.0), (16.0, 9.0))).unwrap();
+        let c = construct(&seg, 0.4, 0.6).unwrap();
+        let (k0, k1) = seg.end_curvatures().unwrap();
+        assert!((c.kappa(0.0) - k0).abs() < 1e-13 * k0.abs());
+        assert!((c.kappa(1.0) - k1).abs() < 1e-13 * k1.abs());
+        assert_eq!(c.eval(0.0), seg.control[0]);
+        assert!((c.eval(1.0) - seg.control[2]).hypot() < 1e-12);
+        assert!(construct(&seg, 0.0, 0.5).is_err());
+        assert!(construct(&seg, 0.5, 1.0).is_err());
+    }
+
+    #[test]
+    fn isosceles_gives_the_arc() {
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let t = tri((0.0, 0.0), (1.0, 0.0), (1.0 + s, s));
+        for alpha in [-1.0, 0.0, 1.0, 2.0] {
+            let seg = LacSegment::new(alpha, t).unwrap();
+            let fit = fit_rational_cubic(&seg, &ApproxOptions::default()).unwrap();
+            assert!(fit.max_error < 1e-14, "{alpha}: {}", fit.max_error);
+            // Every point of the curve lies on the circle (the arc has more than one exact
+            // rational cubic form, so (f0, f1) is not unique).
+            let centre = Point::new(0.0, 1.0 / (std::f64::consts::PI / 8.0).tan());
+            let r = centre.y;
+            for i in 0..=50 {
+                let d = (fit.curve.eval(i as f64 / 50.0) - centre).hypot();
+                assert!((d - r).abs() < 1e-14 * r, "{alpha}: {d} vs {r} {fit:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn s3_global_minimum() {
+        // α = 1, Λ = 1, θ in [0, 1.57] (S3 Fig. 3): the global minimum near (0.444, 0.686).
+        let std = crate::lac::LacStandard::new(1.0, 1.0).unwrap();
+        let td = 1.57f64;
+        let p0 = std.eval(0.0).unwrap();
+        let p2 = std.eval(td).unwrap();
+        let (d0, d1) = (Vec2::from_angle(0.0), Vec2::from_angle(td));
+        let p1 = p0 + d0 * ((p2 - p0).cross(d1) / d0.cross(d1));
+        let seg = LacSegment::new(1.0, [p0, p1, p2]).unwrap();
+        assert!((seg.lambda() - 1.0).abs() < 1e-9);
+        let fit = fit_rational_cubic(&seg, &ApproxOptions::default()).unwrap();
+        assert!(
+            (fit.f0 - 0.444).abs() < 0.01 && (fit.f1 - 0.686).abs() < 0.01,
+            "{fit:?}"
+        );
+        assert!(fit.rms < 2e-5, "{}", fit.rms);
+    }
+}
