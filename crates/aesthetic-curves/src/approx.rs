@@ -59,10 +59,10 @@ impl Default for ApproxOptions {
     fn default() -> Self {
         ApproxOptions {
             grid: 12,
-            grid_samples: 16,
+            grid_samples: 12,
             refine_samples: 32,
             report_samples: 201,
-            starts: 3,
+            starts: 2,
             max_iter: 60,
         }
     }
@@ -318,14 +318,15 @@ impl<'a> Problem<'a> {
 
     /// Residuals (x(t) - LAC(τ(t))) / length at `ts`, appended to `out`; None for an
     /// invalid (f0, f1).
-    fn residuals(&self, f0: f64, f1: f64, ts: &[f64], out: &mut Vec<f64>) -> Option<()> {
+    fn residuals(&self, f0: f64, f1: f64, smp: &Samples, out: &mut Vec<f64>) -> Option<()> {
+        let ts = &smp.t;
         let (b, w) = self.cubic(f0, f1)?;
         let h: [(f64, f64, f64); 4] = std::array::from_fn(|i| (b[i].x * w[i], b[i].y * w[i], w[i]));
         out.clear();
         let mut pts = Vec::new();
         let mut taus = Vec::new();
         let mut k = 0;
-        for &t in ts {
+        for (&t, &sw) in ts.iter().zip(&smp.sw) {
             let u = 1.0 - t;
             let (c0, c1, c2, c3) = (u * u * u, 3.0 * t * u * u, 3.0 * t * t * u, t * t * t);
             let hx = c0 * h[0].0 + c1 * h[1].0 + c2 * h[2].0 + c3 * h[3].0;
@@ -343,24 +344,26 @@ impl<'a> Problem<'a> {
                 taus.push(turning(self.d0, tangent, self.sign));
             } else {
                 let q = self.lac_at_dir(tangent, &mut k);
-                out.push((p.x - q.x) / self.len);
-                out.push((p.y - q.y) / self.len);
+                let f = sw / self.len;
+                out.push((p.x - q.x) * f);
+                out.push((p.y - q.y) * f);
             }
         }
         if self.exact {
             let (lac, _) = self.seg.eval_turning(&taus).ok()?;
-            for (p, q) in pts.iter().zip(&lac) {
-                out.push((p.x - q.x) / self.len);
-                out.push((p.y - q.y) / self.len);
+            for ((p, q), sw) in pts.iter().zip(&lac).zip(&smp.sw) {
+                let f = sw / self.len;
+                out.push((p.x - q.x) * f);
+                out.push((p.y - q.y) * f);
             }
         }
         Some(())
     }
 
-    /// Mean square residual at `ts` (infinite for an invalid (f0, f1)).
-    fn cost(&self, f0: f64, f1: f64, ts: &[f64], buf: &mut Vec<f64>) -> f64 {
+    /// Weighted mean square residual (infinite for an invalid (f0, f1)).
+    fn cost(&self, f0: f64, f1: f64, ts: &Samples, buf: &mut Vec<f64>) -> f64 {
         match self.residuals(f0, f1, ts, buf) {
-            Some(()) => buf.iter().map(|r| r * r).sum::<f64>() / ts.len() as f64,
+            Some(()) => buf.iter().map(|r| r * r).sum::<f64>(),
             None => f64::INFINITY,
         }
     }
@@ -382,7 +385,7 @@ fn line_min(
     fixed: f64,
     start: f64,
     width: f64,
-    ts: &[f64],
+    ts: &Samples,
     buf: &mut Vec<f64>,
 ) -> (f64, f64, usize) {
     let pt = |x: f64| if axis == 0 { (fixed, x) } else { (x, fixed) };
@@ -435,7 +438,7 @@ fn line_min(
             break;
         }
     }
-    (x, cost / ts.len() as f64, evals)
+    (x, cost, evals)
 }
 
 /// Compass search from a feasible `start`: try the eight neighbours at distance `h`, move to
@@ -443,7 +446,7 @@ fn line_min(
 fn compass_search(
     prob: &Problem,
     start: (f64, f64),
-    ts: &[f64],
+    ts: &Samples,
     feasible: &dyn Fn(f64, f64) -> bool,
     mut h: f64,
 ) -> ((f64, f64), f64, usize) {
@@ -480,6 +483,34 @@ fn compass_search(
     (x, cost, evals)
 }
 
+/// Parameters t of the error samples and the square roots of their weights (the weights sum
+/// to 1, so the weighted sum of squares is a mean square).
+struct Samples {
+    t: Vec<f64>,
+    sw: Vec<f64>,
+}
+
+impl Samples {
+    /// Gauss–Legendre nodes: the weighted sum approximates ∫_0^1 |x(t) - LAC|² dt, the
+    /// quantity the uniform reported mean also approximates, far better than as many
+    /// uniform samples would (the search uses few samples).
+    fn gauss(n: usize) -> Samples {
+        let (t, w) = crate::quadrature::gauss_legendre_01(n);
+        Samples {
+            t,
+            sw: w.iter().map(|w| w.sqrt()).collect(),
+        }
+    }
+    /// `n` uniform t with both ends, equal weights: the reported measure.
+    fn uniform(n: usize) -> Samples {
+        Samples {
+            t: (0..n).map(|i| i as f64 / (n - 1) as f64).collect(),
+            sw: vec![(1.0 / n as f64).sqrt(); n],
+        }
+    }
+}
+
+#[allow(dead_code)]
 fn interior_ts(n: usize) -> Vec<f64> {
     (0..n).map(|i| (i as f64 + 0.5) / n as f64).collect()
 }
@@ -491,7 +522,7 @@ fn interior_ts(n: usize) -> Vec<f64> {
 fn refine(
     prob: &Problem,
     start: (f64, f64),
-    ts: &[f64],
+    ts: &Samples,
     max_iter: usize,
     feasible: &dyn Fn(f64, f64) -> bool,
     abandon_above: f64,
@@ -510,7 +541,7 @@ fn refine(
     let mut j0 = Vec::new();
     let mut j1 = Vec::new();
     for iter in 0..max_iter {
-        if iter >= 8 && cost / ts.len() as f64 > abandon_above {
+        if iter >= 8 && cost > abandon_above {
             break;
         }
         // Forward-difference Jacobian, stepping inward from the bounds.
@@ -571,7 +602,7 @@ fn refine(
             break;
         }
     }
-    ((f0, f1), cost / ts.len() as f64, evals)
+    ((f0, f1), cost, evals)
 }
 
 /// The best curvature-monotone rational cubic of the §4 family for `seg` (see the module
@@ -585,8 +616,10 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
     }
     let prob = Problem::new(seg, 256)?;
     let n = opts.grid;
-    let tg = interior_ts(opts.grid_samples);
-    let tr = interior_ts(opts.refine_samples);
+    let tg = Samples::gauss(opts.grid_samples);
+    let tr = Samples::gauss(opts.refine_samples);
+    let nr = opts.report_samples.max(200);
+    let report_ts = Samples::uniform(nr);
     let mut buf = Vec::new();
     let mut evals = 0;
     let at = |i: usize| (i as f64 + 0.5) / n as f64;
@@ -601,6 +634,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
     // surface is such a valley) are found by minimising along every grid row and column:
     // the profile minima lie on the valley floors, at the grid's spacing along them.
     let mut points: Vec<(f64, (f64, f64))> = Vec::new();
+    let mut profile: [Vec<(f64, f64, f64)>; 2] = [Vec::new(), Vec::new()];
     for axis in 0..2 {
         for i in 0..n {
             let cell = |j: usize| {
@@ -620,10 +654,49 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             evals += e;
             let pt = if axis == 0 { (at(i), x) } else { (x, at(i)) };
             points.push((c, pt));
+            profile[axis].push((c, at(i), x));
         }
     }
     points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Along the valley through the best profile point of each family, the profile
+    // g(s) = min over the other coordinate is smooth: golden-section search on it finds the
+    // dip between two grid lines (a near-exact fit's valley floor is almost flat, where
+    // Levenberg–Marquardt would crawl).
     let mut minima: Vec<(f64, f64)> = Vec::new();
+    for (axis, fam) in profile.iter().enumerate() {
+        let Some(&(_, s0, x0)) = fam.iter().min_by(|a, b| a.0.total_cmp(&b.0)) else {
+            continue;
+        };
+        let width = 1.0 / n as f64;
+        let mut g = |sv: f64, guess: f64| {
+            let (x, c, e) = line_min(&prob, axis, sv, guess, width, &tg, &mut buf);
+            evals += e;
+            (c, x)
+        };
+        let (mut lo, mut hi) = ((s0 - width).max(1e-6), (s0 + width).min(1.0 - 1e-6));
+        let r = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (hi - r * (hi - lo), lo + r * (hi - lo));
+        let (mut ga, mut gb) = (g(a, x0), g(b, x0));
+        for _ in 0..8 {
+            if ga.0 < gb.0 {
+                hi = b;
+                (b, gb) = (a, ga);
+                a = hi - r * (hi - lo);
+                ga = g(a, gb.1);
+            } else {
+                lo = a;
+                (a, ga) = (b, gb);
+                b = lo + r * (hi - lo);
+                gb = g(b, ga.1);
+            }
+        }
+        let (sv, (c, x)) = if ga.0 < gb.0 { (a, ga) } else { (b, gb) };
+        if c.is_finite() {
+            let pt = if axis == 0 { (sv, x) } else { (x, sv) };
+            points.insert(0, (c, pt));
+        }
+    }
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
     for &(_, pt) in &points {
         if minima.len() >= opts.starts.max(1) {
             break;
@@ -703,8 +776,10 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             let (x, _, e) = refine(&prob, s, &tr, opts.max_iter, &feasible, f64::INFINITY);
             evals += e;
             // The constrained optimum usually lies on the region's boundary, where refused
-            // steps stall Levenberg–Marquardt: finish with a compass search.
-            let (x, c, e) = compass_search(&prob, x, &tr, &feasible, 0.5 / n as f64);
+            // steps stall Levenberg–Marquardt: finish with a compass search. There the
+            // gradient does not vanish, so the optimum moves to first order with the error
+            // measure: use the reported one (uniform t, both ends).
+            let (x, c, e) = compass_search(&prob, x, &report_ts, &feasible, 0.5 / n as f64);
             evals += e;
             if best.is_none_or(|b| c < b.1) {
                 best = Some((x, c));
@@ -718,18 +793,29 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             seg.theta_d.to_degrees()
         )));
     };
-    // Polish on the exact LAC: the table's interpolation error (about 1e-13 of the size for
-    // a circle) would otherwise stay in the result.
-    let exact = Problem {
-        exact: true,
-        ..Problem::new(seg, 0)?
-    };
+    // Finish on a finer measure (48 Gauss nodes: the integral the reported uniform mean
+    // approximates, to far better than that mean does): the search's coarser objective can
+    // place the minimum of a sharp valley measurably off.
     let was_monotone = prob.is_monotone(f0, f1);
-    let feasible = |a: f64, b: f64| !was_monotone || exact.is_monotone(a, b);
-    let ((p0, p1), pc, e) = refine(&exact, (f0, f1), &tr, 4, &feasible, f64::INFINITY);
+    let feasible = |a: f64, b: f64| !was_monotone || prob.is_monotone(a, b);
+    let fine = Samples::gauss(48);
+    let ((p0, p1), pc, e) = refine(&prob, (f0, f1), &fine, 8, &feasible, f64::INFINITY);
     evals += e;
     if pc.is_finite() {
         (f0, f1) = (p0, p1);
+    }
+    if pc < 1e-14 {
+        // A near-exact fit (a circle): the table's interpolation error (about 1e-13 of the
+        // size) would stay in the result; polish on the exact LAC.
+        let exact = Problem {
+            exact: true,
+            ..Problem::new(seg, 0)?
+        };
+        let ((p0, p1), pc, e) = refine(&exact, (f0, f1), &tr, 6, &feasible, f64::INFINITY);
+        evals += e;
+        if pc.is_finite() {
+            (f0, f1) = (p0, p1);
+        }
     }
     let curve = construct(seg, f0, f1)?;
     let report = curve.curvature_monotone()?;
@@ -738,7 +824,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             "the optimal rational cubic is not curvature-monotone".into(),
         ));
     }
-    let (rms, max_error) = approximation_error(seg, &curve, opts.report_samples.max(200))?;
+    let (rms, max_error) = approximation_error(seg, &curve, nr)?;
     Ok(RationalCubicFit {
         curve,
         f0,
@@ -761,7 +847,7 @@ pub struct ErrorMap {
     pub monotone: Vec<bool>,
 }
 
-/// Rms error (table measure, `samples` interior t) and exact curvature monotonicity at the
+/// Rms error (table measure, `samples` Gauss–Legendre t) and exact curvature monotonicity at the
 /// centres of an `n` x `n` grid over (f0, f1).
 pub fn error_map(seg: &LacSegment, n: usize, samples: usize) -> Result<ErrorMap> {
     if !(2..=2000).contains(&n) || samples < 4 {
@@ -771,7 +857,7 @@ pub fn error_map(seg: &LacSegment, n: usize, samples: usize) -> Result<ErrorMap>
         ));
     }
     let prob = Problem::new(seg, 256)?;
-    let ts = interior_ts(samples);
+    let ts = Samples::gauss(samples);
     let mut buf = Vec::new();
     let at = |i: usize| (i as f64 + 0.5) / n as f64;
     let mut rms = vec![0.0; n * n];

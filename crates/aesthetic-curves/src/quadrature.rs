@@ -209,3 +209,65 @@ mod tests {
         assert!(matches!(r, Err(Error::NoConvergence(_))));
     }
 }
+
+/// Nodes and weights of the `n`-point Gauss–Legendre rule on [0, 1] (weights sum to 1),
+/// by Newton's method on the Legendre polynomial from the usual Chebyshev-like guesses.
+pub fn gauss_legendre_01(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut x = vec![0.0; n];
+    let mut w = vec![0.0; n];
+    for i in 0..n.div_ceil(2) {
+        let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut dp = 1.0;
+        for _ in 0..100 {
+            // P_n(z) and P_n'(z) by the three-term recurrence.
+            let (mut p0, mut p1) = (1.0, z);
+            for k in 2..=n {
+                let p2 = ((2 * k - 1) as f64 * z * p1 - (k - 1) as f64 * p0) / k as f64;
+                p0 = p1;
+                p1 = p2;
+            }
+            let pn = if n == 0 {
+                1.0
+            } else if n == 1 {
+                z
+            } else {
+                p1
+            };
+            let pm = if n == 1 { 1.0 } else { p0 };
+            dp = n as f64 * (z * pn - pm) / (z * z - 1.0);
+            let dz = pn / dp;
+            z -= dz;
+            if dz.abs() < 1e-16 {
+                break;
+            }
+        }
+        let wi = 1.0 / ((1.0 - z * z) * dp * dp); // 2/((1-z²) P'²) on [-1, 1], halved
+        x[i] = 0.5 * (1.0 - z);
+        x[n - 1 - i] = 0.5 * (1.0 + z);
+        w[i] = wi;
+        w[n - 1 - i] = wi;
+    }
+    (x, w)
+}
+
+#[cfg(test)]
+mod gauss_tests {
+    use super::*;
+
+    #[test]
+    fn gauss_legendre_integrates_polynomials() {
+        for n in [1, 2, 5, 12, 24, 48] {
+            let (x, w) = gauss_legendre_01(n);
+            assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-14, "{n}");
+            assert!(x.windows(2).all(|p| p[0] < p[1]));
+            // Exact for degree 2n - 1: ∫ t^k = 1/(k+1).
+            for k in 0..2 * n {
+                let v: f64 = x.iter().zip(&w).map(|(t, w)| w * t.powi(k as i32)).sum();
+                assert!(
+                    (v - 1.0 / (k as f64 + 1.0)).abs() < 1e-13,
+                    "n {n} k {k}: {v}"
+                );
+            }
+        }
+    }
+}
