@@ -635,7 +635,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
     // the profile minima lie on the valley floors, at the grid's spacing along them.
     let mut points: Vec<(f64, (f64, f64))> = Vec::new();
     let mut profile: [Vec<(f64, f64, f64)>; 2] = [Vec::new(), Vec::new()];
-    for axis in 0..2 {
+    for (axis, fam) in profile.iter_mut().enumerate() {
         for i in 0..n {
             let cell = |j: usize| {
                 if axis == 0 {
@@ -654,7 +654,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             evals += e;
             let pt = if axis == 0 { (at(i), x) } else { (x, at(i)) };
             points.push((c, pt));
-            profile[axis].push((c, at(i), x));
+            fam.push((c, at(i), x));
         }
     }
     points.sort_by(|a, b| a.0.total_cmp(&b.0));
