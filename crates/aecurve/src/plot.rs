@@ -472,3 +472,144 @@ pub fn write_picture(path: &std::path::Path, svg: &str) -> anyhow::Result<()> {
     };
     std::fs::write(path, bytes).with_context(|| format!("writing {}", path.display()))
 }
+
+/// A colour for `v` in [0, 1] on a perceptual blue-green-yellow ramp (viridis, 5 stops).
+fn ramp(v: f64) -> String {
+    const STOPS: [(f64, f64, f64); 5] = [
+        (68.0, 1.0, 84.0),
+        (59.0, 82.0, 139.0),
+        (33.0, 145.0, 140.0),
+        (94.0, 201.0, 98.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let v = if v.is_finite() {
+        v.clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let x = v * 4.0;
+    let i = (x as usize).min(3);
+    let f = x - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    format!(
+        "rgb({:.0},{:.0},{:.0})",
+        a.0 + (b.0 - a.0) * f,
+        a.1 + (b.1 - a.1) * f,
+        a.2 + (b.2 - a.2) * f
+    )
+}
+
+/// S3 Fig. 3 and 5 in one picture: log10 of the rms error over (f0, f1) as colour, the
+/// cells whose cubic is not curvature-monotone hatched grey, the returned optimum marked.
+pub fn error_map_svg(
+    map: &aesthetic_curves::approx::ErrorMap,
+    chosen: (f64, f64),
+    caption: &str,
+) -> String {
+    let n = map.n;
+    let (w, h) = (700.0, 560.0);
+    let (l, t, size) = (70.0, 50.0, 440.0);
+    let cell = size / n as f64;
+    let logs: Vec<f64> = map.rms.iter().map(|r| r.max(1e-300).log10()).collect();
+    let finite: Vec<f64> = logs.iter().copied().filter(|v| v.is_finite()).collect();
+    let lo = finite.iter().copied().fold(f64::INFINITY, f64::min).floor();
+    let hi = finite
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max)
+        .ceil()
+        .max(lo + 1.0);
+    let mut s = format!(
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="13">
+<rect width="100%" height="100%" fill="white"/>
+<defs><pattern id="hatch" width="6" height="6" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="6" height="6" fill="#bbb" fill-opacity="0.55"/><line x1="0" y1="0" x2="0" y2="6" stroke="#555" stroke-width="1.5"/></pattern></defs>
+<text x="{}" y="28" text-anchor="middle" font-size="15">{}</text>
+"##,
+        l + size / 2.0,
+        esc(caption)
+    );
+    for i in 0..n {
+        for j in 0..n {
+            let k = i * n + j;
+            let (x, y) = (l + i as f64 * cell, t + size - (j + 1) as f64 * cell);
+            let _ = writeln!(
+                s,
+                r#"<rect x="{x:.2}" y="{y:.2}" width="{:.2}" height="{:.2}" fill="{}"/>"#,
+                cell + 0.3,
+                cell + 0.3,
+                ramp((logs[k] - lo) / (hi - lo))
+            );
+            if !map.monotone[k] {
+                let _ = writeln!(
+                    s,
+                    r#"<rect x="{x:.2}" y="{y:.2}" width="{:.2}" height="{:.2}" fill="url(#hatch)"/>"#,
+                    cell + 0.3,
+                    cell + 0.3
+                );
+            }
+        }
+    }
+    let _ = writeln!(
+        s,
+        r##"<rect x="{l}" y="{t}" width="{size}" height="{size}" fill="none" stroke="#333"/>"##
+    );
+    for k in 0..=5 {
+        let v = k as f64 / 5.0;
+        let x = l + v * size;
+        let y = t + size - v * size;
+        let _ = writeln!(
+            s,
+            r##"<text x="{x:.1}" y="{:.1}" text-anchor="middle">{v:.1}</text><text x="{:.1}" y="{:.1}" text-anchor="end">{v:.1}</text>"##,
+            t + size + 18.0,
+            l - 6.0,
+            y + 4.0
+        );
+    }
+    let (cx, cy) = (l + chosen.0 * size, t + size - chosen.1 * size);
+    let _ = writeln!(
+        s,
+        r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="7" fill="none" stroke="#e31a1c" stroke-width="2.5"/><line x1="{:.1}" y1="{cy:.1}" x2="{:.1}" y2="{cy:.1}" stroke="#e31a1c" stroke-width="2"/><line x1="{cx:.1}" y1="{:.1}" x2="{cx:.1}" y2="{:.1}" stroke="#e31a1c" stroke-width="2"/>
+<text x="{:.1}" y="{:.1}" text-anchor="middle">f0</text>
+<text transform="translate(22,{:.1}) rotate(-90)" text-anchor="middle">f1</text>"##,
+        cx - 11.0,
+        cx + 11.0,
+        cy - 11.0,
+        cy + 11.0,
+        l + size / 2.0,
+        t + size + 40.0,
+        t + size / 2.0
+    );
+    // Colour bar.
+    let (bx, bw) = (l + size + 30.0, 18.0);
+    for k in 0..100 {
+        let v = k as f64 / 99.0;
+        let _ = writeln!(
+            s,
+            r#"<rect x="{bx}" y="{:.2}" width="{bw}" height="{:.2}" fill="{}"/>"#,
+            t + size - (k + 1) as f64 * size / 100.0,
+            size / 100.0 + 0.3,
+            ramp(v)
+        );
+    }
+    let steps = (hi - lo) as i64;
+    for e in 0..=steps {
+        let v = e as f64 / steps as f64;
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}">1e{}</text>"#,
+            bx + bw + 5.0,
+            t + size - v * size + 4.0,
+            lo as i64 + e
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<text x="{bx}" y="{:.1}">rms</text><rect x="{bx}" y="{:.1}" width="{bw}" height="12" fill="url(#hatch)"/><text x="{:.1}" y="{:.1}">not monotone</text>"##,
+        t - 8.0,
+        t + size + 28.0,
+        bx + bw + 5.0,
+        t + size + 38.0
+    );
+    s.push_str("</svg>\n");
+    s
+}

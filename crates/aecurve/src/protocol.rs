@@ -46,13 +46,9 @@ pub const OPS: &[&str] = &[
     "lac.segment",
     "lac.inflection_segment",
     "lcg.estimate",
-];
-const PLANNED_OPS: &[&str] = &[
     "lac.rational_approx",
-    "spline.pseudo_elastic",
-    "lac.fit",
-    "sketch.fit",
 ];
+const PLANNED_OPS: &[&str] = &["spline.pseudo_elastic", "lac.fit", "sketch.fit"];
 
 /// Answer one request line (JSON text) with one response object.
 pub fn handle_line(line: &str) -> Value {
@@ -121,6 +117,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "lac.segment" => lac_segment(obj),
         "lac.inflection_segment" => lac_inflection_segment(obj),
         "lcg.estimate" => lcg_estimate(obj),
+        "lac.rational_approx" => lac_rational_approx(obj),
         _ if PLANNED_OPS.contains(&op) => Err(ProtoError {
             kind: "unknown_op",
             message: format!("op '{op}' is part of the protocol but not implemented in this build"),
@@ -410,6 +407,51 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
         "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
         "curvature": curvature,
     }))
+}
+
+fn optional_number(obj: &Map<String, Value>, field: &str) -> Result<Option<f64>, ProtoError> {
+    match obj.get(field) {
+        None | Some(Value::Null) => Ok(None),
+        Some(v) => finite_number(v, field).map(Some),
+    }
+}
+
+fn lac_rational_approx(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    use aesthetic_curves::approx;
+    let alpha = number_param(obj, "alpha")?;
+    let control = points_param(obj, "control", 3, 3)?;
+    let tolerance = optional_number(obj, "tolerance")?;
+    if let Some(t) = tolerance {
+        if t <= 0.0 {
+            return Err(ProtoError::invalid("tolerance", "must be > 0"));
+        }
+    }
+    let seg = aesthetic_curves::lac::LacSegment::new(alpha, [control[0], control[1], control[2]])?;
+    let opts = approx::ApproxOptions::default();
+    let fit = approx::fit_rational_cubic(&seg, &opts)?;
+    let pts = |p: &[aesthetic_curves::Point]| p.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
+    let mut out = json!({
+        "control_points": pts(fit.curve.points()),
+        "weights": fit.curve.weights(),
+        "f0": fit.f0,
+        "f1": fit.f1,
+        "rms": fit.rms,
+        "max_error": fit.max_error,
+        "monotone": fit.monotone,
+        "arc_length": seg.arc_length()?,
+    });
+    if let Some(t) = tolerance {
+        let sp = approx::fit_rational_spline(&seg, t, 64, &opts)?;
+        out["spline"] = json!({
+            "degree": sp.degree,
+            "knots": sp.knots,
+            "control_points": pts(&sp.control_points),
+            "weights": sp.weights,
+            "pieces": sp.pieces.len(),
+            "max_error": sp.max_error,
+        });
+    }
+    Ok(out)
 }
 
 /// Largest point sampling `lcg.estimate` accepts.

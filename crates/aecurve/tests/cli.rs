@@ -254,3 +254,55 @@ fn pictures_follow_the_extension() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("x.jpeg"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn approx_command_gives_a_checked_cubic_and_pictures() {
+    let dir = std::env::temp_dir().join(format!("aecurve-approx-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = dir.join("map.svg");
+    let v = json_output(
+        aecurve()
+            .args([
+                "approx",
+                "--alpha",
+                "-1",
+                "--control",
+                "0,0 10,0 16,9",
+                "--tolerance",
+                "1e-9",
+                "--json",
+                "--map-cells",
+                "20",
+                "--map",
+            ])
+            .arg(&map),
+    );
+    assert_eq!(v["control_points"].as_array().unwrap().len(), 4);
+    let w: Vec<f64> = v["weights"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!(w.len() == 4 && w.iter().all(|x| *x > 0.0));
+    assert_eq!(v["monotone"], true);
+    assert!(v["rms"].as_f64().unwrap() < 1e-6);
+    let sp = &v["spline"];
+    let pieces = sp["pieces"].as_u64().unwrap() as usize;
+    assert!(pieces >= 2);
+    assert_eq!(
+        sp["control_points"].as_array().unwrap().len(),
+        3 * pieces + 1
+    );
+    assert!(sp["max_error"].as_f64().unwrap() <= 1e-9);
+    let svg = std::fs::read_to_string(&map).unwrap();
+    assert!(svg.contains("hatch") && svg.matches("<rect").count() > 400);
+    // Outside the existence region: no_segment, said clearly.
+    let out = aecurve()
+        .args(["approx", "--alpha", "-1", "--control", "0,0 1,0 1,0.3"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no_segment"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

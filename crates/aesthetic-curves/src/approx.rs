@@ -836,6 +836,169 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
     })
 }
 
+/// A LAC segment as rational cubic pieces joined with G2 continuity, as one rational
+/// B-spline (degree 3, every interior knot of multiplicity 3: the pieces meet with the
+/// LAC's point, tangent and curvature, so the spline is G2 although only C0 in its
+/// parameter).
+#[derive(Clone, Debug)]
+pub struct RationalSpline {
+    /// Always 3.
+    pub degree: usize,
+    /// Knot vector: 0,0,0,0, u1,u1,u1, ..., 1,1,1,1 (interior knots at the pieces' joints,
+    /// proportional to arc length).
+    pub knots: Vec<f64>,
+    /// Control points (3 k + 1 for k pieces).
+    pub control_points: Vec<Point>,
+    /// Weights, one per control point, all > 0 (each piece scaled to share its first weight
+    /// with the previous piece's last).
+    pub weights: Vec<f64>,
+    /// The pieces, in order, each with its own fit report.
+    pub pieces: Vec<RationalCubicFit>,
+    /// Largest distance to the LAC over all pieces, in input units.
+    pub max_error: f64,
+}
+
+impl RationalSpline {
+    /// The point at knot parameter `u` in [0, 1], by de Boor's algorithm on homogeneous
+    /// coordinates (independent of the pieces: a check of the assembled spline).
+    pub fn eval(&self, u: f64) -> Point {
+        let p = self.degree;
+        let k = &self.knots;
+        let n = self.control_points.len();
+        let u = u.clamp(k[p], k[n]);
+        // Span index s with k[s] <= u < k[s+1] (the last non-empty span at the end).
+        let mut s = p;
+        while s + 1 < n && k[s + 1] <= u {
+            s += 1;
+        }
+        let mut d: Vec<(f64, f64, f64)> = (0..=p)
+            .map(|j| {
+                let i = s + j - p;
+                let w = self.weights[i];
+                (
+                    self.control_points[i].x * w,
+                    self.control_points[i].y * w,
+                    w,
+                )
+            })
+            .collect();
+        for r in 1..=p {
+            for j in (r..=p).rev() {
+                let i = s + j - p;
+                let den = k[i + p + 1 - r] - k[i];
+                let a = if den > 0.0 { (u - k[i]) / den } else { 0.0 };
+                d[j] = (
+                    (1.0 - a) * d[j - 1].0 + a * d[j].0,
+                    (1.0 - a) * d[j - 1].1 + a * d[j].1,
+                    (1.0 - a) * d[j - 1].2 + a * d[j].2,
+                );
+            }
+        }
+        Point::new(d[p].0 / d[p].2, d[p].1 / d[p].2)
+    }
+}
+
+/// The fewest rational cubic pieces (greedy from the start: each piece as long as it can be
+/// while its maximum error stays within `tolerance`, input units) approximating `seg`, as
+/// one [`RationalSpline`]. Errors: [`Error::NoSegment`] when `max_pieces` are not enough.
+pub fn fit_rational_spline(
+    seg: &LacSegment,
+    tolerance: f64,
+    max_pieces: usize,
+    opts: &ApproxOptions,
+) -> Result<RationalSpline> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(Error::invalid("tolerance", "must be a positive number"));
+    }
+    if max_pieces == 0 || max_pieces > 1000 {
+        return Err(Error::invalid("max_pieces", "must be 1 to 1000"));
+    }
+    let td = seg.theta_d;
+    // A piece [a, b] of turning angle: its fit, when it exists and is within tolerance.
+    let try_piece = |a: f64, b: f64| -> Option<RationalCubicFit> {
+        let sub = seg.sub_segment(a, b).ok()?;
+        let fit = fit_rational_cubic(&sub, opts).ok()?;
+        let len = sub.arc_length().ok()?;
+        (fit.max_error * len <= tolerance).then_some(fit)
+    };
+    let mut pieces: Vec<(f64, RationalCubicFit)> = Vec::new();
+    let mut a = 0.0;
+    while a < td {
+        if pieces.len() >= max_pieces {
+            return Err(Error::NoSegment(format!(
+                "{max_pieces} rational cubic pieces are not enough for tolerance {tolerance:e}"
+            )));
+        }
+        if let Some(f) = try_piece(a, td) {
+            pieces.push((td, f));
+            break;
+        }
+        // Longest feasible end by bisection on the turning angle (feasibility shrinks with
+        // length), down to 1e-3 of the remaining turn.
+        let (mut lo, mut hi) = (a, td);
+        let mut best: Option<(f64, RationalCubicFit)> = None;
+        while hi - lo > 1e-3 * (td - a) {
+            let mid = 0.5 * (lo + hi);
+            match try_piece(a, mid) {
+                Some(f) => {
+                    lo = mid;
+                    best = Some((mid, f));
+                }
+                None => hi = mid,
+            }
+        }
+        let Some((b, f)) = best else {
+            return Err(Error::NoSegment(format!(
+                "no rational cubic piece from turning angle {a:.6} meets tolerance {tolerance:e}"
+            )));
+        };
+        pieces.push((b, f));
+        a = b;
+    }
+    // Assemble: shared joint points, weights rescaled to match at the joints.
+    let mut control_points = Vec::new();
+    let mut weights = Vec::new();
+    let mut lengths = Vec::new();
+    let mut start = 0.0;
+    for (k, (end, fit)) in pieces.iter().enumerate() {
+        let sub = seg.sub_segment(start, *end)?;
+        lengths.push(sub.arc_length()?);
+        start = *end;
+        let (b, w) = (fit.curve.points(), fit.curve.weights());
+        let scale = if k == 0 {
+            1.0
+        } else {
+            weights[weights.len() - 1] / w[0]
+        };
+        let first = if k == 0 { 0 } else { 1 };
+        for i in first..4 {
+            control_points.push(b[i]);
+            weights.push(w[i] * scale);
+        }
+    }
+    let total: f64 = lengths.iter().sum();
+    let mut knots = vec![0.0; 4];
+    let mut acc = 0.0;
+    for l in &lengths[..lengths.len() - 1] {
+        acc += l / total;
+        knots.extend([acc; 3]);
+    }
+    knots.extend([1.0; 4]);
+    let max_error = pieces
+        .iter()
+        .zip(&lengths)
+        .map(|((_, f), l)| f.max_error * l)
+        .fold(0.0, f64::max);
+    Ok(RationalSpline {
+        degree: 3,
+        knots,
+        control_points,
+        weights,
+        pieces: pieces.into_iter().map(|(_, f)| f).collect(),
+        max_error,
+    })
+}
+
 /// The error map of S3 Fig. 3 and 5 (see [`error_map`]).
 #[derive(Clone, Debug)]
 pub struct ErrorMap {
@@ -912,6 +1075,48 @@ mod tests {
             for i in 0..=50 {
                 let d = (fit.curve.eval(i as f64 / 50.0) - centre).hypot();
                 assert!((d - r).abs() < 1e-14 * r, "{alpha}: {d} vs {r} {fit:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn spline_of_a_long_segment() {
+        // 150 degrees of turning: one cubic is not enough at 1e-7 of the size.
+        let td = 150f64.to_radians();
+        let d = (0.55 * td).sin() / (0.45 * td).sin();
+        let t = [
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 0.0),
+            Point::new(10.0 + 10.0 * d * td.cos(), 10.0 * d * td.sin()),
+        ];
+        let seg = LacSegment::new(-1.0, t).unwrap();
+        let sp = fit_rational_spline(&seg, 1e-6, 20, &ApproxOptions::default()).unwrap();
+        let k = sp.pieces.len();
+        assert!(k >= 2, "{k}");
+        assert!(sp.max_error <= 1e-6);
+        assert_eq!(sp.control_points.len(), 3 * k + 1);
+        assert_eq!(sp.knots.len(), 3 * k + 1 + 4);
+        assert!(sp.weights.iter().all(|w| *w > 0.0));
+        // G2 at the joints: each piece's end matches the next one's start.
+        for w in sp.pieces.windows(2) {
+            let (a, b) = (&w[0].curve, &w[1].curve);
+            assert!((a.eval(1.0) - b.eval(0.0)).hypot() < 1e-12 * 10.0);
+            let (ta, tb) = (a.eval_d(1.0), b.eval_d(0.0));
+            assert!(ta.cross(tb).abs() < 1e-10 * ta.hypot() * tb.hypot());
+            assert!((a.kappa(1.0) - b.kappa(0.0)).abs() < 1e-10 * a.kappa(1.0).abs());
+        }
+        // The shared control points carry equal weights (one NURBS), and the spline
+        // evaluated by de Boor is the pieces.
+        assert_eq!(sp.control_points[3], sp.pieces[0].curve.points()[3]);
+        for (i, piece) in sp.pieces.iter().enumerate() {
+            let (u0, u1) = (sp.knots[3 + 3 * i], sp.knots[4 + 3 * i]);
+            for j in 0..=10 {
+                let t = j as f64 / 10.0;
+                let q = sp.eval(u0 + (u1 - u0) * t);
+                assert!(
+                    (q - piece.curve.eval(t)).hypot() < 1e-12 * 10.0,
+                    "piece {i} t {t}"
+                );
             }
         }
     }

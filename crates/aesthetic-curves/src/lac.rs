@@ -1174,7 +1174,13 @@ impl LacSegment {
             ));
         }
         let (pts, der) = self.eval_turning(&[ta, tb])?;
-        let (p0, p2) = (pts[0], pts[1]);
+        // The segment's own ends stay exact.
+        let p0 = if ta == 0.0 { self.control[0] } else { pts[0] };
+        let p2 = if tb == self.theta_d {
+            self.control[2]
+        } else {
+            pts[1]
+        };
         let denom = der[0].cross(der[1]);
         let x = p0 + der[0] * ((p2 - p0).cross(der[1]) / denom);
         let (a, b) = (self.theta_at_turning(ta), self.theta_at_turning(tb));
