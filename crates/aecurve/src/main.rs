@@ -118,7 +118,9 @@ enum Cmd {
         /// Print the protocol's JSON result.
         #[arg(long)]
         json: bool,
-        /// Write the curve with its curvature comb (.svg or .png; repeatable).
+        /// Write the curve (repeatable; by extension): .dxf, .step/.stp, .iges/.igs, .json
+        /// (exact rational geometry), .svg (cubic Béziers within 1e-6 of the size, with the
+        /// curvature comb), .png (picture).
         #[arg(short, long)]
         output: Vec<PathBuf>,
         /// Write the error map over (f0, f1) with the monotone region (S3 Fig. 3 and 5).
@@ -186,7 +188,12 @@ fn run() -> Result<()> {
             plot::check_picture_paths(output)?
         }
         Cmd::Approx { output, map, .. } => {
-            plot::check_picture_paths(output)?;
+            for p in output {
+                let ext = aecurve::export::extension(p).unwrap_or_default();
+                if !aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+                    plot::check_picture_paths(std::slice::from_ref(p))?;
+                }
+            }
             plot::check_picture_paths(map.as_slice())?;
         }
         Cmd::Bench {
@@ -554,22 +561,45 @@ fn approx(
             );
         }
     }
+    let nurbs = match tolerance {
+        Some(t) => aesthetic_curves::nurbs::Nurbs::from_spline(&approx::fit_rational_spline(
+            &seg,
+            t,
+            64,
+            &approx::ApproxOptions::default(),
+        )?),
+        None => aesthetic_curves::nurbs::Nurbs::from_bezier(&fit.curve),
+    };
+    let n = 200;
+    let comb: Vec<plot::CombSample> = (0..=n)
+        .map(|i| {
+            let u = i as f64 / n as f64;
+            let spans = nurbs.bezier_spans().expect("spline spans");
+            let k = ((u * spans.len() as f64) as usize).min(spans.len() - 1);
+            let t = u * spans.len() as f64 - k as f64;
+            let d = aesthetic_curves::PlanarCurve::derivs(&spans[k], t);
+            (d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa())
+        })
+        .collect();
+    let caption = format!(
+        "rational cubic for LAC alpha = {alpha}: rms {:.2e}, max {:.2e}",
+        fit.rms, fit.max_error
+    );
     for path in output {
-        let n = 200;
-        let samples: Vec<plot::CombSample> = (0..=n)
-            .map(|i| {
-                let d = aesthetic_curves::PlanarCurve::derivs(&fit.curve, i as f64 / n as f64);
-                (d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa())
-            })
-            .collect();
-        let caption = format!(
-            "rational cubic for LAC alpha = {alpha}: rms {:.2e}, max {:.2e}",
-            fit.rms, fit.max_error
-        );
-        plot::write_picture(
-            path,
-            &plot::comb_svg(&samples, fit.curve.points(), &[], &caption),
-        )?;
+        let ext = aecurve::export::extension(path).unwrap_or_default();
+        match ext.as_str() {
+            "svg" => {
+                let tol = 1e-6 * nurbs.size();
+                let doc = aecurve::export::svg_document(&nurbs, tol, &comb, &caption)
+                    .context("the spline has no Bézier spans")?;
+                std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
+            }
+            "png" => plot::write_picture(
+                path,
+                &plot::comb_svg(&comb, &nurbs.control_points, &[], &caption),
+            )?,
+            _ => aecurve::export::write_curve(path, &nurbs, "lac_rational")?,
+        }
         eprintln!("wrote {}", path.display());
     }
     if let Some(path) = map {

@@ -12,6 +12,7 @@
 //! - [`lac`]: log-aesthetic curves: standard form, segments from three control points,
 //!   segments with an inflection end.
 //! - [`lcg`]: the logarithmic curvature graph and alpha estimation.
+//! - [`nurbs`]: rational B-splines, the exchange form of CAD systems.
 //! - [`quadrature`]: adaptive Gauss–Kronrod quadrature.
 //! - [`monotone`]: the exact curvature-monotonicity test (Bernstein form of dkappa/ds plus
 //!   subdivision) and the sampling test.
@@ -28,6 +29,7 @@ pub mod error;
 pub mod lac;
 pub mod lcg;
 pub mod monotone;
+pub mod nurbs;
 pub mod quadrature;
 pub mod roots;
 pub mod samples;

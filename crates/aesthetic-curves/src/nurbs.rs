@@ -1,0 +1,224 @@
+//! Rational B-spline curves (NURBS) in the plane: the form CAD systems import.
+//!
+//! [`Nurbs`] holds a degree, a clamped knot vector, control points and positive weights, and
+//! evaluates by de Boor's algorithm on homogeneous coordinates. Rational Bézier curves and
+//! the G2 piecewise splines of [`crate::approx`] convert to it exactly (no resampling), so an
+//! exporter needs only this one type.
+
+use crate::approx::RationalSpline;
+use crate::bezier::RationalBezier;
+use crate::error::{Error, Result};
+use kurbo::Point;
+
+/// A planar rational B-spline curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Nurbs {
+    /// Polynomial degree p >= 1.
+    pub degree: usize,
+    /// Non-decreasing knots, `control_points.len() + degree + 1` of them, clamped
+    /// (first and last values repeated p + 1 times).
+    pub knots: Vec<f64>,
+    /// Control points.
+    pub control_points: Vec<Point>,
+    /// One positive weight per control point.
+    pub weights: Vec<f64>,
+}
+
+impl Nurbs {
+    /// Check the invariants; errors name what is wrong.
+    pub fn new(
+        degree: usize,
+        knots: Vec<f64>,
+        control_points: Vec<Point>,
+        weights: Vec<f64>,
+    ) -> Result<Nurbs> {
+        let n = control_points.len();
+        if degree == 0 || n < degree + 1 {
+            return Err(Error::invalid(
+                "degree",
+                format!(
+                    "degree {degree} needs at least {} control points",
+                    degree + 1
+                ),
+            ));
+        }
+        if knots.len() != n + degree + 1 {
+            return Err(Error::invalid(
+                "knots",
+                format!("need {} knots, got {}", n + degree + 1, knots.len()),
+            ));
+        }
+        if knots.windows(2).any(|w| w[1] < w[0]) || knots.iter().any(|k| !k.is_finite()) {
+            return Err(Error::invalid("knots", "must be finite and non-decreasing"));
+        }
+        let p = degree;
+        if knots[..=p].iter().any(|k| *k != knots[0])
+            || knots[n..].iter().any(|k| *k != knots[n + p])
+            || knots[p] >= knots[n]
+        {
+            return Err(Error::invalid(
+                "knots",
+                "must be clamped with a non-empty range",
+            ));
+        }
+        if weights.len() != n || weights.iter().any(|w| !(w.is_finite() && *w > 0.0)) {
+            return Err(Error::invalid(
+                "weights",
+                "one finite positive weight per point",
+            ));
+        }
+        if control_points.iter().any(|p| !p.is_finite()) {
+            return Err(Error::invalid("control_points", "must be finite"));
+        }
+        Ok(Nurbs {
+            degree,
+            knots,
+            control_points,
+            weights,
+        })
+    }
+
+    /// A rational Bézier curve as a one-span NURBS on [0, 1].
+    pub fn from_bezier(c: &RationalBezier) -> Nurbs {
+        let p = c.degree();
+        let mut knots = vec![0.0; p + 1];
+        knots.extend(vec![1.0; p + 1]);
+        Nurbs {
+            degree: p,
+            knots,
+            control_points: c.points().to_vec(),
+            weights: c.weights().to_vec(),
+        }
+    }
+
+    /// The spline of [`crate::approx::fit_rational_spline`].
+    pub fn from_spline(s: &RationalSpline) -> Nurbs {
+        Nurbs {
+            degree: s.degree,
+            knots: s.knots.clone(),
+            control_points: s.control_points.clone(),
+            weights: s.weights.clone(),
+        }
+    }
+
+    /// Parameter range [first knot, last knot].
+    pub fn domain(&self) -> (f64, f64) {
+        (self.knots[0], self.knots[self.knots.len() - 1])
+    }
+
+    /// The point at parameter `u` (clamped to the domain), by de Boor's algorithm.
+    pub fn eval(&self, u: f64) -> Point {
+        let p = self.degree;
+        let k = &self.knots;
+        let n = self.control_points.len();
+        let u = u.clamp(k[p], k[n]);
+        let mut s = p;
+        while s + 1 < n && k[s + 1] <= u {
+            s += 1;
+        }
+        let mut d: Vec<(f64, f64, f64)> = (0..=p)
+            .map(|j| {
+                let i = s + j - p;
+                let w = self.weights[i];
+                (
+                    self.control_points[i].x * w,
+                    self.control_points[i].y * w,
+                    w,
+                )
+            })
+            .collect();
+        for r in 1..=p {
+            for j in (r..=p).rev() {
+                let i = s + j - p;
+                let den = k[i + p + 1 - r] - k[i];
+                let a = if den > 0.0 { (u - k[i]) / den } else { 0.0 };
+                d[j] = (
+                    (1.0 - a) * d[j - 1].0 + a * d[j].0,
+                    (1.0 - a) * d[j - 1].1 + a * d[j].1,
+                    (1.0 - a) * d[j - 1].2 + a * d[j].2,
+                );
+            }
+        }
+        Point::new(d[p].0 / d[p].2, d[p].1 / d[p].2)
+    }
+
+    /// The Bézier spans (between distinct knots) as rational Bézier curves, when every
+    /// interior knot has multiplicity `degree` (as the splines of this library do); `None`
+    /// otherwise.
+    pub fn bezier_spans(&self) -> Option<Vec<RationalBezier>> {
+        let p = self.degree;
+        let n = self.control_points.len();
+        if (n - 1) % p != 0 {
+            return None;
+        }
+        let spans = (n - 1) / p;
+        for i in 1..spans {
+            let at = p + 1 + (i - 1) * p;
+            if self.knots[at..at + p].iter().any(|k| *k != self.knots[at]) {
+                return None;
+            }
+        }
+        (0..spans)
+            .map(|i| {
+                RationalBezier::new(
+                    self.control_points[i * p..=(i + 1) * p].to_vec(),
+                    self.weights[i * p..=(i + 1) * p].to_vec(),
+                )
+                .ok()
+            })
+            .collect()
+    }
+
+    /// Largest distance between control points: the size of the curve for tolerances.
+    pub fn size(&self) -> f64 {
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for q in &self.control_points {
+            x0 = x0.min(q.x);
+            x1 = x1.max(q.x);
+            y0 = y0.min(q.y);
+            y1 = y1.max(q.y);
+        }
+        (x1 - x0).hypot(y1 - y0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::PlanarCurve;
+
+    #[test]
+    fn bezier_round_trip_and_validation() {
+        let c = RationalBezier::new(
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 2.0),
+                Point::new(3.0, 2.0),
+                Point::new(4.0, 0.0),
+            ],
+            vec![1.0, 0.7, 1.3, 0.9],
+        )
+        .unwrap();
+        let n = Nurbs::from_bezier(&c);
+        for i in 0..=20 {
+            let t = i as f64 / 20.0;
+            assert!((n.eval(t) - c.eval(t)).hypot() < 1e-14);
+        }
+        assert_eq!(n.bezier_spans().unwrap()[0], c);
+        assert!(Nurbs::new(3, vec![0.0; 7], n.control_points.clone(), n.weights.clone()).is_err());
+        assert!(Nurbs::new(
+            3,
+            n.knots.clone(),
+            n.control_points.clone(),
+            vec![1.0, -1.0, 1.0, 1.0]
+        )
+        .is_err());
+        assert!(Nurbs::new(
+            3,
+            n.knots.clone(),
+            n.control_points.clone(),
+            n.weights.clone()
+        )
+        .is_ok());
+    }
+}
