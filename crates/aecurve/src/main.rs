@@ -130,6 +130,21 @@ enum Cmd {
         #[arg(long, default_value_t = 100)]
         map_cells: usize,
     },
+    /// The pseudo-elastic spline (S2) through points from a file (CSV rows "x,y" or a JSON
+    /// array of pairs): tangents, length, area, energy; -o writes the curve with its comb.
+    Spline {
+        /// The points file.
+        input: PathBuf,
+        /// Closed curve through all points.
+        #[arg(long)]
+        closed: bool,
+        /// Print the protocol's JSON result.
+        #[arg(long)]
+        json: bool,
+        /// Write the curve with its curvature comb (.svg or .png; repeatable).
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+    },
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
@@ -184,9 +199,10 @@ fn main() {
 fn run() -> Result<()> {
     let cli = Cli::parse();
     match &cli.cmd {
-        Cmd::Monotone { output, .. } | Cmd::Lac { output, .. } | Cmd::Lcg { output, .. } => {
-            plot::check_picture_paths(output)?
-        }
+        Cmd::Monotone { output, .. }
+        | Cmd::Lac { output, .. }
+        | Cmd::Lcg { output, .. }
+        | Cmd::Spline { output, .. } => plot::check_picture_paths(output)?,
         Cmd::Approx { output, map, .. } => {
             for p in output {
                 let ext = aecurve::export::extension(p).unwrap_or_default();
@@ -254,6 +270,12 @@ fn run() -> Result<()> {
             (Some(a), false) => lac(a, &control, samples, json, &output)?,
             _ => lac_inflection(&control, samples, json, &output)?,
         },
+        Cmd::Spline {
+            input,
+            closed,
+            json,
+            output,
+        } => spline(&input, closed, json, &output)?,
         Cmd::Approx {
             alpha,
             control,
@@ -721,6 +743,66 @@ fn approx_gallery(out: &std::path::Path) -> Result<String> {
         fit.f0, fit.f1, fit.rms
     );
     Ok(html)
+}
+
+fn spline(input: &std::path::Path, closed: bool, json: bool, output: &[PathBuf]) -> Result<()> {
+    let pts = aecurve::read_points_file(input)?;
+    anyhow::ensure!(
+        pts.len() <= aecurve::protocol::MAX_SPLINE_POINTS,
+        "at most {} points in this build (exact mode only), got {}",
+        aecurve::protocol::MAX_SPLINE_POINTS,
+        pts.len()
+    );
+    let s = aesthetic_curves::pseudo_spline::pseudo_elastic(&pts, closed)?;
+    let r = &aecurve::protocol::spline_json(&s, "exact");
+    if json {
+        println!("{r}");
+    } else {
+        println!(
+            "pseudo-elastic spline through {} points ({}), exact mode",
+            pts.len(),
+            if closed { "closed" } else { "open" }
+        );
+        println!("  length   {:.9}", r["length"].as_f64().unwrap_or(f64::NAN));
+        println!(
+            "  area     {:.9} ({})",
+            r["area"].as_f64().unwrap_or(f64::NAN),
+            if closed {
+                "enclosed"
+            } else {
+                "between the curve and the chord of its ends"
+            }
+        );
+        println!(
+            "  energy   {:.9} (sum of l_i J_i)",
+            r["energy"].as_f64().unwrap_or(f64::NAN)
+        );
+    }
+    if !output.is_empty() {
+        let mut samples: Vec<plot::CombSample> = Vec::new();
+        for g in &s.segments {
+            let c = aesthetic_curves::Bezier::new(vec![
+                g.p0,
+                g.p0 + g.d0 / 3.0,
+                g.p1 - g.d1 / 3.0,
+                g.p1,
+            ])?;
+            for k in 0..=40 {
+                let d = aesthetic_curves::PlanarCurve::derivs(&c, k as f64 / 40.0);
+                samples.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
+            }
+        }
+        let caption = format!("pseudo-elastic spline: length {:.6}", s.length);
+        let mut polygon = pts.clone();
+        if closed {
+            polygon.push(pts[0]);
+        }
+        for path in output {
+            plot::write_picture(path, &plot::comb_svg(&samples, &polygon, &[], &caption))?;
+            eprintln!("wrote {}", path.display());
+        }
+    }
+    Ok(())
 }
 
 enum LcgSource {

@@ -47,6 +47,7 @@ pub const OPS: &[&str] = &[
     "lac.inflection_segment",
     "lcg.estimate",
     "lac.rational_approx",
+    "spline.pseudo_elastic",
 ];
 const PLANNED_OPS: &[&str] = &["spline.pseudo_elastic", "lac.fit", "sketch.fit"];
 
@@ -118,6 +119,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "lac.inflection_segment" => lac_inflection_segment(obj),
         "lcg.estimate" => lcg_estimate(obj),
         "lac.rational_approx" => lac_rational_approx(obj),
+        "spline.pseudo_elastic" => spline_pseudo_elastic(obj),
         _ if PLANNED_OPS.contains(&op) => Err(ProtoError {
             kind: "unknown_op",
             message: format!("op '{op}' is part of the protocol but not implemented in this build"),
@@ -452,6 +454,39 @@ fn lac_rational_approx(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         });
     }
     Ok(out)
+}
+
+/// Largest number of points `spline.pseudo_elastic` accepts: this build has only the exact
+/// mode (a minimisation per point, about a second each).
+pub const MAX_SPLINE_POINTS: usize = 64;
+
+fn spline_pseudo_elastic(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let closed = match obj.get("closed") {
+        None | Some(Value::Null) => false,
+        Some(Value::Bool(b)) => *b,
+        Some(_) => return Err(ProtoError::invalid("closed", "must be true or false")),
+    };
+    let mode = string_param(obj, "mode", "table", &["table", "exact"])?;
+    let points = points_param(obj, "points", if closed { 3 } else { 2 }, MAX_SPLINE_POINTS)?;
+    let s = aesthetic_curves::pseudo_spline::pseudo_elastic(&points, closed)?;
+    Ok(spline_json(&s, mode))
+}
+
+/// The result object of `spline.pseudo_elastic`.
+pub fn spline_json(s: &aesthetic_curves::pseudo_spline::PseudoSpline, mode: &str) -> Value {
+    json!({
+        "tangent_angles": s.tangent_angles,
+        "segments": s.segments.iter().map(|g| json!({
+            "p0": [g.p0.x, g.p0.y], "p1": [g.p1.x, g.p1.y],
+            "d0": [g.d0.x, g.d0.y], "d1": [g.d1.x, g.d1.y],
+        })).collect::<Vec<_>>(),
+        "length": s.length,
+        "area": s.area,
+        "energy": s.energy,
+        // The table mode is not built yet: every request is computed exactly.
+        "mode_requested": mode,
+        "mode_used": "exact",
+    })
 }
 
 /// Largest point sampling `lcg.estimate` accepts.

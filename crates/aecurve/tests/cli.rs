@@ -306,3 +306,24 @@ fn approx_command_gives_a_checked_cubic_and_pictures() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("no_segment"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn spline_command_and_op() {
+    let dir = std::env::temp_dir().join(format!("aecurve-spline-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = dir.join("p.csv");
+    std::fs::write(&input, "x,y\n0,0\n1,1\n2,0\n").unwrap();
+    let v = json_output(aecurve().arg("spline").arg(&input).arg("--json"));
+    let segs = v["segments"].as_array().unwrap();
+    assert_eq!(segs.len(), 2);
+    assert_eq!(v["tangent_angles"].as_array().unwrap().len(), 3);
+    // Symmetric data: the middle tangent is horizontal, the length is above the polygon's.
+    assert!(v["tangent_angles"][1].as_f64().unwrap().abs() < 1e-6);
+    assert!(v["length"].as_f64().unwrap() > 2.0 * 2f64.sqrt());
+    // Repeated points: degenerate.
+    std::fs::write(&input, "0,0\n0,0\n1,0\n").unwrap();
+    let out = aecurve().arg("spline").arg(&input).output().unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("degenerate"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

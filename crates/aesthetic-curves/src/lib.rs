@@ -30,6 +30,7 @@ pub mod lac;
 pub mod lcg;
 pub mod monotone;
 pub mod nurbs;
+pub mod pseudo_spline;
 pub mod quadrature;
 pub mod roots;
 pub mod samples;
