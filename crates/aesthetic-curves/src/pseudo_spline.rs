@@ -237,29 +237,76 @@ pub fn wrap(a: f64) -> f64 {
     x
 }
 
-/// Golden-section minimisation of `f` on [lo, hi] to `tol`.
-fn golden(f: &mut dyn FnMut(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> (f64, f64) {
-    let r = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut a, mut b) = (hi - r * (hi - lo), lo + r * (hi - lo));
-    let (mut fa, mut fb) = (f(a), f(b));
-    while hi - lo > tol {
-        if fa < fb {
-            hi = b;
-            (b, fb) = (a, fa);
-            a = hi - r * (hi - lo);
-            fa = f(a);
+/// Brent's minimisation of `f` on [lo, hi] to `tol` (golden sections with parabolic
+/// steps; Brent 1973, "Algorithms for minimization without derivatives", ch. 5).
+fn golden(f: &mut dyn FnMut(f64) -> f64, lo: f64, hi: f64, tol: f64) -> (f64, f64) {
+    const CG: f64 = 0.381_966_011_250_105_1;
+    let (mut a, mut b) = (lo, hi);
+    let mut x = a + CG * (b - a);
+    let (mut w, mut v) = (x, x);
+    let mut fx = f(x);
+    let (mut fw, mut fv) = (fx, fx);
+    let (mut d, mut e): (f64, f64) = (0.0, 0.0);
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        let tol1 = tol * 0.5 + 1e-12 * x.abs();
+        let tol2 = 2.0 * tol1;
+        if (x - m).abs() <= tol2 - 0.5 * (b - a) {
+            break;
+        }
+        let mut golden_step = true;
+        if e.abs() > tol1 {
+            let r = (x - w) * (fx - fv);
+            let q0 = (x - v) * (fx - fw);
+            let mut p = (x - v) * q0 - (x - w) * r;
+            let mut q = 2.0 * (q0 - r);
+            if q > 0.0 {
+                p = -p;
+            }
+            q = q.abs();
+            if p.abs() < (0.5 * q * e).abs() && p > q * (a - x) && p < q * (b - x) {
+                e = d;
+                d = p / q;
+                let u = x + d;
+                if u - a < tol2 || b - u < tol2 {
+                    d = if x < m { tol1 } else { -tol1 };
+                }
+                golden_step = false;
+            }
+        }
+        if golden_step {
+            e = if x < m { b - x } else { a - x };
+            d = CG * e;
+        }
+        let u = if d.abs() >= tol1 {
+            x + d
+        } else if d > 0.0 {
+            x + tol1
         } else {
-            lo = a;
-            (a, fa) = (b, fb);
-            b = lo + r * (hi - lo);
-            fb = f(b);
+            x - tol1
+        };
+        let fu = f(u);
+        if fu <= fx {
+            if u < x {
+                b = x;
+            } else {
+                a = x;
+            }
+            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
+        } else {
+            if u < x {
+                a = u;
+            } else {
+                b = u;
+            }
+            if fu <= fw || w == x {
+                (v, fv, w, fw) = (w, fw, u, fu);
+            } else if fu <= fv || v == x || v == w {
+                (v, fv) = (u, fu);
+            }
         }
     }
-    if fa < fb {
-        (a, fa)
-    } else {
-        (b, fb)
-    }
+    (x, fx)
 }
 
 /// Global minimum of a function of an angle on the circle: a scan of `n` points, then
@@ -320,6 +367,82 @@ impl HermiteSpan {
         (self.p0.to_vec2() * h00 + self.d0 * h10 + self.p1.to_vec2() * h01 + self.d1 * h11)
             .to_point()
     }
+}
+
+impl HermiteSpan {
+    /// The span as a cubic Bézier curve.
+    pub fn to_bezier(&self) -> Result<crate::Bezier> {
+        crate::Bezier::new(vec![
+            self.p0,
+            self.p0 + self.d0 / 3.0,
+            self.p1 - self.d1 / 3.0,
+            self.p1,
+        ])
+    }
+}
+
+/// Fairness numbers of a piecewise curve (S2's comparison).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fairness {
+    /// Bending energy ∫ κ² ds.
+    pub bending_energy: f64,
+    /// ∫ (dκ/ds)² ds.
+    pub kappa_variation: f64,
+    /// Curvature extrema: inside the spans by the exact test, plus joints where dκ/ds
+    /// changes sign from one span to the next.
+    pub curvature_extrema: usize,
+    /// Largest |κ|.
+    pub max_abs_kappa: f64,
+}
+
+/// [`Fairness`] of consecutive cubic spans.
+pub fn fairness(spans: &[HermiteSpan]) -> Result<Fairness> {
+    use crate::monotone::CurvatureMonotone;
+    use crate::PlanarCurve;
+    let mut out = Fairness {
+        bending_energy: 0.0,
+        kappa_variation: 0.0,
+        curvature_extrema: 0,
+        max_abs_kappa: 0.0,
+    };
+    let opts = QuadOptions {
+        accuracy: 1e-12,
+        max_panels: 2000,
+    };
+    let mut prev_end_slope: Option<f64> = None;
+    for sp in spans {
+        let b = sp.to_bezier()?;
+        let v = integrate(
+            |t| {
+                let d = b.derivs(t);
+                let speed = d.d1.hypot();
+                let k = d.kappa();
+                let dk = d.dkappa_ds();
+                Vec2::new(k * k * speed, dk * dk * speed)
+            },
+            0.0,
+            1.0,
+            opts,
+        )?;
+        out.bending_energy += v.x;
+        out.kappa_variation += v.y;
+        let r = b.curvature_monotone()?;
+        out.curvature_extrema += r.extrema.len();
+        for i in 0..=64 {
+            out.max_abs_kappa = out.max_abs_kappa.max(b.kappa(i as f64 / 64.0).abs());
+        }
+        for t in &r.extrema {
+            out.max_abs_kappa = out.max_abs_kappa.max(b.kappa(*t).abs());
+        }
+        let start_slope = b.dkappa_ds(0.0);
+        if let Some(e) = prev_end_slope {
+            if e * start_slope < 0.0 {
+                out.curvature_extrema += 1;
+            }
+        }
+        prev_end_slope = Some(b.dkappa_ds(1.0));
+    }
+    Ok(out)
 }
 
 /// A pseudo-elastic spline through points.

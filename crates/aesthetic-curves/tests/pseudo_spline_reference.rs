@@ -40,3 +40,36 @@ fn unit_circle_three_points() {
         assert!(d.min(2.0 * PI - d) < 1e-6, "tangent {k}: {a} vs {want}");
     }
 }
+
+/// n = 4: math.md gives the exact length 6.25483827 (S2 Table 4 printed 6.26067766, its table
+/// interpolation error). Also prints n = 3..10 for the record.
+#[test]
+fn unit_circle_four_points_and_table() {
+    for n in 3..=10usize {
+        let pts: Vec<Point> = (0..n)
+            .map(|k| {
+                let a = 2.0 * PI * k as f64 / n as f64;
+                Point::new(a.cos(), a.sin())
+            })
+            .collect();
+        let t = std::time::Instant::now();
+        let s = pseudo_elastic(&pts, true).unwrap();
+        println!(
+            "n = {n}: length {:.8} area {:.8} ({:.2?})",
+            s.length,
+            s.area,
+            t.elapsed()
+        );
+        if n == 4 {
+            assert!((s.length - 6.25483827).abs() < 1e-7, "length {}", s.length);
+        }
+        // Points on a circle: the curve lies between the polygon and the circle's perimeter
+        // plus a little; the length approaches 2π from below as n grows.
+        let polygon = 2.0 * n as f64 * (PI / n as f64).sin();
+        assert!(
+            s.length > polygon && s.length < 2.0 * PI + 0.1,
+            "n = {n}: {}",
+            s.length
+        );
+    }
+}
