@@ -9,6 +9,8 @@
 //!   sign analysis with rounding bounds, root isolation).
 //! - [`bezier`]: polynomial and rational Bézier curves of degree 1 to 20: evaluation,
 //!   derivatives, curvature, dkappa/ds, subdivision, elevation, power basis.
+//! - [`bspline`]: cubic B-splines, least-squares fitting of point sequences, Bézier
+//!   extraction.
 //! - [`lac`]: log-aesthetic curves: standard form, segments from three control points,
 //!   segments with an inflection end.
 //! - [`lcg`]: the logarithmic curvature graph and alpha estimation.
@@ -25,6 +27,7 @@
 pub mod approx;
 pub mod bernstein;
 pub mod bezier;
+pub mod bspline;
 pub mod error;
 pub mod lac;
 pub mod lcg;
