@@ -199,18 +199,25 @@ fn main() {
 fn run() -> Result<()> {
     let cli = Cli::parse();
     match &cli.cmd {
-        Cmd::Monotone { output, .. }
-        | Cmd::Lac { output, .. }
-        | Cmd::Lcg { output, .. }
-        | Cmd::Spline { output, .. } => plot::check_picture_paths(output)?,
-        Cmd::Approx { output, map, .. } => {
+        Cmd::Lac { output, .. } | Cmd::Lcg { output, .. } | Cmd::Spline { output, .. } => {
+            plot::check_picture_paths(output)?
+        }
+        Cmd::Monotone { output, .. } | Cmd::Approx { output, .. } => {
             for p in output {
                 let ext = aecurve::export::extension(p).unwrap_or_default();
-                if !aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
-                    plot::check_picture_paths(std::slice::from_ref(p))?;
+                if !aecurve::export::CURVE_FORMATS.contains(&ext.as_str())
+                    && plot::check_picture_paths(std::slice::from_ref(p)).is_err()
+                {
+                    anyhow::bail!(
+                        "{}: unknown format (use .svg, .png, .{})",
+                        p.display(),
+                        aecurve::export::CURVE_FORMATS.join(", .")
+                    );
                 }
             }
-            plot::check_picture_paths(map.as_slice())?;
+            if let Cmd::Approx { map, .. } = &cli.cmd {
+                plot::check_picture_paths(map.as_slice())?;
+            }
         }
         Cmd::Bench {
             what: BenchCmd::Monotone { output, .. },
@@ -424,6 +431,18 @@ fn monotone(
         }
     }
     for path in output {
+        let ext = aecurve::export::extension(path).unwrap_or_default();
+        if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+            let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
+            let rb = aesthetic_curves::RationalBezier::new(pts.clone(), weights)?;
+            aecurve::export::write_curve(
+                path,
+                &aesthetic_curves::nurbs::Nurbs::from_bezier(&rb),
+                "bezier",
+            )?;
+            eprintln!("wrote {}", path.display());
+            continue;
+        }
         let caption = format!("{kind} degree {degree}: curvature comb");
         let extrema = match method {
             Method::Exact => c.curvature_monotone()?.extrema,
@@ -954,6 +973,12 @@ fn class_a_polygon(degree: usize, scale: f64, turn: f64) -> Vec<(f64, f64)> {
 
 fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let pb = indicatif::ProgressBar::new(5);
+    pb.set_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    pb.set_message("curvature monotonicity examples");
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let examples = vec![
         Example {
@@ -1021,7 +1046,10 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
             ex.name, ex.text, r.test_degree
         );
     }
+    pb.inc(1);
+    pb.set_message("log-aesthetic segments");
     html += "<h2>Log-aesthetic segments in one triangle (S0 §3, math.md §3.1)</h2>\n";
+    let mut kappa_series = Vec::new();
     let tri = [
         aesthetic_curves::Point::new(0.0, 0.0),
         aesthetic_curves::Point::new(10.0, 0.0),
@@ -1030,6 +1058,21 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     for alpha in [-1.0, 0.0, 1.0, 2.0] {
         let seg = aesthetic_curves::lac::LacSegment::new(alpha, tri)?;
         let (points, kappa) = seg.sample(121)?;
+        let mut arc = 0.0;
+        let mut series = Vec::with_capacity(points.len());
+        for (i, k) in kappa.iter().enumerate() {
+            if i > 0 {
+                arc += (points[i] - points[i - 1]).hypot();
+            }
+            series.push((arc, *k));
+        }
+        let mut se = plot::Series::new(
+            format!("alpha = {alpha}"),
+            series,
+            plot::PALETTE[kappa_series.len() % plot::PALETTE.len()],
+        );
+        se.markers = false;
+        kappa_series.push(se);
         let file = format!("lac-alpha{alpha}.svg");
         let caption = format!("alpha = {alpha}: lambda = {:.6}", seg.lambda());
         std::fs::write(
@@ -1050,8 +1093,26 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
             seg.arc_length()?
         );
     }
+    std::fs::write(
+        out.join("lac-curvature.svg"),
+        plot::fitted_chart(
+            "Curvature along the four LAC segments",
+            "arc length",
+            "curvature",
+            &kappa_series,
+        ),
+    )?;
+    html += "<figure><img src=\"lac-curvature.svg\" alt=\"curvature against arc length\">\
+             <figcaption>Curvature against arc length of the four segments above: monotone \
+             in every case; alpha = -1 (clothoid) is the straight line.</figcaption></figure>\n";
+    pb.inc(1);
+    pb.set_message("rational cubics for LAC segments");
     html += &approx_gallery(out)?;
+    pb.inc(1);
+    pb.set_message("pseudo-elastic splines (exact mode)");
     html += &spline_gallery(out, quick)?;
+    pb.inc(1);
+    pb.set_message("timing the monotonicity tests");
     let cfg = if quick {
         bench::BenchConfig {
             curves: 200,
@@ -1062,11 +1123,9 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     } else {
         bench::BenchConfig::default()
     };
-    eprintln!(
-        "timing the exact and sampling tests ({} curves per degree)...",
-        cfg.curves
-    );
     let rows = bench::run(&cfg);
+    pb.inc(1);
+    pb.finish_and_clear();
     std::fs::write(out.join("bench-monotone.svg"), bench::chart(&rows))?;
     html += &format!(
         "<h3>S1 Fig. 4: exact test against sampling</h3>\
