@@ -862,39 +862,13 @@ impl RationalSpline {
     /// The point at knot parameter `u` in [0, 1], by de Boor's algorithm on homogeneous
     /// coordinates (independent of the pieces: a check of the assembled spline).
     pub fn eval(&self, u: f64) -> Point {
-        let p = self.degree;
-        let k = &self.knots;
-        let n = self.control_points.len();
-        let u = u.clamp(k[p], k[n]);
-        // Span index s with k[s] <= u < k[s+1] (the last non-empty span at the end).
-        let mut s = p;
-        while s + 1 < n && k[s + 1] <= u {
-            s += 1;
-        }
-        let mut d: Vec<(f64, f64, f64)> = (0..=p)
-            .map(|j| {
-                let i = s + j - p;
-                let w = self.weights[i];
-                (
-                    self.control_points[i].x * w,
-                    self.control_points[i].y * w,
-                    w,
-                )
-            })
-            .collect();
-        for r in 1..=p {
-            for j in (r..=p).rev() {
-                let i = s + j - p;
-                let den = k[i + p + 1 - r] - k[i];
-                let a = if den > 0.0 { (u - k[i]) / den } else { 0.0 };
-                d[j] = (
-                    (1.0 - a) * d[j - 1].0 + a * d[j].0,
-                    (1.0 - a) * d[j - 1].1 + a * d[j].1,
-                    (1.0 - a) * d[j - 1].2 + a * d[j].2,
-                );
-            }
-        }
-        Point::new(d[p].0 / d[p].2, d[p].1 / d[p].2)
+        crate::nurbs::de_boor(
+            self.degree,
+            &self.knots,
+            &self.control_points,
+            Some(&self.weights),
+            u,
+        )
     }
 }
 

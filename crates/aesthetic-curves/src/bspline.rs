@@ -50,23 +50,7 @@ impl BSpline {
 
     /// The point at `u` (clamped to the domain), by de Boor's algorithm.
     pub fn eval(&self, u: f64) -> Point {
-        let (a, b) = self.domain();
-        let u = u.clamp(a, b);
-        let p = self.degree;
-        let s = self.span(u);
-        let k = &self.knots;
-        let mut d: Vec<Vec2> = (0..=p)
-            .map(|j| self.control_points[s + j - p].to_vec2())
-            .collect();
-        for r in 1..=p {
-            for j in (r..=p).rev() {
-                let i = s + j - p;
-                let den = k[i + p + 1 - r] - k[i];
-                let a = if den > 0.0 { (u - k[i]) / den } else { 0.0 };
-                d[j] = d[j - 1] * (1.0 - a) + d[j] * a;
-            }
-        }
-        d[p].to_point()
+        crate::nurbs::de_boor(self.degree, &self.knots, &self.control_points, None, u)
     }
 
     /// First derivative at `u` (the derivative B-spline evaluated by de Boor).
