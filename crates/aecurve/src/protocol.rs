@@ -48,8 +48,9 @@ pub const OPS: &[&str] = &[
     "lcg.estimate",
     "lac.rational_approx",
     "spline.pseudo_elastic",
+    "lac.fit",
 ];
-const PLANNED_OPS: &[&str] = &["spline.pseudo_elastic", "lac.fit", "sketch.fit"];
+const PLANNED_OPS: &[&str] = &["sketch.fit"];
 
 /// Answer one request line (JSON text) with one response object.
 pub fn handle_line(line: &str) -> Value {
@@ -120,6 +121,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "lcg.estimate" => lcg_estimate(obj),
         "lac.rational_approx" => lac_rational_approx(obj),
         "spline.pseudo_elastic" => spline_pseudo_elastic(obj),
+        "lac.fit" => lac_fit(obj),
         _ if PLANNED_OPS.contains(&op) => Err(ProtoError {
             kind: "unknown_op",
             message: format!("op '{op}' is part of the protocol but not implemented in this build"),
@@ -454,6 +456,25 @@ fn lac_rational_approx(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         });
     }
     Ok(out)
+}
+
+/// Largest point sequence `lac.fit` accepts.
+pub const MAX_FIT_POINTS: usize = 20_000;
+
+fn lac_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let points = points_param(obj, "points", 6, MAX_FIT_POINTS)?;
+    let alpha = optional_number(obj, "alpha")?;
+    let f = aesthetic_curves::lac_fit::fit_lac(
+        &points,
+        aesthetic_curves::lac_fit::LacFitOptions { alpha },
+    )?;
+    let c = f.segment.control;
+    Ok(json!({
+        "alpha": f.alpha,
+        "control": c.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+        "rms_deviation": f.rms_deviation,
+        "max_deviation": f.max_deviation,
+    }))
 }
 
 /// Largest number of points `spline.pseudo_elastic` accepts: this build has only the exact

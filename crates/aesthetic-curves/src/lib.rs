@@ -30,6 +30,7 @@ pub mod bezier;
 pub mod bspline;
 pub mod error;
 pub mod lac;
+pub mod lac_fit;
 pub mod lcg;
 pub mod monotone;
 pub mod nurbs;
