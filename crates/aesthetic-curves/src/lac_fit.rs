@@ -189,12 +189,12 @@ fn triangle(c: &[f64], size: f64) -> [Point; 3] {
     ]
 }
 
+/// Residuals of a parameter vector (None where the segment does not exist).
+type ResidualFn<'a> = dyn Fn(&[f64], &mut Vec<f64>) -> Option<()> + 'a;
+
 /// Levenberg–Marquardt with a forward-difference Jacobian; steps where `eval` fails (no
 /// segment) are refused. Returns the point and its cost.
-fn levenberg_marquardt(
-    x0: &[f64],
-    eval: &dyn Fn(&[f64], &mut Vec<f64>) -> Option<()>,
-) -> (Vec<f64>, f64) {
+fn levenberg_marquardt(x0: &[f64], eval: &ResidualFn) -> (Vec<f64>, f64) {
     let mut x = x0.to_vec();
     let mut r = Vec::new();
     if eval(&x, &mut r).is_none() {
