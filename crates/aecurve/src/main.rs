@@ -553,22 +553,17 @@ fn approx(
         (2..=1000).contains(&map_cells),
         "--map-cells must be 2 to 1000"
     );
-    let mut req = serde_json::json!({"op": "lac.rational_approx", "alpha": alpha,
-        "control": pts.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>()});
-    if let Some(t) = tolerance {
-        req["tolerance"] = serde_json::json!(t);
-    }
-    let resp = aecurve::protocol::handle_value(&req);
-    if resp["ok"] != true {
-        anyhow::bail!(
-            "{}: {}",
-            resp["error"]["kind"].as_str().unwrap_or("error"),
-            resp["error"]["message"].as_str().unwrap_or("")
-        );
-    }
-    let r = &resp["result"];
-    let seg = aesthetic_curves::lac::LacSegment::new(alpha, [pts[0], pts[1], pts[2]])?;
-    let fit = approx::fit_rational_cubic(&seg, &approx::ApproxOptions::default())?;
+    // Library errors keep the protocol's kind in the message (`no_segment: ...`).
+    let kinded = |e: aesthetic_curves::Error| anyhow::anyhow!("{}: {e}", e.kind());
+    let seg =
+        aesthetic_curves::lac::LacSegment::new(alpha, [pts[0], pts[1], pts[2]]).map_err(kinded)?;
+    let opts = approx::ApproxOptions::default();
+    let fit = approx::fit_rational_cubic(&seg, &opts).map_err(kinded)?;
+    let spline = tolerance
+        .map(|t| approx::fit_rational_spline(&seg, t, 64, &opts))
+        .transpose()
+        .map_err(kinded)?;
+    let r = &aecurve::protocol::rational_approx_json(&seg, &fit, spline.as_ref())?;
     if json {
         println!("{r}");
     } else {
@@ -602,13 +597,8 @@ fn approx(
             );
         }
     }
-    let nurbs = match tolerance {
-        Some(t) => aesthetic_curves::nurbs::Nurbs::from_spline(&approx::fit_rational_spline(
-            &seg,
-            t,
-            64,
-            &approx::ApproxOptions::default(),
-        )?),
+    let nurbs = match &spline {
+        Some(sp) => aesthetic_curves::nurbs::Nurbs::from_spline(sp),
         None => aesthetic_curves::nurbs::Nurbs::from_bezier(&fit.curve),
     };
     let n = 200;

@@ -433,6 +433,18 @@ fn lac_rational_approx(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let seg = aesthetic_curves::lac::LacSegment::new(alpha, [control[0], control[1], control[2]])?;
     let opts = approx::ApproxOptions::default();
     let fit = approx::fit_rational_cubic(&seg, &opts)?;
+    let spline = tolerance
+        .map(|t| approx::fit_rational_spline(&seg, t, 64, &opts))
+        .transpose()?;
+    Ok(rational_approx_json(&seg, &fit, spline.as_ref())?)
+}
+
+/// The result object of `lac.rational_approx` (the `spline` member only with a spline).
+pub fn rational_approx_json(
+    seg: &aesthetic_curves::lac::LacSegment,
+    fit: &aesthetic_curves::approx::RationalCubicFit,
+    spline: Option<&aesthetic_curves::approx::RationalSpline>,
+) -> Result<Value, Error> {
     let pts = |p: &[aesthetic_curves::Point]| p.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
     let mut out = json!({
         "control_points": pts(fit.curve.points()),
@@ -444,8 +456,7 @@ fn lac_rational_approx(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "monotone": fit.monotone,
         "arc_length": seg.arc_length()?,
     });
-    if let Some(t) = tolerance {
-        let sp = approx::fit_rational_spline(&seg, t, 64, &opts)?;
+    if let Some(sp) = spline {
         out["spline"] = json!({
             "degree": sp.degree,
             "knots": sp.knots,
