@@ -510,11 +510,6 @@ impl Samples {
     }
 }
 
-#[allow(dead_code)]
-fn interior_ts(n: usize) -> Vec<f64> {
-    (0..n).map(|i| (i as f64 + 0.5) / n as f64).collect()
-}
-
 /// Levenberg–Marquardt on the residual vector from `start`; steps where `feasible` is false
 /// are refused. A run still above `abandon_above` (mean square) after 8 iterations is
 /// abandoned: it is crawling along a valley towards a minimum far worse than one already
