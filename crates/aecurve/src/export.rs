@@ -71,14 +71,10 @@ pub fn write_dxf(path: &Path, c: &Nurbs) -> Result<()> {
         .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))
 }
 
+/// A real for STEP (ISO 10303-21) and IGES: the shortest round-trip form (`{:?}`), with a
+/// decimal point always and an upper-case exponent, as both formats require.
 fn step_real(v: f64) -> String {
-    // ISO 10303-21 reals need a decimal point; {:?} is the shortest round-trip form.
-    let s = format!("{v:?}");
-    let s = if s.contains('e') {
-        s.replace('e', "E")
-    } else {
-        s
-    };
+    let s = format!("{v:?}").replace('e', "E");
     if s.contains('.') {
         s
     } else if let Some(i) = s.find('E') {
@@ -198,17 +194,6 @@ pub fn step_text(c: &Nurbs, name: &str) -> String {
     )
 }
 
-fn iges_real(v: f64) -> String {
-    let s = format!("{v:?}").replace('e', "E");
-    if s.contains('.') {
-        s
-    } else if let Some(i) = s.find('E') {
-        format!("{}.{}", &s[..i], &s[i..])
-    } else {
-        format!("{s}.")
-    }
-}
-
 fn hollerith(s: &str) -> String {
     format!("{}H{s}", s.len())
 }
@@ -246,16 +231,16 @@ pub fn iges_text(c: &Nurbs, name: &str) -> String {
         "0".into(), // rational
         "0".into(), // non-periodic
     ];
-    tok.extend(c.knots.iter().map(|v| iges_real(*v)));
-    tok.extend(c.weights.iter().map(|v| iges_real(*v)));
+    tok.extend(c.knots.iter().map(|v| step_real(*v)));
+    tok.extend(c.weights.iter().map(|v| step_real(*v)));
     for p in &c.control_points {
-        tok.push(iges_real(p.x));
-        tok.push(iges_real(p.y));
+        tok.push(step_real(p.x));
+        tok.push(step_real(p.y));
         tok.push("0.".into());
     }
     tok.extend([
-        iges_real(u0),
-        iges_real(u1),
+        step_real(u0),
+        step_real(u1),
         "0.".into(),
         "0.".into(),
         "1.".into(),
@@ -282,7 +267,7 @@ pub fn iges_text(c: &Nurbs, name: &str) -> String {
         "0.".into(),
         hollerith("20260101.000000"),
         "1.E-9".into(),
-        iges_real(size * 10.0),
+        step_real(size * 10.0),
         hollerith("aesthetic-curves"),
         hollerith(""),
         "11".into(),
