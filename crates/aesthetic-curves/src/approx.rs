@@ -32,9 +32,10 @@
 //! so it moves continuously with the input except where the global optimum itself jumps
 //! to another basin.
 
+use crate::bezier::PlanarCurve;
 use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
-use crate::lac::LacSegment;
+use crate::lac::{LacInflectionSegment, LacSegment};
 use crate::monotone::CurvatureMonotone;
 use kurbo::{Point, Vec2};
 
@@ -1001,6 +1002,202 @@ pub fn error_map(seg: &LacSegment, n: usize, samples: usize) -> Result<ErrorMap>
         }
     }
     Ok(ErrorMap { n, rms, monotone })
+}
+
+/// The rational cubics of the inflection-end family for a [`LacInflectionSegment`] with
+/// triangle C0 (inflection end), C1, C2: `b0 = C0`, `b1 = C0 + f0 (C1 - C0)`, `b2 = C1`,
+/// `b3 = C2`, weights `(w0, 1, 1, w3)`. b0, b1, b2 are collinear, so the curvature at b0 is
+/// zero for every (f0, w0); `w3` matches the segment's curvature at C2 (end curvature is
+/// linear in w3). Two free parameters: f0 in (0, 1) and w0 > 0.
+fn inflection_cubic(seg: &LacInflectionSegment, f0: f64, w0: f64) -> Option<RationalBezier> {
+    if !(f0 > 0.0 && f0 < 1.0 && w0 > 0.0 && w0.is_finite()) {
+        return None;
+    }
+    let c = seg.control;
+    let b = vec![c[0], c[0] + (c[1] - c[0]) * f0, c[1], c[2]];
+    let probe = RationalBezier::new(b.clone(), vec![w0, 1.0, 1.0, 1.0]).ok()?;
+    let w3 = seg.end_curvature() / probe.kappa_end();
+    if !(w3 > 0.0 && w3.is_finite()) {
+        return None;
+    }
+    RationalBezier::new(b, vec![w0, 1.0, 1.0, w3]).ok()
+}
+
+/// The inflection-end segment tabulated against arc-length fraction σ (turning angle
+/// `τ = θ_d σ^q`), where it is smooth: positions and derivatives, cubic Hermite between.
+struct InflectionTable {
+    p: Vec<Point>,
+    d: Vec<Vec2>,
+    theta_d: f64,
+    r: f64,
+    sign: f64,
+    d0: Vec2,
+    len: f64,
+}
+
+impl InflectionTable {
+    fn new(seg: &LacInflectionSegment, n: usize) -> Result<InflectionTable> {
+        let r = seg.alpha / (seg.alpha - 1.0);
+        let taus: Vec<f64> = (0..=n)
+            .map(|k| seg.theta_d * (k as f64 / n as f64).powf(1.0 / r))
+            .collect();
+        let (p, t) = seg.eval_turning(&taus)?;
+        let len = seg.arc_length();
+        let c = seg.control;
+        Ok(InflectionTable {
+            p,
+            d: t.iter().map(|v| *v * len).collect(),
+            theta_d: seg.theta_d,
+            r,
+            sign: (c[1] - c[0]).cross(c[2] - c[1]).signum(),
+            d0: c[1] - c[0],
+            len,
+        })
+    }
+
+    fn at_turning(&self, tau: f64) -> Point {
+        let n = self.p.len() - 1;
+        let sigma = (tau / self.theta_d).clamp(0.0, 1.0).powf(self.r);
+        let k = ((sigma * n as f64) as usize).min(n - 1);
+        let h = 1.0 / n as f64;
+        let x = (sigma - k as f64 * h) / h;
+        let (x2, x3) = (x * x, x * x * x);
+        let h00 = 2.0 * x3 - 3.0 * x2 + 1.0;
+        let h10 = x3 - 2.0 * x2 + x;
+        let h01 = -2.0 * x3 + 3.0 * x2;
+        let h11 = x3 - x2;
+        (self.p[k].to_vec2() * h00
+            + self.d[k] * (h10 * h)
+            + self.p[k + 1].to_vec2() * h01
+            + self.d[k + 1] * (h11 * h))
+            .to_point()
+    }
+
+    /// Weighted mean square distance (by turning-angle correspondence, over the length) of
+    /// the cubic at the Gauss samples; infinite for an invalid cubic.
+    fn cost(&self, curve: Option<RationalBezier>, smp: &Samples) -> f64 {
+        let Some(c) = curve else {
+            return f64::INFINITY;
+        };
+        let mut sum = 0.0;
+        for (&t, &sw) in smp.t.iter().zip(&smp.sw) {
+            let tau = turning(self.d0, c.eval_d(t), self.sign);
+            let q = self.at_turning(tau);
+            sum += ((c.eval(t) - q).hypot() * sw / self.len).powi(2);
+        }
+        sum
+    }
+}
+
+/// The best curvature-monotone rational cubic of the inflection-end family (see
+/// `inflection_cubic`) for an inflection-end segment: a grid over (f0, ln w0), compass search
+/// from the best curvature-monotone grid points with non-monotone steps refused, the error
+/// reported on the exact segment at `opts.report_samples` uniform t. The curve starts at the
+/// inflection end (zero curvature) and matches the end point, tangent and curvature at C2:
+/// G2 at both ends. Errors: [`Error::NoSegment`] when no candidate is curvature-monotone.
+pub fn fit_inflection_cubic(
+    seg: &LacInflectionSegment,
+    opts: &ApproxOptions,
+) -> Result<RationalCubicFit> {
+    let table = InflectionTable::new(seg, 256)?;
+    let tg = Samples::gauss(opts.grid_samples.max(4));
+    let tr = Samples::gauss(opts.refine_samples.max(4));
+    let n = opts.grid.clamp(3, 1000);
+    let make = |x: (f64, f64)| inflection_cubic(seg, x.0, x.1.exp());
+    let monotone = |x: (f64, f64)| {
+        make(x)
+            .and_then(|c| c.is_curvature_monotone().ok())
+            .unwrap_or(false)
+    };
+    let mut evals = 0;
+    let mut grid = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let x = (
+                (i as f64 + 0.5) / n as f64,
+                -3.0 + 6.0 * (j as f64 + 0.5) / n as f64,
+            );
+            let c = table.cost(make(x), &tg);
+            evals += 1;
+            if c.is_finite() {
+                grid.push((c, x));
+            }
+        }
+    }
+    grid.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let starts: Vec<(f64, f64)> = grid
+        .iter()
+        .filter(|(_, x)| monotone(*x))
+        .take(opts.starts.max(1) + 1)
+        .map(|(_, x)| *x)
+        .collect();
+    let mut best: Option<(f64, (f64, f64))> = None;
+    for s in starts {
+        // Compass search on the refine samples, monotone steps only.
+        let mut x = s;
+        let mut cost = table.cost(make(x), &tr);
+        let mut h = 0.5 / n as f64;
+        while h > 1e-9 && evals < 20_000 {
+            let mut step = (cost, x);
+            for (d0, d1) in [
+                (1.0, 0.0),
+                (-1.0, 0.0),
+                (0.0, 1.0),
+                (0.0, -1.0),
+                (1.0, 1.0),
+                (-1.0, -1.0),
+                (1.0, -1.0),
+                (-1.0, 1.0),
+            ] {
+                let y = (x.0 + d0 * h, x.1 + 6.0 * d1 * h);
+                let c = table.cost(make(y), &tr);
+                evals += 1;
+                if c < step.0 && monotone(y) {
+                    step = (c, y);
+                }
+            }
+            if step.0 < cost {
+                (cost, x) = step;
+                h *= 2.0;
+            } else {
+                h *= 0.5;
+            }
+        }
+        if best.is_none_or(|b| cost < b.0) {
+            best = Some((cost, x));
+        }
+    }
+    let Some((_, x)) = best else {
+        return Err(Error::NoSegment(
+            "no rational cubic of the inflection-end family has monotone curvature for this segment"
+                .into(),
+        ));
+    };
+    let curve = make(x).ok_or_else(|| Error::NoConvergence("inflection cubic vanished".into()))?;
+    // Report on the exact segment.
+    let nr = opts.report_samples.max(200);
+    let ts: Vec<f64> = (0..nr).map(|i| i as f64 / (nr - 1) as f64).collect();
+    let taus: Vec<f64> = ts
+        .iter()
+        .map(|&t| turning(table.d0, curve.eval_d(t), table.sign).clamp(0.0, seg.theta_d))
+        .collect();
+    let (exact, _) = seg.eval_turning(&taus)?;
+    let (mut sum, mut max) = (0.0f64, 0.0f64);
+    for (&t, q) in ts.iter().zip(&exact) {
+        let d = (curve.eval(t) - *q).hypot() / table.len;
+        sum += d * d;
+        max = max.max(d);
+    }
+    let monotone = curve.is_curvature_monotone()?;
+    Ok(RationalCubicFit {
+        f0: x.0,
+        f1: 1.0,
+        rms: (sum / nr as f64).sqrt(),
+        max_error: max,
+        monotone,
+        evaluations: evals,
+        curve,
+    })
 }
 
 #[cfg(test)]

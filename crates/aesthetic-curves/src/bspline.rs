@@ -244,42 +244,106 @@ pub fn fit_segments(points: &[Point], params: &[f64], segments: usize) -> Result
     })
 }
 
-/// Distance from `q` to the curve near parameter `u0` and the foot's parameter (Newton
-/// projection, safeguarded).
-fn project_near(s: &BSpline, q: Point, u0: f64) -> (f64, f64) {
-    let (lo, hi) = s.domain();
-    let mut u = u0;
-    let mut best = (s.eval(u) - q).hypot();
-    for _ in 0..30 {
-        let r = s.eval(u) - q;
-        let d = s.eval_d(u);
-        let h = 1e-6 * (hi - lo);
-        let dd = (s.eval_d((u + h).min(hi)) - s.eval_d((u - h).max(lo))) / (2.0 * h);
-        let g = r.dot(d);
-        let gg = d.hypot2() + r.dot(dd);
-        // Newton on the squared distance; a gradient step where its curvature is negative.
-        let mut step = if gg > 0.0 {
-            -g / gg
-        } else {
-            -g / d.hypot2().max(1e-300)
-        };
-        let mut moved = false;
-        for _ in 0..30 {
-            let nu = (u + step).clamp(lo, hi);
-            let nd = (s.eval(nu) - q).hypot();
-            if nd < best {
-                best = nd;
-                moved = (nu - u).abs() > 1e-15;
-                u = nu;
-                break;
-            }
-            step *= 0.5;
-        }
-        if !moved {
-            break;
+/// A cubic B-spline as power-form cubics per span, for fast projection.
+struct Spans {
+    /// Per span: breaks, and coefficients a0 + a1 t + a2 t² + a3 t³ in the local t in [0, 1].
+    breaks: Vec<f64>,
+    coef: Vec<[Vec2; 4]>,
+}
+
+impl Spans {
+    fn new(s: &BSpline) -> Result<Spans> {
+        let bez = s.to_beziers()?;
+        let p = s.degree;
+        let breaks = (0..=bez.len()).map(|i| s.knots[p + i]).collect();
+        let coef = bez
+            .iter()
+            .map(|b| {
+                let q: Vec<Vec2> = b.points().iter().map(|p| p.to_vec2()).collect();
+                [
+                    q[0],
+                    (q[1] - q[0]) * 3.0,
+                    (q[0] - q[1] * 2.0 + q[2]) * 3.0,
+                    q[3] - q[0] + (q[1] - q[2]) * 3.0,
+                ]
+            })
+            .collect();
+        Ok(Spans { breaks, coef })
+    }
+
+    fn locate(&self, u: f64) -> usize {
+        let n = self.coef.len();
+        match self.breaks[1..n].iter().position(|b| u < *b) {
+            Some(i) => i,
+            None => n - 1,
         }
     }
-    (best, u)
+
+    /// Point, first and second derivative at local t of span i.
+    fn at(&self, i: usize, t: f64) -> (Vec2, Vec2, Vec2) {
+        let [a0, a1, a2, a3] = self.coef[i];
+        (
+            a0 + (a1 + (a2 + a3 * t) * t) * t,
+            a1 + (a2 * 2.0 + a3 * (3.0 * t)) * t,
+            a2 * 2.0 + a3 * (6.0 * t),
+        )
+    }
+
+    /// Distance from `q` to the curve near parameter `u0` and the foot's parameter (Newton on
+    /// the squared distance, moving across spans, safeguarded by the distance decreasing).
+    fn project_near(&self, q: Point, u0: f64) -> (f64, f64) {
+        let q = q.to_vec2();
+        let n = self.coef.len();
+        let (lo, hi) = (self.breaks[0], self.breaks[n]);
+        let mut i = self.locate(u0);
+        let width = |i: usize| self.breaks[i + 1] - self.breaks[i];
+        let mut t = ((u0 - self.breaks[i]) / width(i)).clamp(0.0, 1.0);
+        let (p, _, _) = self.at(i, t);
+        let mut best = (p - q).hypot();
+        for _ in 0..12 {
+            let (p, d1, d2) = self.at(i, t);
+            let r = p - q;
+            let g = r.dot(d1);
+            let gg = d1.hypot2() + r.dot(d2);
+            let step = if gg > 0.0 {
+                -g / gg
+            } else {
+                -g / d1.hypot2().max(1e-300)
+            };
+            // In the global parameter, then back to a span.
+            let mut h = step * width(i);
+            let u = self.breaks[i] + t * width(i);
+            let mut moved = false;
+            for _ in 0..20 {
+                let nu = (u + h).clamp(lo, hi);
+                let ni = self.locate(nu);
+                let nt = ((nu - self.breaks[ni]) / width(ni)).clamp(0.0, 1.0);
+                let nd = (self.at(ni, nt).0 - q).hypot();
+                if nd < best {
+                    moved = (nu - u).abs() > 1e-15 * (hi - lo);
+                    best = nd;
+                    i = ni;
+                    t = nt;
+                    break;
+                }
+                h *= 0.5;
+            }
+            if !moved {
+                break;
+            }
+        }
+        (best, self.breaks[i] + t * width(i))
+    }
+}
+
+/// Distances and foot parameters of `pts` on `s`, starting from `params`.
+fn project_all(s: &BSpline, pts: &[Point], params: &[f64]) -> Result<Vec<(f64, f64)>> {
+    let sp = Spans::new(s)?;
+    Ok(pts
+        .iter()
+        .zip(params)
+        .map(|(q, u)| sp.project_near(*q, *u))
+        .collect())
 }
 
 /// Most parameter corrections per segment count.
@@ -310,19 +374,16 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
     }
     let chord = chord_parameters(&pts)?;
     let max_seg = opts.max_segments.clamp(1, pts.len() - 3);
-    let mut last = None;
-    for segments in 1..=max_seg {
+    // Grow the segment count geometrically until a fit is within tolerance, then bisect
+    // back to the fewest segments that are (deviation falls with the count, nearly always).
+    let attempt = |segments: usize| -> Result<BSplineFit> {
         // Parameter correction (Hoschek): refit with the points' foot parameters on the
         // previous fit, a few times; chord length is only the first guess.
         let mut params = chord.clone();
         let mut spline = fit_segments(&pts, &params, segments)?;
         let mut d: Vec<f64> = Vec::new();
         for iter in 0..CORRECTIONS {
-            let proj: Vec<(f64, f64)> = pts
-                .iter()
-                .zip(&params)
-                .map(|(q, u)| project_near(&spline, *q, *u))
-                .collect();
+            let proj = project_all(&spline, &pts, &params)?;
             d = proj.iter().map(|x| x.0).collect();
             let dmax = d.iter().copied().fold(0.0, f64::max);
             if iter + 1 == CORRECTIONS || dmax <= 0.1 * opts.tolerance {
@@ -333,19 +394,12 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
             np[0] = 0.0;
             np[last_i] = 1.0;
             let candidate = fit_segments(&pts, &np, segments)?;
-            let cmax = pts
-                .iter()
-                .zip(&np)
-                .map(|(q, u)| project_near(&candidate, *q, *u).0)
-                .fold(0.0, f64::max);
+            let cproj = project_all(&candidate, &pts, &np)?;
+            let cmax = cproj.iter().map(|x| x.0).fold(0.0, f64::max);
             // Stop when a correction no longer gains 1%.
             if cmax > 0.99 * dmax {
                 if cmax < dmax {
-                    d = pts
-                        .iter()
-                        .zip(&np)
-                        .map(|(q, u)| project_near(&candidate, *q, *u).0)
-                        .collect();
+                    d = cproj.iter().map(|x| x.0).collect();
                     params = np;
                     spline = candidate;
                 }
@@ -363,16 +417,44 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
             max_deviation: max,
             rms_deviation: rms,
         };
-        if max <= opts.tolerance {
-            return Ok(fit);
+        Ok(fit)
+    };
+    let mut lo = 0; // largest count known to fail
+    let mut best: Option<BSplineFit> = None;
+    let mut segments = 1;
+    let mut last_fail = None;
+    loop {
+        let f = attempt(segments)?;
+        if f.max_deviation <= opts.tolerance {
+            best = Some(f);
+            break;
         }
-        last = Some(fit);
+        lo = segments;
+        last_fail = Some(f);
+        if segments == max_seg {
+            break;
+        }
+        segments = (segments + segments / 2 + 1).min(max_seg);
     }
-    let f = last.expect("at least one fit");
-    Err(Error::NoConvergence(format!(
-        "{} segments leave a deviation of {:.3e} above the tolerance {:.3e}",
-        max_seg, f.max_deviation, opts.tolerance
-    )))
+    let Some(mut best) = best else {
+        let f = last_fail.expect("at least one fit");
+        return Err(Error::NoConvergence(format!(
+            "{} segments leave a deviation of {:.3e} above the tolerance {:.3e}",
+            max_seg, f.max_deviation, opts.tolerance
+        )));
+    };
+    let mut hi = segments;
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        let f = attempt(mid)?;
+        if f.max_deviation <= opts.tolerance {
+            hi = mid;
+            best = f;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(best)
 }
 
 #[cfg(test)]

@@ -1344,6 +1344,55 @@ impl LacInflectionSegment {
         self.theta_d.powf(self.r()) * self.scale()
     }
 
+    /// +1 when the segment turns counter-clockwise from control[0] to control[2].
+    fn turn_sign(&self) -> f64 {
+        let c = self.control;
+        (c[1] - c[0]).cross(c[2] - c[1]).signum()
+    }
+
+    /// Signed curvature at control[2] (the curvature at the inflection end control[0] is 0):
+    /// `q θ_d^(1-1/q)` over the scale.
+    pub fn end_curvature(&self) -> f64 {
+        let r = self.r();
+        self.turn_sign() * self.theta_d.powf(1.0 - r) / (r * self.scale())
+    }
+
+    /// Points at turning angles τ from the inflection end (τ = 0) to control[2] (τ = θ_d),
+    /// and the unit tangents there; τ outside [0, θ_d] is clamped. Ascending τ are
+    /// integrated incrementally.
+    pub fn eval_turning(&self, taus: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+        if let Some(i) = taus.iter().position(|t| !t.is_finite()) {
+            return Err(Error::invalid(format!("tau[{i}]"), "must be finite"));
+        }
+        let r = self.r();
+        let o = self.map.apply(Vec2::ZERO);
+        let mut acc = Vec2::ZERO;
+        let mut prev = 0.0;
+        let mut pts = Vec::with_capacity(taus.len());
+        let mut tangents = Vec::with_capacity(taus.len());
+        for t in taus {
+            let th = t.clamp(0.0, self.theta_d);
+            if th < prev {
+                acc = Vec2::ZERO;
+                prev = 0.0;
+            }
+            if th > prev {
+                acc += inflection_integral(r, prev, th)? * r;
+            }
+            prev = th;
+            pts.push(if th == self.theta_d {
+                self.control[2]
+            } else if th == 0.0 {
+                self.control[0]
+            } else {
+                self.map.apply(acc)
+            });
+            let d = self.map.apply(Vec2::from_angle(th)) - o;
+            tangents.push(d / d.hypot());
+        }
+        Ok((pts, tangents))
+    }
+
     /// `n >= 2` points from the inflection end to control[2], evenly spaced in tangent angle,
     /// and their signed curvature (0 at the start).
     pub fn sample(&self, n: usize) -> Result<(Vec<Point>, Vec<f64>)> {

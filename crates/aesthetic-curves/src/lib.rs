@@ -16,6 +16,7 @@
 //! - [`lcg`]: the logarithmic curvature graph and alpha estimation.
 //! - [`nurbs`]: rational B-splines, the exchange form of CAD systems.
 //! - [`quadrature`]: adaptive Gauss–Kronrod quadrature.
+//! - [`sketch`]: pen input to a G2 curve of log-aesthetic pieces (as rational cubics).
 //! - [`monotone`]: the exact curvature-monotonicity test (Bernstein form of dkappa/ds plus
 //!   subdivision) and the sampling test.
 //!
@@ -38,6 +39,7 @@ pub mod pseudo_spline;
 pub mod quadrature;
 pub mod roots;
 pub mod samples;
+pub mod sketch;
 
 pub use bezier::{Bezier, PlanarCurve, RationalBezier};
 pub use error::{Error, Result};

@@ -1,0 +1,891 @@
+//! Pen input to a G2 aesthetic curve (math.md §6; S4 §3).
+//!
+//! The pipeline of [`fit_sketch`]:
+//! 1. a least-squares cubic B-spline through the points ([`crate::bspline::fit`]) within
+//!    half the tolerance;
+//! 2. its inflections (sign changes of `g = x'y'' - y'x''`) and curvature extrema (of
+//!    `h = 2 g' f - 3 g f'`, `f = |x'|²`), isolated exactly on each Bézier span's Bernstein
+//!    form; simplified as in S4: inflection pairs turning less than [`SketchOptions::min_turn`]
+//!    between them are noise and dropped, one curvature maximum is kept between two
+//!    inflections, and pieces turning more than [`SketchOptions::max_turn`] are split;
+//! 3. per piece, α from the least-squares line of its logarithmic curvature graph; a piece
+//!    with an inflection at one end becomes an inflection-end segment (math.md §3.2, α from
+//!    its triangle); every other piece a LAC segment in the triangle of its end points and
+//!    end tangents (§3.1). When the triangle lies outside the existence region for that α,
+//!    the nearest admissible α (towards the log spiral) is used instead;
+//! 4. **G2 fairing**: the tangent directions at the joints are the unknowns, the curvature
+//!    mismatches at the joints the equations; Newton's method with a finite-difference
+//!    Jacobian (tridiagonal: a joint's tangent moves its two pieces) and a backtracking line
+//!    search, until the largest jump is below [`SketchOptions::g2_tolerance`] of the largest
+//!    curvature. Joints where both sides are inflection ends have zero curvature on both sides
+//!    by construction and keep their tangent;
+//! 5. each piece becomes one rational cubic ([`crate::approx`]): G2 to its LAC at both ends,
+//!    so G2 at every joint, with curvature monotonicity proven by the exact test;
+//! 6. the input points' distance to the result is measured; while it exceeds the tolerance,
+//!    the piece holding the worst point is split and steps 3-5 repeat.
+
+use crate::approx::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions};
+use crate::bernstein::sign_change_roots;
+use crate::bezier::{Bezier, PlanarCurve, RationalBezier};
+use crate::bspline::{self, BSpline, FitOptions};
+use crate::error::{Error, Result};
+use crate::lac::{LacInflectionSegment, LacSegment};
+use crate::lcg::{fit_line, lcg_point};
+use kurbo::{Point, Vec2};
+use nalgebra::{DMatrix, DVector};
+
+/// Options of [`fit_sketch`].
+#[derive(Clone, Debug)]
+pub struct SketchOptions {
+    /// Largest allowed distance from an input point to the result (input units, > 0).
+    pub tolerance: f64,
+    /// Most pieces before giving up on the tolerance.
+    pub max_pieces: usize,
+    /// Pieces turning more than this (radians) are split.
+    pub max_turn: f64,
+    /// Inflection pairs with less turning between them are noise (radians).
+    pub min_turn: f64,
+    /// Fairing target: largest curvature jump over the largest curvature.
+    pub g2_tolerance: f64,
+    /// Iteration limit of the fairing.
+    pub max_fairing_iterations: usize,
+    /// Options of the rational cubic per piece.
+    pub approx: ApproxOptions,
+}
+
+impl SketchOptions {
+    /// Defaults with the given tolerance.
+    pub fn with_tolerance(tolerance: f64) -> Self {
+        SketchOptions {
+            tolerance,
+            max_pieces: 64,
+            max_turn: std::f64::consts::FRAC_PI_2,
+            min_turn: 2f64.to_radians(),
+            g2_tolerance: 1e-10,
+            max_fairing_iterations: 60,
+            approx: ApproxOptions::default(),
+        }
+    }
+}
+
+/// Kind of a piece.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PieceKind {
+    /// A LAC segment in its control triangle (math.md §3.1).
+    Lac,
+    /// A segment with an inflection (zero curvature) at one end (math.md §3.2).
+    LacInflection,
+}
+
+impl PieceKind {
+    /// `"lac"` or `"lac_inflection"` (the protocol's names).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PieceKind::Lac => "lac",
+            PieceKind::LacInflection => "lac_inflection",
+        }
+    }
+}
+
+/// The curve of a piece.
+#[derive(Clone, Debug)]
+pub enum PieceCurve {
+    /// A LAC segment; its control[0] is the piece's start.
+    Lac(LacSegment),
+    /// An inflection-end segment; its control[0] (the inflection) is the piece's start when
+    /// `inflection_at_start`, else its end.
+    Inflection {
+        /// The segment.
+        segment: LacInflectionSegment,
+        /// Whether the inflection is at the piece's start.
+        inflection_at_start: bool,
+    },
+}
+
+/// One piece of the result, in curve order.
+#[derive(Clone, Debug)]
+pub struct SketchPiece {
+    /// Which family.
+    pub kind: PieceKind,
+    /// Shape parameter of the segment.
+    pub alpha: f64,
+    /// α estimated from the piece's curvature graph (before any adaptation); `None` for
+    /// inflection pieces and pieces of (nearly) constant curvature.
+    pub alpha_estimate: Option<f64>,
+    /// Control triangle in curve order: start, tangent intersection, end.
+    pub control: [Point; 3],
+    /// The segment itself.
+    pub curve: PieceCurve,
+    /// Signed curvature at the start and at the end.
+    pub end_curvatures: (f64, f64),
+    /// The rational cubic, in curve order.
+    pub rational: RationalBezier,
+    /// Largest distance of the rational cubic from the segment over its arc length.
+    pub rational_error: f64,
+    /// Curvature monotonicity of the rational cubic, proven by the exact test.
+    pub monotone: bool,
+    /// Parameter range on the intermediate B-spline.
+    pub u_range: (f64, f64),
+}
+
+/// What the G2 fairing did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FairingReport {
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Largest relative curvature jump before.
+    pub initial_jump: f64,
+    /// Largest relative curvature jump after.
+    pub final_jump: f64,
+    /// Reached [`SketchOptions::g2_tolerance`].
+    pub converged: bool,
+}
+
+/// The result of [`fit_sketch`].
+#[derive(Clone, Debug)]
+pub struct Sketch {
+    /// The intermediate least-squares B-spline.
+    pub bspline: BSpline,
+    /// Its largest distance from the input points.
+    pub bspline_deviation: f64,
+    /// The pieces in order.
+    pub pieces: Vec<SketchPiece>,
+    /// Largest distance from an input point to the rational result.
+    pub max_deviation: f64,
+    /// Root mean square of those distances.
+    pub rms_deviation: f64,
+    /// Largest |κ_left - κ_right| at a joint of the rational cubics over their largest |κ|.
+    pub max_curvature_jump: f64,
+    /// `max_curvature_jump` below 1e-6.
+    pub g2: bool,
+    /// The fairing's report (of the last round).
+    pub fairing: FairingReport,
+    /// Every rational piece proven curvature-monotone.
+    pub all_monotone: bool,
+}
+
+impl Sketch {
+    /// A point of the rational result at `t` in [0, pieces] (piece index + local parameter).
+    pub fn eval(&self, t: f64) -> Point {
+        let n = self.pieces.len();
+        let t = t.clamp(0.0, n as f64);
+        let i = (t.floor() as usize).min(n - 1);
+        self.pieces[i].rational.eval(t - i as f64)
+    }
+}
+
+/// The B-spline as Bézier spans over its knot intervals, for derivatives at any u.
+struct Track {
+    spans: Vec<Bezier>,
+    breaks: Vec<f64>,
+}
+
+impl Track {
+    fn new(s: &BSpline) -> Result<Track> {
+        let spans = s.to_beziers()?;
+        let n = spans.len();
+        let p = s.degree;
+        let breaks = (0..=n).map(|i| s.knots[p + i]).collect();
+        Ok(Track { spans, breaks })
+    }
+
+    fn locate(&self, u: f64) -> (usize, f64) {
+        let n = self.spans.len();
+        let mut i = 0;
+        while i + 1 < n && self.breaks[i + 1] <= u {
+            i += 1;
+        }
+        let (a, b) = (self.breaks[i], self.breaks[i + 1]);
+        (i, ((u - a) / (b - a)).clamp(0.0, 1.0))
+    }
+
+    fn point(&self, u: f64) -> Point {
+        let (i, t) = self.locate(u);
+        self.spans[i].eval(t)
+    }
+
+    fn derivs(&self, u: f64) -> crate::bezier::Derivs {
+        let (i, t) = self.locate(u);
+        self.spans[i].derivs(t)
+    }
+
+    fn direction(&self, u: f64) -> Vec2 {
+        let d = self.derivs(u).d1;
+        d / d.hypot()
+    }
+
+    /// Inflection parameters and curvature-maximum (of |κ|) parameters, sorted.
+    fn events(&self) -> (Vec<f64>, Vec<f64>) {
+        let (mut infl, mut maxima) = (Vec::new(), Vec::new());
+        for (i, b) in self.spans.iter().enumerate() {
+            let (x, y) = b.components();
+            let (x1, y1) = (x.deriv(), y.deriv());
+            let (x2, y2) = (x1.deriv(), y1.deriv());
+            let g = x1.mul(&y2).sub(&y1.mul(&x2));
+            let f = x1.mul(&x1).add(&y1.mul(&y1));
+            let h = g
+                .deriv()
+                .mul(&f)
+                .scale(2.0)
+                .sub(&g.mul(&f.deriv()).scale(3.0));
+            let (a, w) = (self.breaks[i], self.breaks[i + 1] - self.breaks[i]);
+            for t in sign_change_roots(&g) {
+                infl.push(a + w * t);
+            }
+            for t in sign_change_roots(&h) {
+                // A maximum of |κ|: d|κ|/ds goes from + to -; sign(h) = sign(dκ/ds).
+                let e = 1e-6;
+                let before = h.eval((t - e).max(0.0)) * g.eval(t).signum();
+                let after = h.eval((t + e).min(1.0)) * g.eval(t).signum();
+                if before > 0.0 && after < 0.0 {
+                    maxima.push(a + w * t);
+                }
+            }
+        }
+        (infl, maxima)
+    }
+
+    /// Unwrapped tangent angle at `u`, continuing from `prev` at `u_prev` (steps small enough
+    /// that the tangent turns less than π between them).
+    fn angle_between(&self, ua: f64, ub: f64) -> f64 {
+        // Signed turning from ua to ub, accumulated over small steps.
+        let n = 64;
+        let mut total = 0.0;
+        let mut prev = self.direction(ua);
+        for k in 1..=n {
+            let u = ua + (ub - ua) * k as f64 / n as f64;
+            let d = self.direction(u);
+            total += prev.cross(d).atan2(prev.dot(d));
+            prev = d;
+        }
+        total
+    }
+
+    /// |κ| at u.
+    fn abs_kappa(&self, u: f64) -> f64 {
+        self.derivs(u).kappa().abs()
+    }
+}
+
+/// What ends a piece.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Cut {
+    End,
+    Inflection,
+    Other,
+}
+
+/// A piece's place on the B-spline, with its end tangents (unit vectors).
+#[derive(Clone, Debug)]
+struct Slot {
+    ua: f64,
+    ub: f64,
+    cut_a: Cut,
+    cut_b: Cut,
+    /// α estimated from the B-spline's LCG over the piece.
+    alpha: Option<f64>,
+}
+
+/// Parameters where the curve turns by `turn` (in [0, total]) from `ua`, by bisection.
+fn u_at_turn(track: &Track, ua: f64, ub: f64, target: f64) -> f64 {
+    let (mut lo, mut hi) = (ua, ub);
+    let total = track.angle_between(ua, ub);
+    let sgn = total.signum();
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if sgn * track.angle_between(ua, mid) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Step 2: the cuts of the B-spline.
+fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Result<Vec<Slot>> {
+    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    let (mut infl, mut maxima) = shape.events();
+    if !std::ptr::eq(track, shape) {
+        // Move each event to the tight spline's own event nearby (its location is more
+        // accurate), when there is one: the nearest inflection, the largest maximum.
+        let (ti, tm) = track.events();
+        let w = 0.05 * (u1 - u0);
+        for u in infl.iter_mut() {
+            if let Some(v) = ti
+                .iter()
+                .copied()
+                .filter(|v| (v - *u).abs() < w)
+                .min_by(|a, b| (a - *u).abs().total_cmp(&(b - *u).abs()))
+            {
+                *u = v;
+            }
+        }
+        for u in maxima.iter_mut() {
+            if let Some(v) = tm
+                .iter()
+                .copied()
+                .filter(|v| (v - *u).abs() < w)
+                .max_by(|a, b| track.abs_kappa(*a).total_cmp(&track.abs_kappa(*b)))
+            {
+                *u = v;
+            }
+        }
+    }
+    let turn = |a: f64, b: f64| track.angle_between(a, b).abs();
+    // Drop inflections too close to an end, then inflection pairs with little turning between.
+    loop {
+        let before = infl.len();
+        infl.retain(|&u| turn(u0, u) >= opts.min_turn && turn(u, u1) >= opts.min_turn);
+        let mut i = 0;
+        while i + 1 < infl.len() {
+            if turn(infl[i], infl[i + 1]) < opts.min_turn {
+                infl.drain(i..i + 2);
+            } else {
+                i += 1;
+            }
+        }
+        if infl.len() == before {
+            break;
+        }
+    }
+    // Boundaries: ends and inflections; one |κ| maximum per interval.
+    let mut bounds: Vec<(f64, Cut)> = vec![(u0, Cut::End)];
+    bounds.extend(infl.iter().map(|&u| (u, Cut::Inflection)));
+    bounds.push((u1, Cut::End));
+    let mut cuts: Vec<(f64, Cut)> = vec![bounds[0]];
+    for w in bounds.windows(2) {
+        let ((a, ca), (b, cb)) = (w[0], w[1]);
+        let inside: Vec<f64> = maxima
+            .iter()
+            .copied()
+            .filter(|&u| {
+                u > a
+                    && u < b
+                    && turn(a, u) >= 0.5 * opts.min_turn
+                    && turn(u, b) >= 0.5 * opts.min_turn
+            })
+            .collect();
+        let best = inside
+            .iter()
+            .copied()
+            .max_by(|x, y| track.abs_kappa(*x).total_cmp(&track.abs_kappa(*y)));
+        let pick = match best {
+            Some(u) => {
+                // Only a true interior maximum: above both ends of its interval.
+                let k = track.abs_kappa(u);
+                let need = ca == Cut::Inflection && cb == Cut::Inflection;
+                if need || (k > track.abs_kappa(a) && k > track.abs_kappa(b)) {
+                    Some(u)
+                } else {
+                    None
+                }
+            }
+            None if ca == Cut::Inflection && cb == Cut::Inflection => {
+                // Between two inflections there is a maximum; the root finder missed it
+                // (flat): take the half-turning point.
+                Some(u_at_turn(track, a, b, 0.5 * turn(a, b)))
+            }
+            None => None,
+        };
+        if let Some(u) = pick {
+            cuts.push((u, Cut::Other));
+        }
+        cuts.push((b, cb));
+    }
+    // Split pieces turning more than max_turn.
+    let mut slots = Vec::new();
+    for w in cuts.windows(2) {
+        let ((a, ca), (b, cb)) = (w[0], w[1]);
+        let t = turn(a, b);
+        let parts = ((t / opts.max_turn).ceil() as usize).max(1);
+        let mut prev = (a, ca);
+        for k in 1..parts {
+            let u = u_at_turn(track, a, b, t * k as f64 / parts as f64);
+            slots.push(slot(track, prev, (u, Cut::Other)));
+            prev = (u, Cut::Other);
+        }
+        slots.push(slot(track, prev, (b, cb)));
+    }
+    Ok(slots)
+}
+
+fn slot(track: &Track, a: (f64, Cut), b: (f64, Cut)) -> Slot {
+    Slot {
+        ua: a.0,
+        ub: b.0,
+        cut_a: a.1,
+        cut_b: b.1,
+        alpha: lcg_alpha(track, a.0, b.0),
+    }
+}
+
+/// α of the B-spline over [ua, ub] from the least-squares line of its LCG; `None` where the
+/// curvature barely varies.
+fn lcg_alpha(track: &Track, ua: f64, ub: f64) -> Option<f64> {
+    let n = 64;
+    let mut graph = Vec::with_capacity(n);
+    let (mut kmin, mut kmax) = (f64::INFINITY, 0.0f64);
+    for i in 0..n {
+        let u = ua + (ub - ua) * (i as f64 + 0.5) / n as f64;
+        let d = track.derivs(u);
+        let k = d.kappa().abs();
+        kmin = kmin.min(k);
+        kmax = kmax.max(k);
+        if let Some(p) = lcg_point(d.kappa(), d.dkappa_ds()) {
+            graph.push(p);
+        }
+    }
+    if kmax.is_nan() || kmax <= 0.0 || (kmax - kmin) < 0.01 * kmax {
+        return None;
+    }
+    fit_line(graph).ok().map(|f| f.alpha.clamp(-50.0, 50.0))
+}
+
+/// The control triangle of a piece from its end points and unit end tangents; `None` when
+/// the tangent lines do not meet ahead of the start and behind the end.
+fn triangle(pa: Point, da: Vec2, pb: Point, db: Vec2) -> Option<[Point; 3]> {
+    let den = da.cross(db);
+    if den.abs() < 1e-12 {
+        return None;
+    }
+    let s = (pb - pa).cross(db) / den;
+    // Apex = pb + t' db with t' = (pb - pa) x da / den, which must be behind pb.
+    let t = -(pb - pa).cross(da) / den;
+    if !(s > 0.0 && t > 0.0) {
+        return None;
+    }
+    Some([pa, pa + da * s, pb])
+}
+
+/// A built piece: its curve, α and signed end curvatures (curve order).
+type Built = (PieceCurve, f64, (f64, f64));
+
+/// The segment of a piece with end points and tangent angles given.
+fn build_piece(
+    slot: &Slot,
+    pa: Point,
+    da: Vec2,
+    pb: Point,
+    db: Vec2,
+) -> Result<Built> {
+    let tri = triangle(pa, da, pb, db).ok_or_else(|| {
+        Error::Degenerate("the end tangents of a piece do not form a triangle".into())
+    })?;
+    let infl_a = slot.cut_a == Cut::Inflection;
+    let infl_b = slot.cut_b == Cut::Inflection;
+    if infl_a != infl_b {
+        let ctrl = if infl_a {
+            tri
+        } else {
+            [tri[2], tri[1], tri[0]]
+        };
+        if let Ok(segment) = LacInflectionSegment::new(ctrl) {
+            let k = segment.end_curvature();
+            let alpha = segment.alpha;
+            // In curve order; a reversed segment's signed curvature changes sign.
+            let ends = if infl_a { (0.0, k) } else { (-k, 0.0) };
+            return Ok((
+                PieceCurve::Inflection {
+                    segment,
+                    inflection_at_start: infl_a,
+                },
+                alpha,
+                ends,
+            ));
+        }
+    }
+    let target = slot.alpha.unwrap_or(1.0);
+    let seg = match LacSegment::new(target, tri) {
+        Ok(s) => s,
+        Err(Error::NoSegment(_)) => {
+            // Nearest admissible α towards 0.5 (0 <= α <= 1 always admits a triangle).
+            let (mut bad, mut good) = (target, 0.5);
+            for _ in 0..40 {
+                let mid = 0.5 * (bad + good);
+                if LacSegment::new(mid, tri).is_ok() {
+                    good = mid;
+                } else {
+                    bad = mid;
+                }
+            }
+            LacSegment::new(good, tri)?
+        }
+        Err(e) => return Err(e),
+    };
+    let ends = seg.end_curvatures()?;
+    let alpha = seg.standard.alpha();
+    Ok((PieceCurve::Lac(seg), alpha, ends))
+}
+
+/// The pieces for joint tangents `dirs` (one unit vector per joint, ends included).
+fn build_all(
+    slots: &[Slot],
+    pts: &[Point],
+    dirs: &[Vec2],
+) -> Result<Vec<Built>> {
+    slots
+        .iter()
+        .enumerate()
+        .map(|(i, s)| build_piece(s, pts[i], dirs[i], pts[i + 1], dirs[i + 1]))
+        .collect()
+}
+
+/// Relative mismatch at each active joint and the curvature scale.
+fn mismatches(built: &[Built], active: &[usize]) -> (Vec<f64>, f64) {
+    let scale = built
+        .iter()
+        .map(|b| b.2 .0.abs().max(b.2 .1.abs()))
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let d = active
+        .iter()
+        .map(|&j| (built[j].2 .0 - built[j - 1].2 .1) / scale)
+        .collect();
+    (d, scale)
+}
+
+fn rotate(v: Vec2, a: f64) -> Vec2 {
+    let (s, c) = a.sin_cos();
+    Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+}
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// Step 4: G2 fairing by Newton on the active joints' tangent angles.
+fn fair(
+    slots: &[Slot],
+    pts: &[Point],
+    dirs: &mut [Vec2],
+    opts: &SketchOptions,
+) -> Result<(Vec<Built>, FairingReport)> {
+    let m = slots.len();
+    let active: Vec<usize> = (1..m)
+        .filter(|&j| !(slots[j - 1].cut_b == Cut::Inflection && slots[j].cut_a == Cut::Inflection))
+        .collect();
+    let mut built = build_all(slots, pts, dirs)?;
+    let (mut d, _) = mismatches(&built, &active);
+    let initial = max_abs(&d);
+    let mut report = FairingReport {
+        iterations: 0,
+        initial_jump: initial,
+        final_jump: initial,
+        converged: initial <= opts.g2_tolerance,
+    };
+    let na = active.len();
+    while !report.converged && report.iterations < opts.max_fairing_iterations {
+        report.iterations += 1;
+        // Finite-difference Jacobian: joint k's angle moves pieces active[k]-1 and active[k].
+        let h = 1e-7;
+        let mut jac = DMatrix::<f64>::zeros(na, na);
+        for (k, &j) in active.iter().enumerate() {
+            let mut trial = dirs.to_vec();
+            trial[j] = rotate(dirs[j], h);
+            let mut b2 = built.clone();
+            b2[j - 1] = build_piece(&slots[j - 1], pts[j - 1], trial[j - 1], pts[j], trial[j])?;
+            b2[j] = build_piece(&slots[j], pts[j], trial[j], pts[j + 1], trial[j + 1])?;
+            let (d2, _) = mismatches(&b2, &active);
+            for r in 0..na {
+                jac[(r, k)] = (d2[r] - d[r]) / h;
+            }
+        }
+        let step = jac
+            .lu()
+            .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))
+            .ok_or_else(|| Error::NoConvergence("G2 fairing: singular Jacobian".into()))?;
+        let big = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut lam = if big > 0.3 { 0.3 / big } else { 1.0 };
+        let cur = max_abs(&d);
+        let mut accepted = false;
+        for _ in 0..30 {
+            let mut trial = dirs.to_vec();
+            for (k, &j) in active.iter().enumerate() {
+                trial[j] = rotate(dirs[j], lam * step[k]);
+            }
+            if let Ok(b2) = build_all(slots, pts, &trial) {
+                let (d2, _) = mismatches(&b2, &active);
+                if max_abs(&d2) < cur {
+                    dirs.copy_from_slice(&trial);
+                    built = b2;
+                    d = d2;
+                    accepted = true;
+                    break;
+                }
+            }
+            lam *= 0.5;
+        }
+        report.final_jump = max_abs(&d);
+        report.converged = report.final_jump <= opts.g2_tolerance;
+        if !accepted {
+            break;
+        }
+    }
+    Ok((built, report))
+}
+
+/// Distance from `q` to a rational cubic and the foot's parameter: the nearest of `n`
+/// samples, then safeguarded Newton.
+fn project(c: &RationalBezier, q: Point, samples: &[(f64, Point)]) -> (f64, f64) {
+    let (mut t, mut best) = samples
+        .iter()
+        .map(|(t, p)| (*t, (*p - q).hypot()))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap();
+    for _ in 0..20 {
+        let d = c.derivs(t);
+        let r = c.eval(t) - q;
+        let gg = d.d1.hypot2() + r.dot(d.d2);
+        if gg <= 0.0 {
+            break;
+        }
+        let nt = (t - r.dot(d.d1) / gg).clamp(0.0, 1.0);
+        let nd = (c.eval(nt) - q).hypot();
+        if nd >= best {
+            break;
+        }
+        best = nd;
+        t = nt;
+    }
+    (best, t)
+}
+
+/// Fit a G2 curve of LAC pieces (as rational cubics) to an ordered point sequence (see the
+/// module documentation).
+///
+/// Errors: [`Error::InvalidInput`] for fewer than 4 distinct points, non-finite values or a
+/// bad tolerance; [`Error::Degenerate`] for points on a straight line (no LAC turns) or
+/// tangents that do not form triangles; [`Error::NoConvergence`] when `max_pieces` are not
+/// enough for the tolerance.
+pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
+    if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
+        return Err(Error::invalid("tolerance", "must be a positive number"));
+    }
+    if !(opts.max_turn > 0.1 && opts.max_turn < 3.0) {
+        return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
+    }
+    if points.iter().any(|q| !q.is_finite()) {
+        return Err(Error::invalid("points", "must be finite"));
+    }
+    // The B-spline follows the data as closely as its noise allows (tangents and curvature
+    // graphs of noise-free input come out accurate), and never looser than half the
+    // tolerance.
+    let size = bbox_diagonal(points);
+    let sigma = noise_level(points);
+    let fit_tol = (4.0 * sigma).max(1e-5 * size).min(0.5 * opts.tolerance);
+    let fit = bspline::fit(
+        points,
+        FitOptions {
+            tolerance: fit_tol,
+            max_segments: 200,
+        },
+    )?;
+    let track = Track::new(&fit.spline)?;
+    let total_turn = track.angle_between(track.breaks[0], *track.breaks.last().unwrap());
+    let mut turns = 0.0;
+    let nb = 256;
+    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    for k in 0..nb {
+        let a = u0 + (u1 - u0) * k as f64 / nb as f64;
+        let b = u0 + (u1 - u0) * (k + 1) as f64 / nb as f64;
+        turns += track.angle_between(a, b).abs();
+    }
+    if turns < opts.min_turn {
+        return Err(Error::Degenerate(format!(
+            "the points lie on a straight line (total turning {:.3e} rad, total {:.3e}): \
+             no log-aesthetic curve turns along them",
+            turns, total_turn
+        )));
+    }
+    // On noisy data (noise above 1e-4 of the size), inflections and curvature maxima come
+    // from a smoother spline (a quarter of the tolerance): noise-induced wiggles of the
+    // tight fit's curvature are not features. Both are parametrised by chord length (corrected),
+    // so a parameter carries over.
+    let shape_tol = 0.25 * opts.tolerance;
+    let shape_fit;
+    let shape = if shape_tol > 2.0 * fit_tol && 4.0 * sigma > 1e-4 * size {
+        let f = bspline::fit(
+            points,
+            FitOptions {
+                tolerance: shape_tol,
+                max_segments: 200,
+            },
+        )?;
+        shape_fit = Track::new(&f.spline)?;
+        &shape_fit
+    } else {
+        &track
+    };
+    let mut slots = segment(&track, shape, opts)?;
+    loop {
+        let pts: Vec<Point> = slots
+            .iter()
+            .map(|s| track.point(s.ua))
+            .chain(std::iter::once(track.point(slots.last().unwrap().ub)))
+            .collect();
+        let mut pts = pts;
+        // The curve's ends are the input's ends.
+        pts[0] = fit.points[0];
+        *pts.last_mut().unwrap() = *fit.points.last().unwrap();
+        let mut dirs: Vec<Vec2> = slots
+            .iter()
+            .map(|s| track.direction(s.ua))
+            .chain(std::iter::once(track.direction(slots.last().unwrap().ub)))
+            .collect();
+        let (built, fairing) = fair(&slots, &pts, &mut dirs, opts)?;
+        let mut pieces = Vec::with_capacity(slots.len());
+        for (s, (curve, alpha, ends)) in slots.iter().zip(built) {
+            let (kind, control, rat) = match &curve {
+                PieceCurve::Lac(seg) => {
+                    let f = fit_rational_cubic(seg, &opts.approx)?;
+                    (PieceKind::Lac, seg.control, f)
+                }
+                PieceCurve::Inflection {
+                    segment,
+                    inflection_at_start,
+                } => {
+                    let f = fit_inflection_cubic(segment, &opts.approx)?;
+                    let c = segment.control;
+                    if *inflection_at_start {
+                        (PieceKind::LacInflection, c, f)
+                    } else {
+                        let mut f = f;
+                        f.curve = reverse(&f.curve);
+                        (PieceKind::LacInflection, [c[2], c[1], c[0]], f)
+                    }
+                }
+            };
+            pieces.push(SketchPiece {
+                kind,
+                alpha,
+                alpha_estimate: if kind == PieceKind::Lac {
+                    s.alpha
+                } else {
+                    None
+                },
+                control,
+                curve,
+                end_curvatures: ends,
+                rational: rat.curve,
+                rational_error: rat.max_error,
+                monotone: rat.monotone,
+                u_range: (s.ua, s.ub),
+            });
+        }
+        // Deviation of the input from the rational result.
+        let samples: Vec<Vec<(f64, Point)>> = pieces
+            .iter()
+            .map(|p| {
+                (0..=64)
+                    .map(|i| {
+                        let t = i as f64 / 64.0;
+                        (t, p.rational.eval(t))
+                    })
+                    .collect()
+            })
+            .collect();
+        let (mut worst, mut worst_piece, mut sum) = (0.0f64, 0usize, 0.0);
+        for q in &fit.points {
+            let (d, i) = pieces
+                .iter()
+                .enumerate()
+                .map(|(i, p)| (project(&p.rational, *q, &samples[i]).0, i))
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .unwrap();
+            sum += d * d;
+            if d > worst {
+                worst = d;
+                worst_piece = i;
+            }
+        }
+        let rms = (sum / fit.points.len() as f64).sqrt();
+        if worst > opts.tolerance && slots.len() < opts.max_pieces {
+            let s = slots[worst_piece].clone();
+            let mid = u_at_turn(
+                &track,
+                s.ua,
+                s.ub,
+                0.5 * track.angle_between(s.ua, s.ub).abs(),
+            );
+            let left = slot(&track, (s.ua, s.cut_a), (mid, Cut::Other));
+            let right = slot(&track, (mid, Cut::Other), (s.ub, s.cut_b));
+            slots.splice(worst_piece..=worst_piece, [left, right]);
+            continue;
+        }
+        if worst > opts.tolerance {
+            return Err(Error::NoConvergence(format!(
+                "{} pieces leave a deviation of {worst:.3e} above the tolerance {:.3e}",
+                slots.len(),
+                opts.tolerance
+            )));
+        }
+        let kmax = pieces
+            .iter()
+            .map(|p| {
+                p.rational
+                    .kappa_start()
+                    .abs()
+                    .max(p.rational.kappa_end().abs())
+            })
+            .fold(0.0, f64::max);
+        let jump = pieces
+            .windows(2)
+            .map(|w| (w[0].rational.kappa_end() - w[1].rational.kappa_start()).abs())
+            .fold(0.0, f64::max)
+            / kmax.max(f64::MIN_POSITIVE);
+        return Ok(Sketch {
+            bspline: fit.spline.clone(),
+            bspline_deviation: fit.max_deviation,
+            all_monotone: pieces.iter().all(|p| p.monotone),
+            pieces,
+            max_deviation: worst,
+            rms_deviation: rms,
+            max_curvature_jump: jump,
+            g2: jump < 1e-6,
+            fairing,
+        });
+    }
+}
+
+/// Diagonal of the bounding box.
+fn bbox_diagonal(points: &[Point]) -> f64 {
+    let (mut lo, mut hi) = (
+        Point::new(f64::MAX, f64::MAX),
+        Point::new(f64::MIN, f64::MIN),
+    );
+    for q in points {
+        lo = Point::new(lo.x.min(q.x), lo.y.min(q.y));
+        hi = Point::new(hi.x.max(q.x), hi.y.max(q.y));
+    }
+    (hi - lo).hypot()
+}
+
+/// Robust estimate of the standard deviation of the noise per coordinate: the median
+/// absolute third difference over 0.6745 sqrt(20) (a smooth, densely sampled curve has
+/// third differences far below its noise).
+fn noise_level(points: &[Point]) -> f64 {
+    let mut v: Vec<f64> = points
+        .windows(4)
+        .flat_map(|w| {
+            let [a, b, c, e] = w else { unreachable!() };
+            let d = e.to_vec2() - c.to_vec2() * 3.0 + b.to_vec2() * 3.0 - a.to_vec2();
+            [d.x.abs(), d.y.abs()]
+        })
+        .collect();
+    if v.is_empty() {
+        return 0.0;
+    }
+    let mid = v.len() / 2;
+    let (_, m, _) = v.select_nth_unstable_by(mid, f64::total_cmp);
+    *m / (0.6745 * 20f64.sqrt())
+}
+
+/// The same curve traversed the other way.
+fn reverse(c: &RationalBezier) -> RationalBezier {
+    let mut p = c.points().to_vec();
+    let mut w = c.weights().to_vec();
+    p.reverse();
+    w.reverse();
+    RationalBezier::new(p, w).expect("reversal keeps a valid curve")
+}
