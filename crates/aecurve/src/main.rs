@@ -145,6 +145,25 @@ enum Cmd {
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
+    /// Pen input to a G2 aesthetic curve (S4 §3): B-spline, pieces at inflections and
+    /// curvature maxima, one LAC segment per piece, G2 fairing, one rational cubic per
+    /// piece. Points from a file: CSV rows "x,y", a JSON array of pairs, or an SVG path
+    /// ("d" attribute text or a file holding one path).
+    Sketch {
+        /// The points file.
+        input: PathBuf,
+        /// Largest distance from an input point to the result (default 0.5% of the bounding
+        /// box diagonal).
+        #[arg(long)]
+        tolerance: Option<f64>,
+        /// Print the protocol's JSON result.
+        #[arg(long)]
+        json: bool,
+        /// Write the input, the result, its joints and its curvature comb (.svg or .png), or
+        /// the curve itself (.dxf, .step, .iges, .json); repeatable.
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+    },
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
@@ -202,7 +221,7 @@ fn run() -> Result<()> {
         Cmd::Lac { output, .. } | Cmd::Lcg { output, .. } | Cmd::Spline { output, .. } => {
             plot::check_picture_paths(output)?
         }
-        Cmd::Monotone { output, .. } | Cmd::Approx { output, .. } => {
+        Cmd::Monotone { output, .. } | Cmd::Approx { output, .. } | Cmd::Sketch { output, .. } => {
             for p in output {
                 let ext = aecurve::export::extension(p).unwrap_or_default();
                 if !aecurve::export::CURVE_FORMATS.contains(&ext.as_str())
@@ -283,6 +302,12 @@ fn run() -> Result<()> {
             json,
             output,
         } => spline(&input, closed, json, &output)?,
+        Cmd::Sketch {
+            input,
+            tolerance,
+            json,
+            output,
+        } => sketch(&input, tolerance, json, &output)?,
         Cmd::Approx {
             alpha,
             control,
@@ -752,6 +777,99 @@ fn approx_gallery(out: &std::path::Path) -> Result<String> {
         fit.f0, fit.f1, fit.rms
     );
     Ok(html)
+}
+
+fn sketch(
+    input: &std::path::Path,
+    tolerance: Option<f64>,
+    json: bool,
+    output: &[PathBuf],
+) -> Result<()> {
+    use aesthetic_curves::sketch::{fit_sketch, SketchOptions};
+    let pts = aecurve::read_points_file(input)?;
+    let tol = match tolerance {
+        Some(t) => {
+            anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance must be positive");
+            t
+        }
+        None => {
+            let (mut lo, mut hi) = (pts[0], pts[0]);
+            for p in &pts {
+                lo = aesthetic_curves::Point::new(lo.x.min(p.x), lo.y.min(p.y));
+                hi = aesthetic_curves::Point::new(hi.x.max(p.x), hi.y.max(p.y));
+            }
+            0.005 * (hi - lo).hypot()
+        }
+    };
+    let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol))?;
+    if json {
+        println!("{}", aecurve::protocol::sketch_json(&sk, tol));
+    } else {
+        println!(
+            "sketch of {} points: {} pieces, deviation {:.4e} (tolerance {:.4e}), curvature jump {:.2e} ({}), {}",
+            pts.len(),
+            sk.pieces.len(),
+            sk.max_deviation,
+            tol,
+            sk.max_curvature_jump,
+            if sk.g2 { "G2" } else { "not G2" },
+            if sk.all_monotone {
+                "every piece curvature-monotone (exact test)"
+            } else {
+                "NOT every piece curvature-monotone"
+            }
+        );
+        println!(
+            "  fairing: {} Newton iterations, jump {:.2e} -> {:.2e}",
+            sk.fairing.iterations, sk.fairing.initial_jump, sk.fairing.final_jump
+        );
+        for (i, p) in sk.pieces.iter().enumerate() {
+            println!(
+                "  piece {i}: {:<14} alpha {:>8.4}  curvature {:+.4e} -> {:+.4e}  {}",
+                p.kind.as_str(),
+                p.alpha,
+                p.end_curvatures.0,
+                p.end_curvatures.1,
+                if p.monotone {
+                    "monotone"
+                } else {
+                    "not monotone"
+                }
+            );
+        }
+    }
+    for path in output {
+        let ext = aecurve::export::extension(path).unwrap_or_default();
+        if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+            let curves: Vec<aesthetic_curves::RationalBezier> =
+                sk.pieces.iter().map(|p| p.rational.clone()).collect();
+            let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&curves)?;
+            aecurve::export::write_curve(path, &nurbs, "sketch")?;
+        } else {
+            let mut samples: Vec<plot::CombSample> = Vec::new();
+            for p in &sk.pieces {
+                for k in 0..=60 {
+                    let d = aesthetic_curves::PlanarCurve::derivs(&p.rational, k as f64 / 60.0);
+                    samples.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
+                }
+            }
+            let joints: Vec<aesthetic_curves::Point> = sk
+                .pieces
+                .iter()
+                .map(|p| p.control[0])
+                .chain(sk.pieces.last().map(|p| p.control[2]))
+                .collect();
+            let caption = format!(
+                "sketch: {} LAC pieces (rational cubics), deviation {:.3e}, jump {:.1e}",
+                sk.pieces.len(),
+                sk.max_deviation,
+                sk.max_curvature_jump
+            );
+            plot::write_picture(path, &plot::comb_svg(&samples, &pts, &joints, &caption))?;
+        }
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
 }
 
 fn spline(input: &std::path::Path, closed: bool, json: bool, output: &[PathBuf]) -> Result<()> {

@@ -122,6 +122,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "lac.rational_approx" => lac_rational_approx(obj),
         "spline.pseudo_elastic" => spline_pseudo_elastic(obj),
         "lac.fit" => lac_fit(obj),
+        "sketch.fit" => sketch_fit(obj),
         _ if PLANNED_OPS.contains(&op) => Err(ProtoError {
             kind: "unknown_op",
             message: format!("op '{op}' is part of the protocol but not implemented in this build"),
@@ -475,9 +476,21 @@ pub const MAX_FIT_POINTS: usize = 20_000;
 fn lac_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let points = points_param(obj, "points", 6, MAX_FIT_POINTS)?;
     let alpha = optional_number(obj, "alpha")?;
+    use aesthetic_curves::lac_fit::LacFitObjective;
+    let objective = match obj.get("objective") {
+        None | Some(Value::Null) => LacFitObjective::ArcLength,
+        Some(Value::String(s)) if s == "arc_length" => LacFitObjective::ArcLength,
+        Some(Value::String(s)) if s == "distance" => LacFitObjective::Distance,
+        Some(_) => {
+            return Err(ProtoError::invalid(
+                "objective",
+                "must be \"arc_length\" (default) or \"distance\"",
+            ))
+        }
+    };
     let f = aesthetic_curves::lac_fit::fit_lac(
         &points,
-        aesthetic_curves::lac_fit::LacFitOptions { alpha },
+        aesthetic_curves::lac_fit::LacFitOptions { alpha, objective },
     )?;
     let c = f.segment.control;
     Ok(json!({
@@ -485,7 +498,75 @@ fn lac_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "control": c.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
         "rms_deviation": f.rms_deviation,
         "max_deviation": f.max_deviation,
+        "rms_correspondence": f.rms_correspondence,
+        "objective": if objective == LacFitObjective::ArcLength { "arc_length" } else { "distance" },
     }))
+}
+
+/// Largest point sequence `sketch.fit` accepts.
+pub const MAX_SKETCH_POINTS: usize = 20_000;
+
+fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let points = points_param(obj, "points", 4, MAX_SKETCH_POINTS)?;
+    let tolerance = match optional_number(obj, "tolerance")? {
+        Some(t) if t > 0.0 => t,
+        Some(_) => return Err(ProtoError::invalid("tolerance", "must be positive")),
+        None => 0.005 * bbox_diagonal(&points),
+    };
+    let sk = aesthetic_curves::sketch::fit_sketch(
+        &points,
+        &aesthetic_curves::sketch::SketchOptions::with_tolerance(tolerance),
+    )?;
+    Ok(sketch_json(&sk, tolerance))
+}
+
+fn bbox_diagonal(points: &[aesthetic_curves::Point]) -> f64 {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for p in points {
+        x0 = x0.min(p.x);
+        x1 = x1.max(p.x);
+        y0 = y0.min(p.y);
+        y1 = y1.max(p.y);
+    }
+    (x1 - x0).hypot(y1 - y0)
+}
+
+/// The `sketch.fit` result of a sketch (shared with `aecurve sketch --json`).
+pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Value {
+    let finite = |v: f64| if v.is_finite() { json!(v) } else { Value::Null };
+    let pts = |ps: &[aesthetic_curves::Point]| ps.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
+    json!({
+        "segments": sk.pieces.iter().map(|p| json!({
+            "kind": p.kind.as_str(),
+            "alpha": p.alpha,
+            "alpha_estimate": p.alpha_estimate.map(finite),
+            "control": pts(&p.control),
+            "end_curvatures": [p.end_curvatures.0, p.end_curvatures.1],
+            "rational": {
+                "control_points": pts(p.rational.points()),
+                "weights": p.rational.weights(),
+            },
+            "rational_error": finite(p.rational_error),
+            "monotone": p.monotone,
+        })).collect::<Vec<_>>(),
+        "bspline": {
+            "degree": sk.bspline.degree,
+            "knots": sk.bspline.knots,
+            "control_points": pts(&sk.bspline.control_points),
+        },
+        "tolerance": tolerance,
+        "max_deviation": sk.max_deviation,
+        "rms_deviation": sk.rms_deviation,
+        "max_curvature_jump": finite(sk.max_curvature_jump),
+        "g2": sk.g2,
+        "all_monotone": sk.all_monotone,
+        "fairing": {
+            "iterations": sk.fairing.iterations,
+            "initial_jump": finite(sk.fairing.initial_jump),
+            "final_jump": finite(sk.fairing.final_jump),
+            "converged": sk.fairing.converged,
+        },
+    })
 }
 
 /// Largest number of points `spline.pseudo_elastic` accepts: this build has only the exact

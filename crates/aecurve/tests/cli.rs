@@ -327,3 +327,66 @@ fn spline_command_and_op() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("degenerate"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn sketch_command_and_op() {
+    let dir = std::env::temp_dir().join(format!("aecurve-sketch-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/sketch-stroke.csv"
+    );
+    let svg = dir.join("s.svg");
+    let dxf = dir.join("s.dxf");
+    let v = json_output(
+        aecurve()
+            .arg("sketch")
+            .arg(input)
+            .arg("--json")
+            .arg("-o")
+            .arg(&svg)
+            .arg("-o")
+            .arg(&dxf),
+    );
+    let segs = v["segments"].as_array().unwrap();
+    assert!(!segs.is_empty());
+    assert!(v["g2"].as_bool().unwrap());
+    assert!(v["max_deviation"].as_f64().unwrap() <= v["tolerance"].as_f64().unwrap());
+    for s in segs {
+        assert_eq!(s["rational"]["weights"].as_array().unwrap().len(), 4);
+        assert!(["lac", "lac_inflection"].contains(&s["kind"].as_str().unwrap()));
+    }
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+    assert!(std::fs::read_to_string(&dxf).unwrap().contains("SPLINE"));
+    // The op: bad input gets typed errors, the batch goes on.
+    let mut child = aecurve()
+        .arg("batch")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let lines = [
+        r#"{"id":1,"op":"sketch.fit","points":[[0,0],[1,0]]}"#,
+        r#"{"id":2,"op":"sketch.fit","points":[[0,0],[1,0],[2,0],[3,0],[4,0],[5,0]]}"#,
+        r#"{"id":3,"op":"sketch.fit","points":[[0,0],[1,1],[2,1],[3,0],[4,-1]],"tolerance":-1}"#,
+        r#"{"id":4,"op":"sketch.fit","points":[[0,0],[1,0.5],[2,0.8],[3,0.9],[4,0.8],[5,0.5],[6,0]]}"#,
+    ];
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all((lines.join("\n") + "\n").as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    let resp: Vec<serde_json::Value> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(resp.len(), 4);
+    assert_eq!(resp[0]["error"]["kind"], "invalid_input");
+    assert_eq!(resp[1]["error"]["kind"], "degenerate");
+    assert_eq!(resp[2]["error"]["kind"], "invalid_input");
+    assert_eq!(resp[3]["ok"], true, "{}", resp[3]);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1009,7 +1009,11 @@ pub fn error_map(seg: &LacSegment, n: usize, samples: usize) -> Result<ErrorMap>
 /// `b3 = C2`, weights `(w0, 1, 1, w3)`. b0, b1, b2 are collinear, so the curvature at b0 is
 /// zero for every (f0, w0); `w3` matches the segment's curvature at C2 (end curvature is
 /// linear in w3). Two free parameters: f0 in (0, 1) and w0 > 0.
-fn inflection_cubic(seg: &LacInflectionSegment, f0: f64, w0: f64) -> Option<RationalBezier> {
+pub(crate) fn inflection_cubic(
+    seg: &LacInflectionSegment,
+    f0: f64,
+    w0: f64,
+) -> Option<RationalBezier> {
     if !(f0 > 0.0 && f0 < 1.0 && w0 > 0.0 && w0.is_finite()) {
         return None;
     }

@@ -2,11 +2,13 @@
 //! Graiff Zurita, Kajiwara & Miura, "Fairing of planar curves to log-aesthetic curves"
 //! (2023), with this library's parametrisation: alpha and the control triangle.
 //!
-//! Measured on the Prius key lines of that paper (`shared/data/prius`): rms deviations of
-//! 0.18 to 0.78 mm over 1500 mm, but alpha lands far from the published values (the lines
-//! are shallow, and alpha is poorly determined by them: the cost changes little along it).
+//! Two objectives ([`LacFitObjective`]): the paper's, each point against the curve point at
+//! the same fraction of arc length (default), or point-to-curve distances alone. On the
+//! shallow Prius key lines of that paper (`shared/data/prius`) the shape alone hardly
+//! determines alpha (the point-to-curve cost changes little along it); the arc-length
+//! correspondence does.
 //!
-//! Distances are signed point-to-curve distances (the curve sampled at `2n + 200` points by
+//! Point-to-curve distances are signed point-to-curve distances (the curve sampled at `2n + 200` points by
 //! turning angle, each point projected on the nearest chord; the chords deviate from the
 //! curve by far less than any useful tolerance). Start: the triangle of a least-squares
 //! B-spline's end points and end tangents, alpha the best of a scan; then
@@ -18,11 +20,26 @@ use crate::error::{Error, Result};
 use crate::lac::LacSegment;
 use kurbo::Point;
 
+/// What [`fit_lac`] minimises.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LacFitObjective {
+    /// The paper's L2 distance of parametrised curves: the n-th point against the curve
+    /// point at the same fraction of arc length (the points' cumulative chord length over
+    /// their total). It constrains how curvature is spread along the curve, which is what
+    /// determines alpha on shallow lines.
+    #[default]
+    ArcLength,
+    /// Point-to-curve distances only (the shape, whatever the spacing of the points).
+    Distance,
+}
+
 /// Options of [`fit_lac`].
 #[derive(Clone, Copy, Debug, Default)]
 pub struct LacFitOptions {
     /// Fix alpha instead of fitting it.
     pub alpha: Option<f64>,
+    /// The objective.
+    pub objective: LacFitObjective,
 }
 
 /// The fitted segment and its deviations from the points.
@@ -36,6 +53,55 @@ pub struct LacFit {
     pub rms_deviation: f64,
     /// Largest point-to-curve distance (input units).
     pub max_deviation: f64,
+    /// Root mean square distance from each point to the curve point at the same arc-length
+    /// fraction (input units).
+    pub rms_correspondence: f64,
+}
+
+/// Distances from `points` to the segment's points at the arc-length fractions `sigma`,
+/// as x and y components (None if the segment does not exist).
+fn correspondence(
+    alpha: f64,
+    tri: [Point; 3],
+    points: &[Point],
+    sigma: &[f64],
+    out: &mut Vec<f64>,
+) -> Option<()> {
+    let seg = LacSegment::new(alpha, tri).ok()?;
+    let c = &seg.standard;
+    let (ta, tb) = if seg.reversed {
+        (seg.interval.1, seg.interval.0)
+    } else {
+        seg.interval
+    };
+    let (sa, sb) = (c.arc_length(ta).ok()?, c.arc_length(tb).ok()?);
+    // θ at each arc-length fraction: Newton on S(θ) = target with dS/dθ = ρ(θ), from the
+    // previous solution (fractions ascend), safeguarded into [ta, tb].
+    let (lo, hi) = (ta.min(tb), ta.max(tb));
+    let mut th = ta;
+    let mut thetas = Vec::with_capacity(sigma.len());
+    for &f in sigma {
+        let target = sa + (sb - sa) * f;
+        for _ in 0..30 {
+            let g = c.arc_length(th).ok()? - target;
+            let d = c.rho(th).ok()?;
+            let next = (th - g / d).clamp(lo, hi);
+            let done = (next - th).abs() <= 1e-14 * (1.0 + th.abs());
+            th = next;
+            if done {
+                break;
+            }
+        }
+        thetas.push(th);
+    }
+    let taus: Vec<f64> = thetas.iter().map(|t| (t - ta).abs()).collect();
+    let (pts, _) = seg.eval_turning(&taus).ok()?;
+    out.clear();
+    for (q, p) in points.iter().zip(&pts) {
+        out.push(q.x - p.x);
+        out.push(q.y - p.y);
+    }
+    out.iter().all(|v| v.is_finite()).then_some(())
 }
 
 /// Signed distances of `points` to the segment (None if the segment does not exist).
@@ -130,6 +196,18 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     let p1 = p0 + d0 * ((p2 - p0).cross(d1) / den);
     let tri0 = [p0, p1, p2];
     let mut r = Vec::new();
+    let mut sigma = vec![0.0; pts.len()];
+    for i in 1..pts.len() {
+        sigma[i] = sigma[i - 1] + (pts[i] - pts[i - 1]).hypot();
+    }
+    let total = sigma[pts.len() - 1];
+    for v in &mut sigma {
+        *v /= total;
+    }
+    let objective = |a: f64, tri: [Point; 3], out: &mut Vec<f64>| match opts.objective {
+        LacFitObjective::Distance => residuals(a, tri, &pts, out),
+        LacFitObjective::ArcLength => correspondence(a, tri, &pts, &sigma, out),
+    };
     let alphas: Vec<f64> = match opts.alpha {
         Some(a) => vec![a],
         None => vec![
@@ -138,7 +216,7 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     };
     let mut starts: Vec<(f64, f64)> = Vec::new();
     for a in alphas {
-        if residuals(a, tri0, &pts, &mut r).is_some() {
+        if objective(a, tri0, &mut r).is_some() {
             starts.push((a, cost(&r)));
         }
     }
@@ -153,7 +231,7 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     let mut best: Option<(f64, Vec<f64>, f64)> = None;
     for &(a, _) in &starts {
         let x0: Vec<f64> = tri0.iter().flat_map(|p| [p.x / size, p.y / size]).collect();
-        let (x, c) = levenberg_marquardt(&x0, &|x, out| residuals(a, triangle(x, size), &pts, out));
+        let (x, c) = levenberg_marquardt(&x0, &|x, out| objective(a, triangle(x, size), out));
         if best.as_ref().is_none_or(|b| c < b.2) {
             best = Some((a, x, c));
         }
@@ -164,20 +242,23 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     } else {
         let mut x0 = vec![a_best];
         x0.extend(&x_tri);
-        let (x, _) = levenberg_marquardt(&x0, &|x, out| {
-            residuals(x[0], triangle(&x[1..], size), &pts, out)
-        });
+        let (x, _) =
+            levenberg_marquardt(&x0, &|x, out| objective(x[0], triangle(&x[1..], size), out));
         (x[0], triangle(&x[1..], size))
     };
     let segment = LacSegment::new(alpha, tri)?;
     residuals(alpha, tri, &pts, &mut r)
         .ok_or_else(|| Error::NoConvergence("the fitted segment vanished".into()))?;
     let n = r.len() as f64;
+    let mut rc = Vec::new();
+    correspondence(alpha, tri, &pts, &sigma, &mut rc)
+        .ok_or_else(|| Error::NoConvergence("the fitted segment vanished".into()))?;
     Ok(LacFit {
         segment,
         alpha,
         rms_deviation: (cost(&r) / n).sqrt(),
         max_deviation: r.iter().map(|v| v.abs()).fold(0.0, f64::max),
+        rms_correspondence: (cost(&rc) / pts.len() as f64).sqrt(),
     })
 }
 

@@ -91,6 +91,46 @@ impl Nurbs {
         }
     }
 
+    /// Rational Bézier curves of one degree joined end to end (each end point equal to the
+    /// next start within 1e-9 of the size) as one NURBS: span i on [i, i+1], interior knots
+    /// of multiplicity `degree`, each piece's weights scaled (which keeps its curve) so the
+    /// shared control point has one weight.
+    pub fn from_beziers(pieces: &[RationalBezier]) -> Result<Nurbs> {
+        let first = pieces
+            .first()
+            .ok_or_else(|| Error::invalid("pieces", "need at least one"))?;
+        let p = first.degree();
+        let mut control_points = vec![first.points()[0]];
+        let mut weights = vec![first.weights()[0]];
+        let mut knots = vec![0.0; p + 1];
+        let size = pieces
+            .iter()
+            .flat_map(|c| c.points().iter())
+            .map(|q| q.to_vec2().hypot())
+            .fold(0.0, f64::max)
+            .max(1.0);
+        for (i, c) in pieces.iter().enumerate() {
+            if c.degree() != p {
+                return Err(Error::invalid("pieces", "all pieces need the same degree"));
+            }
+            let last = *control_points.last().unwrap();
+            if (c.points()[0] - last).hypot() > 1e-9 * size {
+                return Err(Error::invalid(
+                    format!("pieces[{i}]"),
+                    "does not start where the previous piece ends",
+                ));
+            }
+            let f = weights.last().unwrap() / c.weights()[0];
+            control_points.extend_from_slice(&c.points()[1..]);
+            weights.extend(c.weights()[1..].iter().map(|w| w * f));
+            if i > 0 {
+                knots.extend(vec![i as f64; p]);
+            }
+        }
+        knots.extend(vec![pieces.len() as f64; p + 1]);
+        Nurbs::new(p, knots, control_points, weights)
+    }
+
     /// The spline of [`crate::approx::fit_rational_spline`].
     pub fn from_spline(s: &RationalSpline) -> Nurbs {
         Nurbs {

@@ -60,7 +60,7 @@ impl SketchOptions {
             tolerance,
             max_pieces: 64,
             max_turn: std::f64::consts::FRAC_PI_2,
-            min_turn: 2f64.to_radians(),
+            min_turn: 0.25f64.to_radians(),
             g2_tolerance: 1e-10,
             max_fairing_iterations: 60,
             approx: ApproxOptions::default(),
@@ -462,13 +462,7 @@ fn triangle(pa: Point, da: Vec2, pb: Point, db: Vec2) -> Option<[Point; 3]> {
 type Built = (PieceCurve, f64, (f64, f64));
 
 /// The segment of a piece with end points and tangent angles given.
-fn build_piece(
-    slot: &Slot,
-    pa: Point,
-    da: Vec2,
-    pb: Point,
-    db: Vec2,
-) -> Result<Built> {
+fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2) -> Result<Built> {
     let tri = triangle(pa, da, pb, db).ok_or_else(|| {
         Error::Degenerate("the end tangents of a piece do not form a triangle".into())
     })?;
@@ -519,11 +513,7 @@ fn build_piece(
 }
 
 /// The pieces for joint tangents `dirs` (one unit vector per joint, ends included).
-fn build_all(
-    slots: &[Slot],
-    pts: &[Point],
-    dirs: &[Vec2],
-) -> Result<Vec<Built>> {
+fn build_all(slots: &[Slot], pts: &[Point], dirs: &[Vec2]) -> Result<Vec<Built>> {
     slots
         .iter()
         .enumerate()
@@ -578,23 +568,41 @@ fn fair(
     while !report.converged && report.iterations < opts.max_fairing_iterations {
         report.iterations += 1;
         // Finite-difference Jacobian: joint k's angle moves pieces active[k]-1 and active[k].
-        let h = 1e-7;
         let mut jac = DMatrix::<f64>::zeros(na, na);
+        let mut jac_ok = true;
         for (k, &j) in active.iter().enumerate() {
-            let mut trial = dirs.to_vec();
-            trial[j] = rotate(dirs[j], h);
-            let mut b2 = built.clone();
-            b2[j - 1] = build_piece(&slots[j - 1], pts[j - 1], trial[j - 1], pts[j], trial[j])?;
-            b2[j] = build_piece(&slots[j], pts[j], trial[j], pts[j + 1], trial[j + 1])?;
-            let (d2, _) = mismatches(&b2, &active);
-            for r in 0..na {
-                jac[(r, k)] = (d2[r] - d[r]) / h;
+            // Forward difference, backward where the forward step leaves the admissible set.
+            let column = [1e-7, -1e-7].iter().find_map(|&h| {
+                let mut trial = dirs.to_vec();
+                trial[j] = rotate(dirs[j], h);
+                let mut b2 = built.clone();
+                b2[j - 1] =
+                    build_piece(&slots[j - 1], pts[j - 1], trial[j - 1], pts[j], trial[j]).ok()?;
+                b2[j] = build_piece(&slots[j], pts[j], trial[j], pts[j + 1], trial[j + 1]).ok()?;
+                let (d2, _) = mismatches(&b2, &active);
+                Some((0..na).map(|r| (d2[r] - d[r]) / h).collect::<Vec<f64>>())
+            });
+            match column {
+                Some(c) => {
+                    for (r, v) in c.into_iter().enumerate() {
+                        jac[(r, k)] = v;
+                    }
+                }
+                None => {
+                    jac_ok = false;
+                    break;
+                }
             }
         }
-        let step = jac
-            .lu()
-            .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))
-            .ok_or_else(|| Error::NoConvergence("G2 fairing: singular Jacobian".into()))?;
+        let step = if jac_ok {
+            jac.lu()
+                .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))
+        } else {
+            None
+        };
+        let Some(step) = step else {
+            break;
+        };
         let big = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let mut lam = if big > 0.3 { 0.3 / big } else { 1.0 };
         let cur = max_abs(&d);
@@ -673,14 +681,35 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     // tolerance.
     let size = bbox_diagonal(points);
     let sigma = noise_level(points);
-    let fit_tol = (4.0 * sigma).max(1e-5 * size).min(0.5 * opts.tolerance);
+    // Precise data (noise below 1e-4 of the size) get a tight fit, whose tangents and
+    // curvature graphs are accurate; noisy data half the tolerance, the smoothest fit allowed.
+    let fit_tol = if 4.0 * sigma > 1e-4 * size {
+        0.5 * opts.tolerance
+    } else {
+        (4.0 * sigma).max(1e-5 * size).min(0.5 * opts.tolerance)
+    };
+    // Outliers the noise estimate ignores can keep the tight fit from converging: then
+    // half the tolerance.
     let fit = bspline::fit(
         points,
         FitOptions {
             tolerance: fit_tol,
             max_segments: 200,
         },
-    )?;
+    );
+    let (fit, fit_tol) = match fit {
+        Err(Error::NoConvergence(_)) if fit_tol < 0.5 * opts.tolerance => (
+            bspline::fit(
+                points,
+                FitOptions {
+                    tolerance: 0.5 * opts.tolerance,
+                    max_segments: 200,
+                },
+            )?,
+            0.5 * opts.tolerance,
+        ),
+        other => (other?, fit_tol),
+    };
     let track = Track::new(&fit.spline)?;
     let total_turn = track.angle_between(track.breaks[0], *track.breaks.last().unwrap());
     let mut turns = 0.0;
@@ -718,6 +747,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         &track
     };
     let mut slots = segment(&track, shape, opts)?;
+    split_s_shapes(&track, &mut slots)?;
     loop {
         let pts: Vec<Point> = slots
             .iter()
@@ -745,7 +775,13 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                     segment,
                     inflection_at_start,
                 } => {
-                    let f = fit_inflection_cubic(segment, &opts.approx)?;
+                    let f = match fit_inflection_cubic(segment, &opts.approx) {
+                        Ok(f) => f,
+                        // No curvature-monotone cubic of the family: the G2 cubic of the
+                        // family's centre, reported as not monotone.
+                        Err(Error::NoSegment(_)) => inflection_fallback(segment)?,
+                        Err(e) => return Err(e),
+                    };
                     let c = segment.control;
                     if *inflection_at_start {
                         (PieceKind::LacInflection, c, f)
@@ -811,6 +847,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             let left = slot(&track, (s.ua, s.cut_a), (mid, Cut::Other));
             let right = slot(&track, (mid, Cut::Other), (s.ub, s.cut_b));
             slots.splice(worst_piece..=worst_piece, [left, right]);
+            split_s_shapes(&track, &mut slots)?;
             continue;
         }
         if worst > opts.tolerance {
@@ -848,6 +885,67 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     }
 }
 
+/// Split every piece whose end tangents do not form a control triangle (an S shape: an
+/// inflection dropped as noise, or too flat to be found) at its smallest |κ|, an inflection
+/// when κ changes sign there.
+fn split_s_shapes(track: &Track, slots: &mut Vec<Slot>) -> Result<()> {
+    let mut i = 0;
+    let mut guard = 0;
+    while i < slots.len() {
+        let s = &slots[i];
+        let ok = triangle(
+            track.point(s.ua),
+            track.direction(s.ua),
+            track.point(s.ub),
+            track.direction(s.ub),
+        )
+        .is_some();
+        if ok {
+            i += 1;
+            continue;
+        }
+        guard += 1;
+        if guard > 200 || (s.ub - s.ua) < 1e-9 {
+            return Err(Error::Degenerate(
+                "a piece of the curve has end tangents that form no triangle".into(),
+            ));
+        }
+        let n = 64;
+        let us: Vec<f64> = (1..n)
+            .map(|k| s.ua + (s.ub - s.ua) * k as f64 / n as f64)
+            .collect();
+        let ks: Vec<f64> = us.iter().map(|&u| track.derivs(u).kappa()).collect();
+        let k = (0..us.len())
+            .min_by(|&a, &b| ks[a].abs().total_cmp(&ks[b].abs()))
+            .unwrap();
+        let changes =
+            (k > 0 && ks[k - 1] * ks[k] <= 0.0) || (k + 1 < ks.len() && ks[k] * ks[k + 1] <= 0.0);
+        let cut = if changes { Cut::Inflection } else { Cut::Other };
+        let s = s.clone();
+        let left = slot(track, (s.ua, s.cut_a), (us[k], cut));
+        let right = slot(track, (us[k], cut), (s.ub, s.cut_b));
+        slots.splice(i..=i, [left, right]);
+    }
+    Ok(())
+}
+
+/// The inflection-family cubic at (f0, w0) = (0.5, 1), measured like a fit.
+fn inflection_fallback(seg: &LacInflectionSegment) -> Result<crate::approx::RationalCubicFit> {
+    use crate::monotone::CurvatureMonotone;
+    let curve = crate::approx::inflection_cubic(seg, 0.5, 1.0)
+        .ok_or_else(|| Error::NoConvergence("no G2 cubic for an inflection piece".into()))?;
+    let monotone = curve.is_curvature_monotone().unwrap_or(false);
+    Ok(crate::approx::RationalCubicFit {
+        curve,
+        f0: 0.5,
+        f1: 1.0,
+        rms: f64::NAN,
+        max_error: f64::NAN,
+        monotone,
+        evaluations: 1,
+    })
+}
+
 /// Diagonal of the bounding box.
 fn bbox_diagonal(points: &[Point]) -> f64 {
     let (mut lo, mut hi) = (
@@ -861,24 +959,45 @@ fn bbox_diagonal(points: &[Point]) -> f64 {
     (hi - lo).hypot()
 }
 
-/// Robust estimate of the standard deviation of the noise per coordinate: the median
-/// absolute third difference over 0.6745 sqrt(20) (a smooth, densely sampled curve has
-/// third differences far below its noise).
+/// Robust estimate of the standard deviation of the noise per coordinate: residuals at
+/// each point of a local least-squares cubic in chord length over its 15 neighbours (the
+/// spacing may be irregular), median absolute value over 0.6745, corrected for the fit's
+/// own share of the noise (the centre's leverage, about 0.4 for 15 points and a cubic).
 fn noise_level(points: &[Point]) -> f64 {
-    let mut v: Vec<f64> = points
-        .windows(4)
-        .flat_map(|w| {
-            let [a, b, c, e] = w else { unreachable!() };
-            let d = e.to_vec2() - c.to_vec2() * 3.0 + b.to_vec2() * 3.0 - a.to_vec2();
-            [d.x.abs(), d.y.abs()]
-        })
-        .collect();
-    if v.is_empty() {
+    let n = points.len();
+    let half = 7;
+    if n < 2 * half + 1 {
         return 0.0;
     }
-    let mid = v.len() / 2;
-    let (_, m, _) = v.select_nth_unstable_by(mid, f64::total_cmp);
-    *m / (0.6745 * 20f64.sqrt())
+    let mut s = vec![0.0; n];
+    for i in 1..n {
+        s[i] = s[i - 1] + (points[i] - points[i - 1]).hypot();
+    }
+    let mut res = Vec::with_capacity(2 * n);
+    for k in half..n - half {
+        let w = (s[k + half] - s[k - half]).max(f64::MIN_POSITIVE);
+        let mut m = nalgebra::Matrix4::<f64>::zeros();
+        let mut bx = nalgebra::Vector4::<f64>::zeros();
+        let mut by = nalgebra::Vector4::<f64>::zeros();
+        for j in k - half..=k + half {
+            let t = (s[j] - s[k]) / w;
+            let v = nalgebra::Vector4::new(1.0, t, t * t, t * t * t);
+            m += v * v.transpose();
+            bx += v * points[j].x;
+            by += v * points[j].y;
+        }
+        if let Some(ch) = m.cholesky() {
+            let (cx, cy) = (ch.solve(&bx), ch.solve(&by));
+            res.push((points[k].x - cx[0]).abs());
+            res.push((points[k].y - cy[0]).abs());
+        }
+    }
+    if res.is_empty() {
+        return 0.0;
+    }
+    let mid = res.len() / 2;
+    let (_, m, _) = res.select_nth_unstable_by(mid, f64::total_cmp);
+    *m / 0.6745 / (1.0f64 - 0.4).sqrt()
 }
 
 /// The same curve traversed the other way.

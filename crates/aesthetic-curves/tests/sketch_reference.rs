@@ -65,6 +65,10 @@ fn size(points: &[Point]) -> f64 {
 }
 
 fn check(name: &str, points: &[Point], tol: f64, truth: Option<&[f64]>) {
+    check_g2(name, points, tol, truth, true)
+}
+
+fn check_g2(name: &str, points: &[Point], tol: f64, truth: Option<&[f64]>, want_g2: bool) {
     let t0 = std::time::Instant::now();
     let sk = fit_sketch(points, &SketchOptions::with_tolerance(tol)).unwrap();
     let dt = t0.elapsed();
@@ -76,14 +80,26 @@ fn check(name: &str, points: &[Point], tol: f64, truth: Option<&[f64]>) {
         sk.fairing,
         dt
     );
+    println!(
+        "   bspline dev {:.3e}, {} control points",
+        sk.bspline_deviation,
+        sk.bspline.control_points.len()
+    );
     for pc in &sk.pieces {
+        println!(
+            "   rational k ({:.6e}, {:.6e})",
+            pc.rational.kappa_start(),
+            pc.rational.kappa_end()
+        );
         println!(
             "   {:?} alpha {:.4} est {:?} k {:?} err {:.2e}",
             pc.kind, pc.alpha, pc.alpha_estimate, pc.end_curvatures, pc.rational_error
         );
     }
     assert!(sk.max_deviation <= tol, "{name}: deviation");
-    assert!(sk.max_curvature_jump < 1e-6, "{name}: G2");
+    if want_g2 {
+        assert!(sk.max_curvature_jump < 1e-6, "{name}: G2");
+    }
     for pc in &sk.pieces {
         // Independent check: the sampling test at 2000 divisions, and the exact test.
         assert!(
@@ -142,4 +158,32 @@ fn s_curve_through_an_inflection() {
     check("s curve", &pts, 1e-3 * size(&pts), Some(&[alpha, alpha]));
     let n = noisy(&pts, 2e-4 * size(&pts));
     check("noisy s curve", &n, 3e-3 * size(&pts), None);
+}
+
+fn prius(i: usize) -> Vec<Point> {
+    let path = format!(
+        "{}/../../../shared/data/prius/ps_{i}.csv",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).expect("prius data beside the checkout");
+    text.lines()
+        .skip(1)
+        .filter_map(|l| {
+            let mut it = l.split(',').map(|v| v.trim().parse::<f64>());
+            match (it.next(), it.next()) {
+                (Some(Ok(x)), Some(Ok(y))) => Some(p(x, y)),
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+#[test]
+#[ignore = "not yet: 33-53 pieces, some not G2 or monotone (issue 6 note)"]
+fn prius_key_lines_at_0_3_mm() {
+    for i in [1, 2, 3, 5] {
+        let pts = prius(i);
+        // Not yet G2 on these lines (see issue 6's note): within tolerance and monotone.
+        check_g2(&format!("prius {i}"), &pts, 0.3, None, false);
+    }
 }
