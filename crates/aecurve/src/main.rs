@@ -147,8 +147,7 @@ enum Cmd {
     },
     /// Pen input to a G2 aesthetic curve (S4 §3): B-spline, pieces at inflections and
     /// curvature maxima, one LAC segment per piece, G2 fairing, one rational cubic per
-    /// piece. Points from a file: CSV rows "x,y", a JSON array of pairs, or an SVG path
-    /// ("d" attribute text or a file holding one path).
+    /// piece. Points from a file: CSV rows "x,y" or a JSON array of pairs.
     Sketch {
         /// The points file.
         input: PathBuf,
