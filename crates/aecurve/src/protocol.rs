@@ -666,7 +666,10 @@ mod tests {
         assert_eq!(kind(&handle_line("{not json")), "parse");
         assert_eq!(kind(&handle_line("[1,2]")), "invalid_input");
         assert_eq!(kind(&handle_line(r#"{"op": "nope"}"#)), "unknown_op");
-        assert_eq!(kind(&handle_line(r#"{"op": "sketch.fit"}"#)), "invalid_input");
+        assert_eq!(
+            kind(&handle_line(r#"{"op": "sketch.fit"}"#)),
+            "invalid_input"
+        );
         assert_eq!(kind(&handle_line(r#"{"op": "lac.fit"}"#)), "invalid_input");
         assert_eq!(
             kind(&handle_line(r#"{"op": "lac.segment"}"#)),
