@@ -15,7 +15,7 @@
 use crate::bezier::Bezier;
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 /// A clamped B-spline curve.
 #[derive(Clone, Debug, PartialEq)]
@@ -33,11 +33,8 @@ impl BSpline {
     fn span(&self, u: f64) -> usize {
         let p = self.degree;
         let n = self.control_points.len();
-        let mut s = p;
-        while s + 1 < n && self.knots[s + 1] <= u {
-            s += 1;
-        }
-        s
+        // The last s in [p, n-1] with knots[s] <= u (knots ascend).
+        (p + self.knots[p + 1..n].partition_point(|k| *k <= u)).min(n - 1)
     }
 
     /// Parameter range.
@@ -203,13 +200,20 @@ pub fn fit_segments(points: &[Point], params: &[f64], segments: usize) -> Result
         knots: knots.clone(),
         control_points: vec![Point::ZERO; n],
     };
-    let mut a = DMatrix::<f64>::zeros(m, k.max(1));
-    let mut bx = DVector::<f64>::zeros(m);
-    let mut by = DVector::<f64>::zeros(m);
-    for (r, (&u, q)) in params.iter().zip(points).enumerate() {
+    // Normal equations accumulated row by row (each row has at most 4 nonzero basis
+    // values, so this is O(m)), solved by Cholesky; the dense SVD of the design matrix
+    // when they are singular (spans without data).
+    let kk = k.max(1);
+    let mut ata = DMatrix::<f64>::zeros(kk, kk);
+    let mut atb = DMatrix::<f64>::zeros(kk, 2);
+    let mut rows: Vec<(usize, [f64; 4], usize, Vec2)> = Vec::with_capacity(m);
+    for (&u, q) in params.iter().zip(points) {
         let s = proto.span(u);
         let nb = basis(&knots, s, u, p);
         let mut rhs = q.to_vec2();
+        let mut vals = [0.0; 4];
+        let mut cnt = 0;
+        let mut first_i = usize::MAX;
         for (j, v) in nb.iter().enumerate() {
             let i = s + j - p;
             if i == 0 {
@@ -217,23 +221,43 @@ pub fn fit_segments(points: &[Point], params: &[f64], segments: usize) -> Result
             } else if i == n - 1 {
                 rhs -= last.to_vec2() * *v;
             } else {
-                a[(r, i - 1)] += v;
+                if first_i == usize::MAX {
+                    first_i = i - 1;
+                }
+                vals[cnt] = *v;
+                cnt += 1;
             }
         }
-        bx[r] = rhs.x;
-        by[r] = rhs.y;
+        for x in 0..cnt {
+            for y in 0..cnt {
+                ata[(first_i + x, first_i + y)] += vals[x] * vals[y];
+            }
+            atb[(first_i + x, 0)] += vals[x] * rhs.x;
+            atb[(first_i + x, 1)] += vals[x] * rhs.y;
+        }
+        rows.push((first_i, vals, cnt, rhs));
     }
     let mut ctrl = vec![first];
     if k > 0 {
-        let svd = a.svd(true, true);
-        let sx = svd
-            .solve(&bx, 1e-12)
-            .map_err(|e| Error::NoConvergence(format!("least squares: {e}")))?;
-        let sy = svd
-            .solve(&by, 1e-12)
-            .map_err(|e| Error::NoConvergence(format!("least squares: {e}")))?;
+        let sol = match ata.cholesky() {
+            Some(ch) => ch.solve(&atb),
+            None => {
+                let mut a = DMatrix::<f64>::zeros(m, kk);
+                let mut b = DMatrix::<f64>::zeros(m, 2);
+                for (r, (f, vals, cnt, rhs)) in rows.iter().enumerate() {
+                    for x in 0..*cnt {
+                        a[(r, f + x)] = vals[x];
+                    }
+                    b[(r, 0)] = rhs.x;
+                    b[(r, 1)] = rhs.y;
+                }
+                a.svd(true, true)
+                    .solve(&b, 1e-12)
+                    .map_err(|e| Error::NoConvergence(format!("least squares: {e}")))?
+            }
+        };
         for i in 0..k {
-            ctrl.push(Point::new(sx[i], sy[i]));
+            ctrl.push(Point::new(sol[(i, 0)], sol[(i, 1)]));
         }
     }
     ctrl.push(last);
@@ -273,10 +297,8 @@ impl Spans {
 
     fn locate(&self, u: f64) -> usize {
         let n = self.coef.len();
-        match self.breaks[1..n].iter().position(|b| u < *b) {
-            Some(i) => i,
-            None => n - 1,
-        }
+        // The first break above u, among breaks[1..n]; past the last, the last span.
+        self.breaks[1..n].partition_point(|b| *b <= u)
     }
 
     /// Point, first and second derivative at local t of span i.
@@ -313,8 +335,12 @@ impl Spans {
             // In the global parameter, then back to a span.
             let mut h = step * width(i);
             let u = self.breaks[i] + t * width(i);
+            // Converged: the step is below what changes the distance in f64.
+            if h.abs() <= 1e-12 * (hi - lo) {
+                break;
+            }
             let mut moved = false;
-            for _ in 0..20 {
+            for _ in 0..8 {
                 let nu = (u + h).clamp(lo, hi);
                 let ni = self.locate(nu);
                 let nt = ((nu - self.breaks[ni]) / width(ni)).clamp(0.0, 1.0);
@@ -376,17 +402,24 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
     let max_seg = opts.max_segments.clamp(1, pts.len() - 3);
     // Grow the segment count geometrically until a fit is within tolerance, then bisect
     // back to the fewest segments that are (deviation falls with the count, nearly always).
-    let attempt = |segments: usize| -> Result<BSplineFit> {
+    let attempt = |segments: usize, start: &[f64]| -> Result<BSplineFit> {
         // Parameter correction (Hoschek): refit with the points' foot parameters on the
         // previous fit, a few times; chord length is only the first guess.
-        let mut params = chord.clone();
+        let mut params = start.to_vec();
         let mut spline = fit_segments(&pts, &params, segments)?;
         let mut d: Vec<f64> = Vec::new();
+        // The projections of the current spline (those of an accepted candidate carry over).
+        let mut proj = project_all(&spline, &pts, &params)?;
         for iter in 0..CORRECTIONS {
-            let proj = project_all(&spline, &pts, &params)?;
             d = proj.iter().map(|x| x.0).collect();
             let dmax = d.iter().copied().fold(0.0, f64::max);
-            if iter + 1 == CORRECTIONS || dmax <= 0.1 * opts.tolerance {
+            // Done when well inside the tolerance; hopeless when still far above it after a
+            // few corrections (each gains a few per cent by then).
+            if iter + 1 == CORRECTIONS
+                || dmax <= 0.5 * opts.tolerance
+                || (iter >= 8 && dmax > 3.0 * opts.tolerance)
+                || (iter >= 2 && dmax > 20.0 * opts.tolerance)
+            {
                 break;
             }
             let mut np: Vec<f64> = proj.iter().map(|x| x.1).collect();
@@ -407,6 +440,7 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
             }
             params = np;
             spline = candidate;
+            proj = cproj;
         }
         let max = d.iter().copied().fold(0.0, f64::max);
         let rms = (d.iter().map(|v| v * v).sum::<f64>() / d.len() as f64).sqrt();
@@ -424,7 +458,7 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
     let mut segments = 1;
     let mut last_fail = None;
     loop {
-        let f = attempt(segments)?;
+        let f = attempt(segments, &chord)?;
         if f.max_deviation <= opts.tolerance {
             best = Some(f);
             break;
@@ -446,7 +480,7 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
     let mut hi = segments;
     while hi - lo > 1 {
         let mid = (lo + hi) / 2;
-        let f = attempt(mid)?;
+        let f = attempt(mid, &chord)?;
         if f.max_deviation <= opts.tolerance {
             hi = mid;
             best = f;
