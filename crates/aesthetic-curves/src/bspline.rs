@@ -1,8 +1,9 @@
 //! Cubic B-splines and their least-squares fit to point sequences (math.md §6 step 2).
 //!
 //! [`fit`] parametrises the points by cumulative chord length, then fits clamped cubic
-//! B-splines with uniformly spaced interior knots, 1, 2, 3, ... segments, until the largest
-//! distance from a point to the curve is within the tolerance. The end control points are
+//! B-splines from one span, halving the spans that hold points beyond the tolerance
+//! until the largest distance from a point to the curve is within it (knots concentrate
+//! at local features; smooth stretches keep long spans). The end control points are
 //! the first and last points (the curve interpolates its ends); the others solve the linear
 //! least-squares problem (SVD, so knot spans without data do not make it singular). Each fit
 //! is followed by parameter correction (Hoschek: the points' foot parameters on the curve
@@ -184,12 +185,18 @@ fn basis(knots: &[f64], s: usize, u: f64, p: usize) -> Vec<f64> {
 
 /// Least-squares clamped cubic with `segments` uniform spans through the ends.
 pub fn fit_segments(points: &[Point], params: &[f64], segments: usize) -> Result<BSpline> {
+    let interior: Vec<f64> = (1..segments).map(|i| i as f64 / segments as f64).collect();
+    fit_knots(points, params, &interior)
+}
+
+/// Least-squares clamped cubic on [0, 1] with the given interior knots (ascending, inside
+/// (0, 1)) through the ends.
+pub fn fit_knots(points: &[Point], params: &[f64], interior: &[f64]) -> Result<BSpline> {
     let p = 3;
+    let segments = interior.len() + 1;
     let n = segments + p;
     let mut knots = vec![0.0; p + 1];
-    for i in 1..segments {
-        knots.push(i as f64 / segments as f64);
-    }
+    knots.extend_from_slice(interior);
     knots.extend([1.0; 4]);
     let m = points.len();
     let (first, last) = (points[0], points[m - 1]);
@@ -402,11 +409,11 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
     let max_seg = opts.max_segments.clamp(1, pts.len() - 3);
     // Grow the segment count geometrically until a fit is within tolerance, then bisect
     // back to the fewest segments that are (deviation falls with the count, nearly always).
-    let attempt = |segments: usize, start: &[f64]| -> Result<BSplineFit> {
+    let attempt = |interior: &[f64], start: &[f64]| -> Result<BSplineFit> {
         // Parameter correction (Hoschek): refit with the points' foot parameters on the
         // previous fit, a few times; chord length is only the first guess.
         let mut params = start.to_vec();
-        let mut spline = fit_segments(&pts, &params, segments)?;
+        let mut spline = fit_knots(&pts, &params, interior)?;
         let mut d: Vec<f64> = Vec::new();
         // The projections of the current spline (those of an accepted candidate carry over).
         let mut proj = project_all(&spline, &pts, &params)?;
@@ -426,7 +433,7 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
             let last_i = np.len() - 1;
             np[0] = 0.0;
             np[last_i] = 1.0;
-            let candidate = fit_segments(&pts, &np, segments)?;
+            let candidate = fit_knots(&pts, &np, interior)?;
             let cproj = project_all(&candidate, &pts, &np)?;
             let cmax = cproj.iter().map(|x| x.0).fold(0.0, f64::max);
             // Stop when a correction no longer gains 1%.
@@ -453,42 +460,51 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
         };
         Ok(fit)
     };
-    let mut lo = 0; // largest count known to fail
-    let mut best: Option<BSplineFit> = None;
-    let mut segments = 1;
-    let mut last_fail = None;
+    // Knots go where the fit is poor: from one span, the
+    // spans holding points beyond the tolerance are halved, until every point is within it.
+    // Smooth stretches keep long spans; a local feature gets short ones.
+    let uniform = |k: usize| -> Vec<f64> { (1..k).map(|i| i as f64 / k as f64).collect() };
+    let mut interior = uniform(1);
     loop {
-        let f = attempt(segments, &chord)?;
+        let f = attempt(&interior, &chord)?;
         if f.max_deviation <= opts.tolerance {
-            best = Some(f);
-            break;
+            return Ok(f);
         }
-        lo = segments;
-        last_fail = Some(f);
-        if segments == max_seg {
-            break;
+        let mut breaks = vec![0.0];
+        breaks.extend_from_slice(&interior);
+        breaks.push(1.0);
+        let nspan = breaks.len() - 1;
+        let mut bad = vec![false; nspan];
+        let d = project_all(&f.spline, &f.points, &f.params)?;
+        for (dist, u) in &d {
+            if *dist > opts.tolerance {
+                let i = breaks[1..nspan].partition_point(|b| *b <= *u);
+                bad[i] = true;
+            }
         }
-        segments = (segments + segments / 2 + 1).min(max_seg);
+        let mut next = Vec::with_capacity(2 * interior.len() + 2);
+        for i in 0..nspan {
+            if i > 0 {
+                next.push(breaks[i]);
+            }
+            // Halve a bad span unless it already holds fewer than 2 points (more knots
+            // there would only chase a single point).
+            let (a, b) = (breaks[i], breaks[i + 1]);
+            let inside = f.params.iter().filter(|u| **u >= a && **u < b).count();
+            if bad[i] && inside >= 2 && b - a > 1e-9 {
+                next.push(0.5 * (a + b));
+            }
+        }
+        if next.len() == interior.len() || next.len() + 1 > max_seg {
+            return Err(Error::NoConvergence(format!(
+                "{} segments leave a deviation of {:.3e} above the tolerance {:.3e}",
+                interior.len() + 1,
+                f.max_deviation,
+                opts.tolerance
+            )));
+        }
+        interior = next;
     }
-    let Some(mut best) = best else {
-        let f = last_fail.expect("at least one fit");
-        return Err(Error::NoConvergence(format!(
-            "{} segments leave a deviation of {:.3e} above the tolerance {:.3e}",
-            max_seg, f.max_deviation, opts.tolerance
-        )));
-    };
-    let mut hi = segments;
-    while hi - lo > 1 {
-        let mid = (lo + hi) / 2;
-        let f = attempt(mid, &chord)?;
-        if f.max_deviation <= opts.tolerance {
-            hi = mid;
-            best = f;
-        } else {
-            lo = mid;
-        }
-    }
-    Ok(best)
 }
 
 #[cfg(test)]

@@ -521,6 +521,42 @@ fn build_all(slots: &[Slot], pts: &[Point], dirs: &[Vec2]) -> Result<Vec<Built>>
         .collect()
 }
 
+/// At each inflection joint, turn the tangent (least first, within ±0.5 rad) until both
+/// adjacent inflection-end pieces exist: the B-spline's tangent there can leave one
+/// triangle with the inflection end's base angle above half its turning.
+fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) {
+    let both = |j: usize, d: Vec2, before: Vec2, after: Vec2| {
+        let l = build_piece(&slots[j - 1], pts[j - 1], before, pts[j], d);
+        let r = build_piece(&slots[j], pts[j], d, pts[j + 1], after);
+        matches!(
+            (l, r),
+            (
+                Ok((PieceCurve::Inflection { .. }, _, _)),
+                Ok((PieceCurve::Inflection { .. }, _, _))
+            )
+        )
+    };
+    for j in 1..slots.len() {
+        if !(slots[j - 1].cut_b == Cut::Inflection && slots[j].cut_a == Cut::Inflection) {
+            continue;
+        }
+        let (before, here, after) = (dirs[j - 1], dirs[j], dirs[j + 1]);
+        if both(j, here, before, after) {
+            continue;
+        }
+        let found = (1..=200).find_map(|k| {
+            let a = 0.0025 * k as f64;
+            [a, -a]
+                .into_iter()
+                .map(|x| rotate(here, x))
+                .find(|d| both(j, *d, before, after))
+        });
+        if let Some(d) = found {
+            dirs[j] = d;
+        }
+    }
+}
+
 /// Relative mismatch at each active joint and the curvature scale.
 fn mismatches(built: &[Built], active: &[usize]) -> (Vec<f64>, f64) {
     let scale = built
@@ -552,10 +588,26 @@ fn fair(
     opts: &SketchOptions,
 ) -> Result<(Vec<Built>, FairingReport)> {
     let m = slots.len();
-    let active: Vec<usize> = (1..m)
-        .filter(|&j| !(slots[j - 1].cut_b == Cut::Inflection && slots[j].cut_a == Cut::Inflection))
-        .collect();
     let mut built = build_all(slots, pts, dirs)?;
+    // Joints where both sides are inflection ends have zero curvature on both sides; every
+    // other joint (an inflection cut whose piece could not be an inflection piece too) is
+    // faired.
+    let zero_both = |j: usize| {
+        matches!(
+            built[j - 1].0,
+            PieceCurve::Inflection {
+                inflection_at_start: false,
+                ..
+            }
+        ) && matches!(
+            built[j].0,
+            PieceCurve::Inflection {
+                inflection_at_start: true,
+                ..
+            }
+        )
+    };
+    let active: Vec<usize> = (1..m).filter(|&j| !zero_both(j)).collect();
     let (mut d, _) = mismatches(&built, &active);
     let initial = max_abs(&d);
     let mut report = FairingReport {
@@ -733,7 +785,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     // so a parameter carries over.
     let shape_tol = 0.25 * opts.tolerance;
     let shape_fit;
-    let shape = if shape_tol > 2.0 * fit_tol && 4.0 * sigma > 1e-4 * size {
+    let shape = if shape_tol > 2.0 * fit_tol {
         let f = bspline::fit(
             points,
             FitOptions {
@@ -763,14 +815,22 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             .map(|s| track.direction(s.ua))
             .chain(std::iter::once(track.direction(slots.last().unwrap().ub)))
             .collect();
+        settle_inflections(&slots, &pts, &mut dirs);
         let (built, fairing) = fair(&slots, &pts, &mut dirs, opts)?;
         let mut pieces = Vec::with_capacity(slots.len());
+        let mut split_here: Option<usize> = None;
         for (s, (curve, alpha, ends)) in slots.iter().zip(built) {
             let (kind, control, rat) = match &curve {
-                PieceCurve::Lac(seg) => {
-                    let f = fit_rational_cubic(seg, &opts.approx)?;
-                    (PieceKind::Lac, seg.control, f)
-                }
+                PieceCurve::Lac(seg) => match fit_rational_cubic(seg, &opts.approx) {
+                    Ok(f) => (PieceKind::Lac, seg.control, f),
+                    // No monotone cubic for this segment (it turns too far for its
+                    // curvature range): split the piece and start the round again.
+                    Err(Error::NoSegment(_)) if slots.len() < opts.max_pieces => {
+                        split_here = Some(pieces.len());
+                        break;
+                    }
+                    Err(e) => return Err(e),
+                },
                 PieceCurve::Inflection {
                     segment,
                     inflection_at_start,
@@ -808,6 +868,20 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                 monotone: rat.monotone,
                 u_range: (s.ua, s.ub),
             });
+        }
+        if let Some(i) = split_here {
+            let s = slots[i].clone();
+            let mid = u_at_turn(
+                &track,
+                s.ua,
+                s.ub,
+                0.5 * track.angle_between(s.ua, s.ub).abs(),
+            );
+            let left = slot(&track, (s.ua, s.cut_a), (mid, Cut::Other));
+            let right = slot(&track, (mid, Cut::Other), (s.ub, s.cut_b));
+            slots.splice(i..=i, [left, right]);
+            split_s_shapes(&track, &mut slots)?;
+            continue;
         }
         // Deviation of the input from the rational result.
         let samples: Vec<Vec<(f64, Point)>> = pieces
