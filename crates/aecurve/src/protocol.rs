@@ -533,22 +533,41 @@ fn bbox_diagonal(points: &[aesthetic_curves::Point]) -> f64 {
 
 /// The `sketch.fit` result of a sketch (shared with `aecurve sketch --json`).
 pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Value {
-    let finite = |v: f64| if v.is_finite() { json!(v) } else { Value::Null };
+    // Absent rather than null where a number is undefined (protocol: no NaN, no infinity).
+    let put = |o: &mut Value, key: &str, v: Option<f64>| {
+        if let Some(v) = v.filter(|v| v.is_finite()) {
+            o[key] = json!(v);
+        }
+    };
     let pts = |ps: &[aesthetic_curves::Point]| ps.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
-    json!({
-        "segments": sk.pieces.iter().map(|p| json!({
-            "kind": p.kind.as_str(),
-            "alpha": p.alpha,
-            "alpha_estimate": p.alpha_estimate.map(finite),
-            "control": pts(&p.control),
-            "end_curvatures": [p.end_curvatures.0, p.end_curvatures.1],
-            "rational": {
-                "control_points": pts(p.rational.points()),
-                "weights": p.rational.weights(),
-            },
-            "rational_error": finite(p.rational_error),
-            "monotone": p.monotone,
-        })).collect::<Vec<_>>(),
+    let segments: Vec<Value> = sk
+        .pieces
+        .iter()
+        .map(|p| {
+            let mut o = json!({
+                "kind": p.kind.as_str(),
+                "alpha": p.alpha,
+                "control": pts(&p.control),
+                "end_curvatures": [p.end_curvatures.0, p.end_curvatures.1],
+                "rational": {
+                    "control_points": pts(p.rational.points()),
+                    "weights": p.rational.weights(),
+                },
+                "monotone": p.monotone,
+            });
+            put(&mut o, "alpha_estimate", p.alpha_estimate);
+            put(&mut o, "rational_error", Some(p.rational_error));
+            o
+        })
+        .collect();
+    let mut fairing = json!({
+        "iterations": sk.fairing.iterations,
+        "converged": sk.fairing.converged,
+    });
+    put(&mut fairing, "initial_jump", Some(sk.fairing.initial_jump));
+    put(&mut fairing, "final_jump", Some(sk.fairing.final_jump));
+    let mut o = json!({
+        "segments": segments,
         "bspline": {
             "degree": sk.bspline.degree,
             "knots": sk.bspline.knots,
@@ -557,16 +576,12 @@ pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Val
         "tolerance": tolerance,
         "max_deviation": sk.max_deviation,
         "rms_deviation": sk.rms_deviation,
-        "max_curvature_jump": finite(sk.max_curvature_jump),
         "g2": sk.g2,
         "all_monotone": sk.all_monotone,
-        "fairing": {
-            "iterations": sk.fairing.iterations,
-            "initial_jump": finite(sk.fairing.initial_jump),
-            "final_jump": finite(sk.fairing.final_jump),
-            "converged": sk.fairing.converged,
-        },
-    })
+        "fairing": fairing,
+    });
+    put(&mut o, "max_curvature_jump", Some(sk.max_curvature_jump));
+    o
 }
 
 /// Largest number of points `spline.pseudo_elastic` accepts: this build has only the exact

@@ -158,7 +158,7 @@ fn arb_number() -> impl Strategy<Value = f64> {
 
 fn arb_lac_request() -> impl Strategy<Value = Value> {
     (
-        0usize..5,
+        0usize..6,
         arb_number(),
         arb_number(),
         prop::collection::vec(arb_number(), 0..6),
@@ -172,6 +172,7 @@ fn arb_lac_request() -> impl Strategy<Value = Value> {
                 1 => json!({"id": 2, "op": "lac.segment", "alpha": alpha, "control": control[..3]}),
                 2 => json!({"id": 3, "op": "lac.inflection_segment", "control": control[..3]}),
                 4 => json!({"id": 5, "op": "lac.rational_approx", "alpha": alpha, "control": control[..3], "tolerance": lambda}),
+                5 => json!({"id": 6, "op": "sketch.fit", "points": control, "tolerance": lambda}),
                 _ => json!({"id": 4, "op": "lcg.estimate", "points": control}),
             };
             if let Some(s) = samples {
