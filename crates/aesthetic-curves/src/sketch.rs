@@ -733,9 +733,9 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     // tolerance.
     let size = bbox_diagonal(points);
     let sigma = noise_level(points);
-    // Precise data (noise below 1e-4 of the size) get a tight fit, whose tangents and
+    // Precise data (noise below 1e-6 of the size) get a tight fit, whose tangents and
     // curvature graphs are accurate; noisy data half the tolerance, the smoothest fit allowed.
-    let fit_tol = if 4.0 * sigma > 1e-4 * size {
+    let fit_tol = if 4.0 * sigma > 1e-6 * size {
         0.5 * opts.tolerance
     } else {
         (4.0 * sigma).max(1e-5 * size).min(0.5 * opts.tolerance)
