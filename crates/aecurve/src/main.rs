@@ -942,24 +942,35 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
          per piece, its curvature proven monotone. Grey: the input; red: the result; \
          circles: the joints; blue: the curvature comb (continuous across every joint: G2).</p>\n",
     );
-    let inputs: [(&str, &str, &str, Option<f64>); 2] = [
-        (
-            "sketch-stroke",
-            include_str!("../../../examples/sketch-stroke.csv"),
-            "A pen stroke (240 points with hand jitter, examples/sketch-stroke.csv), default \
-             tolerance (0.5% of its size).",
-            None,
-        ),
-        (
-            "sketch-prius5",
-            include_str!("../assets/prius/ps_5.csv"),
-            "Prius key line 5 (605 measured points, about 1500 mm long; Graiff Zurita et al. \
-             2023, MIT licence), tolerance 0.3 mm. Lines 1-4 do not yet come out G2 at this \
-             tolerance (issue 6).",
-            Some(0.3),
-        ),
+    let prius = [
+        include_str!("../assets/prius/ps_1.csv"),
+        include_str!("../assets/prius/ps_2.csv"),
+        include_str!("../assets/prius/ps_3.csv"),
+        include_str!("../assets/prius/ps_4.csv"),
+        include_str!("../assets/prius/ps_5.csv"),
     ];
-    for (name, text, caption, tol) in inputs {
+    let mut inputs: Vec<(String, &str, String, Option<f64>)> = vec![(
+        "sketch-stroke".into(),
+        include_str!("../../../examples/sketch-stroke.csv"),
+        "A pen stroke (240 points with hand jitter, examples/sketch-stroke.csv), default \
+         tolerance (0.5% of its size)."
+            .into(),
+        None,
+    )];
+    for (i, text) in prius.iter().enumerate() {
+        inputs.push((
+            format!("sketch-prius{}", i + 1),
+            text,
+            format!(
+                "Prius key line {} (measured points, about 1500 mm long and 80-100 mm deep; \
+                 Graiff Zurita, Kajiwara & Miura 2023, MIT licence), tolerance 0.3 mm.",
+                i + 1
+            ),
+            Some(0.3),
+        ));
+    }
+    for (name, text, caption, tol) in &inputs {
+        let (name, text, caption, tol) = (name.as_str(), *text, caption.as_str(), *tol);
         let pts = aecurve::parse_points_text(text)?;
         let tol = tol.unwrap_or_else(|| {
             let (mut lo, mut hi) = (pts[0], pts[0]);
@@ -1011,9 +1022,6 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
             out.join(format!("{name}.svg")),
             plot::comb_svg(&samples, &pts, &joints, &title),
         )?;
-        if kappa_s.len() > 6 {
-            kappa_s.truncate(6);
-        }
         std::fs::write(
             out.join(format!("{name}-curvature.svg")),
             plot::fitted_chart(

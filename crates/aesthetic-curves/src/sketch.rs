@@ -439,7 +439,7 @@ fn lcg_alpha(track: &Track, ua: f64, ub: f64) -> Option<f64> {
     if kmax.is_nan() || kmax <= 0.0 || (kmax - kmin) < 0.01 * kmax {
         return None;
     }
-    fit_line(graph).ok().map(|f| f.alpha.clamp(-50.0, 50.0))
+    fit_line(graph).ok().map(|f| f.alpha.clamp(-5.0, 5.0))
 }
 
 /// The control triangle of a piece from its end points and unit end tangents; `None` when
@@ -524,7 +524,9 @@ fn build_all(slots: &[Slot], pts: &[Point], dirs: &[Vec2]) -> Result<Vec<Built>>
 /// At each inflection joint, turn the tangent (least first, within ±0.5 rad) until both
 /// adjacent inflection-end pieces exist: the B-spline's tangent there can leave one
 /// triangle with the inflection end's base angle above half its turning.
-fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) {
+/// Returns the slots that cannot be inflection pieces at any such tangent.
+fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) -> Vec<usize> {
+    let mut failed = Vec::new();
     let both = |j: usize, d: Vec2, before: Vec2, after: Vec2| {
         let l = build_piece(&slots[j - 1], pts[j - 1], before, pts[j], d);
         let r = build_piece(&slots[j], pts[j], d, pts[j + 1], after);
@@ -553,8 +555,42 @@ fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) {
         });
         if let Some(d) = found {
             dirs[j] = d;
+        } else {
+            let is_infl = |r: Result<Built>| matches!(r, Ok((PieceCurve::Inflection { .. }, _, _)));
+            if !is_infl(build_piece(&slots[j - 1], pts[j - 1], before, pts[j], here)) {
+                failed.push(j - 1);
+            }
+            if !is_infl(build_piece(&slots[j], pts[j], here, pts[j + 1], after)) {
+                failed.push(j);
+            }
         }
     }
+    failed.dedup();
+    failed
+}
+
+/// Split `slots[i]` at its largest |κ| (sampled) when that lies inside it: an inflection
+/// piece whose curvature peaks near the inflection (a maximum the simplification dropped)
+/// becomes a short inflection piece and a monotone rest. Returns whether it split.
+fn split_at_peak(track: &Track, slots: &mut Vec<Slot>, i: usize) -> bool {
+    let s = slots[i].clone();
+    let n = 64;
+    let us: Vec<f64> = (1..n)
+        .map(|k| s.ua + (s.ub - s.ua) * k as f64 / n as f64)
+        .collect();
+    let k = (0..us.len())
+        .max_by(|&a, &b| track.abs_kappa(us[a]).total_cmp(&track.abs_kappa(us[b])))
+        .unwrap();
+    let u = us[k];
+    let inner =
+        track.abs_kappa(u) > track.abs_kappa(s.ua) && track.abs_kappa(u) > track.abs_kappa(s.ub);
+    if !(inner && k > 0 && k + 1 < us.len()) {
+        return false;
+    }
+    let left = slot(track, (s.ua, s.cut_a), (u, Cut::Other));
+    let right = slot(track, (u, Cut::Other), (s.ub, s.cut_b));
+    slots.splice(i..=i, [left, right]);
+    true
 }
 
 /// Relative mismatch at each active joint and the curvature scale.
@@ -574,6 +610,10 @@ fn mismatches(built: &[Built], active: &[usize]) -> (Vec<f64>, f64) {
 fn rotate(v: Vec2, a: f64) -> Vec2 {
     let (s, c) = a.sin_cos();
     Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+}
+
+fn sum_sq(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum()
 }
 
 fn max_abs(v: &[f64]) -> f64 {
@@ -657,7 +697,7 @@ fn fair(
         };
         let big = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let mut lam = if big > 0.3 { 0.3 / big } else { 1.0 };
-        let cur = max_abs(&d);
+        let cur = sum_sq(&d);
         let mut accepted = false;
         for _ in 0..30 {
             let mut trial = dirs.to_vec();
@@ -666,7 +706,8 @@ fn fair(
             }
             if let Ok(b2) = build_all(slots, pts, &trial) {
                 let (d2, _) = mismatches(&b2, &active);
-                if max_abs(&d2) < cur {
+                // Sum of squares: a joint that cannot match does not stop the others.
+                if sum_sq(&d2) < cur {
                     dirs.copy_from_slice(&trial);
                     built = b2;
                     d = d2;
@@ -800,6 +841,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     };
     let mut slots = segment(&track, shape, opts)?;
     split_s_shapes(&track, &mut slots)?;
+    let mut peak_splits = 0;
     loop {
         let pts: Vec<Point> = slots
             .iter()
@@ -815,7 +857,20 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             .map(|s| track.direction(s.ua))
             .chain(std::iter::once(track.direction(slots.last().unwrap().ub)))
             .collect();
-        settle_inflections(&slots, &pts, &mut dirs);
+        let failed = settle_inflections(&slots, &pts, &mut dirs);
+        if !failed.is_empty() && peak_splits < 2 * opts.max_pieces && slots.len() < opts.max_pieces
+        {
+            // Later indices first, so earlier ones stay valid.
+            let mut any = false;
+            for &i in failed.iter().rev() {
+                any |= split_at_peak(&track, &mut slots, i);
+            }
+            if any {
+                peak_splits += 1;
+                split_s_shapes(&track, &mut slots)?;
+                continue;
+            }
+        }
         let (built, fairing) = fair(&slots, &pts, &mut dirs, opts)?;
         let mut pieces = Vec::with_capacity(slots.len());
         let mut split_here: Option<usize> = None;

@@ -179,11 +179,9 @@ fn prius(i: usize) -> Vec<Point> {
 }
 
 #[test]
-#[ignore = "not yet: 33-53 pieces, some not G2 or monotone (issue 6 note)"]
 fn prius_key_lines_at_0_3_mm() {
-    for i in [1, 2, 3, 5] {
+    for i in [1, 2, 3, 4, 5] {
         let pts = prius(i);
-        // Not yet G2 on these lines (see issue 6's note): within tolerance and monotone.
-        check_g2(&format!("prius {i}"), &pts, 0.3, None, false);
+        check(&format!("prius {i}"), &pts, 0.3, None);
     }
 }
