@@ -158,8 +158,9 @@ enum Cmd {
         /// Print the protocol's JSON result.
         #[arg(long)]
         json: bool,
-        /// Write the input, the result, its joints and its curvature comb (.svg or .png), or
-        /// the curve itself (.dxf, .step, .iges, .json); repeatable.
+        /// Write the curve: .svg (cubic Béziers within 1e-6 of its size, with its comb), .png
+        /// (input, result, joints and comb), .dxf, .step, .iges, .json (exact rational
+        /// geometry); repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -837,13 +838,31 @@ fn sketch(
             );
         }
     }
+    let curves: Vec<aesthetic_curves::RationalBezier> =
+        sk.pieces.iter().map(|p| p.rational.clone()).collect();
+    let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&curves)?;
     for path in output {
         let ext = aecurve::export::extension(path).unwrap_or_default();
         if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
-            let curves: Vec<aesthetic_curves::RationalBezier> =
-                sk.pieces.iter().map(|p| p.rational.clone()).collect();
-            let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&curves)?;
             aecurve::export::write_curve(path, &nurbs, "sketch")?;
+        } else if ext == "svg" {
+            // The curve itself as cubic Béziers (within 1e-6 of its size), with its comb.
+            let mut comb: Vec<plot::CombSample> = Vec::new();
+            for p in &sk.pieces {
+                for k in 0..=60 {
+                    let d = aesthetic_curves::PlanarCurve::derivs(&p.rational, k as f64 / 60.0);
+                    comb.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
+                }
+            }
+            let caption = format!(
+                "sketch: {} LAC pieces (rational cubics), deviation {:.3e}, jump {:.1e}",
+                sk.pieces.len(),
+                sk.max_deviation,
+                sk.max_curvature_jump
+            );
+            let doc = aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &comb, &caption)
+                .context("the curve has no Bézier spans")?;
+            std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
         } else {
             let mut samples: Vec<plot::CombSample> = Vec::new();
             for p in &sk.pieces {
