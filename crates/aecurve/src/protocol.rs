@@ -488,9 +488,26 @@ fn lac_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
             ))
         }
     };
+    use aesthetic_curves::lac_fit::LacFitStart;
+    let start = match obj.get("start") {
+        None | Some(Value::Null) => LacFitStart::Scan,
+        Some(Value::String(s)) if s == "scan" => LacFitStart::Scan,
+        Some(Value::String(s)) if s == "paper" => LacFitStart::Paper,
+        Some(_) => {
+            return Err(ProtoError::invalid(
+                "start",
+                "must be \"scan\" (default: least squares over all alpha) or \"paper\" \
+                 (alpha guessed from the curvature graph, kept within 10 %)",
+            ))
+        }
+    };
     let f = aesthetic_curves::lac_fit::fit_lac(
         &points,
-        aesthetic_curves::lac_fit::LacFitOptions { alpha, objective },
+        aesthetic_curves::lac_fit::LacFitOptions {
+            alpha,
+            objective,
+            start,
+        },
     )?;
     let c = f.segment.control;
     Ok(json!({
@@ -499,6 +516,7 @@ fn lac_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "rms_deviation": f.rms_deviation,
         "max_deviation": f.max_deviation,
         "rms_correspondence": f.rms_correspondence,
+        "alpha_guess": f.alpha_guess,
         "objective": if objective == LacFitObjective::ArcLength { "arc_length" } else { "distance" },
     }))
 }
