@@ -56,6 +56,9 @@ pub fn read_points_file(path: &std::path::Path) -> anyhow::Result<Vec<aesthetic_
 /// [`read_points_file`] on text.
 pub fn parse_points_text(text: &str) -> anyhow::Result<Vec<aesthetic_curves::Point>> {
     let trimmed = text.trim_start();
+    if trimmed.starts_with('<') || trimmed.starts_with('M') || trimmed.starts_with('m') {
+        return svg_path_points(trimmed);
+    }
     if trimmed.starts_with('[') {
         let v: Vec<[f64; 2]> = serde_json::from_str(trimmed)
             .map_err(|e| anyhow::anyhow!("not a JSON array of [x, y] pairs: {e}"))?;
@@ -92,6 +95,47 @@ pub fn parse_points_text(text: &str) -> anyhow::Result<Vec<aesthetic_curves::Poi
             _ => anyhow::bail!("line {}: expected 'x,y', got '{line}'", i + 1),
         }
     }
+    Ok(out)
+}
+
+/// Points of an SVG path: the `d` data itself, or the first `d="..."` attribute of an SVG
+/// document. Line segments give their end points (a pen stroke's samples); curved segments
+/// are flattened to within 1e-4 of the path's size. Only the first subpath is read, in the
+/// path's own coordinates (y down in SVG, not flipped).
+pub fn svg_path_points(text: &str) -> anyhow::Result<Vec<aesthetic_curves::Point>> {
+    let d = if text.starts_with('<') {
+        let start = text
+            .find(" d=\"")
+            .or_else(|| text.find("\nd=\""))
+            .ok_or_else(|| anyhow::anyhow!("no path d=\"...\" attribute in the SVG"))?
+            + 4;
+        let end = text[start..]
+            .find('"')
+            .ok_or_else(|| anyhow::anyhow!("unterminated d attribute"))?;
+        &text[start..start + end]
+    } else {
+        text
+    };
+    let path = kurbo::BezPath::from_svg(d).map_err(|e| anyhow::anyhow!("SVG path: {e}"))?;
+    let bbox = kurbo::Shape::bounding_box(&path);
+    let size = bbox.width().hypot(bbox.height());
+    anyhow::ensure!(
+        size.is_finite() && size > 0.0,
+        "the SVG path is empty or a point"
+    );
+    let mut out: Vec<aesthetic_curves::Point> = Vec::new();
+    let mut subpaths = 0;
+    kurbo::flatten(path, 1e-4 * size, |el| match el {
+        kurbo::PathEl::MoveTo(p) => {
+            subpaths += 1;
+            if subpaths == 1 {
+                out.push(p);
+            }
+        }
+        kurbo::PathEl::LineTo(p) if subpaths == 1 => out.push(p),
+        _ => {}
+    });
+    anyhow::ensure!(out.len() >= 2, "the SVG path has fewer than 2 points");
     Ok(out)
 }
 

@@ -147,7 +147,8 @@ enum Cmd {
     },
     /// Pen input to a G2 aesthetic curve (S4 §3): B-spline, pieces at inflections and
     /// curvature maxima, one LAC segment per piece, G2 fairing, one rational cubic per
-    /// piece. Points from a file: CSV rows "x,y" or a JSON array of pairs.
+    /// piece. Points from a file: CSV rows "x,y", a JSON array of pairs, or an SVG path
+    /// (path data, or an SVG document whose first path is read).
     Sketch {
         /// The points file.
         input: PathBuf,
@@ -209,6 +210,21 @@ enum Method {
 }
 
 fn main() {
+    // A closed stdout (`aecurve ... | head`) ends the program quietly, as for other Unix
+    // tools, instead of a panic message from println!.
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let p = info.payload();
+        let msg = p
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| p.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if msg.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default_hook(info);
+    }));
     if let Err(e) = run() {
         eprintln!("error: {e:#}");
         std::process::exit(1);

@@ -358,6 +358,21 @@ fn sketch_command_and_op() {
     }
     assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
     assert!(std::fs::read_to_string(&dxf).unwrap().contains("SPLINE"));
+    // The same stroke as an SVG document with one path: the same result.
+    let csv = std::fs::read_to_string(input).unwrap();
+    let d: Vec<String> = csv.lines().skip(1).map(|l| l.replace(',', " ")).collect();
+    let svg_in = dir.join("stroke.svg");
+    std::fs::write(
+        &svg_in,
+        format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\"><path fill=\"none\" d=\"M {}\"/></svg>",
+            d.join(" L ")
+        ),
+    )
+    .unwrap();
+    let w = json_output(aecurve().arg("sketch").arg(&svg_in).arg("--json"));
+    assert_eq!(w["segments"].as_array().unwrap().len(), segs.len());
+    assert_eq!(w["max_deviation"], v["max_deviation"]);
     // The op: bad input gets typed errors, the batch goes on.
     let mut child = aecurve()
         .arg("batch")

@@ -664,16 +664,27 @@ fn fair(
         let mut jac_ok = true;
         for (k, &j) in active.iter().enumerate() {
             // Forward difference, backward where the forward step leaves the admissible set.
-            let column = [1e-7, -1e-7].iter().find_map(|&h| {
+            // Central difference; one-sided where a side leaves the admissible set.
+            let at = |h: f64| -> Option<Vec<f64>> {
                 let mut trial = dirs.to_vec();
                 trial[j] = rotate(dirs[j], h);
                 let mut b2 = built.clone();
                 b2[j - 1] =
                     build_piece(&slots[j - 1], pts[j - 1], trial[j - 1], pts[j], trial[j]).ok()?;
                 b2[j] = build_piece(&slots[j], pts[j], trial[j], pts[j + 1], trial[j + 1]).ok()?;
-                let (d2, _) = mismatches(&b2, &active);
-                Some((0..na).map(|r| (d2[r] - d[r]) / h).collect::<Vec<f64>>())
-            });
+                Some(mismatches(&b2, &active).0)
+            };
+            let h = 1e-6;
+            let column = match (at(h), at(-h)) {
+                (Some(p), Some(m)) => Some(
+                    (0..na)
+                        .map(|r| (p[r] - m[r]) / (2.0 * h))
+                        .collect::<Vec<f64>>(),
+                ),
+                (Some(p), None) => Some((0..na).map(|r| (p[r] - d[r]) / h).collect()),
+                (None, Some(m)) => Some((0..na).map(|r| (d[r] - m[r]) / h).collect()),
+                (None, None) => None,
+            };
             match column {
                 Some(c) => {
                     for (r, v) in c.into_iter().enumerate() {
