@@ -141,7 +141,8 @@ enum Cmd {
         /// Print the protocol's JSON result.
         #[arg(long)]
         json: bool,
-        /// Write the curve with its curvature comb (.svg or .png; repeatable).
+        /// Write the curve: .svg (its cubics with the comb), .png (with the points), .dxf,
+        /// .step, .iges, .json (exact); repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -234,10 +235,11 @@ fn main() {
 fn run() -> Result<()> {
     let cli = Cli::parse();
     match &cli.cmd {
-        Cmd::Lac { output, .. } | Cmd::Lcg { output, .. } | Cmd::Spline { output, .. } => {
-            plot::check_picture_paths(output)?
-        }
-        Cmd::Monotone { output, .. } | Cmd::Approx { output, .. } | Cmd::Sketch { output, .. } => {
+        Cmd::Lac { output, .. } | Cmd::Lcg { output, .. } => plot::check_picture_paths(output)?,
+        Cmd::Monotone { output, .. }
+        | Cmd::Approx { output, .. }
+        | Cmd::Sketch { output, .. }
+        | Cmd::Spline { output, .. } => {
             for p in output {
                 let ext = aecurve::export::extension(p).unwrap_or_default();
                 if !aecurve::export::CURVE_FORMATS.contains(&ext.as_str())
@@ -958,8 +960,25 @@ fn spline(input: &std::path::Path, closed: bool, json: bool, output: &[PathBuf])
         if closed {
             polygon.push(pts[0]);
         }
+        let cubics: Vec<aesthetic_curves::RationalBezier> = s
+            .segments
+            .iter()
+            .map(|g| g.to_bezier().map(|b| b.to_rational()))
+            .collect::<Result<_, _>>()?;
+        let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&cubics)?;
         for path in output {
-            plot::write_picture(path, &plot::comb_svg(&samples, &polygon, &[], &caption))?;
+            let ext = aecurve::export::extension(path).unwrap_or_default();
+            if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+                aecurve::export::write_curve(path, &nurbs, "pseudo_elastic_spline")?;
+            } else if ext == "svg" {
+                // The curve itself (its cubics, exact) with its comb.
+                let doc =
+                    aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &samples, &caption)
+                        .context("the spline has no Bézier spans")?;
+                std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
+            } else {
+                plot::write_picture(path, &plot::comb_svg(&samples, &polygon, &[], &caption))?;
+            }
             eprintln!("wrote {}", path.display());
         }
     }

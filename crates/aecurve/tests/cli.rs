@@ -313,7 +313,18 @@ fn spline_command_and_op() {
     std::fs::create_dir_all(&dir).unwrap();
     let input = dir.join("p.csv");
     std::fs::write(&input, "x,y\n0,0\n1,1\n2,0\n").unwrap();
-    let v = json_output(aecurve().arg("spline").arg(&input).arg("--json"));
+    let step = dir.join("s.step");
+    let v = json_output(
+        aecurve()
+            .arg("spline")
+            .arg(&input)
+            .arg("--json")
+            .arg("-o")
+            .arg(&step),
+    );
+    assert!(std::fs::read_to_string(&step)
+        .unwrap()
+        .contains("B_SPLINE_CURVE_WITH_KNOTS"));
     let segs = v["segments"].as_array().unwrap();
     assert_eq!(segs.len(), 2);
     assert_eq!(v["tangent_angles"].as_array().unwrap().len(), 3);
