@@ -936,17 +936,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             });
         }
         if let Some(i) = split_here {
-            let s = slots[i].clone();
-            let mid = u_at_turn(
-                &track,
-                s.ua,
-                s.ub,
-                0.5 * track.angle_between(s.ua, s.ub).abs(),
-            );
-            let left = slot(&track, (s.ua, s.cut_a), (mid, Cut::Other));
-            let right = slot(&track, (mid, Cut::Other), (s.ub, s.cut_b));
-            slots.splice(i..=i, [left, right]);
-            split_s_shapes(&track, &mut slots)?;
+            split_at_mid_turn(&track, &mut slots, i)?;
             continue;
         }
         // Deviation of the input from the rational result.
@@ -977,17 +967,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         }
         let rms = (sum / fit.points.len() as f64).sqrt();
         if worst > opts.tolerance && slots.len() < opts.max_pieces {
-            let s = slots[worst_piece].clone();
-            let mid = u_at_turn(
-                &track,
-                s.ua,
-                s.ub,
-                0.5 * track.angle_between(s.ua, s.ub).abs(),
-            );
-            let left = slot(&track, (s.ua, s.cut_a), (mid, Cut::Other));
-            let right = slot(&track, (mid, Cut::Other), (s.ub, s.cut_b));
-            slots.splice(worst_piece..=worst_piece, [left, right]);
-            split_s_shapes(&track, &mut slots)?;
+            split_at_mid_turn(&track, &mut slots, worst_piece)?;
             continue;
         }
         if worst > opts.tolerance {
@@ -1084,6 +1064,21 @@ fn inflection_fallback(seg: &LacInflectionSegment) -> Result<crate::approx::Rati
         monotone,
         evaluations: 1,
     })
+}
+
+/// Split `slots[i]` where it has turned half its turning, then any S-shaped results.
+fn split_at_mid_turn(track: &Track, slots: &mut Vec<Slot>, i: usize) -> Result<()> {
+    let s = slots[i].clone();
+    let mid = u_at_turn(
+        track,
+        s.ua,
+        s.ub,
+        0.5 * track.angle_between(s.ua, s.ub).abs(),
+    );
+    let left = slot(track, (s.ua, s.cut_a), (mid, Cut::Other));
+    let right = slot(track, (mid, Cut::Other), (s.ub, s.cut_b));
+    slots.splice(i..=i, [left, right]);
+    split_s_shapes(track, slots)
 }
 
 /// Diagonal of the bounding box.
