@@ -810,14 +810,7 @@ fn sketch(
             anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance must be positive");
             t
         }
-        None => {
-            let (mut lo, mut hi) = (pts[0], pts[0]);
-            for p in &pts {
-                lo = aesthetic_curves::Point::new(lo.x.min(p.x), lo.y.min(p.y));
-                hi = aesthetic_curves::Point::new(hi.x.max(p.x), hi.y.max(p.y));
-            }
-            0.005 * (hi - lo).hypot()
-        }
+        None => aesthetic_curves::sketch::default_tolerance(&pts),
     };
     let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol))?;
     if json {
@@ -859,49 +852,30 @@ fn sketch(
     let curves: Vec<aesthetic_curves::RationalBezier> =
         sk.pieces.iter().map(|p| p.rational.clone()).collect();
     let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&curves)?;
+    let mut comb: Vec<plot::CombSample> = Vec::new();
+    for p in &sk.pieces {
+        for k in 0..=60 {
+            let d = aesthetic_curves::PlanarCurve::derivs(&p.rational, k as f64 / 60.0);
+            comb.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
+        }
+    }
+    let caption = format!(
+        "sketch: {} LAC pieces (rational cubics), deviation {:.3e}, jump {:.1e}",
+        sk.pieces.len(),
+        sk.max_deviation,
+        sk.max_curvature_jump
+    );
     for path in output {
         let ext = aecurve::export::extension(path).unwrap_or_default();
         if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
             aecurve::export::write_curve(path, &nurbs, "sketch")?;
         } else if ext == "svg" {
             // The curve itself as cubic Béziers (within 1e-6 of its size), with its comb.
-            let mut comb: Vec<plot::CombSample> = Vec::new();
-            for p in &sk.pieces {
-                for k in 0..=60 {
-                    let d = aesthetic_curves::PlanarCurve::derivs(&p.rational, k as f64 / 60.0);
-                    comb.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
-                }
-            }
-            let caption = format!(
-                "sketch: {} LAC pieces (rational cubics), deviation {:.3e}, jump {:.1e}",
-                sk.pieces.len(),
-                sk.max_deviation,
-                sk.max_curvature_jump
-            );
             let doc = aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &comb, &caption)
                 .context("the curve has no Bézier spans")?;
             std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
         } else {
-            let mut samples: Vec<plot::CombSample> = Vec::new();
-            for p in &sk.pieces {
-                for k in 0..=60 {
-                    let d = aesthetic_curves::PlanarCurve::derivs(&p.rational, k as f64 / 60.0);
-                    samples.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
-                }
-            }
-            let joints: Vec<aesthetic_curves::Point> = sk
-                .pieces
-                .iter()
-                .map(|p| p.control[0])
-                .chain(sk.pieces.last().map(|p| p.control[2]))
-                .collect();
-            let caption = format!(
-                "sketch: {} LAC pieces (rational cubics), deviation {:.3e}, jump {:.1e}",
-                sk.pieces.len(),
-                sk.max_deviation,
-                sk.max_curvature_jump
-            );
-            plot::write_picture(path, &plot::comb_svg(&samples, &pts, &joints, &caption))?;
+            plot::write_picture(path, &plot::comb_svg(&comb, &pts, &sk.joints(), &caption))?;
         }
         eprintln!("wrote {}", path.display());
     }
@@ -1026,14 +1000,7 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
     for (name, text, caption, tol) in &inputs {
         let (name, text, caption, tol) = (name.as_str(), *text, caption.as_str(), *tol);
         let pts = aecurve::parse_points_text(text)?;
-        let tol = tol.unwrap_or_else(|| {
-            let (mut lo, mut hi) = (pts[0], pts[0]);
-            for p in &pts {
-                lo = aesthetic_curves::Point::new(lo.x.min(p.x), lo.y.min(p.y));
-                hi = aesthetic_curves::Point::new(hi.x.max(p.x), hi.y.max(p.y));
-            }
-            0.005 * (hi - lo).hypot()
-        });
+        let tol = tol.unwrap_or_else(|| aesthetic_curves::sketch::default_tolerance(&pts));
         let t0 = std::time::Instant::now();
         let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol))?;
         let ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -1059,12 +1026,7 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
             series.markers = false;
             kappa_s.push(series);
         }
-        let joints: Vec<aesthetic_curves::Point> = sk
-            .pieces
-            .iter()
-            .map(|p| p.control[0])
-            .chain(sk.pieces.last().map(|p| p.control[2]))
-            .collect();
+        let joints = sk.joints();
         let title = format!(
             "{} pieces, deviation {:.3} (tolerance {:.3}), curvature jump {:.1e}",
             sk.pieces.len(),

@@ -529,24 +529,13 @@ fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let tolerance = match optional_number(obj, "tolerance")? {
         Some(t) if t > 0.0 => t,
         Some(_) => return Err(ProtoError::invalid("tolerance", "must be positive")),
-        None => 0.005 * bbox_diagonal(&points),
+        None => aesthetic_curves::sketch::default_tolerance(&points),
     };
     let sk = aesthetic_curves::sketch::fit_sketch(
         &points,
         &aesthetic_curves::sketch::SketchOptions::with_tolerance(tolerance),
     )?;
     Ok(sketch_json(&sk, tolerance))
-}
-
-fn bbox_diagonal(points: &[aesthetic_curves::Point]) -> f64 {
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for p in points {
-        x0 = x0.min(p.x);
-        x1 = x1.max(p.x);
-        y0 = y0.min(p.y);
-        y1 = y1.max(p.y);
-    }
-    (x1 - x0).hypot(y1 - y0)
 }
 
 /// The `sketch.fit` result of a sketch (shared with `aecurve sketch --json`).

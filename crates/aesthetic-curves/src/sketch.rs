@@ -164,7 +164,22 @@ pub struct Sketch {
     pub all_monotone: bool,
 }
 
+/// The default tolerance of a sketch: 0.5 % of the diagonal of the points' bounding box
+/// (the protocol's `sketch.fit` default).
+pub fn default_tolerance(points: &[Point]) -> f64 {
+    0.005 * bbox_diagonal(points)
+}
+
 impl Sketch {
+    /// The joints in order: the start of every piece and the end of the last.
+    pub fn joints(&self) -> Vec<Point> {
+        self.pieces
+            .iter()
+            .map(|p| p.control[0])
+            .chain(self.pieces.last().map(|p| p.control[2]))
+            .collect()
+    }
+
     /// A point of the rational result at `t` in [0, pieces] (piece index + local parameter).
     pub fn eval(&self, t: f64) -> Point {
         let n = self.pieces.len();
