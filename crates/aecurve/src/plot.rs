@@ -613,3 +613,79 @@ pub fn error_map_svg(
     s.push_str("</svg>\n");
     s
 }
+
+/// Several curves (as polylines, equal x and y scale, y up) with a legend, and dots at
+/// `points`.
+pub fn curves_svg(caption: &str, curves: &[Series], points: &[aesthetic_curves::Point]) -> String {
+    let all = curves
+        .iter()
+        .flat_map(|c| c.points.iter().copied())
+        .chain(points.iter().map(|p| (p.x, p.y)))
+        .filter(|p| p.0.is_finite() && p.1.is_finite());
+    let (x0, x1, y0, y1) = all.fold(
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(a, b, c, d), (x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+    );
+    let (w, h) = (720.0, 420.0);
+    let (m, legend, top) = (30.0, 150.0, 40.0);
+    let sc =
+        ((w - 2.0 * m - legend) / (x1 - x0).max(1e-12)).min((h - m - top) / (y1 - y0).max(1e-12));
+    // Centre the drawing in its box.
+    let ox = m + ((w - 2.0 * m - legend) - (x1 - x0) * sc) / 2.0;
+    let oy = h - m - ((h - m - top) - (y1 - y0) * sc) / 2.0;
+    let px = |x: f64, y: f64| (ox + (x - x0) * sc, oy - (y - y0) * sc);
+    let mut s = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="13">
+<rect width="100%" height="100%" fill="white"/>
+<text x="{}" y="24" text-anchor="middle" font-size="15">{}</text>
+"#,
+        (w - legend) / 2.0,
+        esc(caption)
+    );
+    for (i, c) in curves.iter().enumerate() {
+        let pts: Vec<String> = c
+            .points
+            .iter()
+            .map(|&(x, y)| {
+                let (a, b) = px(x, y);
+                format!("{a:.1},{b:.1}")
+            })
+            .collect();
+        let dash = if c.dashed {
+            r#" stroke-dasharray="6 4""#
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            s,
+            r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="2"{dash}/>"#,
+            pts.join(" "),
+            c.color
+        );
+        let ly = top + 10.0 + 22.0 * i as f64;
+        let lx = w - legend + 5.0;
+        let _ = writeln!(
+            s,
+            r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{}" stroke-width="2"{dash}/><text x="{}" y="{}">{}</text>"#,
+            lx + 25.0,
+            c.color,
+            lx + 32.0,
+            ly + 4.0,
+            esc(&c.name)
+        );
+    }
+    for p in points {
+        let (a, b) = px(p.x, p.y);
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{a:.1}" cy="{b:.1}" r="3.5" fill="#333"/>"##
+        );
+    }
+    s.push_str("</svg>\n");
+    s
+}

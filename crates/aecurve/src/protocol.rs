@@ -591,9 +591,21 @@ pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Val
     o
 }
 
-/// Largest number of points `spline.pseudo_elastic` accepts: this build has only the exact
-/// mode (a minimisation per point, about a second each).
-pub const MAX_SPLINE_POINTS: usize = 64;
+/// Largest number of points `spline.pseudo_elastic` accepts in table mode (microseconds
+/// per point).
+pub const MAX_SPLINE_POINTS: usize = 1_000_000;
+
+/// Largest number of points in exact mode (a minimisation per point, seconds each).
+pub const MAX_EXACT_SPLINE_POINTS: usize = 64;
+
+/// The spline mode named by a protocol string ("table" or "exact").
+pub fn spline_mode(name: &str) -> aesthetic_curves::pseudo_spline::Mode {
+    if name == "exact" {
+        aesthetic_curves::pseudo_spline::Mode::Exact
+    } else {
+        aesthetic_curves::pseudo_spline::Mode::Table
+    }
+}
 
 fn spline_pseudo_elastic(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let closed = match obj.get("closed") {
@@ -602,8 +614,13 @@ fn spline_pseudo_elastic(obj: &Map<String, Value>) -> Result<Value, ProtoError> 
         Some(_) => return Err(ProtoError::invalid("closed", "must be true or false")),
     };
     let mode = string_param(obj, "mode", "table", &["table", "exact"])?;
-    let points = points_param(obj, "points", if closed { 3 } else { 2 }, MAX_SPLINE_POINTS)?;
-    let s = aesthetic_curves::pseudo_spline::pseudo_elastic(&points, closed)?;
+    let max = if mode == "exact" {
+        MAX_EXACT_SPLINE_POINTS
+    } else {
+        MAX_SPLINE_POINTS
+    };
+    let points = points_param(obj, "points", if closed { 3 } else { 2 }, max)?;
+    let s = aesthetic_curves::pseudo_spline::pseudo_elastic(&points, closed, spline_mode(mode))?;
     Ok(spline_json(&s, mode))
 }
 
@@ -618,9 +635,7 @@ pub fn spline_json(s: &aesthetic_curves::pseudo_spline::PseudoSpline, mode: &str
         "length": s.length,
         "area": s.area,
         "energy": s.energy,
-        // The table mode is not built yet: every request is computed exactly.
-        "mode_requested": mode,
-        "mode_used": "exact",
+        "mode": mode,
     })
 }
 

@@ -331,6 +331,38 @@ fn spline_command_and_op() {
     // Symmetric data: the middle tangent is horizontal, the length is above the polygon's.
     assert!(v["tangent_angles"][1].as_f64().unwrap().abs() < 1e-6);
     assert!(v["length"].as_f64().unwrap() > 2.0 * 2f64.sqrt());
+    assert_eq!(v["mode"], "table");
+    // The exact mode gives the same curve to the table's accuracy.
+    let e = json_output(
+        aecurve()
+            .arg("spline")
+            .arg(&input)
+            .args(["--json", "--mode", "exact"]),
+    );
+    assert_eq!(e["mode"], "exact");
+    let (lt, le) = (v["length"].as_f64().unwrap(), e["length"].as_f64().unwrap());
+    assert!((lt - le).abs() < 1e-4 * le, "{lt} vs {le}");
+    // A thousand points in table mode: fast, and every span present.
+    let many: String = (0..1000)
+        .map(|i| {
+            let t = i as f64 * 0.5;
+            format!("{t},{}\n", (t / 3.0).sin())
+        })
+        .collect();
+    std::fs::write(&input, many).unwrap();
+    let t0 = std::time::Instant::now();
+    let v = json_output(aecurve().arg("spline").arg(&input).arg("--json"));
+    assert_eq!(v["segments"].as_array().unwrap().len(), 999);
+    assert!(t0.elapsed().as_secs_f64() < 10.0);
+    // Too many points for the exact mode: refused with a clear message.
+    let out = aecurve()
+        .arg("spline")
+        .arg(&input)
+        .args(["--mode", "exact"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("exact mode"));
     // Repeated points: degenerate.
     std::fs::write(&input, "0,0\n0,0\n1,0\n").unwrap();
     let out = aecurve().arg("spline").arg(&input).output().unwrap();

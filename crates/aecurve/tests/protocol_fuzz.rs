@@ -158,7 +158,7 @@ fn arb_number() -> impl Strategy<Value = f64> {
 
 fn arb_lac_request() -> impl Strategy<Value = Value> {
     (
-        0usize..6,
+        0usize..8,
         arb_number(),
         arb_number(),
         prop::collection::vec(arb_number(), 0..6),
@@ -173,6 +173,8 @@ fn arb_lac_request() -> impl Strategy<Value = Value> {
                 2 => json!({"id": 3, "op": "lac.inflection_segment", "control": control[..3]}),
                 4 => json!({"id": 5, "op": "lac.rational_approx", "alpha": alpha, "control": control[..3], "tolerance": lambda}),
                 5 => json!({"id": 6, "op": "sketch.fit", "points": control, "tolerance": lambda}),
+                6 => json!({"id": 7, "op": "spline.pseudo_elastic", "points": control}),
+                7 => json!({"id": 8, "op": "spline.pseudo_elastic", "points": control, "closed": true}),
                 _ => json!({"id": 4, "op": "lcg.estimate", "points": control}),
             };
             if let Some(s) = samples {

@@ -36,6 +36,7 @@ pub mod lcg;
 pub mod monotone;
 pub mod nurbs;
 pub mod pseudo_spline;
+pub mod pseudo_table;
 pub mod quadrature;
 pub mod roots;
 pub mod samples;

@@ -1,24 +1,24 @@
-//! The pseudo-elastic spline of S2 (math.md §5), exact mode: interpolation through points by
-//! cubic Hermite segments whose tangent lengths minimise the pseudo-energy J = E L².
+//! The pseudo-elastic spline of S2 (math.md §5): interpolation through points by cubic
+//! Hermite segments whose tangent lengths minimise the pseudo-energy J = E L².
 //!
 //! One segment on the unit chord (P0 = (0,0), P1 = (1,0)) with end tangent angles θ0, θ1 and
 //! lengths r0, r1: `P(t) = b(t) P1 + c(t) r0 e^{iθ0} + d(t) r1 e^{iθ1}`. The strain energy
 //! `E = ∫ κ² ds` has no minimum over (r0, r1) in general (it falls as r grows); `J = E L²`
-//! always has one. Here:
+//! always has one, except at the three singular end-angle pairs where every segment has a
+//! cusp. Here:
 //! - [`segment_energy`]: E, L and the signed area S under the segment (adaptive
 //!   Gauss–Kronrod, relative accuracy about 1e-12; S is a polynomial integral, exact);
-//! - [`optimal_segment`]: J(θ0, θ1) = min over r0, r1 > 0, by Nelder–Mead in (ln r0, ln r1)
-//!   from several starts, polished to 1e-10 in J;
-//! - [`single_angle`]: J(θ0) = min over θ1 and its minimiser θ1(θ0) (a scan of the circle
-//!   and golden-section refinement; J(θ0, θ1) = J(θ1, θ0) by the half-turn symmetry of the
-//!   unit chord);
+//! - [`segment_minima`]: every local minimum of J over (r0, r1) within a factor 2 of the best
+//!   (a scan, Nelder–Mead on fixed rules, polished and checked on the adaptive quadrature);
+//!   [`optimal_segment`] the best of them, [`local_minimum`] the one reached from a start;
+//! - [`single_angle`]: J(θ0) = min over θ1 of J(θ0, θ1) and its minimiser θ1(θ0);
 //! - [`pseudo_elastic`]: tangents by S2 eq. 11 (each interior tangent minimises the
 //!   pseudo-energy of the elastic rod through its two neighbours) and eq. 12 (end tangents),
-//!   open or closed, with length (eq. 15-16), area (eq. 18-20) and energy Σ l_i J_i.
-//!
-//! This is the exact mode: every J is a minimisation, so a curve through n points costs
-//! about n x 10⁵ segment evaluations. The table mode of S2 (tabulated J, r0, r1, L, S) is not
-//! built yet.
+//!   open or closed, with length (eq. 15-16), area (eq. 18-20) and energy Σ l_i J_i, in
+//!   [`Mode::Table`] (the shipped tables of [`crate::pseudo_table`]; a 1000-point curve in
+//!   about 0.5 ms) or [`Mode::Exact`] (a minimisation per span, about a second per point);
+//! - [`comparison_curve`]: the cubic splines and Hermite curves S2 compares with, and
+//!   [`fairness`] numbers for any of them.
 
 use crate::error::{Error, Result};
 use crate::quadrature::{integrate, QuadOptions};
@@ -104,7 +104,20 @@ pub struct SegmentOptimum {
     pub shape: SegmentEnergy,
 }
 
-/// J on a fixed 32-point Gauss rule (the search; the optimum is re-measured adaptively).
+/// Nodes and weights of 8 panels of 16-point Gauss–Legendre on [0, 1].
+fn composite_nodes() -> (Vec<f64>, Vec<f64>) {
+    let (x, w) = crate::quadrature::gauss_legendre_01(16);
+    let mut nodes = (Vec::with_capacity(128), Vec::with_capacity(128));
+    for p in 0..8 {
+        for (xi, wi) in x.iter().zip(&w) {
+            nodes.0.push((p as f64 + xi) / 8.0);
+            nodes.1.push(wi / 8.0);
+        }
+    }
+    nodes
+}
+
+/// J on a fixed Gauss rule (the search; the optimum is re-measured adaptively).
 fn j_fast(theta0: f64, theta1: f64, u: f64, v: f64, nodes: &(Vec<f64>, Vec<f64>)) -> f64 {
     let (d0, d1) = hermite(theta0, theta1, u.exp(), v.exp());
     let (mut e, mut l) = (0.0, 0.0);
@@ -186,46 +199,193 @@ fn nelder_mead(
     s[0]
 }
 
-/// J(θ0, θ1) and the optimal (r0, r1) (angles in radians, any real value). The straight
-/// segment (θ0 = θ1 = 0) has J = 0 for every (r0, r1); it is returned with r0 = r1 = 1.
-pub fn optimal_segment(theta0: f64, theta1: f64) -> Result<SegmentOptimum> {
+/// Shape type of a unit-chord segment (S2): `C` when the end curvatures have the same sign
+/// (κ(0) κ(1) ≥ 0, one arc), `S` when they differ (an inflection between the ends).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ShapeType {
+    /// κ(0) κ(1) ≥ 0.
+    C,
+    /// κ(0) κ(1) < 0.
+    S,
+}
+
+/// The shape type of the unit-chord segment (θ0, θ1, r0, r1).
+pub fn shape_type(theta0: f64, theta1: f64, r0: f64, r1: f64) -> ShapeType {
+    let (d0, d1) = hermite(theta0, theta1, r0, r1);
+    let (_, dd0) = derivs(0.0, d0, d1);
+    let (_, dd1) = derivs(1.0, d0, d1);
+    if d0.cross(dd0) * d1.cross(dd1) >= 0.0 {
+        ShapeType::C
+    } else {
+        ShapeType::S
+    }
+}
+
+/// Every local minimum of J over (r0, r1) for the end angles (θ0, θ1), best first: a scan
+/// of (ln r0, ln r1) over [-4, 3]² on a 0.25 grid, Nelder–Mead from each discrete local
+/// minimum of the scan, then a polish on the adaptive quadrature. J has two valleys over
+/// much of the angle square, one of C shape and one of S shape; the global minimum jumps
+/// between them, so a single local search is not enough.
+pub fn segment_minima(theta0: f64, theta1: f64) -> Result<Vec<SegmentOptimum>> {
     if !(theta0.is_finite() && theta1.is_finite()) {
         return Err(Error::invalid("theta", "angles must be finite"));
     }
     let (a, b) = (wrap(theta0), wrap(theta1));
     if a == 0.0 && b == 0.0 {
         let shape = segment_energy(0.0, 0.0, 1.0, 1.0);
-        return Ok(SegmentOptimum {
+        return Ok(vec![SegmentOptimum {
             j: 0.0,
             r0: 1.0,
             r1: 1.0,
             shape,
-        });
+        }]);
+    }
+    if a.sin() == 0.0 && b.sin() == 0.0 {
+        // Both tangents along the chord's line, one reversed: y ≡ 0 and the segment turns
+        // back on itself through a cusp (infinite energy) for every r0, r1.
+        return Err(Error::Degenerate(format!(
+            "end angles ({theta0}, {theta1}): every segment with these tangents has a cusp"
+        )));
     }
     let nodes = crate::quadrature::gauss_legendre_01(32);
     let fast = |u: f64, v: f64| j_fast(a, b, u, v, &nodes);
-    let mut best: Option<((f64, f64), f64)> = None;
-    for start in [(0.0, 0.0), (-1.2, -1.2), (0.8, 0.8)] {
-        let r = nelder_mead(&fast, start, 0.4, 1e-6);
-        if best.is_none_or(|b| r.1 < b.1) {
-            best = Some(r);
+    const M: usize = 29;
+    let coord = |k: usize| -4.0 + 0.25 * k as f64;
+    let mut grid = [[0.0f64; M]; M];
+    for (i, row) in grid.iter_mut().enumerate() {
+        for (k, g) in row.iter_mut().enumerate() {
+            *g = fast(coord(i), coord(k));
         }
     }
-    // Polish on the adaptive quadrature (accurate also near tight turns).
-    let f = |u: f64, v: f64| j_of(a, b, u, v);
-    let ((u, v), j) = nelder_mead(&f, best.expect("starts").0, 0.02, 1e-8);
-    if !j.is_finite() {
+    let mut starts: Vec<((f64, f64), f64)> = Vec::new();
+    for i in 0..M {
+        for k in 0..M {
+            let g = grid[i][k];
+            if !g.is_finite() {
+                continue;
+            }
+            let mut is_min = true;
+            for di in -1i32..=1 {
+                for dk in -1i32..=1 {
+                    let (ii, kk) = (i as i32 + di, k as i32 + dk);
+                    if (di, dk) == (0, 0) || ii < 0 || kk < 0 || ii >= M as i32 || kk >= M as i32 {
+                        continue;
+                    }
+                    let h = grid[ii as usize][kk as usize];
+                    // Ties go to the first in scan order.
+                    if h < g || (h == g && (ii, kk) < (i as i32, k as i32)) {
+                        is_min = false;
+                    }
+                }
+            }
+            if is_min {
+                starts.push(((coord(i), coord(k)), g));
+            }
+        }
+    }
+    starts.sort_by(|x, y| x.1.total_cmp(&y.1));
+    // Local searches from the best six starts (more while none has given a valley: the
+    // fixed rule can show low values next to a cusp that are not valleys); minima on the edge
+    // of the box (r -> 0 or r -> ∞, no interior minimum) are dropped.
+    let fine = composite_nodes();
+    let mut coarse: Vec<(f64, f64)> = Vec::new();
+    let mut found: Vec<((f64, f64), f64)> = Vec::new();
+    for (k, (s, _)) in starts.into_iter().enumerate() {
+        if k >= 6 && !found.is_empty() {
+            break;
+        }
+        let r = nelder_mead(&fast, s, 0.3, 1e-6);
+        let inside = r.0 .0 > -4.5 && r.0 .1 > -4.5 && r.0 .0 < 3.5 && r.0 .1 < 3.5;
+        let dup = coarse
+            .iter()
+            .any(|q| (q.0 - r.0 .0).abs() < 1e-2 && (q.1 - r.0 .1).abs() < 1e-2);
+        if !(r.1.is_finite() && inside) || dup {
+            continue;
+        }
+        coarse.push(r.0);
+        let Some(r) = polish(a, b, r.0, &fine) else {
+            continue;
+        };
+        let dup = found
+            .iter()
+            .any(|q| (q.0 .0 - r.0 .0).abs() < 1e-3 && (q.0 .1 - r.0 .1).abs() < 1e-3);
+        if !dup {
+            found.push(r);
+        }
+    }
+    found.sort_by(|x, y| x.1.total_cmp(&y.1));
+    if let Some(best) = found.first().map(|c| c.1) {
+        found.retain(|c| c.1 <= 2.0 * best);
+    }
+    if found.is_empty() {
         return Err(Error::NoConvergence(format!(
             "no finite pseudo-energy found for end angles ({theta0}, {theta1})"
         )));
     }
+    found.sort_by(|x, y| x.1.total_cmp(&y.1));
+    Ok(found
+        .into_iter()
+        .map(|((u, v), j)| {
+            let (r0, r1) = (u.exp(), v.exp());
+            SegmentOptimum {
+                j,
+                r0,
+                r1,
+                shape: segment_energy(a, b, r0, r1),
+            }
+        })
+        .collect())
+}
+
+/// A local minimum of J over (ln r0, ln r1) from a start: Nelder–Mead on a composite rule
+/// (8 panels of 16 Gauss points), checked against the adaptive quadrature (accurate also near
+/// tight turns, where fixed rules can show valleys that are not there) and polished on it if
+/// they differ. None for a cusp, a valley the fixed rule invented, or a minimum outside
+/// ln r in [-4.5, 3.5] (none inside: r -> 0 or r -> ∞).
+fn polish(
+    a: f64,
+    b: f64,
+    start: (f64, f64),
+    fine: &(Vec<f64>, Vec<f64>),
+) -> Option<((f64, f64), f64)> {
+    let g = |u: f64, v: f64| j_fast(a, b, u, v, fine);
+    let r = nelder_mead(&g, start, 0.05, 1e-8);
+    let f = |u: f64, v: f64| j_of(a, b, u, v);
+    let exact = f(r.0 .0, r.0 .1);
+    if !exact.is_finite() || (exact - r.1).abs() > 1e-3 * exact {
+        return None;
+    }
+    let r = if (exact - r.1).abs() <= 1e-11 * exact.abs() {
+        (r.0, exact)
+    } else {
+        nelder_mead(&f, r.0, 0.02, 1e-8)
+    };
+    let inside = r.0 .0 > -4.5 && r.0 .1 > -4.5 && r.0 .0 < 3.5 && r.0 .1 < 3.5;
+    (r.1.is_finite() && inside).then_some(r)
+}
+
+/// The local minimum of J over (r0, r1) reached from the tangent lengths (r0, r1), for the
+/// end angles (θ0, θ1): used to follow a valley from one end-angle pair to the next.
+pub fn local_minimum(theta0: f64, theta1: f64, r0: f64, r1: f64) -> Option<SegmentOptimum> {
+    if !(theta0.is_finite() && theta1.is_finite() && r0 > 0.0 && r1 > 0.0) {
+        return None;
+    }
+    let (a, b) = (wrap(theta0), wrap(theta1));
+    let ((u, v), j) = polish(a, b, (r0.ln(), r1.ln()), &composite_nodes())?;
     let (r0, r1) = (u.exp(), v.exp());
-    Ok(SegmentOptimum {
+    Some(SegmentOptimum {
         j,
         r0,
         r1,
         shape: segment_energy(a, b, r0, r1),
     })
+}
+
+/// J(θ0, θ1) and the optimal (r0, r1) (angles in radians, any real value): the best of
+/// [`segment_minima`]. The straight segment (θ0 = θ1 = 0) has J = 0 for every (r0, r1); it
+/// is returned with r0 = r1 = 1.
+pub fn optimal_segment(theta0: f64, theta1: f64) -> Result<SegmentOptimum> {
+    Ok(segment_minima(theta0, theta1)?[0])
 }
 
 /// Angle in (-π, π].
@@ -460,9 +620,66 @@ pub struct PseudoSpline {
     pub energy: f64,
 }
 
-/// The pseudo-elastic spline through `points` (exact mode). Errors: fewer than 2 points
-/// (3 when closed) `invalid_input`; coincident consecutive points `degenerate`.
-pub fn pseudo_elastic(points: &[Point], closed: bool) -> Result<PseudoSpline> {
+/// How the segment values J, r0, r1, L and S are obtained.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Mode {
+    /// Interpolated from the shipped tables ([`crate::pseudo_table`]): microseconds per point.
+    #[default]
+    Table,
+    /// Direct minimisation at every segment: about a second per point.
+    Exact,
+}
+
+/// Segment values used by the spline: (J, r0, r1, L, S).
+fn segment_values(mode: Mode, t0: f64, t1: f64) -> Result<(f64, f64, f64, f64, f64)> {
+    match mode {
+        Mode::Exact => {
+            let o = optimal_segment(t0, t1)?;
+            Ok((o.j, o.r0, o.r1, o.shape.length, o.shape.area))
+        }
+        Mode::Table => {
+            let o = crate::pseudo_table::tables().segment(t0, t1)?;
+            Ok((o.j, o.r0, o.r1, o.length, o.area))
+        }
+    }
+}
+
+/// J(θ) and θ1(θ) in the given mode.
+fn single_values(mode: Mode, theta: f64) -> Result<(f64, f64)> {
+    match mode {
+        Mode::Exact => single_angle(theta),
+        Mode::Table => crate::pseudo_table::tables().single(theta),
+    }
+}
+
+/// Eq. 11 on the tables: Newton's method on the derivative of
+/// `lp J(a + turn) + li J(a)` from the bisector, kept within 0.6 of it; None when it does not
+/// settle (the caller then searches the window).
+fn table_tangent(lp: f64, li: f64, turn: f64, guess: f64) -> Option<f64> {
+    let t = crate::pseudo_table::tables();
+    let mut a = guess;
+    for _ in 0..30 {
+        let (_, d1p, d2p) = t.single_derivs(a + turn);
+        let (_, d1, d2) = t.single_derivs(a);
+        let (g, h) = (lp * d1p + li * d1, lp * d2p + li * d2);
+        if h <= 0.0 || !h.is_finite() {
+            return None;
+        }
+        let step = (-g / h).clamp(-0.1, 0.1);
+        a += step;
+        if (a - guess).abs() > 0.6 {
+            return None;
+        }
+        if step.abs() < 1e-12 {
+            return Some(a);
+        }
+    }
+    None
+}
+
+/// The pseudo-elastic spline through `points`. Errors: fewer than 2 points (3 when closed)
+/// or non-finite coordinates `invalid_input`; coincident consecutive points `degenerate`.
+pub fn pseudo_elastic(points: &[Point], closed: bool, mode: Mode) -> Result<PseudoSpline> {
     let need = if closed { 3 } else { 2 };
     if points.len() < need {
         return Err(Error::invalid(
@@ -473,6 +690,56 @@ pub fn pseudo_elastic(points: &[Point], closed: bool) -> Result<PseudoSpline> {
     if let Some(i) = points.iter().position(|p| !p.is_finite()) {
         return Err(Error::invalid(format!("points[{i}]"), "must be finite"));
     }
+    // Work on the points moved to the first one and scaled to unit size (similarity
+    // invariance; no overflow or underflow for huge or tiny coordinates), then scale back.
+    let origin = points[0];
+    let scale = points
+        .iter()
+        .map(|p| (*p - origin).hypot())
+        .fold(0.0, f64::max);
+    if !scale.is_finite() {
+        return Err(Error::invalid(
+            "points",
+            "coordinates too large: their differences overflow",
+        ));
+    }
+    let unit: Vec<Point> = if scale > 0.0 {
+        points
+            .iter()
+            .map(|p| ((*p - origin) / scale).to_point())
+            .collect()
+    } else {
+        points.to_vec()
+    };
+    let mut s = pseudo_elastic_unit(&unit, closed, mode)?;
+    let scale = if scale > 0.0 { scale } else { 1.0 };
+    let n = points.len();
+    for (i, sp) in s.segments.iter_mut().enumerate() {
+        sp.p0 = points[i];
+        sp.p1 = points[(i + 1) % n];
+        sp.d0 *= scale;
+        sp.d1 *= scale;
+    }
+    s.length *= scale;
+    s.energy *= scale;
+    s.area *= scale * scale;
+    let finite = s.length.is_finite()
+        && s.area.is_finite()
+        && s.energy.is_finite()
+        && s.segments
+            .iter()
+            .all(|g| g.d0.is_finite() && g.d1.is_finite());
+    if !finite {
+        return Err(Error::invalid(
+            "points",
+            "the curve's length, area or tangents overflow f64",
+        ));
+    }
+    Ok(s)
+}
+
+/// [`pseudo_elastic`] on points already checked and scaled to unit size.
+fn pseudo_elastic_unit(points: &[Point], closed: bool, mode: Mode) -> Result<PseudoSpline> {
     let n = points.len();
     let spans = if closed { n } else { n - 1 };
     let next = |i: usize| (i + 1) % n;
@@ -501,14 +768,21 @@ pub fn pseudo_elastic(points: &[Point], closed: bool) -> Result<PseudoSpline> {
         let prev = if i == 0 { spans - 1 } else { i - 1 };
         let turn = wrap(phi[i] - phi[prev]);
         let (lp, li) = (l[prev], l[i]);
-        let mut w = |a: f64| -> f64 {
-            let j1 = single_angle(a + turn).map(|v| v.0).unwrap_or(f64::INFINITY);
-            let j2 = single_angle(a).map(|v| v.0).unwrap_or(f64::INFINITY);
-            lp * j1 + li * j2
-        };
-        // The tangent lies near the bisector of the two chords: scan a window around it.
+        let single = |a: f64| single_values(mode, a).map(|v| v.0).unwrap_or(f64::INFINITY);
+        let mut w = |a: f64| -> f64 { lp * single(a + turn) + li * single(a) };
+        // The tangent lies near the bisector of the two chords: search a window around it.
         let guess = -0.5 * turn;
-        let (a, _) = golden(&mut w, guess - 0.6, guess + 0.6, 1e-7);
+        let newton = match mode {
+            Mode::Table => table_tangent(lp, li, turn, guess),
+            Mode::Exact => None,
+        };
+        let a = match newton {
+            Some(a) => a,
+            None => {
+                let tol = if mode == Mode::Exact { 1e-7 } else { 1e-9 };
+                golden(&mut w, guess - 0.6, guess + 0.6, tol).0
+            }
+        };
         dir[i] = phi[i] + a;
     }
     if !closed {
@@ -518,10 +792,10 @@ pub fn pseudo_elastic(points: &[Point], closed: bool) -> Result<PseudoSpline> {
         } else {
             // Eq. 12: the rods through the first and last three points.
             let a1 = wrap(dir[1] - phi[1]);
-            let (_, t0) = single_angle(a1 + wrap(phi[1] - phi[0]))?;
+            let (_, t0) = single_values(mode, a1 + wrap(phi[1] - phi[0]))?;
             dir[0] = phi[0] + t0;
             let an = wrap(dir[n - 2] - phi[n - 2]);
-            let (_, t1) = single_angle(an)?;
+            let (_, t1) = single_values(mode, an)?;
             dir[n - 1] = phi[n - 2] + t1;
         }
     }
@@ -530,18 +804,18 @@ pub fn pseudo_elastic(points: &[Point], closed: bool) -> Result<PseudoSpline> {
     for i in 0..spans {
         let t0 = wrap(dir[i] - phi[i]);
         let t1 = wrap(dir[next(i)] - phi[i]);
-        let o = optimal_segment(t0, t1)?;
+        let (j, r0, r1, len, area) = segment_values(mode, t0, t1)?;
         let rot = Vec2::from_angle(phi[i]) * l[i];
         let rotate = |v: Vec2| Vec2::new(v.x * rot.x - v.y * rot.y, v.x * rot.y + v.y * rot.x);
         segments.push(HermiteSpan {
             p0: points[i],
             p1: points[next(i)],
-            d0: rotate(Vec2::from_angle(t0) * o.r0),
-            d1: rotate(Vec2::from_angle(t1) * o.r1),
+            d0: rotate(Vec2::from_angle(t0) * r0),
+            d1: rotate(Vec2::from_angle(t1) * r1),
         });
-        length += l[i] * o.shape.length;
-        energy += l[i] * o.j;
-        s_sum += l[i] * l[i] * o.shape.area;
+        length += l[i] * len;
+        energy += l[i] * j;
+        s_sum += l[i] * l[i] * area;
     }
     // Shoelace area of the polygon (closed back to the first point), eq. 20.
     let mut s0 = 0.0;
@@ -556,6 +830,171 @@ pub fn pseudo_elastic(points: &[Point], closed: bool) -> Result<PseudoSpline> {
         area: (s0 - s_sum).abs(),
         energy,
     })
+}
+
+/// The interpolants S2 compares the pseudo-elastic spline with (§4, Fig. 8-17).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Comparison {
+    /// Cubic spline A: interpolating cubic spline with uniform parameters t_i = i (natural
+    /// end conditions: zero second derivative at both ends).
+    CubicSplineUniform,
+    /// Cubic spline B: parameters spaced by chord length (natural ends).
+    CubicSplineChord,
+    /// Hermite A: tangent at P_i parallel to P_{i+1} - P_{i-1}, along the end chords at the
+    /// ends; tangent length the span's chord length.
+    HermiteChord,
+    /// Hermite B: tangent of the circle through P_{i-1}, P_i, P_{i+1} (through the first or
+    /// last three points at the ends); tangent length the span's chord length.
+    HermiteCircle,
+}
+
+impl Comparison {
+    /// All four, in S2's order.
+    pub const ALL: [Comparison; 4] = [
+        Comparison::CubicSplineUniform,
+        Comparison::CubicSplineChord,
+        Comparison::HermiteChord,
+        Comparison::HermiteCircle,
+    ];
+
+    /// S2's name of the curve.
+    pub fn name(self) -> &'static str {
+        match self {
+            Comparison::CubicSplineUniform => "cubic spline A",
+            Comparison::CubicSplineChord => "cubic spline B",
+            Comparison::HermiteChord => "Hermite A",
+            Comparison::HermiteCircle => "Hermite B",
+        }
+    }
+}
+
+/// The open curve of a [`Comparison`] method through `points`, as one Hermite span per pair
+/// of consecutive points. Errors: fewer than 3 points or non-finite coordinates
+/// `invalid_input`; coincident consecutive points `degenerate`.
+pub fn comparison_curve(points: &[Point], method: Comparison) -> Result<Vec<HermiteSpan>> {
+    if points.len() < 3 {
+        return Err(Error::invalid(
+            "points",
+            format!("need at least 3 points, got {}", points.len()),
+        ));
+    }
+    if let Some(i) = points.iter().position(|p| !p.is_finite()) {
+        return Err(Error::invalid(format!("points[{i}]"), "must be finite"));
+    }
+    let n = points.len();
+    let chords: Vec<f64> = points.windows(2).map(|w| (w[1] - w[0]).hypot()).collect();
+    if let Some(i) = chords.iter().position(|c| *c == 0.0) {
+        return Err(Error::Degenerate(format!(
+            "points {i} and {} coincide",
+            i + 1
+        )));
+    }
+    let spans = |dirs: &[Vec2], scale: &dyn Fn(usize) -> (f64, f64)| -> Vec<HermiteSpan> {
+        (0..n - 1)
+            .map(|i| {
+                let (s0, s1) = scale(i);
+                HermiteSpan {
+                    p0: points[i],
+                    p1: points[i + 1],
+                    d0: dirs[i] * s0,
+                    d1: dirs[i + 1] * s1,
+                }
+            })
+            .collect()
+    };
+    match method {
+        Comparison::CubicSplineUniform | Comparison::CubicSplineChord => {
+            let h: Vec<f64> = if method == Comparison::CubicSplineUniform {
+                vec![1.0; n - 1]
+            } else {
+                chords.clone()
+            };
+            let m = natural_spline_slopes(points, &h);
+            // dP/dt at the knots; a span's Hermite derivatives in its own [0, 1] are h_i m.
+            let out = spans(&m, &|i| (h[i], h[i]));
+            if out.iter().any(|g| !(g.d0.is_finite() && g.d1.is_finite())) {
+                return Err(Error::invalid(
+                    "points",
+                    "the spline's tangents overflow f64",
+                ));
+            }
+            Ok(out)
+        }
+        Comparison::HermiteChord | Comparison::HermiteCircle => {
+            let unit = |v: Vec2| v / v.hypot();
+            let mut dirs = Vec::with_capacity(n);
+            for i in 0..n {
+                let d = if method == Comparison::HermiteChord {
+                    if i == 0 {
+                        points[1] - points[0]
+                    } else if i == n - 1 {
+                        points[n - 1] - points[n - 2]
+                    } else {
+                        points[i + 1] - points[i - 1]
+                    }
+                } else if i == 0 {
+                    // Circle through P0, P1, P2, tangent at P0 (travelling towards P1).
+                    circle_tangent(points[0], points[2], points[1])
+                } else if i == n - 1 {
+                    circle_tangent(points[n - 1], points[n - 2], points[n - 3])
+                } else {
+                    circle_tangent(points[i], points[i - 1], points[i + 1])
+                };
+                if d.hypot() == 0.0 || !d.is_finite() {
+                    return Err(Error::Degenerate(format!(
+                        "no tangent direction at point {i}"
+                    )));
+                }
+                dirs.push(unit(d));
+            }
+            Ok(spans(&dirs, &|i| (chords[i], chords[i])))
+        }
+    }
+}
+
+/// Tangent at `x` of the circle through `prev`, `x`, `next`, pointing from `prev`'s side to
+/// `next`'s: `(next - x) |prev - x|² - (prev - x) |next - x|²` (along the chord when the three
+/// points are collinear).
+fn circle_tangent(x: Point, prev: Point, next: Point) -> Vec2 {
+    let (a, c) = (prev - x, next - x);
+    c * a.hypot2() - a * c.hypot2()
+}
+
+/// First derivatives at the knots of the natural interpolating cubic spline with parameter
+/// steps `h` (tridiagonal system, Thomas algorithm; diagonally dominant).
+fn natural_spline_slopes(p: &[Point], h: &[f64]) -> Vec<Vec2> {
+    let n = p.len();
+    let d = |i: usize| (p[i + 1] - p[i]) / h[i];
+    let (mut a, mut b, mut c, mut r) = (
+        vec![0.0; n],
+        vec![0.0; n],
+        vec![0.0; n],
+        vec![Vec2::ZERO; n],
+    );
+    b[0] = 2.0;
+    c[0] = 1.0;
+    r[0] = d(0) * 3.0;
+    for i in 1..n - 1 {
+        a[i] = h[i];
+        b[i] = 2.0 * (h[i - 1] + h[i]);
+        c[i] = h[i - 1];
+        r[i] = (d(i - 1) * h[i] + d(i) * h[i - 1]) * 3.0;
+    }
+    a[n - 1] = 1.0;
+    b[n - 1] = 2.0;
+    r[n - 1] = d(n - 2) * 3.0;
+    for i in 1..n {
+        let w = a[i] / b[i - 1];
+        b[i] -= w * c[i - 1];
+        let prev = r[i - 1];
+        r[i] -= prev * w;
+    }
+    let mut m = vec![Vec2::ZERO; n];
+    m[n - 1] = r[n - 1] / b[n - 1];
+    for i in (0..n - 1).rev() {
+        m[i] = (r[i] - m[i + 1] * c[i]) / b[i];
+    }
+    m
 }
 
 #[cfg(test)]
@@ -597,15 +1036,77 @@ mod tests {
     fn bad_input_is_reported() {
         let p = |x: f64, y: f64| Point::new(x, y);
         assert!(matches!(
-            pseudo_elastic(&[p(0.0, 0.0)], false),
+            pseudo_elastic(&[p(0.0, 0.0)], false, Mode::Exact),
             Err(Error::InvalidInput { .. })
         ));
         assert!(matches!(
-            pseudo_elastic(&[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 0.0)], false),
+            pseudo_elastic(&[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 0.0)], false, Mode::Exact),
             Err(Error::Degenerate(_))
         ));
         assert!(matches!(
-            pseudo_elastic(&[p(0.0, 0.0), p(1.0, 0.0)], true),
+            pseudo_elastic(&[p(0.0, 0.0), p(1.0, 0.0)], true, Mode::Exact),
+            Err(Error::InvalidInput { .. })
+        ));
+    }
+
+    #[test]
+    fn comparison_curves_interpolate_and_match_their_definitions() {
+        let pts: Vec<Point> = [(0.0, 0.0), (1.0, 0.3), (2.5, 0.2), (3.0, -1.0), (4.2, -1.1)]
+            .iter()
+            .map(|p| Point::new(p.0, p.1))
+            .collect();
+        for m in Comparison::ALL {
+            let c = comparison_curve(&pts, m).unwrap();
+            assert_eq!(c.len(), 4);
+            for (i, sp) in c.iter().enumerate() {
+                assert!((sp.eval(0.0) - pts[i]).hypot() < 1e-14, "{m:?}");
+                assert!((sp.eval(1.0) - pts[i + 1]).hypot() < 1e-14, "{m:?}");
+                if i > 0 {
+                    let prev = &c[i - 1];
+                    assert!(
+                        prev.d1.cross(sp.d0).abs() < 1e-12 * prev.d1.hypot2(),
+                        "{m:?}"
+                    );
+                }
+            }
+        }
+        // Natural splines: C2 in their parameter (second derivatives agree at the knots, in
+        // t units: x'' / h²) and zero second derivative at the ends.
+        for m in [Comparison::CubicSplineUniform, Comparison::CubicSplineChord] {
+            let c = comparison_curve(&pts, m).unwrap();
+            let h: Vec<f64> = if m == Comparison::CubicSplineUniform {
+                vec![1.0; 4]
+            } else {
+                pts.windows(2).map(|w| (w[1] - w[0]).hypot()).collect()
+            };
+            let dd = |sp: &HermiteSpan, t: f64| {
+                // Hermite second derivative: h00'' = 12t - 6, h10'' = 6t - 4, h01'' = 6 - 12t, h11'' = 6t - 2.
+                sp.p0.to_vec2() * (12.0 * t - 6.0)
+                    + sp.d0 * (6.0 * t - 4.0)
+                    + sp.p1.to_vec2() * (6.0 - 12.0 * t)
+                    + sp.d1 * (6.0 * t - 2.0)
+            };
+            assert!(dd(&c[0], 0.0).hypot() < 1e-12, "{m:?}");
+            assert!(dd(&c[3], 1.0).hypot() < 1e-12, "{m:?}");
+            for i in 1..4 {
+                let l = dd(&c[i - 1], 1.0) / (h[i - 1] * h[i - 1]);
+                let r = dd(&c[i], 0.0) / (h[i] * h[i]);
+                assert!((l - r).hypot() < 1e-12, "{m:?} knot {i}: {l:?} {r:?}");
+            }
+        }
+        // Hermite B on points of a circle: every tangent is the circle's.
+        let circle: Vec<Point> = (0..5)
+            .map(|k| Vec2::from_angle(0.4 * k as f64).to_point())
+            .collect();
+        let c = comparison_curve(&circle, Comparison::HermiteCircle).unwrap();
+        for (k, sp) in c.iter().enumerate() {
+            let want = Vec2::from_angle(0.4 * k as f64 + PI / 2.0);
+            assert!(sp.d0.cross(want).abs() < 1e-12 * sp.d0.hypot() && sp.d0.dot(want) > 0.0);
+        }
+        let last = Vec2::from_angle(0.4 * 4.0 + PI / 2.0);
+        assert!(c[3].d1.cross(last).abs() < 1e-12 * c[3].d1.hypot() && c[3].d1.dot(last) > 0.0);
+        assert!(matches!(
+            comparison_curve(&pts[..2], Comparison::HermiteChord),
             Err(Error::InvalidInput { .. })
         ));
     }
@@ -615,7 +1116,7 @@ mod tests {
         let pts: Vec<Point> = (0..4)
             .map(|i| Point::new(i as f64, 2.0 * i as f64))
             .collect();
-        let s = pseudo_elastic(&pts, false).unwrap();
+        let s = pseudo_elastic(&pts, false, Mode::Exact).unwrap();
         let dir = 2f64.atan2(1.0);
         for a in &s.tangent_angles {
             assert!((a - dir).abs() < 1e-6, "{a}");

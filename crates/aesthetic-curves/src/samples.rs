@@ -76,3 +76,15 @@ pub fn random_rational_curves(degree: usize, count: usize, seed: u64) -> Vec<Rat
         })
         .collect()
 }
+
+/// `n` points along a smooth wavy line (spacing about 1, irregular, chord turns up to about
+/// 40°): the input of the spline benchmarks and comparisons. Same seed, same points.
+pub fn wavy_points(n: usize, seed: u64) -> Vec<Point> {
+    let mut rng = SplitMix64::new(seed);
+    (0..n)
+        .map(|k| {
+            let t = k as f64 + 0.3 * (rng.next_f64() - 0.5);
+            Point::new(t, 2.0 * (t / 3.0).sin() + 0.5 * (0.7 * t).sin())
+        })
+        .collect()
+}

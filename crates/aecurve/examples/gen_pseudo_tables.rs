@@ -1,0 +1,186 @@
+//! Generates the pseudo-elastic segment tables shipped in the library
+//! (`crates/aesthetic-curves/data/pseudo_tables.bin`; format and use in
+//! `aesthetic_curves::pseudo_table`). Every node is the exact mode: all local minima of
+//! J(r0, r1) within a factor 2 of the best (`segment_minima`), and J(θ) = min over θ1
+//! (`single_angle`).
+//!
+//! `cargo run --release -p aecurve --example gen_pseudo_tables -- [N] [M]`
+//! (defaults 288 and 2048: 1.25° and 0.18° steps). About 3 minutes on two cores.
+
+use aesthetic_curves::pseudo_spline::{
+    local_minimum, segment_minima, single_angle, SegmentOptimum,
+};
+use aesthetic_curves::pseudo_table::{encode, q1, q2, Entry, TRACK};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::f64::consts::PI;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+/// The node's angles: at the origin J / q is a limit, taken just beside (r0, r1 are
+/// undefined there).
+fn node_angles(a: f64, b: f64) -> (f64, f64) {
+    if q2(a, b) == 0.0 {
+        (1e-4, 0.0)
+    } else {
+        (a, b)
+    }
+}
+
+fn entry(a: f64, b: f64, o: &SegmentOptimum) -> Entry {
+    [
+        o.r0.ln() as f32,
+        o.r1.ln() as f32,
+        (o.j / q2(a, b)) as f32,
+        o.shape.length as f32,
+        o.shape.area as f32,
+    ]
+}
+
+/// Continuation: every valley present at a neighbouring node is followed to this node by a
+/// local search from the neighbour's tangent lengths (the multi-start search can miss a
+/// shallow valley); then the minima within twice the best are kept.
+fn continue_valleys(
+    n: usize,
+    nodes: &[Vec<SegmentOptimum>],
+    idx: usize,
+    h: f64,
+) -> Vec<SegmentOptimum> {
+    let (i, k) = (idx / n, idx % n);
+    let (a, b) = node_angles(-PI + i as f64 * h, -PI + k as f64 * h);
+    let mut mine = nodes[idx].clone();
+    if mine.is_empty() {
+        return mine;
+    }
+    for di in [-1isize, 0, 1] {
+        for dk in [-1isize, 0, 1] {
+            if (di, dk) == (0, 0) {
+                continue;
+            }
+            let ni = (i as isize + di).rem_euclid(n as isize) as usize;
+            let nk = (k as isize + dk).rem_euclid(n as isize) as usize;
+            for o in &nodes[ni * n + nk] {
+                let near = |m: &SegmentOptimum| {
+                    (m.r0.ln() - o.r0.ln())
+                        .abs()
+                        .max((m.r1.ln() - o.r1.ln()).abs())
+                        < 0.5 * TRACK
+                };
+                if mine.iter().any(near) {
+                    continue;
+                }
+                if let Some(m) = local_minimum(a, b, o.r0, o.r1) {
+                    let dup = mine.iter().any(|x| {
+                        (x.r0.ln() - m.r0.ln())
+                            .abs()
+                            .max((x.r1.ln() - m.r1.ln()).abs())
+                            < 1e-3
+                    });
+                    if !dup {
+                        mine.push(m);
+                    }
+                }
+            }
+        }
+    }
+    mine.sort_by(|x, y| x.j.total_cmp(&y.j));
+    let best = mine[0].j;
+    mine.retain(|m| m.j <= 2.0 * best);
+    mine.truncate(4);
+    mine
+}
+
+fn parallel<T: Send + Clone>(
+    count: usize,
+    init: T,
+    label: &str,
+    f: impl Fn(usize) -> T + Sync,
+) -> Vec<T> {
+    let out = Mutex::new(vec![init; count]);
+    let next = AtomicUsize::new(0);
+    let bar = ProgressBar::new(count as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{msg:>12} [{bar:40}] {pos}/{len} ({eta})")
+            .expect("template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(label.to_string());
+    let threads = std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(2);
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| loop {
+                let idx = next.fetch_add(1, Ordering::Relaxed);
+                if idx >= count {
+                    break;
+                }
+                let v = f(idx);
+                out.lock().expect("lock")[idx] = v;
+                bar.inc(1);
+            });
+        }
+    });
+    bar.finish();
+    out.into_inner().expect("lock")
+}
+
+fn main() {
+    let args: Vec<usize> = std::env::args()
+        .skip(1)
+        .map(|a| a.parse().expect("N M"))
+        .collect();
+    let n = args.first().copied().unwrap_or(288);
+    let m = args.get(1).copied().unwrap_or(2048);
+    let h = 2.0 * PI / n as f64;
+    let mut nodes = parallel(n * n, Vec::new(), "J, r0, r1, L, S", |idx| {
+        let (i, k) = (idx / n, idx % n);
+        let (a, b) = node_angles(-PI + i as f64 * h, -PI + k as f64 * h);
+        // Empty at the singular points (π, 0), (0, π), (π, π), where every segment has a cusp.
+        segment_minima(a, b).unwrap_or_default()
+    });
+    for sweep in 1..=2 {
+        let prev = nodes;
+        nodes = parallel(n * n, Vec::new(), &format!("follow {sweep}"), |idx| {
+            continue_valleys(n, &prev, idx, h)
+        });
+    }
+    let entries: Vec<Vec<Entry>> = nodes
+        .iter()
+        .enumerate()
+        .map(|(idx, v)| {
+            let (a, b) = node_angles(-PI + (idx / n) as f64 * h, -PI + (idx % n) as f64 * h);
+            v.iter().map(|o| entry(a, b, o)).collect()
+        })
+        .collect();
+    // J(θ) is even in θ and θ1(-θ) = -θ1(θ): compute θ in [0, π] only.
+    let hm = 2.0 * PI / m as f64;
+    let half = m / 2 + 1;
+    let upper = parallel(half, [0f32; 2], "J(θ)", |k| {
+        let a = k as f64 * hm; // 0 ..= π
+        if a == 0.0 {
+            // J / q1 is a limit at 0 (taken just beside); the straight segment's θ1 is 0.
+            let (j, _) = single_angle(1e-4).expect("single angle");
+            return [(j / q1(1e-4)) as f32, 0.0];
+        }
+        let (j, t1) = single_angle(a).expect("single angle");
+        [(j / q1(a)) as f32, t1 as f32]
+    });
+    let mut single = vec![[0f32; 2]; m];
+    for (k, s) in single.iter_mut().enumerate() {
+        // node k at -π + k hm; its mirror -(-π + k hm) = π - k hm = -π + (m - k) hm.
+        let up = k as isize - (m / 2) as isize; // offset from θ = 0
+        let u = upper[up.unsigned_abs()];
+        *s = if up >= 0 { u } else { [u[0], -u[1]] };
+    }
+    let bytes = encode(n, &entries, m, &single);
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../aesthetic-curves/data/pseudo_tables.bin");
+    std::fs::write(&path, &bytes).expect("write the table");
+    let total: usize = nodes.iter().map(|v| v.len()).sum();
+    let multi = nodes.iter().filter(|v| v.len() > 1).count();
+    println!(
+        "wrote {} ({} bytes): {n} x {n} nodes, {total} minima ({multi} nodes with more than one), {m} single-angle nodes",
+        path.display(),
+        bytes.len()
+    );
+}
