@@ -49,6 +49,11 @@ pub fn json_text(c: &Nurbs) -> serde_json::Value {
 
 /// A DXF (R2000) drawing with one rational SPLINE entity.
 pub fn write_dxf(path: &Path, c: &Nurbs) -> Result<()> {
+    std::fs::write(path, dxf_bytes(c)?).with_context(|| format!("writing {}", path.display()))
+}
+
+/// The file text of [`write_dxf`].
+pub fn dxf_bytes(c: &Nurbs) -> Result<Vec<u8>> {
     use dxf::entities::{Entity, EntityType, Spline};
     let mut drawing = dxf::Drawing::new();
     drawing.header.version = dxf::enums::AcadVersion::R2000;
@@ -66,9 +71,11 @@ pub fn write_dxf(path: &Path, c: &Nurbs) -> Result<()> {
     s.set_is_rational(true);
     s.set_is_planar(true);
     drawing.add_entity(Entity::new(EntityType::Spline(s)));
+    let mut out = Vec::new();
     drawing
-        .save_file(path)
-        .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))
+        .save(&mut out)
+        .map_err(|e| anyhow::anyhow!("writing DXF: {e}"))?;
+    Ok(out)
 }
 
 /// A real for STEP (ISO 10303-21) and IGES: the shortest round-trip form (`{:?}`), with a

@@ -3,6 +3,7 @@
 
 pub mod batch;
 pub mod bench;
+pub mod editor;
 pub mod export;
 pub mod plot;
 pub mod protocol;

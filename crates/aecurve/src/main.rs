@@ -183,6 +183,16 @@ enum Cmd {
         #[arg(long)]
         quick: bool,
     },
+    /// The interactive editor in the browser: a local server on 127.0.0.1 only (LAC
+    /// segments, inflection segments, pseudo-elastic splines, sketches, Bézier curves).
+    Editor {
+        /// Port (0: any free port); the URL is printed.
+        #[arg(long, default_value_t = 8731)]
+        port: u16,
+        /// Do not open the page in the system's browser.
+        #[arg(long)]
+        no_open: bool,
+    },
 }
 
 #[derive(Subcommand)]
@@ -306,6 +316,7 @@ fn run() -> Result<()> {
             }
         }
         Cmd::Demo { out, quick } => demo(&out, quick)?,
+        Cmd::Editor { port, no_open } => aecurve::editor::serve(port, !no_open)?,
         Cmd::Lac {
             alpha,
             inflection,

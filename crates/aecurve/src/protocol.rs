@@ -22,7 +22,8 @@ pub struct ProtoError {
 }
 
 impl ProtoError {
-    fn invalid(field: &str, message: impl std::fmt::Display) -> Self {
+    /// An `invalid_input` error naming the field.
+    pub fn invalid(field: &str, message: impl std::fmt::Display) -> Self {
         ProtoError {
             kind: "invalid_input",
             message: format!("{field}: {message}"),
@@ -49,8 +50,9 @@ pub const OPS: &[&str] = &[
     "lac.rational_approx",
     "spline.pseudo_elastic",
     "lac.fit",
+    "sketch.fit",
 ];
-const PLANNED_OPS: &[&str] = &["sketch.fit"];
+const PLANNED_OPS: &[&str] = &[];
 
 /// Answer one request line (JSON text) with one response object.
 pub fn handle_line(line: &str) -> Value {
@@ -404,14 +406,29 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
     let seg =
         aesthetic_curves::lac::LacInflectionSegment::new([control[0], control[1], control[2]])?;
     let (points, curvature) = seg.sample(samples as usize)?;
-    Ok(json!({
+    let mut out = json!({
         "alpha": seg.alpha,
         "theta_d": seg.theta_d,
         "arc_length": seg.arc_length(),
         "curvature_end": curvature[curvature.len() - 1],
         "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
         "curvature": curvature,
-    }))
+    });
+    // Optional: the segment's rational cubic (κ = 0 at its start, G2 at its end, curvature
+    // proven monotone), as `lac.rational_approx` gives for a LAC segment.
+    if obj.get("rational") == Some(&Value::Bool(true)) {
+        let fit = aesthetic_curves::approx::fit_inflection_cubic(
+            &seg,
+            &aesthetic_curves::approx::ApproxOptions::default(),
+        )?;
+        out["rational"] = json!({
+            "control_points": fit.curve.points().iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+            "weights": fit.curve.weights(),
+            "max_error": fit.max_error,
+            "monotone": fit.monotone,
+        });
+    }
+    Ok(out)
 }
 
 fn optional_number(obj: &Map<String, Value>, field: &str) -> Result<Option<f64>, ProtoError> {

@@ -1,0 +1,358 @@
+//! `aecurve editor`: a local web server for the interactive editor. It listens on 127.0.0.1
+//! only, serves the page and its script from assets embedded in the binary, and answers:
+//! - `POST /api`: one request of the batch protocol, one response (the same JSON as a batch
+//!   line; malformed JSON gets a `parse` error). Each response carries the server's compute
+//!   time in a `Server-Timing` header.
+//! - `POST /api/region`: which positions of one control point keep a property, on a grid over
+//!   a box (the existence region of a LAC segment's third control point; the
+//!   curvature-monotone region of a Bézier control point).
+//! - `POST /api/export`: a NURBS (`degree`, `knots`, `control_points`, `weights`) as a
+//!   `dxf`, `step`, `iges`, `svg` or `json` file.
+//!
+//! Bodies over [`MAX_BODY`] get 413. The computations run on tokio's blocking pool, so
+//! concurrent requests proceed in parallel.
+
+use crate::protocol;
+use aesthetic_curves::nurbs::Nurbs;
+use aesthetic_curves::Point;
+use axum::body::Bytes;
+use axum::extract::DefaultBodyLimit;
+use axum::http::{header, HeaderValue, StatusCode};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::Router;
+use serde_json::{json, Value};
+use std::time::Instant;
+
+/// Largest request body (bytes).
+pub const MAX_BODY: usize = 4 * 1024 * 1024;
+
+/// Largest region grid (cells per side).
+pub const MAX_REGION_CELLS: usize = 200;
+
+static INDEX_HTML: &str = include_str!("../assets/editor/index.html");
+static APP_JS: &str = include_str!("../assets/editor/app.js");
+static STYLE_CSS: &str = include_str!("../assets/editor/style.css");
+
+/// The editor's routes.
+pub fn router() -> Router {
+    Router::new()
+        .route(
+            "/",
+            get(|| async { asset(INDEX_HTML, "text/html; charset=utf-8") }),
+        )
+        .route(
+            "/app.js",
+            get(|| async { asset(APP_JS, "text/javascript; charset=utf-8") }),
+        )
+        .route(
+            "/style.css",
+            get(|| async { asset(STYLE_CSS, "text/css; charset=utf-8") }),
+        )
+        .route("/api", post(api))
+        .route("/api/region", post(region))
+        .route("/api/export", post(export))
+        .layer(DefaultBodyLimit::max(MAX_BODY))
+}
+
+fn asset(body: &'static str, kind: &'static str) -> Response {
+    (
+        [
+            (header::CONTENT_TYPE, kind),
+            (header::CACHE_CONTROL, "no-cache"),
+        ],
+        body,
+    )
+        .into_response()
+}
+
+/// A JSON response with the compute time in `Server-Timing` (milliseconds).
+fn timed_json(v: Value, started: Instant) -> Response {
+    let ms = started.elapsed().as_secs_f64() * 1e3;
+    let mut r = ([(header::CONTENT_TYPE, "application/json")], v.to_string()).into_response();
+    if let Ok(h) = HeaderValue::from_str(&format!("compute;dur={ms:.3}")) {
+        r.headers_mut().insert("server-timing", h);
+    }
+    r
+}
+
+fn parse_error(msg: String) -> Value {
+    protocol::error_response(
+        Value::Null,
+        protocol::ProtoError {
+            kind: "parse",
+            message: msg,
+        },
+    )
+}
+
+async fn blocking<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> Option<T> {
+    tokio::task::spawn_blocking(f).await.ok()
+}
+
+async fn api(body: Bytes) -> Response {
+    let started = Instant::now();
+    let v = blocking(move || match std::str::from_utf8(&body) {
+        Ok(text) => protocol::handle_line(text),
+        Err(e) => parse_error(format!("request is not UTF-8: {e}")),
+    })
+    .await
+    .unwrap_or_else(|| parse_error("internal: the request was not answered".into()));
+    timed_json(v, started)
+}
+
+/// A grid over a box: `{"x0", "y0", "x1", "y1", "nx", "ny"}`; cell centres.
+struct Grid {
+    x0: f64,
+    y0: f64,
+    x1: f64,
+    y1: f64,
+    nx: usize,
+    ny: usize,
+}
+
+fn grid_param(v: &Value) -> Result<Grid, protocol::ProtoError> {
+    let num = |k: &str| -> Result<f64, protocol::ProtoError> {
+        match v.get(k).and_then(Value::as_f64) {
+            Some(x) if x.is_finite() => Ok(x),
+            _ => Err(protocol::ProtoError::invalid(
+                &format!("grid.{k}"),
+                "must be a finite number",
+            )),
+        }
+    };
+    let count = |k: &str| -> Result<usize, protocol::ProtoError> {
+        match v.get(k).and_then(Value::as_u64) {
+            Some(n) if (1..=MAX_REGION_CELLS as u64).contains(&n) => Ok(n as usize),
+            _ => Err(protocol::ProtoError::invalid(
+                &format!("grid.{k}"),
+                format!("must be an integer in 1..={MAX_REGION_CELLS}"),
+            )),
+        }
+    };
+    let g = Grid {
+        x0: num("x0")?,
+        y0: num("y0")?,
+        x1: num("x1")?,
+        y1: num("y1")?,
+        nx: count("nx")?,
+        ny: count("ny")?,
+    };
+    if !(g.x1 > g.x0 && g.y1 > g.y0) {
+        return Err(protocol::ProtoError::invalid(
+            "grid",
+            "needs x1 > x0 and y1 > y0",
+        ));
+    }
+    Ok(g)
+}
+
+/// Rows of a region, computed on half the cores (the other half stays free for the
+/// interactive requests): `cell_ok(i, k)` for row i, column k.
+fn region_rows(grid: &Grid, cell_ok: &(dyn Fn(usize, usize) -> bool + Sync)) -> Vec<String> {
+    let threads = (std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(2)
+        / 2)
+    .clamp(1, grid.ny);
+    let chunk = grid.ny.div_ceil(threads.max(1));
+    let mut rows = vec![String::new(); grid.ny];
+    std::thread::scope(|s| {
+        for (c, part) in rows.chunks_mut(chunk).enumerate() {
+            s.spawn(move || {
+                for (j, row) in part.iter_mut().enumerate() {
+                    let i = c * chunk + j;
+                    *row = (0..grid.nx)
+                        .map(|k| if cell_ok(i, k) { '1' } else { '0' })
+                        .collect();
+                }
+            });
+        }
+    });
+    rows
+}
+
+/// Region request: `{"kind": "lac", "alpha", "control": [p0, p1, p2], "grid"}` (where the
+/// third control point may go) or `{"kind": "bezier", "control_points", "weights"?, "index",
+/// "grid"}` (where control point `index` keeps the curvature monotone). The answer: `rows`,
+/// one string per grid row from y0 up, '1' where the property holds, '0' where not.
+fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
+    let obj = v
+        .as_object()
+        .ok_or_else(|| protocol::ProtoError::invalid("request", "must be a JSON object"))?;
+    let grid = grid_param(obj.get("grid").unwrap_or(&Value::Null))?;
+    let kind = obj.get("kind").and_then(Value::as_str).unwrap_or("");
+    let cell = |i: usize, k: usize| {
+        Point::new(
+            grid.x0 + (k as f64 + 0.5) * (grid.x1 - grid.x0) / grid.nx as f64,
+            grid.y0 + (i as f64 + 0.5) * (grid.y1 - grid.y0) / grid.ny as f64,
+        )
+    };
+    let rows;
+    match kind {
+        "lac" => {
+            let alpha = match obj.get("alpha").and_then(Value::as_f64) {
+                Some(a) if a.is_finite() => a,
+                _ => return Err(protocol::ProtoError::invalid("alpha", "must be a number")),
+            };
+            let c = protocol::points_param(obj, "control", 3, 3)?;
+            rows = region_rows(&grid, &|i, k| {
+                aesthetic_curves::lac::LacSegment::new(alpha, [c[0], c[1], cell(i, k)]).is_ok()
+            });
+        }
+        "bezier" => {
+            use aesthetic_curves::monotone::CurvatureMonotone;
+            let pts = protocol::points_param(obj, "control_points", 3, 21)?;
+            let weights = match obj.get("weights") {
+                None | Some(Value::Null) => None,
+                Some(_) => protocol::numbers_param(obj, "weights", pts.len())?,
+            };
+            let index = obj
+                .get("index")
+                .and_then(Value::as_u64)
+                .filter(|i| (*i as usize) < pts.len())
+                .ok_or_else(|| {
+                    protocol::ProtoError::invalid("index", "must name a control point")
+                })? as usize;
+            rows = region_rows(&grid, &|i, k| {
+                let mut p = pts.clone();
+                p[index] = cell(i, k);
+                let verdict = match &weights {
+                    None => aesthetic_curves::Bezier::new(p)
+                        .and_then(|b| b.curvature_monotone())
+                        .map(|r| r.monotone),
+                    Some(w) => aesthetic_curves::RationalBezier::new(p, w.clone())
+                        .and_then(|b| b.curvature_monotone())
+                        .map(|r| r.monotone),
+                };
+                verdict.unwrap_or(false)
+            });
+        }
+        _ => {
+            return Err(protocol::ProtoError::invalid(
+                "kind",
+                "must be \"lac\" or \"bezier\"",
+            ))
+        }
+    }
+    Ok(json!({"ok": true, "result": {"rows": rows}}))
+}
+
+async fn region(body: Bytes) -> Response {
+    let started = Instant::now();
+    let v = blocking(move || match serde_json::from_slice::<Value>(&body) {
+        Ok(v) => region_answer(&v).unwrap_or_else(|e| protocol::error_response(Value::Null, e)),
+        Err(e) => parse_error(format!("request is not valid JSON: {e}")),
+    })
+    .await
+    .unwrap_or_else(|| parse_error("internal: the request was not answered".into()));
+    timed_json(v, started)
+}
+
+/// The file for an export request, or a protocol error.
+fn export_file(v: &Value) -> Result<(&'static str, String, Vec<u8>), protocol::ProtoError> {
+    let obj = v
+        .as_object()
+        .ok_or_else(|| protocol::ProtoError::invalid("request", "must be a JSON object"))?;
+    let format = obj.get("format").and_then(Value::as_str).unwrap_or("");
+    let degree = obj
+        .get("degree")
+        .and_then(Value::as_u64)
+        .filter(|d| (1..=20).contains(d))
+        .ok_or_else(|| protocol::ProtoError::invalid("degree", "must be an integer in 1..=20"))?;
+    let pts = protocol::points_param(obj, "control_points", 2, 100_000)?;
+    let need = |f: &str| protocol::ProtoError::invalid(f, "missing");
+    let knots = protocol::numbers_param(obj, "knots", pts.len() + degree as usize + 1)?
+        .ok_or_else(|| need("knots"))?;
+    let weights =
+        protocol::numbers_param(obj, "weights", pts.len())?.unwrap_or(vec![1.0; pts.len()]);
+    let curve = Nurbs::new(degree as usize, knots, pts, weights)?;
+    let name = "aesthetic_curve";
+    let bad = |e: anyhow::Error| protocol::ProtoError::invalid("format", e.to_string());
+    Ok(match format {
+        "dxf" => (
+            "application/dxf",
+            "curve.dxf".into(),
+            crate::export::dxf_bytes(&curve).map_err(bad)?,
+        ),
+        "step" => (
+            "application/step",
+            "curve.step".into(),
+            crate::export::step_text(&curve, name).into_bytes(),
+        ),
+        "iges" => (
+            "application/iges",
+            "curve.iges".into(),
+            crate::export::iges_text(&curve, name).into_bytes(),
+        ),
+        "json" => (
+            "application/json",
+            "curve.json".into(),
+            crate::export::json_text(&curve).to_string().into_bytes(),
+        ),
+        "svg" => {
+            let doc = crate::export::svg_document(&curve, 1e-6 * curve.size(), &[], name)
+                .ok_or_else(|| protocol::ProtoError::invalid("knots", "the curve has no spans"))?;
+            ("image/svg+xml", "curve.svg".into(), doc.into_bytes())
+        }
+        _ => {
+            return Err(protocol::ProtoError::invalid(
+                "format",
+                "must be dxf, step, iges, svg or json",
+            ))
+        }
+    })
+}
+
+async fn export(body: Bytes) -> Response {
+    let started = Instant::now();
+    let r = blocking(move || match serde_json::from_slice::<Value>(&body) {
+        Ok(v) => export_file(&v).map_err(|e| protocol::error_response(Value::Null, e)),
+        Err(e) => Err(parse_error(format!("request is not valid JSON: {e}"))),
+    })
+    .await
+    .unwrap_or_else(|| Err(parse_error("internal: the request was not answered".into())));
+    match r {
+        Ok((kind, file, bytes)) => (
+            StatusCode::OK,
+            [
+                (header::CONTENT_TYPE, kind.to_string()),
+                (
+                    header::CONTENT_DISPOSITION,
+                    format!("attachment; filename=\"{file}\""),
+                ),
+            ],
+            bytes,
+        )
+            .into_response(),
+        Err(v) => timed_json(v, started),
+    }
+}
+
+/// Serve the editor on 127.0.0.1:`port` (0: any free port); prints the URL, then opens it
+/// in the system's browser unless `open` is false. Runs until the process is stopped.
+pub fn serve(port: u16, open: bool) -> anyhow::Result<()> {
+    let rt = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()?;
+    rt.block_on(async move {
+        let listener = tokio::net::TcpListener::bind((std::net::Ipv4Addr::LOCALHOST, port))
+            .await
+            .map_err(|e| anyhow::anyhow!("cannot listen on 127.0.0.1:{port}: {e}"))?;
+        let addr = listener.local_addr()?;
+        let url = format!("http://{addr}/");
+        println!("editor: {url}");
+        use std::io::Write;
+        std::io::stdout().flush()?;
+        if open {
+            // Best effort: a desktop's URL opener; the URL is printed either way.
+            let _ = std::process::Command::new("xdg-open")
+                .arg(&url)
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::null())
+                .spawn();
+        }
+        axum::serve(listener, router()).await?;
+        Ok(())
+    })
+}

@@ -1,0 +1,273 @@
+// End-to-end tests of `aecurve editor` in headless Chromium (Debian's /usr/bin/chromium,
+// driven by playwright-core). Starts the server on a free port, checks the HTTP API (413 for a
+// 20 MB body, `parse` for malformed JSON, concurrent requests, loopback only), then drives the
+// page like a person: drags a control point, moves the alpha slider, clicks spline points,
+// draws a sketch, selects a Bézier control point, exports. Screenshots go to
+// target/e2e-artifacts/. Exits non-zero on the first failure.
+//
+//   cargo build --release -p aecurve && (cd e2e && npm ci && node editor.test.mjs)
+
+import { chromium } from 'playwright-core';
+import { spawn } from 'node:child_process';
+import { mkdirSync, writeFileSync } from 'node:fs';
+import assert from 'node:assert/strict';
+
+const root = new URL('..', import.meta.url).pathname;
+const bin = process.env.AECURVE || `${root}target/release/aecurve`;
+const out = process.env.E2E_OUT || `${root}target/e2e-artifacts/`;
+const browserPath = process.env.CHROMIUM || '/usr/bin/chromium';
+mkdirSync(out, { recursive: true });
+
+function startServer() {
+  return new Promise((resolve, reject) => {
+    const child = spawn(bin, ['editor', '--port', '0', '--no-open'], { stdio: ['ignore', 'pipe', 'inherit'] });
+    let buf = '';
+    const timer = setTimeout(() => reject(new Error('the editor did not print its URL within 20 s')), 20000);
+    child.stdout.on('data', (d) => {
+      buf += d;
+      const m = /editor: (http:\/\/\S+)/.exec(buf);
+      if (m) {
+        clearTimeout(timer);
+        resolve({ child, url: m[1] });
+      }
+    });
+    child.on('exit', (code) => reject(new Error(`the editor exited early (${code})`)));
+  });
+}
+
+let failures = 0;
+const results = [];
+async function step(name, fn) {
+  const t0 = Date.now();
+  try {
+    await fn();
+    results.push(`ok   ${name} (${Date.now() - t0} ms)`);
+    console.log(`ok   ${name}`);
+  } catch (e) {
+    failures += 1;
+    results.push(`FAIL ${name}: ${e.stack || e}`);
+    console.log(`FAIL ${name}\n${e.stack || e}`);
+  }
+}
+
+const { child, url } = await startServer();
+console.log(`editor at ${url}`);
+const api = (body) => fetch(`${url}api`, { method: 'POST', body: typeof body === 'string' ? body : JSON.stringify(body) });
+const timing = (r) => +(/dur=([\d.]+)/.exec(r.headers.get('server-timing') || '') || [0, NaN])[1];
+
+await step('listens on loopback only', async () => {
+  assert.equal(new URL(url).hostname, '127.0.0.1');
+});
+
+await step('POST /api answers one protocol request, with its server time', async () => {
+  const r = await api({ id: 7, op: 'lac.segment', alpha: -1, control: [[0, 0], [8, 0], [12, 5]], samples: 100 });
+  assert.equal(r.status, 200);
+  const v = await r.json();
+  assert.equal(v.id, 7);
+  assert.equal(v.ok, true);
+  assert.equal(v.result.points.length, 100);
+  assert.ok(timing(r) < 16, `server time ${timing(r)} ms`);
+});
+
+await step('malformed JSON gets a parse error', async () => {
+  const v = await (await api('{"id": 1, "op": ')).json();
+  assert.equal(v.ok, false);
+  assert.equal(v.error.kind, 'parse');
+});
+
+await step('a 20 MB body gets 413', async () => {
+  const big = '[' + '0,'.repeat(10 * 1024 * 1024) + '0]';
+  const r = await api(big);
+  assert.equal(r.status, 413);
+});
+
+await step('concurrent requests all come back, each with its own id', async () => {
+  const reqs = [];
+  for (let i = 0; i < 24; i++) {
+    const alpha = -2 + i * 0.15;
+    reqs.push(api({ id: i, op: i % 2 ? 'lac.segment' : 'lac.rational_approx', alpha, control: [[0, 0], [8, 0], [12, 5]] }).then((r) => r.json()));
+  }
+  const vs = await Promise.all(reqs);
+  vs.forEach((v, i) => {
+    assert.equal(v.id, i);
+    assert.equal(v.ok, true, JSON.stringify(v.error));
+  });
+});
+
+await step('export returns a STEP file for a NURBS', async () => {
+  const r = await fetch(`${url}api/export`, {
+    method: 'POST',
+    body: JSON.stringify({ format: 'step', degree: 3, knots: [0, 0, 0, 0, 1, 1, 1, 1], control_points: [[0, 0], [1, 1], [2, 1], [3, 0]], weights: [1, 0.8, 0.8, 1] }),
+  });
+  assert.equal(r.status, 200);
+  assert.match(await r.text(), /RATIONAL_B_SPLINE_CURVE/);
+});
+
+const browser = await chromium.launch({
+  executablePath: browserPath,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+const page = await browser.newPage({ viewport: { width: 1300, height: 760 }, acceptDownloads: true });
+const pageErrors = [];
+page.on('pageerror', (e) => pageErrors.push(String(e)));
+
+const idle = async () => {
+  await page.waitForFunction(() => window.__editor && window.__editor.idle() && window.__editor.updates() > 0, null, { timeout: 15000 });
+  await page.waitForTimeout(50);
+  await page.waitForFunction(() => window.__editor.idle(), null, { timeout: 15000 });
+};
+const text = (id) => page.textContent(`#${id}`);
+const num = async (id) => parseFloat(await text(`n-${id}`));
+const shot = (name) => page.screenshot({ path: `${out}${name}.png` });
+const canvasShot = () => page.locator('#view').screenshot();
+async function dragHandle(i, dx, dy) {
+  const [x, y] = await page.evaluate((k) => window.__editor.screenOf(k), i);
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  for (let k = 1; k <= 10; k++) await page.mouse.move(x + (dx * k) / 10, y + (dy * k) / 10);
+  await page.mouse.up();
+  await idle();
+}
+
+await step('the page loads and draws a LAC segment with its numbers', async () => {
+  await page.goto(url);
+  await idle();
+  assert.ok((await num('arc_length')) > 0);
+  assert.match(await text('verdict'), /monotone \(proven\)/);
+  await page.waitForFunction(() => +(document.body.dataset.region || 0) > 100, null, { timeout: 15000 });
+  await shot('01-lac');
+});
+
+await step('dragging a control point changes the curve and the numbers', async () => {
+  const before = await num('arc_length');
+  const k0 = await num('curvature_end');
+  const img0 = await canvasShot();
+  await dragHandle(2, 50, -60);
+  const after = await num('arc_length');
+  assert.notEqual(after, before);
+  assert.notEqual(await num('curvature_end'), k0);
+  assert.ok(!(await canvasShot()).equals(img0), 'the drawing did not change');
+  const p2 = await page.evaluate(() => window.__editor.state.lac.p[2]);
+  assert.ok(Math.abs(p2[0] - 12) > 0.3, `control point still at ${p2}`);
+  await shot('02-lac-dragged');
+});
+
+await step('the alpha slider changes alpha, and the curvature graph follows', async () => {
+  const len0 = await num('arc_length');
+  await page.focus('#alpha');
+  for (let i = 0; i < 150; i++) await page.keyboard.press('ArrowRight');
+  await idle();
+  assert.equal(await text('alpha-value'), '0.50');
+  assert.ok(Math.abs((await num('alpha')) - 0.5) < 1e-9);
+  // The slope of the curvature graph of the drawn samples is the segment's alpha.
+  assert.ok(Math.abs((await num('lcg_alpha')) - 0.5) < 0.05, `LCG slope ${await num('lcg_alpha')}`);
+  assert.notEqual(await num('arc_length'), len0);
+  await shot('03-lac-alpha');
+});
+
+await step('inflection-end segment', async () => {
+  await page.click('#mode-inflection');
+  await idle();
+  assert.ok(Number.isFinite(await num('alpha')));
+  assert.match(await text('verdict'), /monotone/);
+  await dragHandle(2, -30, 30);
+  assert.ok(Number.isFinite(await num('arc_length')));
+  await shot('04-inflection');
+});
+
+await step('pseudo-elastic spline: click to add a point, drag it, close the curve', async () => {
+  await page.click('#mode-spline');
+  await idle();
+  const l0 = await num('length');
+  const [x, y] = await page.evaluate(() => window.__editor.pageOf([12.5, 2.5]));
+  await page.mouse.click(x, y);
+  await idle();
+  assert.equal(await num('points'), 5);
+  const l1 = await num('length');
+  assert.ok(l1 > l0, `${l1} <= ${l0}`);
+  await dragHandle(1, 0, 40);
+  assert.notEqual(await num('length'), l1);
+  await page.check('#closed');
+  await idle();
+  assert.match(await page.textContent('#numbers'), /enclosed area/);
+  assert.ok((await num('area')) > 1);
+  await shot('05-spline');
+});
+
+await step('sketch: a drawn stroke becomes a G2 curve of monotone pieces', async () => {
+  await page.click('#mode-sketch');
+  await idle();
+  // A stroke through world points (2, 2) .. (12, 6): a sine-like sweep.
+  const pts = [];
+  for (let i = 0; i <= 80; i++) {
+    const t = i / 80;
+    pts.push([2 + 10 * t, 4 + 2.5 * Math.sin(Math.PI * 1.3 * t)]);
+  }
+  const page_pts = await page.evaluate((ps) => ps.map((p) => window.__editor.pageOf(p)), pts);
+  await page.mouse.move(...page_pts[0]);
+  await page.mouse.down();
+  for (const p of page_pts.slice(1)) await page.mouse.move(...p);
+  await page.mouse.up();
+  await idle();
+  assert.ok((await num('pieces')) >= 2, `pieces ${await num('pieces')}`);
+  assert.equal(await text('n-g2'), 'yes');
+  assert.match(await text('verdict'), /every piece: curvature monotone/);
+  assert.ok((await num('max_deviation')) <= (await num('tolerance')));
+  await shot('06-sketch');
+});
+
+await step('Bézier: select a control point, see its monotone region, drag it', async () => {
+  await page.click('#mode-bezier');
+  await idle();
+  await page.waitForFunction(() => document.body.dataset.regionFor === 'bezier:2', null, { timeout: 15000 });
+  const r2 = +(await page.evaluate(() => document.body.dataset.region));
+  const [x, y] = await page.evaluate(() => window.__editor.screenOf(1));
+  await page.mouse.click(x, y);
+  await idle();
+  assert.equal(await page.evaluate(() => window.__editor.state.bezier.selected), 1);
+  await page.waitForFunction(() => document.body.dataset.regionFor === 'bezier:1', null, { timeout: 15000 });
+  const r1 = +(await page.evaluate(() => document.body.dataset.region));
+  console.log(`     monotone region: ${r2} cells for point 2, ${r1} for point 1`);
+  assert.ok(r1 > 0 || r2 > 0, 'no monotone region for either point');
+  const v0 = await text('verdict');
+  await dragHandle(1, 150, 120);
+  assert.ok((await text('verdict')).length > 0);
+  await shot('07-bezier');
+  console.log(`     verdict before / after: ${v0} / ${await text('verdict')}`);
+});
+
+await step('export what is on screen (STEP and DXF downloads)', async () => {
+  for (const f of ['step', 'dxf']) {
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`#export-${f}`)]);
+    const path = `${out}editor-export.${f}`;
+    await dl.saveAs(path);
+    assert.match(dl.suggestedFilename(), new RegExp(`\\.${f}$`));
+  }
+  assert.match(await page.evaluate(() => document.body.dataset.exported), /^dxf:\d+/);
+});
+
+await step('typical interactions take under 16 ms of server time', async () => {
+  // Every request the page made, by kind: the median must be under 16 ms (a frame); the
+  // 90th percentile and the largest are reported (the machine also runs the browser).
+  const all = await page.evaluate(() => window.__editor.serverMs());
+  const q = (v, f) => v.slice().sort((a, b) => a - b)[Math.min(v.length - 1, Math.floor(f * v.length))];
+  const summary = {};
+  for (const [k, v] of Object.entries(all)) summary[k] = { n: v.length, median: q(v, 0.5), p90: q(v, 0.9), max: q(v, 1) };
+  writeFileSync(`${out}server-times.json`, JSON.stringify(summary, null, 1));
+  console.log('     server time per request kind (ms):');
+  for (const [k, v] of Object.entries(summary)) console.log(`       ${k}: n ${v.n}, median ${v.median}, 90 % ${v.p90}, max ${v.max}`);
+  for (const op of ['lac.segment', 'lac.rational_approx', 'lcg.estimate', 'spline.pseudo_elastic', 'bezier.curvature_monotone']) {
+    assert.ok(summary[op] !== undefined, `${op} was not used`);
+    assert.ok(summary[op].median < 16, `${op}: median ${summary[op].median} ms`);
+  }
+});
+
+await step('no script errors on the page', async () => {
+  assert.deepEqual(pageErrors, []);
+});
+
+await browser.close();
+child.kill();
+writeFileSync(`${out}results.txt`, results.join('\n') + '\n');
+console.log(failures ? `${failures} end-to-end step(s) failed` : 'all end-to-end steps passed');
+process.exit(failures ? 1 : 0);
