@@ -448,3 +448,97 @@ fn sketch_command_and_op() {
     assert_eq!(resp[3]["ok"], true, "{}", resp[3]);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// One HTTP/1.1 request over a plain socket; returns (status, headers + body text).
+fn http(addr: std::net::SocketAddr, method: &str, path: &str, body: &[u8]) -> (u16, String) {
+    use std::io::Read;
+    let mut s = std::net::TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(std::time::Duration::from_secs(30)))
+        .unwrap();
+    let head = format!(
+        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
+        body.len()
+    );
+    s.write_all(head.as_bytes()).unwrap();
+    // A server may answer 413 before reading the whole body and close: ignore write errors.
+    let _ = s.write_all(body);
+    let mut out = Vec::new();
+    let _ = s.read_to_end(&mut out);
+    let text = String::from_utf8_lossy(&out).to_string();
+    let status = text
+        .split_whitespace()
+        .nth(1)
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(0);
+    (status, text)
+}
+
+#[test]
+fn editor_serves_on_loopback_only_with_limits() {
+    use std::io::BufRead;
+    let mut child = aecurve()
+        .args(["editor", "--port", "0", "--no-open"])
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    std::io::BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let url = line.trim().strip_prefix("editor: ").unwrap().to_string();
+    let hostport = url
+        .trim_start_matches("http://")
+        .trim_end_matches('/')
+        .to_string();
+    let addr: std::net::SocketAddr = hostport.parse().unwrap();
+    assert!(addr.ip().is_loopback(), "{url}");
+    // The page and its script are embedded.
+    let (st, page) = http(addr, "GET", "/", b"");
+    assert_eq!(st, 200);
+    assert!(page.contains("<canvas id=\"view\""));
+    let (st, js) = http(addr, "GET", "/app.js", b"");
+    assert_eq!(st, 200);
+    assert!(js.contains("lac.rational_approx"));
+    // One protocol request, one response; malformed JSON is a parse error; too big is 413.
+    let (st, r) = http(
+        addr,
+        "POST",
+        "/api",
+        br#"{"id": 3, "op": "lac.segment", "alpha": 0.5, "control": [[0,0],[4,0],[6,3]]}"#,
+    );
+    assert_eq!(st, 200);
+    assert!(r.contains("server-timing") && r.contains(r#""ok":true"#), "{r}");
+    let (st, r) = http(addr, "POST", "/api", b"{\"id\": 1, ");
+    assert_eq!(st, 200);
+    assert!(r.contains(r#""kind":"parse""#), "{r}");
+    let big = vec![b' '; 20 * 1024 * 1024];
+    let (st, _) = http(addr, "POST", "/api", &big);
+    assert_eq!(st, 413);
+    let (st, r) = http(
+        addr,
+        "POST",
+        "/api/region",
+        br#"{"kind": "lac", "alpha": -1, "control": [[0,0],[8,0],[12,5]], "grid": {"x0": -1, "y0": -2, "x1": 15, "y1": 9, "nx": 20, "ny": 10}}"#,
+    );
+    assert_eq!(st, 200);
+    assert!(r.contains(r#""rows""#), "{r}");
+    let (st, r) = http(addr, "POST", "/api/region", br#"{"kind": "lac", "grid": {"nx": 100000}}"#);
+    assert_eq!(st, 200);
+    assert!(r.contains("invalid_input"), "{r}");
+    // Not reachable on this machine's other addresses: find the address the machine would
+    // use towards the outside (no packet is sent) and try the same port there.
+    if let Some(ip) = std::net::UdpSocket::bind("0.0.0.0:0")
+        .and_then(|u| u.connect("192.0.2.1:9").map(|_| u))
+        .and_then(|u| u.local_addr())
+        .ok()
+        .map(|a| a.ip())
+        .filter(|ip| !ip.is_loopback() && !ip.is_unspecified())
+    {
+        let other = std::net::SocketAddr::new(ip, addr.port());
+        let reach =
+            std::net::TcpStream::connect_timeout(&other, std::time::Duration::from_secs(2));
+        assert!(reach.is_err(), "the editor answered on {other}");
+    }
+    child.kill().unwrap();
+    let _ = child.wait();
+}
