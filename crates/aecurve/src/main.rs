@@ -44,7 +44,8 @@ enum Cmd {
         /// Print the protocol's JSON result instead of text.
         #[arg(long)]
         json: bool,
-        /// Write the curve with its curvature comb (.svg or .png; repeatable).
+        /// Write the curve: .svg/.png with its curvature comb, .dxf/.step/.iges/.json exact;
+        /// repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -71,7 +72,9 @@ enum Cmd {
         /// Print the protocol's JSON result.
         #[arg(long)]
         json: bool,
-        /// Write the curve with its curvature comb (.svg or .png; repeatable).
+        /// Write the segment: .svg/.png with its curvature comb; .dxf/.step/.iges/.json as
+        /// rational cubics (within 1e-7 of its size; one cubic for an inflection end, its
+        /// distance reported); repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -248,8 +251,9 @@ fn main() {
 fn run() -> Result<()> {
     let cli = Cli::parse();
     match &cli.cmd {
-        Cmd::Lac { output, .. } | Cmd::Lcg { output, .. } => plot::check_picture_paths(output)?,
-        Cmd::Monotone { output, .. }
+        Cmd::Lcg { output, .. } => plot::check_picture_paths(output)?,
+        Cmd::Lac { output, .. }
+        | Cmd::Monotone { output, .. }
         | Cmd::Approx { output, .. }
         | Cmd::Sketch { output, .. }
         | Cmd::Spline { output, .. } => {
@@ -548,10 +552,57 @@ fn lac(alpha: f64, control: &str, samples: usize, json: bool, output: &[PathBuf]
             }
         );
     }
+    let caption = format!("LAC alpha = {alpha}, lambda = {:.6}", seg.lambda());
+    let samples = plot::polyline_samples(&points, &kappa);
+    // CAD formats get the segment as rational cubics within 1e-7 of its size (a LAC segment
+    // has no exact rational form): the exact rational geometry of that approximation.
+    let cad = || -> Result<aesthetic_curves::nurbs::Nurbs> {
+        let size = pts
+            .iter()
+            .map(|p| (*p - pts[0]).hypot())
+            .fold(0.0, f64::max);
+        let sp = aesthetic_curves::approx::fit_rational_spline(
+            &seg,
+            1e-7 * size,
+            64,
+            &aesthetic_curves::approx::ApproxOptions::default(),
+        )?;
+        eprintln!(
+            "as {} rational cubic(s), max distance {:.2e} from the segment",
+            sp.pieces.len(),
+            sp.max_error
+        );
+        Ok(aesthetic_curves::nurbs::Nurbs::new(
+            sp.degree,
+            sp.knots,
+            sp.control_points,
+            sp.weights,
+        )?)
+    };
+    write_segment_outputs(output, &samples, &pts, &caption, &cad)
+}
+
+/// `-o` for a LAC segment command: pictures (.svg, .png) of the segment with its comb; CAD
+/// formats and .json through `cad` (built once, only when asked for).
+fn write_segment_outputs(
+    output: &[PathBuf],
+    samples: &[plot::CombSample],
+    control: &[aesthetic_curves::Point],
+    caption: &str,
+    cad: &dyn Fn() -> Result<aesthetic_curves::nurbs::Nurbs>,
+) -> Result<()> {
+    let mut curve = None;
     for path in output {
-        let caption = format!("LAC alpha = {alpha}, lambda = {:.6}", seg.lambda());
-        let samples = plot::polyline_samples(&points, &kappa);
-        plot::write_picture(path, &plot::comb_svg(&samples, &pts, &[], &caption))?;
+        let ext = aecurve::export::extension(path).unwrap_or_default();
+        if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+            if curve.is_none() {
+                curve = Some(cad()?);
+            }
+            let c = curve.as_ref().expect("built above");
+            aecurve::export::write_curve(path, c, "log_aesthetic_segment")?;
+        } else {
+            plot::write_picture(path, &plot::comb_svg(samples, control, &[], caption))?;
+        }
         eprintln!("wrote {}", path.display());
     }
     Ok(())
@@ -582,13 +633,27 @@ fn lac_inflection(control: &str, samples: usize, json: bool, output: &[PathBuf])
         println!("  arc length     {:.9}", seg.arc_length());
         println!("  curvature      0 at the start, {k1:.9} at the end");
     }
-    for path in output {
-        let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha);
-        let samples = plot::polyline_samples(&points, &kappa);
-        plot::write_picture(path, &plot::comb_svg(&samples, &pts, &[], &caption))?;
-        eprintln!("wrote {}", path.display());
-    }
-    Ok(())
+    let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha);
+    let samples = plot::polyline_samples(&points, &kappa);
+    // CAD formats: the segment's rational cubic (κ = 0 at the inflection end, G2 at the other,
+    // curvature proven monotone), with its distance from the segment reported.
+    let cad = || -> Result<aesthetic_curves::nurbs::Nurbs> {
+        let fit = aesthetic_curves::approx::fit_inflection_cubic(
+            &seg,
+            &aesthetic_curves::approx::ApproxOptions::default(),
+        )?;
+        eprintln!(
+            "as one rational cubic, max distance {:.2e} from the segment, curvature {}",
+            fit.max_error,
+            if fit.monotone {
+                "monotone (proven)"
+            } else {
+                "NOT monotone"
+            }
+        );
+        Ok(aesthetic_curves::nurbs::Nurbs::from_beziers(&[fit.curve])?)
+    };
+    write_segment_outputs(output, &samples, &pts, &caption, &cad)
 }
 
 fn approx(

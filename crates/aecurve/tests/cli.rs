@@ -507,7 +507,10 @@ fn editor_serves_on_loopback_only_with_limits() {
         br#"{"id": 3, "op": "lac.segment", "alpha": 0.5, "control": [[0,0],[4,0],[6,3]]}"#,
     );
     assert_eq!(st, 200);
-    assert!(r.contains("server-timing") && r.contains(r#""ok":true"#), "{r}");
+    assert!(
+        r.contains("server-timing") && r.contains(r#""ok":true"#),
+        "{r}"
+    );
     let (st, r) = http(addr, "POST", "/api", b"{\"id\": 1, ");
     assert_eq!(st, 200);
     assert!(r.contains(r#""kind":"parse""#), "{r}");
@@ -522,7 +525,12 @@ fn editor_serves_on_loopback_only_with_limits() {
     );
     assert_eq!(st, 200);
     assert!(r.contains(r#""rows""#), "{r}");
-    let (st, r) = http(addr, "POST", "/api/region", br#"{"kind": "lac", "grid": {"nx": 100000}}"#);
+    let (st, r) = http(
+        addr,
+        "POST",
+        "/api/region",
+        br#"{"kind": "lac", "grid": {"nx": 100000}}"#,
+    );
     assert_eq!(st, 200);
     assert!(r.contains("invalid_input"), "{r}");
     // Not reachable on this machine's other addresses: find the address the machine would
@@ -535,8 +543,7 @@ fn editor_serves_on_loopback_only_with_limits() {
         .filter(|ip| !ip.is_loopback() && !ip.is_unspecified())
     {
         let other = std::net::SocketAddr::new(ip, addr.port());
-        let reach =
-            std::net::TcpStream::connect_timeout(&other, std::time::Duration::from_secs(2));
+        let reach = std::net::TcpStream::connect_timeout(&other, std::time::Duration::from_secs(2));
         assert!(reach.is_err(), "the editor answered on {other}");
     }
     child.kill().unwrap();
