@@ -44,8 +44,9 @@ enum Cmd {
         /// Print the protocol's JSON result instead of text.
         #[arg(long)]
         json: bool,
-        /// Write the curve: .svg/.png with its curvature comb, .dxf/.step/.iges/.json exact;
-        /// repeatable.
+        /// Write the curve: .svg (the curve as cubic Béziers within 1e-6 of its size, in its
+        /// own coordinates, with its comb), .png (picture with the comb), .dxf/.step/.iges/
+        /// .json exact; repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -72,8 +73,8 @@ enum Cmd {
         /// Print the protocol's JSON result.
         #[arg(long)]
         json: bool,
-        /// Write the segment: .svg/.png with its curvature comb; .dxf/.step/.iges/.json as
-        /// rational cubics (within 1e-7 of its size; one cubic for an inflection end, its
+        /// Write the segment: .png (picture with its comb); .svg (as cubic Béziers, with its
+        /// comb), .dxf/.step/.iges/.json as rational cubics (within 1e-7 of its size; one cubic for an inflection end, its
         /// distance reported); repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
@@ -506,6 +507,31 @@ fn monotone(
             continue;
         }
         let caption = format!("{kind} degree {degree}: curvature comb");
+        if ext == "svg" {
+            // The curve itself (cubic Béziers within 1e-6 of its size, in its own
+            // coordinates) with its comb.
+            let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
+            let rb = aesthetic_curves::RationalBezier::new(pts.clone(), weights)?;
+            let nurbs = aesthetic_curves::nurbs::Nurbs::from_bezier(&rb);
+            let comb: Vec<plot::CombSample> = (0..=200)
+                .map(|i| {
+                    let d = curve.as_monotone().derivs(i as f64 / 200.0);
+                    let k = d.kappa();
+                    let speed = d.d1.hypot();
+                    let nrm = if speed > 0.0 {
+                        d.d1.turn_90() / speed
+                    } else {
+                        aesthetic_curves::Vec2::ZERO
+                    };
+                    (d.p, nrm, if k.is_finite() { k } else { 0.0 })
+                })
+                .collect();
+            let doc = aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &comb, &caption)
+                .context("the curve has no spans")?;
+            std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
+            eprintln!("wrote {}", path.display());
+            continue;
+        }
         let extrema = match method {
             Method::Exact => c.curvature_monotone()?.extrema,
             Method::Sampling => Vec::new(),
@@ -600,6 +626,16 @@ fn write_segment_outputs(
             }
             let c = curve.as_ref().expect("built above");
             aecurve::export::write_curve(path, c, "log_aesthetic_segment")?;
+        } else if ext == "svg" {
+            // The segment's rational cubics as cubic Béziers within 1e-6 of its size, in its
+            // own coordinates, with the segment's comb.
+            if curve.is_none() {
+                curve = Some(cad()?);
+            }
+            let c = curve.as_ref().expect("built above");
+            let doc = aecurve::export::svg_document(c, 1e-6 * c.size(), samples, caption)
+                .context("the curve has no spans")?;
+            std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
         } else {
             plot::write_picture(path, &plot::comb_svg(samples, control, &[], caption))?;
         }
