@@ -17,6 +17,38 @@ use std::time::Duration;
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
+    /// Also write the curve's curvature against arc length (.svg or .png), for the commands
+    /// that produce a curve (monotone, lac, spline, sketch).
+    #[arg(long, global = true)]
+    curvature_plot: Option<PathBuf>,
+}
+
+/// Where `--curvature-plot` writes, if given.
+static CURVATURE_PLOT: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+
+/// `--curvature-plot`: curvature against arc length (chord sums of the samples) of a curve.
+fn write_curvature_plot(samples: &[plot::CombSample], title: &str) -> Result<()> {
+    let Some(path) = CURVATURE_PLOT.get() else {
+        return Ok(());
+    };
+    let mut s = 0.0;
+    let mut pts = Vec::with_capacity(samples.len());
+    for (i, (p, _, k)) in samples.iter().enumerate() {
+        if i > 0 {
+            s += (*p - samples[i - 1].0).hypot();
+        }
+        if k.is_finite() {
+            pts.push((s, *k));
+        }
+    }
+    let mut series = plot::Series::new("curvature", pts, plot::PALETTE[0]);
+    series.markers = false;
+    plot::write_picture(
+        path,
+        &plot::fitted_chart(title, "arc length", "curvature", &[series]),
+    )?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
 }
 
 #[derive(Subcommand)]
@@ -251,6 +283,10 @@ fn main() {
 
 fn run() -> Result<()> {
     let cli = Cli::parse();
+    if let Some(p) = &cli.curvature_plot {
+        plot::check_picture_paths(std::slice::from_ref(p))?;
+        let _ = CURVATURE_PLOT.set(p.clone());
+    }
     match &cli.cmd {
         Cmd::Lcg { output, .. } => plot::check_picture_paths(output)?,
         Cmd::Lac { output, .. }
@@ -493,6 +529,20 @@ fn monotone(
             }
         }
     }
+    let comb: Vec<plot::CombSample> = (0..=200)
+        .map(|i| {
+            let d = curve.as_monotone().derivs(i as f64 / 200.0);
+            let k = d.kappa();
+            let speed = d.d1.hypot();
+            let nrm = if speed > 0.0 {
+                d.d1.turn_90() / speed
+            } else {
+                aesthetic_curves::Vec2::ZERO
+            };
+            (d.p, nrm, if k.is_finite() { k } else { 0.0 })
+        })
+        .collect();
+    write_curvature_plot(&comb, "curvature of the Bézier curve")?;
     for path in output {
         let ext = aecurve::export::extension(path).unwrap_or_default();
         if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
@@ -513,19 +563,6 @@ fn monotone(
             let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
             let rb = aesthetic_curves::RationalBezier::new(pts.clone(), weights)?;
             let nurbs = aesthetic_curves::nurbs::Nurbs::from_bezier(&rb);
-            let comb: Vec<plot::CombSample> = (0..=200)
-                .map(|i| {
-                    let d = curve.as_monotone().derivs(i as f64 / 200.0);
-                    let k = d.kappa();
-                    let speed = d.d1.hypot();
-                    let nrm = if speed > 0.0 {
-                        d.d1.turn_90() / speed
-                    } else {
-                        aesthetic_curves::Vec2::ZERO
-                    };
-                    (d.p, nrm, if k.is_finite() { k } else { 0.0 })
-                })
-                .collect();
             let doc = aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &comb, &caption)
                 .context("the curve has no spans")?;
             std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
@@ -617,6 +654,7 @@ fn write_segment_outputs(
     caption: &str,
     cad: &dyn Fn() -> Result<aesthetic_curves::nurbs::Nurbs>,
 ) -> Result<()> {
+    write_curvature_plot(samples, caption)?;
     let mut curve = None;
     for path in output {
         let ext = aecurve::export::extension(path).unwrap_or_default();
@@ -975,6 +1013,7 @@ fn sketch(
             comb.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
         }
     }
+    write_curvature_plot(&comb, "curvature of the G2 curve (rational cubic pieces)")?;
     let caption = format!(
         "sketch: {} LAC pieces (rational cubics), deviation {:.3e}, jump {:.1e}",
         sk.pieces.len(),
@@ -1045,7 +1084,7 @@ fn spline(
             r["energy"].as_f64().unwrap_or(f64::NAN)
         );
     }
-    if !output.is_empty() {
+    if !output.is_empty() || CURVATURE_PLOT.get().is_some() {
         let mut samples: Vec<plot::CombSample> = Vec::new();
         for g in &s.segments {
             let c = aesthetic_curves::Bezier::new(vec![
@@ -1060,6 +1099,7 @@ fn spline(
             }
         }
         let caption = format!("pseudo-elastic spline: length {:.6}", s.length);
+        write_curvature_plot(&samples, "curvature of the pseudo-elastic spline")?;
         let mut polygon = pts.clone();
         if closed {
             polygon.push(pts[0]);

@@ -332,6 +332,18 @@ fn spline_command_and_op() {
     assert!(v["tangent_angles"][1].as_f64().unwrap().abs() < 1e-6);
     assert!(v["length"].as_f64().unwrap() > 2.0 * 2f64.sqrt());
     assert_eq!(v["mode"], "table");
+    // --curvature-plot: curvature against arc length as a picture.
+    let kplot = dir.join("k.svg");
+    let out = aecurve()
+        .arg("spline")
+        .arg(&input)
+        .arg("--curvature-plot")
+        .arg(&kplot)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let k = std::fs::read_to_string(&kplot).unwrap();
+    assert!(k.contains("arc length") && k.contains("<polyline"));
     // The exact mode gives the same curve to the table's accuracy.
     let e = json_output(
         aecurve()
