@@ -1162,6 +1162,16 @@ fn inflection_gallery(out: &std::path::Path) -> Result<String> {
     for c in curves.iter_mut() {
         c.markers = false;
     }
+    // The graphs on a finer step (2°).
+    kappa.clear();
+    alpha.clear();
+    for deg in (50..=130).step_by(2) {
+        let th = (deg as f64).to_radians();
+        let p1 = Point::new(p2.x - p2.y / th.tan(), 0.0);
+        let seg = LacInflectionSegment::new([Point::ORIGIN, p1, p2])?;
+        kappa.push((deg as f64, seg.end_curvature()));
+        alpha.push((deg as f64, seg.alpha));
+    }
     std::fs::write(
         out.join("s4-fig1.svg"),
         plot::curves_svg(
