@@ -187,6 +187,11 @@ await step('pseudo-elastic spline: click to add a point, drag it, close the curv
   assert.ok(l1 > l0, `${l1} <= ${l0}`);
   await dragHandle(1, 0, 40);
   assert.notEqual(await num('length'), l1);
+  // Undo puts the point back.
+  await page.keyboard.press('Control+z');
+  await idle();
+  assert.equal(await num('length'), l1);
+  await dragHandle(1, 0, 40);
   await page.check('#closed');
   await idle();
   assert.match(await page.textContent('#numbers'), /enclosed area/);
@@ -234,6 +239,23 @@ await step('Bézier: select a control point, see its monotone region, drag it', 
   assert.ok((await text('verdict')).length > 0);
   await shot('07-bezier');
   console.log(`     verdict before / after: ${v0} / ${await text('verdict')}`);
+});
+
+await step('wheel zooms about the pointer, F fits the view', async () => {
+  const v0 = await page.evaluate(() => window.__editor.view());
+  const [x, y] = await page.evaluate(() => window.__editor.pageOf([7, 4]));
+  await page.mouse.move(x, y);
+  await page.mouse.wheel(0, -400);
+  await page.waitForTimeout(100);
+  const v1 = await page.evaluate(() => window.__editor.view());
+  assert.ok(v1.x1 - v1.x0 < 0.8 * (v0.x1 - v0.x0), `not zoomed: ${JSON.stringify(v1)}`);
+  await page.keyboard.press('f');
+  await page.waitForTimeout(100);
+  const v2 = await page.evaluate(() => window.__editor.view());
+  const p = await page.evaluate(() => window.__editor.state.bezier.p);
+  for (const q of p) assert.ok(q[0] >= v2.x0 && q[0] <= v2.x1 && q[1] >= v2.y0, `point ${q} outside the fitted view`);
+  await idle();
+  await shot('08-bezier-fitted');
 });
 
 await step('export what is on screen (STEP and DXF downloads)', async () => {

@@ -32,7 +32,8 @@ const state = {
   sketch: { stroke: [] },
   bezier: { p: [[1, 1], [6, 1], [10, 3], [12, 7]], selected: 2 },
 };
-let box = BOXES.lac;
+const views = JSON.parse(JSON.stringify(BOXES)); // each mode's current view (zoom, pan)
+let box = views.lac;
 let shown = null; // what is drawn: {curve, kappa, overlay, pieces, marks, polygon, handles}
 let region = null; // {grid, rows, key}
 let nurbs = null; // the curve on screen, for export
@@ -406,10 +407,10 @@ async function regionCompute() {
   let req;
   if (state.mode === 'lac') {
     req = { kind: 'lac', alpha: state.lac.alpha, control: state.lac.p, grid: viewGrid(82) };
-    req.key = JSON.stringify([state.mode, state.lac.p[0], state.lac.p[1], state.lac.alpha]);
+    req.key = JSON.stringify([state.mode, state.lac.p[0], state.lac.p[1], state.lac.alpha, box]);
   } else if (state.mode === 'bezier') {
     req = { kind: 'bezier', control_points: state.bezier.p, index: state.bezier.selected, grid: viewGrid(82) };
-    req.key = JSON.stringify([state.mode, state.bezier.p, state.bezier.selected]);
+    req.key = JSON.stringify([state.mode, state.bezier.p, state.bezier.selected, box]);
   } else {
     return;
   }
@@ -559,7 +560,34 @@ function drawLcg(fit, note) {
 }
 
 // ---------- interaction ----------
-let drag = null; // {index} or {stroke: true}
+let drag = null; // {index}, {stroke: true} or {pan: world point}
+// Undo: the edited mode's state before each edit (Ctrl+Z).
+const history = [];
+function remember() {
+  history.push({ mode: state.mode, data: JSON.parse(JSON.stringify(state[state.mode])) });
+  if (history.length > 200) history.shift();
+}
+function undo() {
+  for (let i = history.length - 1; i >= 0; i--) {
+    if (history[i].mode === state.mode) {
+      state[state.mode] = history.splice(i, 1)[0].data;
+      if (state.mode === 'lac') {
+        $('alpha').value = state.lac.alpha;
+        $('alpha-value').textContent = state.lac.alpha.toFixed(2);
+      }
+      if (state.mode === 'spline') $('closed').checked = state.spline.closed;
+      requestUpdate();
+      return;
+    }
+  }
+}
+document.addEventListener('keydown', (ev) => {
+  if ((ev.ctrlKey || ev.metaKey) && ev.key === 'z') {
+    ev.preventDefault();
+    undo();
+  }
+  if (ev.key === 'f' && !(ev.target instanceof HTMLInputElement)) fitView();
+});
 function nearestHandle(ev) {
   const r = view.getBoundingClientRect();
   const x = (ev.clientX - r.left) * view.width / r.width;
@@ -575,10 +603,16 @@ function nearestHandle(ev) {
   });
   return best;
 }
+view.addEventListener('contextmenu', (ev) => ev.preventDefault());
 view.addEventListener('pointerdown', (ev) => {
   view.setPointerCapture(ev.pointerId);
   const m = state.mode;
+  if (ev.button === 2 || ev.button === 1 || ev.shiftKey) {
+    drag = { pan: eventWorld(ev) };
+    return;
+  }
   if (m === 'sketch') {
+    remember();
     state.sketch.stroke = [eventWorld(ev)];
     drag = { stroke: true };
     shown = { stroke: state.sketch.stroke };
@@ -587,6 +621,7 @@ view.addEventListener('pointerdown', (ev) => {
   }
   const i = nearestHandle(ev);
   if (i >= 0) {
+    remember();
     drag = { index: i };
     if (m === 'bezier') {
       state.bezier.selected = i;
@@ -595,6 +630,7 @@ view.addEventListener('pointerdown', (ev) => {
     return;
   }
   if (m === 'spline') {
+    remember();
     state.spline.p.push(eventWorld(ev));
     drag = { index: state.spline.p.length - 1 };
     requestUpdate();
@@ -603,6 +639,17 @@ view.addEventListener('pointerdown', (ev) => {
 view.addEventListener('pointermove', (ev) => {
   if (!drag) return;
   const w = eventWorld(ev);
+  if (drag.pan) {
+    // Keep the grabbed world point under the pointer.
+    const dx = drag.pan[0] - w[0];
+    const dy = drag.pan[1] - w[1];
+    box.x0 += dx;
+    box.x1 += dx;
+    box.y0 += dy;
+    box.y1 += dy;
+    draw();
+    return;
+  }
   if (drag.stroke) {
     const s = state.sketch.stroke;
     const last = s[s.length - 1];
@@ -617,18 +664,51 @@ view.addEventListener('pointermove', (ev) => {
 });
 const endDrag = () => {
   if (!drag) return;
+  const panned = drag.pan;
   drag = null;
-  requestUpdate();
+  if (panned) regionUpdate();
+  else requestUpdate();
 };
+// Wheel: zoom about the pointer.
+view.addEventListener('wheel', (ev) => {
+  ev.preventDefault();
+  const c = eventWorld(ev);
+  const f = Math.pow(1.0015, ev.deltaY);
+  box.x0 = c[0] + (box.x0 - c[0]) * f;
+  box.x1 = c[0] + (box.x1 - c[0]) * f;
+  box.y0 = c[1] + (box.y0 - c[1]) * f;
+  box.y1 = c[1] + (box.y1 - c[1]) * f;
+  draw();
+  regionUpdate();
+}, { passive: false });
+// Fit the view to what is drawn.
+function fitView() {
+  const pts = [].concat((shown && shown.curve) || [], handles(), (shown && shown.stroke) || []);
+  if (pts.length < 2) return;
+  let [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
+  for (const p of pts) {
+    x0 = Math.min(x0, p[0]); x1 = Math.max(x1, p[0]);
+    y0 = Math.min(y0, p[1]); y1 = Math.max(y1, p[1]);
+  }
+  const m = 0.12 * Math.max(x1 - x0, y1 - y0, 1e-9);
+  Object.assign(box, { x0: x0 - m, y0: y0 - m, x1: x1 + m, y1: y1 + m });
+  draw();
+  regionUpdate();
+}
 view.addEventListener('pointerup', endDrag);
 view.addEventListener('pointercancel', endDrag);
 
+$('alpha').addEventListener('pointerdown', remember);
+$('alpha').addEventListener('keydown', (ev) => {
+  if (ev.key.startsWith('Arrow')) remember();
+});
 $('alpha').addEventListener('input', () => {
   state.lac.alpha = +$('alpha').value;
   $('alpha-value').textContent = state.lac.alpha.toFixed(2);
   requestUpdate();
 });
 $('closed').addEventListener('change', () => {
+  remember();
   state.spline.closed = $('closed').checked;
   requestUpdate();
 });
@@ -639,18 +719,21 @@ $('region').addEventListener('change', () => {
   regionUpdate();
 });
 $('add-point').addEventListener('click', () => {
+  remember();
   const p = state[state.mode].p;
   const last = p[p.length - 1];
   p.push([Math.min(box.x1 - 1, last[0] + 1.5), last[1]]);
   requestUpdate();
 });
 $('remove-point').addEventListener('click', () => {
+  remember();
   const p = state[state.mode].p;
   if (p.length > (state.mode === 'bezier' ? 3 : 0)) p.pop();
   if (state.mode === 'bezier') state.bezier.selected = Math.min(state.bezier.selected, p.length - 1);
   requestUpdate();
 });
 $('clear').addEventListener('click', () => {
+  remember();
   if (state.mode === 'spline') state.spline.p = [];
   if (state.mode === 'sketch') state.sketch.stroke = [];
   requestUpdate();
@@ -660,7 +743,7 @@ for (const b of document.querySelectorAll('#modes button')) {
 }
 function setMode(m) {
   state.mode = m;
-  box = BOXES[m];
+  box = views[m];
   region = null;
   shown = null;
   for (const b of document.querySelectorAll('#modes button')) b.classList.toggle('active', b.dataset.mode === m);
@@ -699,6 +782,8 @@ async function exportAs(format) {
   document.body.dataset.exported = `${format}:${blob.size}`;
 }
 $('export-svg').addEventListener('click', () => exportAs('svg'));
+$('fit').addEventListener('click', fitView);
+$('undo').addEventListener('click', undo);
 $('export-dxf').addEventListener('click', () => exportAs('dxf'));
 $('export-step').addEventListener('click', () => exportAs('step'));
 
@@ -716,6 +801,7 @@ window.__editor = {
     return [r.left + x * r.width / view.width, r.top + y * r.height / view.height];
   },
   // Page coordinates of a world point.
+  view: () => Object.assign({}, box),
   pageOf: (p) => {
     const r = view.getBoundingClientRect();
     const [x, y] = toScreen(p);
