@@ -23,8 +23,9 @@
 //! 3. else follows each valley found at the cell's corners through the stencil (by
 //!    [`valley_distance`]), interpolates each (cubic, or bilinear where the valley ends inside
 //!    the stencil) and returns the lowest; the kink where two valleys tie is kept;
-//! 4. where no valley can be followed (within a few steps of the singular points) it
-//!    minimises exactly instead ([`TableSegment::exact`]).
+//! 4. where the best valley is only bilinear (it ends inside the stencil) it polishes that
+//!    estimate by a local minimisation, and where no valley can be followed (within a few
+//!    steps of the singular points) it minimises from scratch ([`TableSegment::exact`]).
 //!
 //! J vanishes quadratically at θ0 = θ1 = 0; it is stored as J / q with
 //! `q = 2(1 - cos θ0) + 2(1 - cos θ1) + sin θ0 sin θ1` (≈ θ0² + θ0 θ1 + θ1², positive except
@@ -73,6 +74,10 @@ pub fn valley_distance(a: &Entry, b: &Entry) -> f32 {
     by_r.min(by_shape)
 }
 
+/// Largest ratio of J / q over a stencil for plain interpolation; steeper stencils are
+/// polished by a local minimisation.
+const STEEP: f32 = 1.5;
+
 /// File magic of the table format.
 const MAGIC: &[u8; 8] = b"AEPSTB01";
 
@@ -110,8 +115,9 @@ pub struct TableSegment {
     pub length: f64,
     /// Signed area between the segment and its chord.
     pub area: f64,
-    /// True when no tabulated valley could be followed through the query's cell (next to
-    /// the singular points) and the values come from the exact minimisation instead.
+    /// True when the values come from a minimisation instead of interpolation: where no
+    /// tabulated valley can be followed through the query's cell (next to the singular
+    /// points), or where the best valley ends inside the stencil (polished from the table).
     pub exact: bool,
 }
 
@@ -321,7 +327,7 @@ impl PseudoTables {
             });
         }
         // Each valley found at the cell's corners, followed through the stencil.
-        let mut best: Option<(f64, [f64; 5])> = None;
+        let mut best: Option<(f64, [f64; 5], bool)> = None;
         let mut tried: Vec<Entry> = Vec::with_capacity(4);
         for (ci, ck) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
             for e in self.node(i + ci, k + ck) {
@@ -330,15 +336,15 @@ impl PseudoTables {
                 }
                 tried.push(*e);
                 let at = e;
-                let Some((v, _cubic)) = self.valley(i, k, at, &wx, &wy, tx, ty) else {
+                let Some((v, cubic)) = self.valley(i, k, at, &wx, &wy, tx, ty) else {
                     continue;
                 };
                 if best.is_none_or(|bb| v[2] < bb.0) {
-                    best = Some((v[2], v));
+                    best = Some((v[2], v, cubic));
                 }
             }
         }
-        let Some((_, v)) = best else {
+        let Some((_, v, cubic)) = best else {
             // No valley can be followed through this cell (next to the singular points
             // (π, 0), (0, π), (π, π), where J grows without bound): minimise.
             let o = crate::pseudo_spline::optimal_segment(a, b)?;
@@ -351,6 +357,22 @@ impl PseudoTables {
                 exact: true,
             });
         };
+        if !cubic {
+            // The valley ends inside the stencil: bilinear values are rough there. Polish
+            // from them with a local minimisation (rare: a millisecond).
+            if let Some(o) = crate::pseudo_spline::local_minimum(a, b, v[0].exp(), v[1].exp()) {
+                if o.j <= 1.01 * v[2] * q {
+                    return Ok(TableSegment {
+                        j: o.j,
+                        r0: o.r0,
+                        r1: o.r1,
+                        length: o.shape.length,
+                        area: o.shape.area,
+                        exact: true,
+                    });
+                }
+            }
+        }
         // J: the lowest valley (J has a kink where two valleys tie; taking the minimum of the
         // valleys keeps it).
         let g = v[2];
@@ -369,6 +391,7 @@ impl PseudoTables {
     fn single_valley(&self, i: isize, k: isize, wx: &[f64; 4], wy: &[f64; 4]) -> Option<[f64; 5]> {
         let at = *self.node(i, k).first()?;
         let mut acc = [0.0f64; 5];
+        let (mut lo, mut hi) = (f32::MAX, f32::MIN);
         for (di, wxi) in wx.iter().enumerate() {
             for (dk, wyk) in wy.iter().enumerate() {
                 let node = self.node(i + di as isize - 1, k + dk as isize - 1);
@@ -376,13 +399,14 @@ impl PseudoTables {
                 if valley_distance(&at, first) >= 1.0 {
                     return None;
                 }
+                (lo, hi) = (lo.min(first[2]), hi.max(first[2]));
                 let w = wxi * wyk;
                 for (a, x) in acc.iter_mut().zip(first) {
                     *a += w * *x as f64;
                 }
             }
         }
-        Some(acc)
+        (hi <= STEEP * lo).then_some(acc)
     }
 
     /// One valley interpolated at the query: cubic on the full stencil, else bilinear on
@@ -400,10 +424,12 @@ impl PseudoTables {
     ) -> Option<([f64; 5], bool)> {
         let mut acc = [0.0f64; 5];
         let mut full = true;
+        let (mut lo, mut hi) = (f32::MAX, f32::MIN);
         'outer: for (di, wxi) in wx.iter().enumerate() {
             for (dk, wyk) in wy.iter().enumerate() {
                 match self.track(i + di as isize - 1, k + dk as isize - 1, at) {
                     Some(e) => {
+                        (lo, hi) = (lo.min(e[2]), hi.max(e[2]));
                         let w = wxi * wyk;
                         for (a, x) in acc.iter_mut().zip(e) {
                             *a += w * *x as f64;
@@ -417,7 +443,9 @@ impl PseudoTables {
             }
         }
         if full {
-            return Some((acc, true));
+            // Where J changes by more than STEEP across the stencil (next to the corners with
+            // reversed tangents) the cubic is rough too: the caller polishes it.
+            return Some((acc, hi <= STEEP * lo));
         }
         let mut acc = [0.0f64; 5];
         for (ci, ck, w) in [
