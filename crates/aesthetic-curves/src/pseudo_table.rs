@@ -40,11 +40,11 @@
 //!
 //! **Accuracy against the exact mode** (`tests/pseudo_table_accuracy.rs`, 300 random
 //! queries each, median / 99 % / max):
-//! - |θ| ≤ 1 rad: J 3e-8 / 6e-5 / 2e-4 relative; L 2e-8 / 2e-5 / 4e-5; S 4e-8 / 1.3e-4 /
+//! - |θ| ≤ 1 rad: J 3e-8 / 4e-6 / 1e-5 relative; L 2e-8 / 2e-6 / 3e-5; S 3e-8 / 4e-5 /
 //!   3.6e-4 (relative to max(|S|, 0.01)); the energy of the segment built with the table's r0,
 //!   r1 exceeds the optimum by 1e-14 / 5e-5 / 1.2e-4.
-//! - the whole square, 0.3 rad from the singular points: J 7e-8 / 4e-4 / 5e-2; L 2e-8 /
-//!   1.3e-5 / 0.12.
+//! - the whole square, 0.3 rad from the singular points: J 1e-7 / 4e-5 / 5e-2; L 2e-8 /
+//!   6e-6 / 0.12 (the worst: a valley whose r1 runs to 0.06 between nodes, missed).
 //! - r0 and r1 themselves are ill-conditioned where valleys tie or have flat floors (J
 //!   changes by 1e-6 while r moves by 20 %); L and S are compared with the nearest exact
 //!   minimum within 1e-3 of the best.

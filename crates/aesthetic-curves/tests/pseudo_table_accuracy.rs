@@ -96,19 +96,20 @@ fn table_matches_exact_mode_for_spline_angles() {
     // |θ| <= 1 rad (57°): the range of a spline through reasonably spaced points.
     let st = sample(300, 1.0, 11);
     report("|θ| <= 1", &st);
-    assert!(quantile(&st.j, 0.98) < 1e-4);
-    assert!(quantile(&st.j, 1.0) < 1e-3);
-    // The table's tangent lengths never cost more than 1 % of energy, mostly nothing.
+    // J and L within 1e-4 everywhere here (measured: J max 1e-5, L max 3e-5).
+    assert!(quantile(&st.j, 0.99) < 2e-5);
+    assert!(quantile(&st.j, 1.0) < 1e-4);
+    // The table's tangent lengths cost at most 1e-3 of energy, mostly nothing.
     assert!(quantile(&st.energy_excess, 0.9) < 1e-6);
-    assert!(quantile(&st.energy_excess, 1.0) < 1e-2);
+    assert!(quantile(&st.energy_excess, 1.0) < 1e-3);
     assert!(
         st.energy_excess.iter().all(|x| *x > -1e-9),
         "below the optimum?"
     );
-    assert!(quantile(&st.length, 0.99) < 1e-4);
-    assert!(quantile(&st.length, 1.0) < 1e-3);
-    assert!(quantile(&st.area, 0.95) < 1e-4);
-    assert!(quantile(&st.area, 1.0) < 1e-2);
+    assert!(quantile(&st.length, 0.99) < 1e-5);
+    assert!(quantile(&st.length, 1.0) < 1e-4);
+    assert!(quantile(&st.area, 0.99) < 1e-4);
+    assert!(quantile(&st.area, 1.0) < 1e-3);
 }
 
 #[test]
@@ -118,8 +119,7 @@ fn table_matches_exact_mode_over_the_square() {
     // by a few per cent.
     let st = sample(300, PI, 12);
     report("whole square", &st);
-    assert!(quantile(&st.j, 0.95) < 1e-4);
-    assert!(quantile(&st.j, 0.99) < 1e-3);
+    assert!(quantile(&st.j, 0.99) < 1e-4);
     assert!(quantile(&st.j, 1.0) < 0.1);
     assert!(quantile(&st.energy_excess, 0.9) < 1e-6);
     assert!(quantile(&st.energy_excess, 1.0) < 0.1);
