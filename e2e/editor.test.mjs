@@ -170,6 +170,8 @@ await step('inflection-end segment', async () => {
   await idle();
   assert.ok(Number.isFinite(await num('alpha')));
   assert.match(await text('verdict'), /monotone/);
+  await page.waitForFunction(() => document.body.dataset.regionFor === 'inflection', null, { timeout: 15000 });
+  assert.ok(+(await page.evaluate(() => document.body.dataset.region)) > 0, 'no existence region');
   await dragHandle(2, -30, 30);
   assert.ok(Number.isFinite(await num('arc_length')));
   await shot('04-inflection');

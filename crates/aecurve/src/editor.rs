@@ -173,7 +173,8 @@ fn region_rows(grid: &Grid, cell_ok: &(dyn Fn(usize, usize) -> bool + Sync)) -> 
 }
 
 /// Region request: `{"kind": "lac", "alpha", "control": [p0, p1, p2], "grid"}` (where the
-/// third control point may go) or `{"kind": "bezier", "control_points", "weights"?, "index",
+/// third control point may go), `{"kind": "inflection", "control", "grid"}` (the same for a
+/// segment with an inflection end) or `{"kind": "bezier", "control_points", "weights"?, "index",
 /// "grid"}` (where control point `index` keeps the curvature monotone). The answer: `rows`,
 /// one string per grid row from y0 up, '1' where the property holds, '0' where not.
 fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
@@ -198,6 +199,12 @@ fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
             let c = protocol::points_param(obj, "control", 3, 3)?;
             rows = region_rows(&grid, &|i, k| {
                 aesthetic_curves::lac::LacSegment::new(alpha, [c[0], c[1], cell(i, k)]).is_ok()
+            });
+        }
+        "inflection" => {
+            let c = protocol::points_param(obj, "control", 3, 3)?;
+            rows = region_rows(&grid, &|i, k| {
+                aesthetic_curves::lac::LacInflectionSegment::new([c[0], c[1], cell(i, k)]).is_ok()
             });
         }
         "bezier" => {
@@ -231,7 +238,7 @@ fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
         _ => {
             return Err(protocol::ProtoError::invalid(
                 "kind",
-                "must be \"lac\" or \"bezier\"",
+                "must be \"lac\", \"inflection\" or \"bezier\"",
             ))
         }
     }

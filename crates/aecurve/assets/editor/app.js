@@ -19,7 +19,7 @@ const BOXES = {
 };
 const HINTS = {
   lac: 'Drag the three control points; move the alpha slider. Green: where the third control point may go (a LAC segment exists). Dashed blue: the rational cubic Bézier.',
-  inflection: 'A segment with zero curvature at its first point: drag the three control points. Dashed blue: its rational cubic.',
+  inflection: 'A segment with zero curvature at its first point: drag the three control points. Green: where the third control point may go. Dashed blue: its rational cubic.',
   spline: 'Click to add points, drag them. The pseudo-elastic spline (S2) through them, open or closed.',
   sketch: 'Draw with the mouse or a pen: the stroke becomes a G2 curve of log-aesthetic pieces (colours; circles: joints).',
   bezier: 'Drag the control points; click one to select it. Green: where the selected point keeps the curvature monotone.',
@@ -408,6 +408,9 @@ async function regionCompute() {
   if (state.mode === 'lac') {
     req = { kind: 'lac', alpha: state.lac.alpha, control: state.lac.p, grid: viewGrid(82) };
     req.key = JSON.stringify([state.mode, state.lac.p[0], state.lac.p[1], state.lac.alpha, box]);
+  } else if (state.mode === 'inflection') {
+    req = { kind: 'inflection', control: state.inflection.p, grid: viewGrid(82) };
+    req.key = JSON.stringify([state.mode, state.inflection.p[0], state.inflection.p[1], box]);
   } else if (state.mode === 'bezier') {
     req = { kind: 'bezier', control_points: state.bezier.p, index: state.bezier.selected, grid: viewGrid(82) };
     req.key = JSON.stringify([state.mode, state.bezier.p, state.bezier.selected, box]);
@@ -420,7 +423,7 @@ async function regionCompute() {
   if (!v.ok) return;
   region = { grid: req.grid, rows: v.result.rows, key: req.key, mode: state.mode };
   document.body.dataset.region = String(v.result.rows.join('').split('1').length - 1);
-  document.body.dataset.regionFor = req.kind === 'bezier' ? `bezier:${req.index}` : 'lac';
+  document.body.dataset.regionFor = req.kind === 'bezier' ? `bezier:${req.index}` : req.kind;
   draw();
 }
 
@@ -750,7 +753,7 @@ function setMode(m) {
   const show = (id, on) => $(id).classList.toggle('hidden', !on);
   show('alpha-box', m === 'lac');
   show('closed-box', m === 'spline');
-  show('region-box', m === 'lac' || m === 'bezier');
+  show('region-box', m === 'lac' || m === 'inflection' || m === 'bezier');
   show('add-point', m === 'spline' || m === 'bezier');
   show('remove-point', m === 'spline' || m === 'bezier');
   show('clear', m === 'spline' || m === 'sketch');
