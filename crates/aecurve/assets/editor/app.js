@@ -8,6 +8,8 @@ const view = $('view');
 const ctx = view.getContext('2d');
 const lcgCanvas = $('lcg');
 const lctx = lcgCanvas.getContext('2d');
+const kCanvas = $('kplot');
+const kctx = kCanvas.getContext('2d');
 
 // ---------- state ----------
 const BOXES = {
@@ -429,6 +431,7 @@ async function regionCompute() {
 
 // ---------- drawing ----------
 function draw() {
+  drawCurvature();
   ctx.clearRect(0, 0, view.width, view.height);
   const s = scale();
   if (region && region.mode === state.mode && $('region').checked) {
@@ -522,6 +525,50 @@ function draw() {
     ctx.fillStyle = sel ? '#e8a33d' : '#444';
     ctx.fill();
   });
+}
+
+// Curvature against arc length (chord sums of the drawn samples); joints as grey lines.
+function drawCurvature() {
+  kctx.clearRect(0, 0, kCanvas.width, kCanvas.height);
+  if (!shown || !shown.curve || shown.curve.length < 2) return;
+  const c = shown.curve;
+  const s = [0];
+  for (let i = 1; i < c.length; i++) s.push(s[i - 1] + Math.hypot(c[i][0] - c[i - 1][0], c[i][1] - c[i - 1][1]));
+  const k = shown.kappa;
+  const total = s[s.length - 1] || 1;
+  let lo = Math.min(0, ...k), hi = Math.max(0, ...k);
+  if (hi - lo < 1e-12) hi = lo + 1;
+  const W = kCanvas.width, H = kCanvas.height, m = 22;
+  const px = (x) => m + x / total * (W - 2 * m);
+  const py = (y) => H - m - (y - lo) / (hi - lo) * (H - 2 * m);
+  kctx.strokeStyle = '#ccc';
+  kctx.beginPath();
+  kctx.moveTo(m, py(0));
+  kctx.lineTo(W - m, py(0));
+  kctx.stroke();
+  if (shown.pieces) {
+    let acc = 0;
+    kctx.strokeStyle = '#bbb';
+    kctx.setLineDash([3, 3]);
+    for (const pc of shown.pieces.slice(0, -1)) {
+      for (let i = 1; i < pc.length; i++) acc += Math.hypot(pc[i][0] - pc[i - 1][0], pc[i][1] - pc[i - 1][1]);
+      kctx.beginPath();
+      kctx.moveTo(px(acc), m);
+      kctx.lineTo(px(acc), H - m);
+      kctx.stroke();
+    }
+    kctx.setLineDash([]);
+  }
+  kctx.strokeStyle = '#d62728';
+  kctx.lineWidth = 1.5;
+  kctx.beginPath();
+  k.forEach((v, i) => (i ? kctx.lineTo(px(s[i]), py(v)) : kctx.moveTo(px(s[i]), py(v))));
+  kctx.stroke();
+  kctx.lineWidth = 1;
+  kctx.fillStyle = '#222';
+  kctx.font = '11px sans-serif';
+  kctx.fillText(`κ from ${fmt(Math.min(...k), 3)} to ${fmt(Math.max(...k), 3)}`, m, 14);
+  kctx.fillText('arc length', W / 2 - 25, H - 6);
 }
 
 function drawLcg(fit, note) {
