@@ -525,3 +525,55 @@ impl PseudoTables {
         (val, d / h, dd / (h * h))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn encode_decode_round_trip_and_bad_files() {
+        let n = 4;
+        let nodes: Vec<Vec<Entry>> = (0..n * n)
+            .map(|i| vec![[i as f32, 0.5, 4.0, 1.0, 0.0]; i % 3])
+            .collect();
+        let single = vec![[3.0f32, 0.1]; 8];
+        let bytes = encode(n, &nodes, 8, &single);
+        let t = decode(&bytes).unwrap();
+        assert_eq!((t.size(), t.single_size()), (4, 8));
+        assert_eq!(
+            t.entry_count(),
+            nodes.iter().map(|v| v.len()).sum::<usize>()
+        );
+        assert_eq!(t.node(1, 2), nodes[6].as_slice());
+        // Wrong magic, truncated, trailing bytes: errors, not panics.
+        assert!(decode(b"not a table").is_err());
+        assert!(decode(&bytes[..bytes.len() - 1]).is_err());
+        let mut longer = bytes.clone();
+        longer.push(0);
+        assert!(decode(&longer).is_err());
+    }
+
+    #[test]
+    fn single_angle_interpolant_is_even_and_its_derivatives_are_right() {
+        let t = tables();
+        for &a in &[0.05, 0.3, 1.1, 2.0, 2.9] {
+            let (j, d, dd) = t.single_derivs(a);
+            let (jm, dm, ddm) = t.single_derivs(-a);
+            assert!((j - jm).abs() <= 1e-12 * j, "{a}");
+            assert!((d + dm).abs() <= 1e-9 * d.abs().max(1.0), "{a}");
+            assert!((dd - ddm).abs() <= 1e-6 * dd.abs().max(1.0), "{a}");
+            // Central differences of the interpolant itself.
+            let h = 1e-6;
+            let fd = (t.single_derivs(a + h).0 - t.single_derivs(a - h).0) / (2.0 * h);
+            assert!(
+                (fd - d).abs() <= 1e-5 * d.abs().max(1.0),
+                "{a}: {fd} vs {d}"
+            );
+        }
+        // Near the straight segment J(θ) ≈ 3 θ² (the linear elastica, θ1 = -θ/2).
+        let (j, _, _) = t.single_derivs(0.01);
+        assert!((j / (3.0 * 0.01 * 0.01) - 1.0).abs() < 1e-3, "{j}");
+        let (_, t1) = t.single(0.01).unwrap();
+        assert!((t1 + 0.005).abs() < 1e-4, "{t1}");
+    }
+}
