@@ -121,6 +121,20 @@ pub struct TableSegment {
     pub exact: bool,
 }
 
+impl TableSegment {
+    /// The values of a minimisation ([`TableSegment::exact`] set).
+    fn minimised(o: crate::pseudo_spline::SegmentOptimum) -> Self {
+        TableSegment {
+            j: o.j,
+            r0: o.r0,
+            r1: o.r1,
+            length: o.shape.length,
+            area: o.shape.area,
+            exact: true,
+        }
+    }
+}
+
 /// The quadratic scale of J near the straight segment (see the module docs).
 pub fn q2(theta0: f64, theta1: f64) -> f64 {
     2.0 * (1.0 - theta0.cos()) + 2.0 * (1.0 - theta1.cos()) + theta0.sin() * theta1.sin()
@@ -347,29 +361,14 @@ impl PseudoTables {
         let Some((_, v, cubic)) = best else {
             // No valley can be followed through this cell (next to the singular points
             // (π, 0), (0, π), (π, π), where J grows without bound): minimise.
-            let o = crate::pseudo_spline::optimal_segment(a, b)?;
-            return Ok(TableSegment {
-                j: o.j,
-                r0: o.r0,
-                r1: o.r1,
-                length: o.shape.length,
-                area: o.shape.area,
-                exact: true,
-            });
+            return crate::pseudo_spline::optimal_segment(a, b).map(TableSegment::minimised);
         };
         if !cubic {
             // The valley ends inside the stencil: bilinear values are rough there. Polish
             // from them with a local minimisation (rare: a millisecond).
             if let Some(o) = crate::pseudo_spline::local_minimum(a, b, v[0].exp(), v[1].exp()) {
                 if o.j <= 1.01 * v[2] * q {
-                    return Ok(TableSegment {
-                        j: o.j,
-                        r0: o.r0,
-                        r1: o.r1,
-                        length: o.shape.length,
-                        area: o.shape.area,
-                        exact: true,
-                    });
+                    return Ok(TableSegment::minimised(o));
                 }
             }
         }
