@@ -280,7 +280,7 @@ await step('typical interactions take under 16 ms of server time', async () => {
   writeFileSync(`${out}server-times.json`, JSON.stringify(summary, null, 1));
   console.log('     server time per request kind (ms):');
   for (const [k, v] of Object.entries(summary)) console.log(`       ${k}: n ${v.n}, median ${v.median}, 90 % ${v.p90}, max ${v.max}`);
-  for (const op of ['lac.segment', 'lac.rational_approx', 'lcg.estimate', 'spline.pseudo_elastic', 'bezier.curvature_monotone']) {
+  for (const op of ['lac.segment', 'lac.rational_approx', 'lcg.estimate', 'spline.pseudo_elastic', 'bezier.curvature_monotone', 'region.lac', 'region.inflection', 'region.bezier']) {
     assert.ok(summary[op] !== undefined, `${op} was not used`);
     assert.ok(summary[op].median < 16, `${op}: median ${summary[op].median} ms`);
   }

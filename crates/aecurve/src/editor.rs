@@ -14,7 +14,7 @@
 
 use crate::protocol;
 use aesthetic_curves::nurbs::Nurbs;
-use aesthetic_curves::Point;
+use aesthetic_curves::region::{self, Grid};
 use axum::body::Bytes;
 use axum::extract::DefaultBodyLimit;
 use axum::http::{header, HeaderValue, StatusCode};
@@ -101,16 +101,7 @@ async fn api(body: Bytes) -> Response {
     timed_json(v, started)
 }
 
-/// A grid over a box: `{"x0", "y0", "x1", "y1", "nx", "ny"}`; cell centres.
-struct Grid {
-    x0: f64,
-    y0: f64,
-    x1: f64,
-    y1: f64,
-    nx: usize,
-    ny: usize,
-}
-
+/// A grid over a box: `{"x0", "y0", "x1", "y1", "nx", "ny"}`; cells judged at their centres.
 fn grid_param(v: &Value) -> Result<Grid, protocol::ProtoError> {
     let num = |k: &str| -> Result<f64, protocol::ProtoError> {
         match v.get(k).and_then(Value::as_f64) {
@@ -130,85 +121,53 @@ fn grid_param(v: &Value) -> Result<Grid, protocol::ProtoError> {
             )),
         }
     };
-    let g = Grid {
-        x0: num("x0")?,
-        y0: num("y0")?,
-        x1: num("x1")?,
-        y1: num("y1")?,
-        nx: count("nx")?,
-        ny: count("ny")?,
-    };
-    if !(g.x1 > g.x0 && g.y1 > g.y0) {
-        return Err(protocol::ProtoError::invalid(
-            "grid",
-            "needs x1 > x0 and y1 > y0",
-        ));
-    }
-    Ok(g)
+    Ok(Grid::new(
+        num("x0")?,
+        num("y0")?,
+        num("x1")?,
+        num("y1")?,
+        count("nx")?,
+        count("ny")?,
+    )?)
 }
 
-/// Rows of a region, computed on half the cores (the other half stays free for the
-/// interactive requests): `cell_ok(i, k)` for row i, column k.
-fn region_rows(grid: &Grid, cell_ok: &(dyn Fn(usize, usize) -> bool + Sync)) -> Vec<String> {
-    let threads = (std::thread::available_parallelism()
+/// Threads for a region: half the cores, so the other half stays free for the interactive
+/// requests.
+fn region_threads() -> usize {
+    (std::thread::available_parallelism()
         .map(|n| n.get())
         .unwrap_or(2)
         / 2)
-    .clamp(1, grid.ny);
-    let chunk = grid.ny.div_ceil(threads.max(1));
-    let mut rows = vec![String::new(); grid.ny];
-    std::thread::scope(|s| {
-        for (c, part) in rows.chunks_mut(chunk).enumerate() {
-            s.spawn(move || {
-                for (j, row) in part.iter_mut().enumerate() {
-                    let i = c * chunk + j;
-                    *row = (0..grid.nx)
-                        .map(|k| if cell_ok(i, k) { '1' } else { '0' })
-                        .collect();
-                }
-            });
-        }
-    });
-    rows
+    .max(1)
 }
 
 /// Region request: `{"kind": "lac", "alpha", "control": [p0, p1, p2], "grid"}` (where the
 /// third control point may go), `{"kind": "inflection", "control", "grid"}` (the same for a
 /// segment with an inflection end) or `{"kind": "bezier", "control_points", "weights"?, "index",
 /// "grid"}` (where control point `index` keeps the curvature monotone). The answer: `rows`,
-/// one string per grid row from y0 up, '1' where the property holds, '0' where not.
+/// one string per grid row from y0 up, '1' where the property holds, '0' where not, and
+/// `judged`, the number of cells actually tested (see [`aesthetic_curves::region`]).
 fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
     let obj = v
         .as_object()
         .ok_or_else(|| protocol::ProtoError::invalid("request", "must be a JSON object"))?;
     let grid = grid_param(obj.get("grid").unwrap_or(&Value::Null))?;
     let kind = obj.get("kind").and_then(Value::as_str).unwrap_or("");
-    let cell = |i: usize, k: usize| {
-        Point::new(
-            grid.x0 + (k as f64 + 0.5) * (grid.x1 - grid.x0) / grid.nx as f64,
-            grid.y0 + (i as f64 + 0.5) * (grid.y1 - grid.y0) / grid.ny as f64,
-        )
-    };
-    let rows;
-    match kind {
+    let threads = region_threads();
+    let r = match kind {
         "lac" => {
             let alpha = match obj.get("alpha").and_then(Value::as_f64) {
                 Some(a) if a.is_finite() => a,
                 _ => return Err(protocol::ProtoError::invalid("alpha", "must be a number")),
             };
             let c = protocol::points_param(obj, "control", 3, 3)?;
-            rows = region_rows(&grid, &|i, k| {
-                aesthetic_curves::lac::LacSegment::new(alpha, [c[0], c[1], cell(i, k)]).is_ok()
-            });
+            region::lac_existence(alpha, c[0], c[1], grid, threads)?
         }
         "inflection" => {
             let c = protocol::points_param(obj, "control", 3, 3)?;
-            rows = region_rows(&grid, &|i, k| {
-                aesthetic_curves::lac::LacInflectionSegment::new([c[0], c[1], cell(i, k)]).is_ok()
-            });
+            region::inflection_existence(c[0], c[1], grid, threads)?
         }
         "bezier" => {
-            use aesthetic_curves::monotone::CurvatureMonotone;
             let pts = protocol::points_param(obj, "control_points", 3, 21)?;
             let weights = match obj.get("weights") {
                 None | Some(Value::Null) => None,
@@ -221,19 +180,7 @@ fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
                 .ok_or_else(|| {
                     protocol::ProtoError::invalid("index", "must name a control point")
                 })? as usize;
-            rows = region_rows(&grid, &|i, k| {
-                let mut p = pts.clone();
-                p[index] = cell(i, k);
-                let verdict = match &weights {
-                    None => aesthetic_curves::Bezier::new(p)
-                        .and_then(|b| b.curvature_monotone())
-                        .map(|r| r.monotone),
-                    Some(w) => aesthetic_curves::RationalBezier::new(p, w.clone())
-                        .and_then(|b| b.curvature_monotone())
-                        .map(|r| r.monotone),
-                };
-                verdict.unwrap_or(false)
-            });
+            region::bezier_monotone(&pts, weights.as_deref(), index, grid, 4, threads)?
         }
         _ => {
             return Err(protocol::ProtoError::invalid(
@@ -241,8 +188,8 @@ fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
                 "must be \"lac\", \"inflection\" or \"bezier\"",
             ))
         }
-    }
-    Ok(json!({"ok": true, "result": {"rows": rows}}))
+    };
+    Ok(json!({"ok": true, "result": {"rows": r.rows(), "judged": r.judged()}}))
 }
 
 async fn region(body: Bytes) -> Response {

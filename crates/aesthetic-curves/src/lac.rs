@@ -990,6 +990,40 @@ impl LacSegment {
         illinois(f_at, (0.0, half - phi), (hi, fhi), 1e-15 * hi, 400)
     }
 
+    /// The turning angle θ_d and the larger base angle φ (the one at the high-curvature end)
+    /// of a control triangle [start, tangent intersection, end]: a segment of shape α exists
+    /// in it iff θ_d/2 <= φ < [`LacSegment::theta_lim`]`(α, θ_d)`. Errors for degenerate
+    /// triangles, as in `new`.
+    pub fn triangle_angles(control: [Point; 3]) -> Result<(f64, f64)> {
+        let t = triangle_angles(&control)?;
+        Ok((t.theta_d, t.theta_e.max(t.theta_f)))
+    }
+
+    /// Whether a segment of shape `alpha` exists in the triangle `control` = [start, tangent
+    /// intersection, end], without building it: the base angle at the high-curvature end
+    /// must be below θ_lim(α, θ_d) (always true for 0 <= α <= 1). One integral for α < 0 or
+    /// α > 1, none otherwise; agrees with [`LacSegment::new`] succeeding, except that a
+    /// triangle whose segment is too extreme to evaluate in f64 counts as existing here.
+    /// Degenerate triangles and a bad `alpha` are errors, as in `new`.
+    pub fn exists(alpha: f64, control: [Point; 3]) -> Result<bool> {
+        if !alpha.is_finite() || alpha.abs() > MAX_ABS_ALPHA {
+            return Err(Error::invalid("alpha", "must be a finite number"));
+        }
+        let TriangleAngles {
+            theta_d,
+            theta_e,
+            theta_f,
+        } = triangle_angles(&control)?;
+        if (0.0..=1.0).contains(&alpha) {
+            return Ok(true);
+        }
+        let phi = theta_e.max(theta_f);
+        if (phi - 0.5 * theta_d).abs() <= 1e-15 * theta_d {
+            return Ok(true);
+        }
+        Ok(phi < Self::theta_lim(alpha, theta_d)?)
+    }
+
     /// The segment of shape `alpha` in the triangle `control` = [start, tangent
     /// intersection, end].
     pub fn new(alpha: f64, control: [Point; 3]) -> Result<Self> {
@@ -1278,6 +1312,18 @@ impl LacInflectionSegment {
         Self::base_angle_r(alpha / (alpha - 1.0), theta_d)
     }
 
+    /// Whether an inflection-end segment exists in the triangle `control` (control[0] =
+    /// inflection end): the base angle there must lie in (0, θ_d/2). No integral; agrees
+    /// with [`LacInflectionSegment::new`] succeeding. Degenerate triangles are errors.
+    pub fn exists(control: [Point; 3]) -> Result<bool> {
+        let TriangleAngles {
+            theta_d,
+            theta_e: phi,
+            ..
+        } = triangle_angles(&control)?;
+        Ok(phi > 0.0 && phi < 0.5 * theta_d)
+    }
+
     /// The segment in the triangle `control` (control[0] = inflection end).
     pub fn new(control: [Point; 3]) -> Result<Self> {
         let TriangleAngles {
@@ -1547,6 +1593,51 @@ mod tests {
             LacSegment::new(-1.0, line),
             Err(Error::Degenerate(_))
         ));
+    }
+
+    #[test]
+    fn exists_agrees_with_new_on_a_grid_of_third_points() {
+        // Third control points on a grid around P0 = (0, 0), P1 = (1, 0): `exists` must agree
+        // with `new` succeeding (the region the editor shades), for every kind of alpha.
+        let (p0, p1) = (Point::new(0.0, 0.0), Point::new(1.0, 0.0));
+        for alpha in [-2.0, -1.0, -0.3, 0.0, 0.5, 1.0, 1.5, 3.0] {
+            let (mut inside, mut outside) = (0, 0);
+            for i in 0..23 {
+                for k in 0..23 {
+                    let p2 = Point::new(-0.9 + 0.13 * k as f64, -1.4 + 0.127 * i as f64);
+                    let c = [p0, p1, p2];
+                    match LacSegment::new(alpha, c) {
+                        Err(Error::Degenerate(_)) => {
+                            assert!(matches!(
+                                LacSegment::exists(alpha, c),
+                                Err(Error::Degenerate(_))
+                            ))
+                        }
+                        r => {
+                            let e = LacSegment::exists(alpha, c).unwrap();
+                            // Too extreme for f64 (Λ at Λ_max to rounding) still exists.
+                            let built = r.is_ok() || matches!(r, Err(Error::NoConvergence(_)));
+                            assert_eq!(e, built, "alpha {alpha}, p2 {p2:?}: {r:?}");
+                            if e {
+                                inside += 1
+                            } else {
+                                outside += 1
+                            }
+                        }
+                    }
+                    let ri = LacInflectionSegment::new(c);
+                    match LacInflectionSegment::exists(c) {
+                        Ok(e) => assert_eq!(e, ri.is_ok(), "inflection, p2 {p2:?}: {ri:?}"),
+                        Err(_) => assert!(matches!(ri, Err(Error::Degenerate(_)))),
+                    }
+                }
+            }
+            assert!(inside > 50, "alpha {alpha}: {inside} inside");
+            if !(0.0..=1.0).contains(&alpha) {
+                assert!(outside > 20, "alpha {alpha}: only {outside} outside");
+            }
+        }
+        assert!(LacSegment::exists(f64::NAN, [p0, p1, Point::new(2.0, 1.0)]).is_err());
     }
 
     #[test]

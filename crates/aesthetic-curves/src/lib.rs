@@ -16,6 +16,8 @@
 //! - [`lcg`]: the logarithmic curvature graph and alpha estimation.
 //! - [`nurbs`]: rational B-splines, the exchange form of CAD systems.
 //! - [`quadrature`]: adaptive Gauss–Kronrod quadrature.
+//! - [`region`]: where a control point may go and keep a property (LAC existence,
+//!   curvature monotonicity), on a grid: the shaded regions of an editor.
 //! - [`sketch`]: pen input to a G2 curve of log-aesthetic pieces (as rational cubics).
 //! - [`monotone`]: the exact curvature-monotonicity test (Bernstein form of dkappa/ds plus
 //!   subdivision) and the sampling test.
@@ -38,6 +40,7 @@ pub mod nurbs;
 pub mod pseudo_spline;
 pub mod pseudo_table;
 pub mod quadrature;
+pub mod region;
 pub mod roots;
 pub mod samples;
 pub mod sketch;

@@ -393,25 +393,28 @@ async function updateBezier() {
   await lcgOf(out.curve);
 }
 
-// Regions are computed once the editing pauses (a quarter second without changes), and only
-// when what they depend on changed: they take tens of milliseconds and must not slow down a
-// drag.
+// Regions follow the editing: after every answered update, when what they depend on changed
+// (the LAC and inflection regions take about a millisecond, the Bezier one about ten), with at
+// most one region request in flight; the latest state wins.
 let regionTimer = null;
 let regionBusy = false;
+let regionAgain = false;
 function regionUpdate() {
   clearTimeout(regionTimer);
-  regionTimer = setTimeout(() => {
-    if (!busy && !dirty && !drag) regionCompute();
-  }, 250);
+  regionTimer = setTimeout(regionCompute, 0);
 }
 async function regionCompute() {
   if (!$('region').checked) return;
+  if (regionBusy) {
+    regionAgain = true;
+    return;
+  }
   let req;
   if (state.mode === 'lac') {
-    req = { kind: 'lac', alpha: state.lac.alpha, control: state.lac.p, grid: viewGrid(82) };
+    req = { kind: 'lac', alpha: state.lac.alpha, control: state.lac.p, grid: viewGrid(128) };
     req.key = JSON.stringify([state.mode, state.lac.p[0], state.lac.p[1], state.lac.alpha, box]);
   } else if (state.mode === 'inflection') {
-    req = { kind: 'inflection', control: state.inflection.p, grid: viewGrid(82) };
+    req = { kind: 'inflection', control: state.inflection.p, grid: viewGrid(128) };
     req.key = JSON.stringify([state.mode, state.inflection.p[0], state.inflection.p[1], box]);
   } else if (state.mode === 'bezier') {
     req = { kind: 'bezier', control_points: state.bezier.p, index: state.bezier.selected, grid: viewGrid(82) };
@@ -421,7 +424,16 @@ async function regionCompute() {
   }
   if (region && region.key === req.key) return;
   regionBusy = true;
-  const v = await (await post('/api/region', req)).json().finally(() => { regionBusy = false; });
+  let v;
+  try {
+    v = await (await post('/api/region', req)).json();
+  } finally {
+    regionBusy = false;
+    if (regionAgain) {
+      regionAgain = false;
+      regionUpdate();
+    }
+  }
   if (!v.ok) return;
   region = { grid: req.grid, rows: v.result.rows, key: req.key, mode: state.mode };
   document.body.dataset.region = String(v.result.rows.join('').split('1').length - 1);
