@@ -4,13 +4,21 @@
 //! J(r0, r1) within a factor 2 of the best (`segment_minima`), and J(θ) = min over θ1
 //! (`single_angle`).
 //!
+//! Then every cell that lookups use (the canonical wedge θ0 >= |θ1|, see
+//! `PseudoTables::segment`) is checked: at five points inside it the interpolated J, L and S
+//! are compared with the exact mode, and the cell is flagged where they are off by more than
+//! `CHECK_TOLERANCE` (lookups in flagged cells minimise instead).
+//!
 //! `cargo run --release -p aecurve --example gen_pseudo_tables -- [N] [M]`
-//! (defaults 288 and 2048: 1.25° and 0.18° steps). About 3 minutes on two cores.
+//! (defaults 288 and 2048: 1.25° and 0.18° steps). About 6 minutes on two cores.
+//! `... -- --check-only` redoes only the check of the shipped table.
 
 use aesthetic_curves::pseudo_spline::{
     local_minimum, segment_minima, single_angle, SegmentOptimum,
 };
-use aesthetic_curves::pseudo_table::{encode, q1, q2, Entry, TRACK};
+use aesthetic_curves::pseudo_table::{
+    decode, encode, q1, q2, Entry, PseudoTables, CHECK_TOLERANCE, TRACK,
+};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -124,11 +132,101 @@ fn parallel<T: Send + Clone>(
     out.into_inner().expect("lock")
 }
 
-fn main() {
-    let args: Vec<usize> = std::env::args()
-        .skip(1)
-        .map(|a| a.parse().expect("N M"))
+/// Check every cell of the canonical wedge against the exact mode; returns the flags (module
+/// docs) and prints what it found.
+fn check_cells(t: &PseudoTables) -> Vec<bool> {
+    let n = t.size();
+    let plain = t.without_flags();
+    let h = 2.0 * PI / n as f64;
+    // Cells meeting the wedge θ0 >= |θ1|, θ0 > 0 (lookups map every query into it).
+    let cells: Vec<usize> = (0..n * n)
+        .filter(|&c| {
+            let (a0, b0) = (-PI + (c / n) as f64 * h, -PI + (c % n) as f64 * h);
+            a0 + h > 0.0 && a0 + h >= b0.abs().min((b0 + h).abs())
+        })
         .collect();
+    let worst = parallel(cells.len(), 0.0f64, "check cells", |ci| {
+        let c = cells[ci];
+        let (a0, b0) = (-PI + (c / n) as f64 * h, -PI + (c % n) as f64 * h);
+        let mut worst: f64 = 0.0;
+        for (u, v) in [(0.5, 0.5), (0.2, 0.2), (0.8, 0.2), (0.2, 0.8), (0.8, 0.8)] {
+            let (a, b) = (a0 + u * h, b0 + v * h);
+            if !(a > 0.0 && a >= b.abs() && a <= PI) {
+                continue;
+            }
+            let Ok(all) = segment_minima(a, b) else {
+                continue;
+            };
+            let Ok(tb) = plain.segment(a, b) else {
+                continue;
+            };
+            let e = all[0];
+            let near: Vec<_> = all.iter().filter(|m| m.j <= e.j * (1.0 + 1e-3)).collect();
+            let dl = near
+                .iter()
+                .map(|m| (tb.length - m.shape.length).abs() / m.shape.length)
+                .fold(f64::MAX, f64::min);
+            let ds = near
+                .iter()
+                .map(|m| (tb.area - m.shape.area).abs() / m.shape.area.abs().max(1e-2))
+                .fold(f64::MAX, f64::min);
+            let dj = (tb.j - e.j).abs() / e.j;
+            // S counts a tenth: S-shaped segments have S near 0 and it is judged relative to
+            // max(|S|, 0.01), so a full weight would flag cells (and slow common splines)
+            // for area errors of 1e-6 of the chord squared.
+            worst = worst.max(dj).max(dl).max(0.1 * ds);
+        }
+        worst
+    });
+    for tol in [1e-5, 2e-5, 5e-5, 1e-4, 1e-3] {
+        let over = worst.iter().filter(|w| w.is_nan() || **w > tol).count();
+        println!("cells off by more than {tol:.0e}: {over}");
+    }
+    if let Ok(dump) = std::env::var("PSEUDO_CHECK_DUMP") {
+        let text: String = cells
+            .iter()
+            .zip(&worst)
+            .map(|(c, w)| format!("{c} {w:e}\n"))
+            .collect();
+        std::fs::write(dump, text).expect("write the dump");
+    }
+    let mut flags = vec![false; n * n];
+    for (ci, w) in worst.iter().enumerate() {
+        // Flagged: off by more than the tolerance (a NaN counts as off).
+        flags[cells[ci]] = w.is_nan() || *w > CHECK_TOLERANCE;
+    }
+    let count = flags.iter().filter(|f| **f).count();
+    let inner = cells
+        .iter()
+        .filter(|&&c| flags[c])
+        .filter(|&&c| {
+            let (a0, b0) = (-PI + (c / n) as f64 * h, -PI + (c % n) as f64 * h);
+            a0.abs()
+                .max(b0.abs())
+                .max((a0 + h).abs())
+                .max((b0 + h).abs())
+                <= 1.0
+        })
+        .count();
+    println!(
+        "checked {} cells: {count} flagged ({inner} of them within |θ| <= 1 rad)",
+        cells.len()
+    );
+    flags
+}
+
+fn main() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../aesthetic-curves/data/pseudo_tables.bin");
+    let raw: Vec<String> = std::env::args().skip(1).collect();
+    if raw.iter().any(|a| a == "--check-only") {
+        let old = decode(&std::fs::read(&path).expect("read the table")).expect("a table");
+        let flags = check_cells(&old);
+        std::fs::write(&path, old.encode_with_flags(&flags)).expect("write the table");
+        println!("wrote {}", path.display());
+        return;
+    }
+    let args: Vec<usize> = raw.iter().map(|a| a.parse().expect("N M")).collect();
     let n = args.first().copied().unwrap_or(288);
     let m = args.get(1).copied().unwrap_or(2048);
     let h = 2.0 * PI / n as f64;
@@ -172,9 +270,10 @@ fn main() {
         let u = upper[up.unsigned_abs()];
         *s = if up >= 0 { u } else { [u[0], -u[1]] };
     }
-    let bytes = encode(n, &entries, m, &single);
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../aesthetic-curves/data/pseudo_tables.bin");
+    let unchecked = decode(&encode(n, &entries, m, &single, &vec![false; n * n]))
+        .expect("the table just encoded");
+    let flags = check_cells(&unchecked);
+    let bytes = encode(n, &entries, m, &single, &flags);
     std::fs::write(&path, &bytes).expect("write the table");
     let total: usize = nodes.iter().map(|v| v.len()).sum();
     let multi = nodes.iter().filter(|v| v.len() > 1).count();

@@ -106,8 +106,8 @@ enum Cmd {
         #[arg(long)]
         json: bool,
         /// Write the segment: .png (picture with its comb); .svg (as cubic Béziers, with its
-        /// comb), .dxf/.step/.iges/.json as rational cubics (within 1e-7 of its size; one cubic for an inflection end, its
-        /// distance reported); repeatable.
+        /// comb), .dxf/.step/.iges/.json as rational cubics within 1e-7 of its size (G2,
+        /// distance reported; also for an inflection end); repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
     },
@@ -709,23 +709,36 @@ fn lac_inflection(control: &str, samples: usize, json: bool, output: &[PathBuf])
     }
     let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha);
     let samples = plot::polyline_samples(&points, &kappa);
-    // CAD formats: the segment's rational cubic (κ = 0 at the inflection end, G2 at the other,
-    // curvature proven monotone), with its distance from the segment reported.
+    // CAD formats: rational cubics within 1e-7 of the size, as for a LAC segment: next to the
+    // inflection one cubic with zero curvature there, then the rest (an ordinary LAC
+    // segment); G2 at the joints, every piece's curvature proven monotone.
     let cad = || -> Result<aesthetic_curves::nurbs::Nurbs> {
-        let fit = aesthetic_curves::approx::fit_inflection_cubic(
+        let size = pts
+            .iter()
+            .map(|p| (*p - pts[0]).hypot())
+            .fold(0.0, f64::max);
+        let sp = aesthetic_curves::approx::fit_inflection_spline(
             &seg,
+            1e-7 * size,
+            64,
             &aesthetic_curves::approx::ApproxOptions::default(),
         )?;
         eprintln!(
-            "as one rational cubic, max distance {:.2e} from the segment, curvature {}",
-            fit.max_error,
-            if fit.monotone {
-                "monotone (proven)"
+            "as {} rational cubic(s), max distance {:.2e} from the segment, curvature {}",
+            sp.pieces.len(),
+            sp.max_error,
+            if sp.pieces.iter().all(|p| p.monotone) {
+                "monotone in every piece (proven)"
             } else {
-                "NOT monotone"
+                "NOT monotone in every piece"
             }
         );
-        Ok(aesthetic_curves::nurbs::Nurbs::from_beziers(&[fit.curve])?)
+        Ok(aesthetic_curves::nurbs::Nurbs::new(
+            sp.degree,
+            sp.knots,
+            sp.control_points,
+            sp.weights,
+        )?)
     };
     write_segment_outputs(output, &samples, &pts, &caption, &cad)
 }

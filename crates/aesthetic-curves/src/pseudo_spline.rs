@@ -352,12 +352,18 @@ fn polish(
     let r = nelder_mead(&g, start, 0.05, 1e-8);
     let f = |u: f64, v: f64| j_of(a, b, u, v);
     let exact = f(r.0 .0, r.0 .1);
-    if !exact.is_finite() || (exact - r.1).abs() > 1e-3 * exact {
+    if !exact.is_finite() {
         return None;
     }
     let r = if (exact - r.1).abs() <= 1e-11 * exact.abs() {
         (r.0, exact)
+    } else if (exact - r.1).abs() <= 1e-3 * exact {
+        nelder_mead(&f, r.0, 0.02, 1e-8)
     } else {
+        // The fixed rule is far off (a tight loop or a valley it invented next to a cusp):
+        // search on the adaptive quadrature itself, which climbs out of invented valleys
+        // (the minimum found must be one of J, or it leaves the box below).
+        let r = nelder_mead(&f, r.0, 0.1, 1e-8);
         nelder_mead(&f, r.0, 0.02, 1e-8)
     };
     let inside = r.0 .0 > -4.5 && r.0 .1 > -4.5 && r.0 .0 < 3.5 && r.0 .1 < 3.5;

@@ -23,9 +23,13 @@
 //! 3. else follows each valley found at the cell's corners through the stencil (by
 //!    [`valley_distance`]), interpolates each (cubic, or bilinear where the valley ends inside
 //!    the stencil) and returns the lowest; the kink where two valleys tie is kept;
-//! 4. where the best valley is only bilinear (it ends inside the stencil) it polishes that
-//!    estimate by a local minimisation, and where no valley can be followed (within a few
-//!    steps of the singular points) it minimises from scratch ([`TableSegment::exact`]).
+//! 4. where the best valley is only bilinear (it ends inside the stencil), or where no valley
+//!    can be followed (within a few steps of the singular points), it minimises from scratch
+//!    ([`TableSegment::exact`]);
+//! 5. **checked cells**: the generator compared steps 1-4 with the exact mode at five points
+//!    inside every cell that lookups use, and flagged the cells where J, L or S was off by
+//!    more than [`CHECK_TOLERANCE`] = 1e-4 (about 0.6 % of them: along the reversed-tangent
+//!    corners and where flat valleys nearly tie); lookups in a flagged cell minimise too.
 //!
 //! J vanishes quadratically at θ0 = θ1 = 0; it is stored as J / q with
 //! `q = 2(1 - cos θ0) + 2(1 - cos θ1) + sin θ0 sin θ1` (≈ θ0² + θ0 θ1 + θ1², positive except
@@ -78,8 +82,12 @@ pub fn valley_distance(a: &Entry, b: &Entry) -> f32 {
 /// polished by a local minimisation.
 const STEEP: f32 = 1.5;
 
+/// Tolerance of the generator's check of each cell (module docs): a cell where the
+/// interpolated J or L is off by more than this (relative) at a check point is flagged.
+pub const CHECK_TOLERANCE: f64 = 1e-4;
+
 /// File magic of the table format.
-const MAGIC: &[u8; 8] = b"AEPSTB01";
+const MAGIC: &[u8; 8] = b"AEPSTB02";
 
 /// One local minimum at a node: (ln r0, ln r1, J / q, L, S).
 pub type Entry = [f32; 5];
@@ -100,6 +108,9 @@ pub struct PseudoTables {
     single_j: Vec<f64>,
     /// dJ/dθ at the single-angle nodes (fourth-order central differences).
     single_dj: Vec<f64>,
+    /// One bit per cell (cell (i, k) spans nodes i..i+1, k..k+1; bit i n + k): set where the
+    /// generator's check found the interpolation off (see [`PseudoTables::flagged`]).
+    flags: Vec<u8>,
 }
 
 /// Values of the optimal segment read from the table.
@@ -146,8 +157,16 @@ pub fn q1(theta: f64) -> f64 {
 }
 
 /// Encodes tables (used by the generator). `nodes[i * n + k]` holds the local minima at
-/// (θ0, θ1) = (-π + i h, -π + k h); `single[k]` the single-angle values at -π + k 2π/m.
-pub fn encode(n: usize, nodes: &[Vec<Entry>], m: usize, single: &[[f32; 2]]) -> Vec<u8> {
+/// (θ0, θ1) = (-π + i h, -π + k h); `single[k]` the single-angle values at -π + k 2π/m;
+/// `flags[i * n + k]` marks cell (i, k) as checked and found off (minimised at lookup).
+pub fn encode(
+    n: usize,
+    nodes: &[Vec<Entry>],
+    m: usize,
+    single: &[[f32; 2]],
+    flags: &[bool],
+) -> Vec<u8> {
+    assert_eq!(flags.len(), n * n, "one flag per cell");
     let mut out = Vec::new();
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&(n as u32).to_le_bytes());
@@ -167,6 +186,13 @@ pub fn encode(n: usize, nodes: &[Vec<Entry>], m: usize, single: &[[f32; 2]]) -> 
             out.extend_from_slice(&x.to_le_bytes());
         }
     }
+    let mut bits = vec![0u8; (n * n).div_ceil(8)];
+    for (c, f) in flags.iter().enumerate() {
+        if *f {
+            bits[c / 8] |= 1 << (c % 8);
+        }
+    }
+    out.extend_from_slice(&bits);
     out
 }
 
@@ -190,7 +216,7 @@ pub fn decode(bytes: &[u8]) -> Result<PseudoTables> {
     }
     start.push(total);
     let mut o = 16 + n * n;
-    let need = o + total as usize * 20 + m * 8;
+    let need = o + total as usize * 20 + m * 8 + (n * n).div_ceil(8);
     if bytes.len() != need {
         return Err(bad("wrong length"));
     }
@@ -205,6 +231,7 @@ pub fn decode(bytes: &[u8]) -> Result<PseudoTables> {
         single.push([f(o), f(o + 4)]);
         o += 8;
     }
+    let flags = bytes[o..].to_vec();
     let hm = 2.0 * PI / m as f64;
     let single_j = single
         .iter()
@@ -223,6 +250,7 @@ pub fn decode(bytes: &[u8]) -> Result<PseudoTables> {
         single,
         single_j,
         single_dj,
+        flags,
     })
 }
 
@@ -259,6 +287,51 @@ impl PseudoTables {
     /// Total number of stored local minima.
     pub fn entry_count(&self) -> usize {
         self.entries.len()
+    }
+
+    /// Whether cell (i, k) (between nodes i, i+1 of θ0 and k, k+1 of θ1, indices taken
+    /// modulo the size) is flagged: the generator compared the interpolated values with the
+    /// exact mode at points inside it and found J or L off by more than [`CHECK_TOLERANCE`]
+    /// (relative; S relative to max(|S|, 0.01) by ten times that), so lookups there minimise
+    /// ([`TableSegment::exact`]).
+    pub fn flagged(&self, i: isize, k: isize) -> bool {
+        let n = self.n as isize;
+        let c = (i.rem_euclid(n) * n + k.rem_euclid(n)) as usize;
+        self.flags[c / 8] & (1 << (c % 8)) != 0
+    }
+
+    /// The tables encoded again ([`encode`]) with new cell flags.
+    pub fn encode_with_flags(&self, flags: &[bool]) -> Vec<u8> {
+        let nodes: Vec<Vec<Entry>> = (0..self.n * self.n)
+            .map(|c| self.entries[self.start[c] as usize..self.start[c + 1] as usize].to_vec())
+            .collect();
+        encode(self.n, &nodes, self.m, &self.single, flags)
+    }
+
+    /// The stored local minima at node (i, k) (indices modulo the size), best first.
+    pub fn node_entries(&self, i: isize, k: isize) -> &[Entry] {
+        self.node(i, k)
+    }
+
+    /// Number of flagged cells.
+    pub fn flagged_count(&self) -> usize {
+        self.flags.iter().map(|b| b.count_ones() as usize).sum()
+    }
+
+    /// The same tables with every flag cleared (the generator checks the plain
+    /// interpolation with it).
+    pub fn without_flags(&self) -> PseudoTables {
+        let mut t = self.clone();
+        t.flags.iter_mut().for_each(|b| *b = 0);
+        t
+    }
+
+    /// The cell of a query: node indices (i, k) of its lower corner and the offsets in it.
+    pub fn cell_of(&self, theta0: f64, theta1: f64) -> (isize, isize, f64, f64) {
+        let h = 2.0 * PI / self.n as f64;
+        let (x, y) = ((theta0 + PI) / h, (theta1 + PI) / h);
+        let (i, k) = (x.floor(), y.floor());
+        (i as isize, k as isize, x - i, y - k)
     }
 
     fn node(&self, i: isize, k: isize) -> &[Entry] {
@@ -322,11 +395,11 @@ impl PseudoTables {
                 exact: false,
             });
         }
-        let h = 2.0 * PI / self.n as f64;
-        let (x, y) = ((a + PI) / h, (b + PI) / h);
-        let (i, k) = (x.floor(), y.floor());
-        let (tx, ty) = (x - i, y - k);
-        let (i, k) = (i as isize, k as isize);
+        let (i, k, tx, ty) = self.cell_of(a, b);
+        if self.flagged(i, k) {
+            // The generator found the interpolation off in this cell: minimise.
+            return crate::pseudo_spline::optimal_segment(a, b).map(TableSegment::minimised);
+        }
         let (wx, wy) = (lagrange4(tx), lagrange4(ty));
         // Fast path: one valley holds the optimum at all 16 nodes of the stencil: interpolate
         // it.
@@ -364,13 +437,10 @@ impl PseudoTables {
             return crate::pseudo_spline::optimal_segment(a, b).map(TableSegment::minimised);
         };
         if !cubic {
-            // The valley ends inside the stencil: bilinear values are rough there. Polish
-            // from them with a local minimisation (rare: a millisecond).
-            if let Some(o) = crate::pseudo_spline::local_minimum(a, b, v[0].exp(), v[1].exp()) {
-                if o.j <= 1.01 * v[2] * q {
-                    return Ok(TableSegment::minimised(o));
-                }
-            }
+            // The valley ends inside the stencil: bilinear values are rough there, and another
+            // valley may appear between the nodes (a local polish from the table's estimate
+            // was seen to stay 18 % above the optimum). Minimise from scratch (rare).
+            return crate::pseudo_spline::optimal_segment(a, b).map(TableSegment::minimised);
         }
         // J: the lowest valley (J has a kink where two valleys tie; taking the minimum of the
         // valleys keeps it).
@@ -536,7 +606,8 @@ mod tests {
             .map(|i| vec![[i as f32, 0.5, 4.0, 1.0, 0.0]; i % 3])
             .collect();
         let single = vec![[3.0f32, 0.1]; 8];
-        let bytes = encode(n, &nodes, 8, &single);
+        let flags: Vec<bool> = (0..n * n).map(|c| c % 5 == 1).collect();
+        let bytes = encode(n, &nodes, 8, &single, &flags);
         let t = decode(&bytes).unwrap();
         assert_eq!((t.size(), t.single_size()), (4, 8));
         assert_eq!(
@@ -544,6 +615,9 @@ mod tests {
             nodes.iter().map(|v| v.len()).sum::<usize>()
         );
         assert_eq!(t.node(1, 2), nodes[6].as_slice());
+        assert!(t.flagged(0, 1) && t.flagged(1, 2) && !t.flagged(1, 1) && t.flagged(-2, -1));
+        assert_eq!(t.flagged_count(), 3);
+        assert_eq!(t.without_flags().flagged_count(), 0);
         // Wrong magic, truncated, trailing bytes: errors, not panics.
         assert!(decode(b"not a table").is_err());
         assert!(decode(&bytes[..bytes.len() - 1]).is_err());

@@ -114,17 +114,20 @@ fn table_matches_exact_mode_for_spline_angles() {
 
 #[test]
 fn table_matches_exact_mode_over_the_square() {
-    // Tangents up to 180° from the chord; 0.3 rad from the singular points. Near the
-    // reversed-tangent corners J is steep and the valleys move fast: the worst cells are off
-    // by a few per cent.
-    let st = sample(300, PI, 12);
+    // Tangents up to 180° from the chord; 0.3 rad from the singular points. The cells where
+    // the generator's check found the interpolation off by more than 1e-4 minimise instead
+    // (`flagged_cells_minimise_and_are_few`); elsewhere the check points bound the error, so
+    // between them it can reach a little beyond (measured on 1000 queries: J max 1.0e-4).
+    let st = sample(1000, PI, 12);
     report("whole square", &st);
-    assert!(quantile(&st.j, 0.99) < 1e-4);
-    assert!(quantile(&st.j, 1.0) < 0.1);
+    assert!(quantile(&st.j, 0.99) < 5e-5);
+    assert!(quantile(&st.j, 1.0) < 2e-4);
     assert!(quantile(&st.energy_excess, 0.9) < 1e-6);
-    assert!(quantile(&st.energy_excess, 1.0) < 0.1);
-    assert!(quantile(&st.length, 0.98) < 1e-4);
-    assert!(quantile(&st.length, 1.0) < 0.2);
+    assert!(quantile(&st.energy_excess, 1.0) < 1e-3);
+    assert!(quantile(&st.length, 0.99) < 1e-5);
+    assert!(quantile(&st.length, 1.0) < 1e-4);
+    assert!(quantile(&st.area, 0.99) < 1e-4);
+    assert!(quantile(&st.area, 1.0) < 1e-3);
 }
 
 #[test]
@@ -155,4 +158,45 @@ fn table_symmetries() {
     let s = t.segment(0.0, 0.0).unwrap();
     assert_eq!((s.j, s.length, s.area), (0.0, 1.0, 0.0));
     assert!(t.segment(f64::NAN, 0.0).is_err());
+}
+
+#[test]
+fn flagged_cells_minimise_and_are_few() {
+    // The generator's check flags the cells where interpolation was off by more than 1e-4;
+    // a lookup there minimises and so equals the exact mode.
+    let t = tables();
+    let n = t.size();
+    let flagged = t.flagged_count();
+    assert!(
+        flagged > 0 && flagged < n * n / 100,
+        "{flagged} of {} cells flagged",
+        n * n
+    );
+    let h = 2.0 * PI / n as f64;
+    let mut seen = 0;
+    'cells: for i in (n / 2)..n {
+        for k in 0..n {
+            if !t.flagged(i as isize, k as isize) {
+                continue;
+            }
+            let (a, b) = (-PI + (i as f64 + 0.7) * h, -PI + (k as f64 + 0.3) * h);
+            if a < b.abs() {
+                continue;
+            }
+            let Ok(e) = segment_minima(a, b) else {
+                continue;
+            };
+            let s = t.segment(a, b).unwrap();
+            assert!(s.exact, "({a}, {b}) is in a flagged cell");
+            assert!((s.j - e[0].j).abs() <= 1e-9 * e[0].j, "({a}, {b})");
+            // The symmetric queries land in the same canonical cell.
+            let m = t.segment(-b, -a).unwrap();
+            assert!(m.exact && (m.j - s.j).abs() <= 1e-12 * s.j);
+            seen += 1;
+            if seen == 5 {
+                break 'cells;
+            }
+        }
+    }
+    assert!(seen > 0);
 }
