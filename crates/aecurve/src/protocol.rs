@@ -398,6 +398,12 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
     if samples < 2 {
         return Err(ProtoError::invalid("samples", "must be at least 2"));
     }
+    let tolerance = optional_number(obj, "tolerance")?;
+    if let Some(t) = tolerance {
+        if t <= 0.0 {
+            return Err(ProtoError::invalid("tolerance", "must be > 0"));
+        }
+    }
     let seg =
         aesthetic_curves::lac::LacInflectionSegment::new([control[0], control[1], control[2]])?;
     let (points, curvature) = seg.sample(samples as usize)?;
@@ -423,7 +429,31 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
             "monotone": fit.monotone,
         });
     }
+    // Optional: rational cubics within `tolerance` (input units), G2, as one NURBS, as
+    // `lac.rational_approx` gives with a tolerance.
+    if let Some(t) = tolerance {
+        let sp = aesthetic_curves::approx::fit_inflection_spline(
+            &seg,
+            t,
+            64,
+            &aesthetic_curves::approx::ApproxOptions::default(),
+        )?;
+        out["spline"] = rational_spline_json(&sp);
+    }
     Ok(out)
+}
+
+/// The `spline` member of `lac.rational_approx` and `lac.inflection_segment`.
+fn rational_spline_json(sp: &aesthetic_curves::approx::RationalSpline) -> Value {
+    json!({
+        "degree": sp.degree,
+        "knots": sp.knots,
+        "control_points": sp.control_points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+        "weights": sp.weights,
+        "pieces": sp.pieces.len(),
+        "max_error": sp.max_error,
+        "monotone": sp.pieces.iter().all(|p| p.monotone),
+    })
 }
 
 fn optional_number(obj: &Map<String, Value>, field: &str) -> Result<Option<f64>, ProtoError> {
@@ -470,14 +500,7 @@ pub fn rational_approx_json(
         "arc_length": seg.arc_length()?,
     });
     if let Some(sp) = spline {
-        out["spline"] = json!({
-            "degree": sp.degree,
-            "knots": sp.knots,
-            "control_points": pts(&sp.control_points),
-            "weights": sp.weights,
-            "pieces": sp.pieces.len(),
-            "max_error": sp.max_error,
-        });
+        out["spline"] = rational_spline_json(sp);
     }
     Ok(out)
 }
@@ -817,6 +840,26 @@ mod tests {
         assert_eq!(r["result"]["curvature"][0].as_f64().unwrap(), 0.0);
         let r = handle_line(r#"{"op": "lac.inflection_segment", "control": [[0,0],[1,0],[1,2]]}"#);
         assert_eq!(kind(&r), "no_segment");
+        // The optional rational cubic and spline within a tolerance.
+        let r = handle_line(
+            r#"{"op": "lac.inflection_segment", "control": [[0,0],[1,0],[1,0.5773502691896257]], "samples": 9, "rational": true, "tolerance": 1e-7}"#,
+        );
+        assert_eq!(r["ok"], true, "{r}");
+        let ra = &r["result"]["rational"];
+        assert_eq!(ra["monotone"], true);
+        assert!(ra["max_error"].as_f64().unwrap() < 1e-3);
+        let sp = &r["result"]["spline"];
+        let pieces = sp["pieces"].as_u64().unwrap() as usize;
+        assert!(pieces >= 2 && sp["max_error"].as_f64().unwrap() <= 1e-7, "{sp}");
+        assert_eq!(sp["control_points"].as_array().unwrap().len(), 3 * pieces + 1);
+        assert_eq!(sp["knots"].as_array().unwrap().len(), 3 * pieces + 5);
+        assert_eq!(sp["monotone"], true);
+        for bad in ["0", "-1", "\"x\""] {
+            let r = handle_line(&format!(
+                r#"{{"op": "lac.inflection_segment", "control": [[0,0],[1,0],[1,0.5]], "tolerance": {bad}}}"#
+            ));
+            assert_eq!(kind(&r), "invalid_input", "{bad}: {r}");
+        }
     }
 
     #[test]

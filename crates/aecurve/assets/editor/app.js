@@ -822,12 +822,37 @@ function setMode(m) {
 }
 
 // ---------- export ----------
+// CAD geometry of a LAC or inflection-end segment: rational cubics within 1e-7 of its size
+// (G2, every piece proven curvature-monotone), not the single cubic drawn as the overlay.
+async function cadSpline() {
+  const m = state.mode;
+  if (m !== 'lac' && m !== 'inflection') return { nurbs, note: '' };
+  const p = state[m].p;
+  const size = Math.max(...p.map((q) => Math.hypot(q[0] - p[0][0], q[1] - p[0][1])));
+  const tolerance = 1e-7 * size;
+  const r = m === 'lac'
+    ? await api({ op: 'lac.rational_approx', alpha: state.lac.alpha, control: p, tolerance })
+    : await api({ op: 'lac.inflection_segment', control: p, samples: 2, tolerance });
+  const sp = r.spline;
+  return {
+    nurbs: { degree: sp.degree, knots: sp.knots, control_points: sp.control_points, weights: sp.weights },
+    note: `, ${sp.pieces} rational cubic(s) within ${fmt(sp.max_error, 2)}`,
+  };
+}
+
 async function exportAs(format) {
-  if (!nurbs) {
+  let cad;
+  try {
+    cad = await cadSpline();
+  } catch (e) {
+    setStatus(`export failed: ${e.message}`, true);
+    return;
+  }
+  if (!cad.nurbs) {
     setStatus('nothing to export', true);
     return;
   }
-  const r = await post('/api/export', Object.assign({ format }, nurbs));
+  const r = await post('/api/export', Object.assign({ format }, cad.nurbs));
   if (!r.ok || (r.headers.get('content-type') || '').startsWith('application/json')) {
     const v = await r.json().catch(() => null);
     setStatus(`export failed: ${v && v.error ? v.error.message : r.status}`, true);
@@ -840,7 +865,7 @@ async function exportAs(format) {
   document.body.appendChild(a);
   a.click();
   a.remove();
-  setStatus(`exported ${a.download} (${blob.size} bytes)`);
+  setStatus(`exported ${a.download} (${blob.size} bytes${cad.note})`);
   document.body.dataset.exported = `${format}:${blob.size}`;
 }
 $('export-svg').addEventListener('click', () => exportAs('svg'));
