@@ -10,7 +10,7 @@
 //! `CHECK_TOLERANCE` (lookups in flagged cells minimise instead).
 //!
 //! `cargo run --release -p aecurve --example gen_pseudo_tables -- [N] [M]`
-//! (defaults 288 and 2048: 1.25° and 0.18° steps). About 6 minutes on two cores.
+//! (defaults 288 and 2048: 1.25° and 0.18° steps). About 8 minutes on two cores.
 //! `... -- --check-only` redoes only the check of the shipped table.
 
 use aesthetic_curves::pseudo_spline::{

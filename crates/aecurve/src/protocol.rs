@@ -850,8 +850,14 @@ mod tests {
         assert!(ra["max_error"].as_f64().unwrap() < 1e-3);
         let sp = &r["result"]["spline"];
         let pieces = sp["pieces"].as_u64().unwrap() as usize;
-        assert!(pieces >= 2 && sp["max_error"].as_f64().unwrap() <= 1e-7, "{sp}");
-        assert_eq!(sp["control_points"].as_array().unwrap().len(), 3 * pieces + 1);
+        assert!(
+            pieces >= 2 && sp["max_error"].as_f64().unwrap() <= 1e-7,
+            "{sp}"
+        );
+        assert_eq!(
+            sp["control_points"].as_array().unwrap().len(),
+            3 * pieces + 1
+        );
         assert_eq!(sp["knots"].as_array().unwrap().len(), 3 * pieces + 5);
         assert_eq!(sp["monotone"], true);
         for bad in ["0", "-1", "\"x\""] {

@@ -1,8 +1,13 @@
 //! Criterion benchmarks of the rational cubic approximation of a LAC segment (issue target:
-//! one segment under 1 ms median).
+//! one segment under 1 ms median), of a segment with an inflection end (one cubic, and the
+//! G2 spline within 1e-7 of the size that CAD exports use), and of the spline of a long
+//! segment.
 
-use aesthetic_curves::approx::{fit_rational_cubic, ApproxOptions};
-use aesthetic_curves::lac::LacSegment;
+use aesthetic_curves::approx::{
+    fit_inflection_cubic, fit_inflection_spline, fit_rational_cubic, fit_rational_spline,
+    ApproxOptions,
+};
+use aesthetic_curves::lac::{LacInflectionSegment, LacSegment};
 use aesthetic_curves::Point;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
@@ -21,6 +26,26 @@ fn bench_approx(c: &mut Criterion) {
             b.iter(|| fit_rational_cubic(black_box(s), &opts).unwrap())
         });
     }
+    g.finish();
+    let mut g = c.benchmark_group("approx/cad");
+    g.sample_size(10);
+    let inflection = LacInflectionSegment::new([
+        Point::new(0.0, 0.0),
+        Point::new(6.0, 0.0),
+        Point::new(9.0, 5.0),
+    ])
+    .unwrap();
+    let size = 9f64.hypot(5.0);
+    g.bench_function("inflection_cubic", |b| {
+        b.iter(|| fit_inflection_cubic(black_box(&inflection), &opts).unwrap())
+    });
+    g.bench_function("inflection_spline_1e-7", |b| {
+        b.iter(|| fit_inflection_spline(black_box(&inflection), 1e-7 * size, 64, &opts).unwrap())
+    });
+    let seg = LacSegment::new(-1.0, tri).unwrap();
+    g.bench_function("lac_spline_1e-7", |b| {
+        b.iter(|| fit_rational_spline(black_box(&seg), 1e-7 * 16f64.hypot(9.0), 64, &opts).unwrap())
+    });
     g.finish();
 }
 

@@ -226,11 +226,41 @@ pub fn shape_type(theta0: f64, theta1: f64, r0: f64, r1: f64) -> ShapeType {
 /// minimum of the scan, then a polish on the adaptive quadrature. J has two valleys over
 /// much of the angle square, one of C shape and one of S shape; the global minimum jumps
 /// between them, so a single local search is not enough.
+///
+/// J has the exact symmetries J(a, b) = J(b, a) (the segment turned end for end: r0 and r1
+/// swap, S changes sign) and J(a, b) = J(-a, -b) (mirrored: S changes sign). The search runs
+/// on the member of the orbit whose first angle is the largest in size and positive (as the
+/// tables do), so its results keep the symmetries even where a shallow valley is missed.
 pub fn segment_minima(theta0: f64, theta1: f64) -> Result<Vec<SegmentOptimum>> {
     if !(theta0.is_finite() && theta1.is_finite()) {
         return Err(Error::invalid("theta", "angles must be finite"));
     }
     let (a, b) = (wrap(theta0), wrap(theta1));
+    let (swap, neg) = if a.abs() >= b.abs() {
+        (false, a < 0.0)
+    } else {
+        (true, b < 0.0)
+    };
+    let (mut a2, mut b2) = if swap { (b, a) } else { (a, b) };
+    if neg {
+        // Exact negation; -π is π.
+        let flip = |x: f64| if x == PI { PI } else { -x };
+        (a2, b2) = (flip(a2), flip(b2));
+    }
+    let mut found = canonical_minima(a2, b2, theta0, theta1)?;
+    for m in &mut found {
+        if swap {
+            (m.r0, m.r1) = (m.r1, m.r0);
+        }
+        if swap != neg {
+            m.shape.area = -m.shape.area;
+        }
+    }
+    Ok(found)
+}
+
+/// [`segment_minima`] for wrapped angles (a, b); `theta0`, `theta1` as given, for messages.
+fn canonical_minima(a: f64, b: f64, theta0: f64, theta1: f64) -> Result<Vec<SegmentOptimum>> {
     if a == 0.0 && b == 0.0 {
         let shape = segment_energy(0.0, 0.0, 1.0, 1.0);
         return Ok(vec![SegmentOptimum {
@@ -287,11 +317,16 @@ pub fn segment_minima(theta0: f64, theta1: f64) -> Result<Vec<SegmentOptimum>> {
     // Local searches from the best six starts (more while none has given a valley: the
     // fixed rule can show low values next to a cusp that are not valleys); minima on the edge
     // of the box (r -> 0 or r -> ∞, no interior minimum) are dropped.
+    // A start whose fixed-rule value was far off (next to a cusp, or a tight loop) is
+    // searched on the adaptive quadrature and can climb to some other valley; such results
+    // do not count as the reliable valley that ends the search, so the real valleys among
+    // the later starts are still visited.
     let fine = composite_nodes();
     let mut coarse: Vec<(f64, f64)> = Vec::new();
     let mut found: Vec<((f64, f64), f64)> = Vec::new();
+    let mut reliable = 0;
     for (k, (s, _)) in starts.into_iter().enumerate() {
-        if k >= 6 && !found.is_empty() {
+        if k >= 6 && (reliable > 0 || (k >= 40 && !found.is_empty())) {
             break;
         }
         let r = nelder_mead(&fast, s, 0.3, 1e-6);
@@ -303,9 +338,12 @@ pub fn segment_minima(theta0: f64, theta1: f64) -> Result<Vec<SegmentOptimum>> {
             continue;
         }
         coarse.push(r.0);
-        let Some(r) = polish(a, b, r.0, &fine) else {
+        let Some((r, agreed)) = polish(a, b, r.0, &fine) else {
             continue;
         };
+        if agreed {
+            reliable += 1;
+        }
         let dup = found
             .iter()
             .any(|q| (q.0 .0 - r.0 .0).abs() < 1e-3 && (q.0 .1 - r.0 .1).abs() < 1e-3);
@@ -337,17 +375,22 @@ pub fn segment_minima(theta0: f64, theta1: f64) -> Result<Vec<SegmentOptimum>> {
         .collect())
 }
 
+/// A point (ln r0, ln r1) and J there.
+type Polished = ((f64, f64), f64);
+
 /// A local minimum of J over (ln r0, ln r1) from a start: Nelder–Mead on a composite rule
 /// (8 panels of 16 Gauss points), checked against the adaptive quadrature (accurate also near
 /// tight turns, where fixed rules can show valleys that are not there) and polished on it if
-/// they differ. None for a cusp, a valley the fixed rule invented, or a minimum outside
-/// ln r in [-4.5, 3.5] (none inside: r -> 0 or r -> ∞).
+/// they differ. None for a cusp or a minimum outside ln r in [-4.5, 3.5] (none inside:
+/// r -> 0 or r -> ∞). The flag says whether the fixed rule agreed with the adaptive
+/// quadrature to 1e-3 at its minimum (else the search ran on the adaptive quadrature from
+/// there, and may have reached another valley).
 fn polish(
     a: f64,
     b: f64,
     start: (f64, f64),
     fine: &(Vec<f64>, Vec<f64>),
-) -> Option<((f64, f64), f64)> {
+) -> Option<(Polished, bool)> {
     let g = |u: f64, v: f64| j_fast(a, b, u, v, fine);
     let r = nelder_mead(&g, start, 0.05, 1e-8);
     let f = |u: f64, v: f64| j_of(a, b, u, v);
@@ -355,9 +398,10 @@ fn polish(
     if !exact.is_finite() {
         return None;
     }
+    let agreed = (exact - r.1).abs() <= 1e-3 * exact;
     let r = if (exact - r.1).abs() <= 1e-11 * exact.abs() {
         (r.0, exact)
-    } else if (exact - r.1).abs() <= 1e-3 * exact {
+    } else if agreed {
         nelder_mead(&f, r.0, 0.02, 1e-8)
     } else {
         // The fixed rule is far off (a tight loop or a valley it invented next to a cusp):
@@ -367,7 +411,7 @@ fn polish(
         nelder_mead(&f, r.0, 0.02, 1e-8)
     };
     let inside = r.0 .0 > -4.5 && r.0 .1 > -4.5 && r.0 .0 < 3.5 && r.0 .1 < 3.5;
-    (r.1.is_finite() && inside).then_some(r)
+    (r.1.is_finite() && inside).then_some((r, agreed))
 }
 
 /// The local minimum of J over (r0, r1) reached from the tangent lengths (r0, r1), for the
@@ -377,7 +421,7 @@ pub fn local_minimum(theta0: f64, theta1: f64, r0: f64, r1: f64) -> Option<Segme
         return None;
     }
     let (a, b) = (wrap(theta0), wrap(theta1));
-    let ((u, v), j) = polish(a, b, (r0.ln(), r1.ln()), &composite_nodes())?;
+    let (((u, v), j), _) = polish(a, b, (r0.ln(), r1.ln()), &composite_nodes())?;
     let (r0, r1) = (u.exp(), v.exp());
     Some(SegmentOptimum {
         j,
@@ -396,6 +440,10 @@ pub fn optimal_segment(theta0: f64, theta1: f64) -> Result<SegmentOptimum> {
 
 /// Angle in (-π, π].
 pub fn wrap(a: f64) -> f64 {
+    // Angles already in range stay exactly as they are (so -x is the exact mirror of x).
+    if a > -PI && a <= PI {
+        return a;
+    }
     let mut x = a.rem_euclid(2.0 * PI);
     if x > PI {
         x -= 2.0 * PI;
@@ -1021,6 +1069,30 @@ mod tests {
         // Mirror symmetry: J(a, b) = J(-a, -b).
         let z = optimal_segment(-a, -b).unwrap();
         assert!((x.j - z.j).abs() < 1e-9 * x.j);
+    }
+
+    #[test]
+    fn minima_keep_the_symmetries_and_find_tight_loops() {
+        // (-2.6525, -1.7699) and its swap once gave J 339.15 and 348.27 (a valley missed in
+        // one order); (2.8589, 2.3336) is a tight loop where the fixed rule is far off and
+        // no minimum was found at all.
+        for (a, b) in [(-2.6525, -1.7699), (2.3049, 2.6252), (0.7, -0.2)] {
+            let x = segment_minima(a, b).unwrap()[0];
+            let y = segment_minima(b, a).unwrap()[0];
+            let z = segment_minima(-a, -b).unwrap()[0];
+            assert!((x.j - y.j).abs() <= 1e-12 * x.j && (x.j - z.j).abs() <= 1e-12 * x.j);
+            assert!(
+                (x.r0 - y.r1).abs() <= 1e-12 * x.r0 && (x.r0 - z.r0).abs() <= 1e-12 * x.r0,
+                "({a}, {b}): {x:?} {y:?} {z:?}"
+            );
+            assert!((x.shape.area + y.shape.area).abs() <= 1e-12 * x.shape.area.abs().max(1e-3));
+            assert!((x.shape.area + z.shape.area).abs() <= 1e-12 * x.shape.area.abs().max(1e-3));
+            // The reported J is the segment's own E L².
+            let e = segment_energy(a, b, x.r0, x.r1);
+            assert!((e.energy * e.length * e.length - x.j).abs() <= 1e-9 * x.j);
+        }
+        let l = segment_minima(2.8588873711661975, 2.3335638770035967).unwrap()[0];
+        assert!(l.j.is_finite() && l.shape.length > 1.0, "{l:?}");
     }
 
     #[test]
