@@ -925,15 +925,22 @@ pub fn fit_rational_spline(
         pieces.push((b, f));
         a = b;
     }
-    // Assemble: shared joint points, weights rescaled to match at the joints.
-    let mut control_points = Vec::new();
-    let mut weights = Vec::new();
-    let mut lengths = Vec::new();
+    let mut with_lengths = Vec::with_capacity(pieces.len());
     let mut start = 0.0;
-    for (k, (end, fit)) in pieces.iter().enumerate() {
-        let sub = seg.sub_segment(start, *end)?;
-        lengths.push(sub.arc_length()?);
-        start = *end;
+    for (end, fit) in pieces {
+        with_lengths.push((fit, seg.sub_segment(start, end)?.arc_length()?));
+        start = end;
+    }
+    Ok(assemble(with_lengths))
+}
+
+/// G2 rational cubic pieces, each with its arc length (input units), as one
+/// [`RationalSpline`]: shared joint points, each piece's weights scaled to meet the previous
+/// piece's last weight, interior knots of multiplicity 3 at the arc-length fractions.
+fn assemble(pieces: Vec<(RationalCubicFit, f64)>) -> RationalSpline {
+    let mut control_points = Vec::new();
+    let mut weights: Vec<f64> = Vec::new();
+    for (k, (fit, _)) in pieces.iter().enumerate() {
         let (b, w) = (fit.curve.points(), fit.curve.weights());
         let scale = if k == 0 {
             1.0
@@ -946,27 +953,26 @@ pub fn fit_rational_spline(
             weights.push(w[i] * scale);
         }
     }
-    let total: f64 = lengths.iter().sum();
+    let total: f64 = pieces.iter().map(|(_, l)| l).sum();
     let mut knots = vec![0.0; 4];
     let mut acc = 0.0;
-    for l in &lengths[..lengths.len() - 1] {
+    for (_, l) in &pieces[..pieces.len() - 1] {
         acc += l / total;
         knots.extend([acc; 3]);
     }
     knots.extend([1.0; 4]);
     let max_error = pieces
         .iter()
-        .zip(&lengths)
-        .map(|((_, f), l)| f.max_error * l)
+        .map(|(f, l)| f.max_error * l)
         .fold(0.0, f64::max);
-    Ok(RationalSpline {
+    RationalSpline {
         degree: 3,
         knots,
         control_points,
         weights,
-        pieces: pieces.into_iter().map(|(_, f)| f).collect(),
+        pieces: pieces.into_iter().map(|(f, _)| f).collect(),
         max_error,
-    })
+    }
 }
 
 /// An inflection-end segment as rational cubic pieces within `tolerance` (input units), as
@@ -992,18 +998,7 @@ pub fn fit_inflection_spline(
     let whole = fit_inflection_cubic(seg, opts)?;
     let len = seg.arc_length();
     if whole.max_error * len <= tolerance {
-        let (b, w) = (
-            whole.curve.points().to_vec(),
-            whole.curve.weights().to_vec(),
-        );
-        return Ok(RationalSpline {
-            degree: 3,
-            knots: vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
-            control_points: b,
-            weights: w,
-            max_error: whole.max_error * len,
-            pieces: vec![whole],
-        });
+        return Ok(assemble(vec![(whole, len)]));
     }
     // The head's error falls fast with its turning: search τ geometrically.
     let try_head = |tau: f64| -> Option<(LacInflectionSegment, LacSegment, RationalCubicFit)> {
@@ -1038,33 +1033,13 @@ pub fn fit_inflection_spline(
     }
     let (head, tail, head_fit) = best;
     let rest = fit_rational_spline(&tail, tolerance, max_pieces - 1, opts)?;
-    // Assemble: the head cubic, then the tail's spline with its weights scaled to meet the
-    // head's last weight.
-    let (hb, hw) = (head_fit.curve.points(), head_fit.curve.weights());
-    let mut control_points = hb.to_vec();
-    let mut weights = hw.to_vec();
-    let scale = hw[3] / rest.weights[0];
-    control_points.extend_from_slice(&rest.control_points[1..]);
-    weights.extend(rest.weights[1..].iter().map(|w| w * scale));
-    let (lh, lt) = (head.arc_length(), tail.arc_length()?);
-    let u = lh / (lh + lt);
-    let mut knots = vec![0.0; 4];
-    knots.extend([u; 3]);
-    for k in &rest.knots[4..rest.knots.len() - 4] {
-        knots.push(u + (1.0 - u) * k);
+    // The tail's pieces with their lengths (its knots are arc-length fractions).
+    let lt = tail.arc_length()?;
+    let mut pieces = vec![(head_fit, head.arc_length())];
+    for (i, f) in rest.pieces.into_iter().enumerate() {
+        pieces.push((f, (rest.knots[4 + 3 * i] - rest.knots[3 + 3 * i]) * lt));
     }
-    knots.extend([1.0; 4]);
-    let max_error = (head_fit.max_error * lh).max(rest.max_error);
-    let mut pieces = vec![head_fit];
-    pieces.extend(rest.pieces);
-    Ok(RationalSpline {
-        degree: 3,
-        knots,
-        control_points,
-        weights,
-        pieces,
-        max_error,
-    })
+    Ok(assemble(pieces))
 }
 
 /// The error map of S3 Fig. 3 and 5 (see [`error_map`]).

@@ -1009,16 +1009,14 @@ impl LacSegment {
         if !alpha.is_finite() || alpha.abs() > MAX_ABS_ALPHA {
             return Err(Error::invalid("alpha", "must be a finite number"));
         }
-        let TriangleAngles {
-            theta_d,
-            theta_e,
-            theta_f,
-        } = triangle_angles(&control)?;
-        if (0.0..=1.0).contains(&alpha) {
-            return Ok(true);
-        }
-        let phi = theta_e.max(theta_f);
-        if (phi - 0.5 * theta_d).abs() <= 1e-15 * theta_d {
+        let (theta_d, phi) = Self::triangle_angles(control)?;
+        Self::exists_for_angles(alpha, theta_d, phi)
+    }
+
+    /// [`LacSegment::exists`] for a triangle given by its turning angle θ_d and larger base
+    /// angle φ ([`LacSegment::triangle_angles`]); `alpha` must be valid.
+    pub fn exists_for_angles(alpha: f64, theta_d: f64, phi: f64) -> Result<bool> {
+        if (0.0..=1.0).contains(&alpha) || (phi - 0.5 * theta_d).abs() <= 1e-15 * theta_d {
             return Ok(true);
         }
         Ok(phi < Self::theta_lim(alpha, theta_d)?)

@@ -235,28 +235,57 @@ pub fn segment_minima(theta0: f64, theta1: f64) -> Result<Vec<SegmentOptimum>> {
     if !(theta0.is_finite() && theta1.is_finite()) {
         return Err(Error::invalid("theta", "angles must be finite"));
     }
-    let (a, b) = (wrap(theta0), wrap(theta1));
-    let (swap, neg) = if a.abs() >= b.abs() {
-        (false, a < 0.0)
-    } else {
-        (true, b < 0.0)
-    };
-    let (mut a2, mut b2) = if swap { (b, a) } else { (a, b) };
-    if neg {
-        // Exact negation; -π is π.
-        let flip = |x: f64| if x == PI { PI } else { -x };
-        (a2, b2) = (flip(a2), flip(b2));
-    }
-    let mut found = canonical_minima(a2, b2, theta0, theta1)?;
+    let orbit = Orbit::of(wrap(theta0), wrap(theta1));
+    let mut found = canonical_minima(orbit.a, orbit.b, theta0, theta1)?;
     for m in &mut found {
-        if swap {
-            (m.r0, m.r1) = (m.r1, m.r0);
-        }
-        if swap != neg {
-            m.shape.area = -m.shape.area;
-        }
+        (m.r0, m.r1, m.shape.area) = orbit.back(m.r0, m.r1, m.shape.area);
     }
     Ok(found)
+}
+
+/// The canonical member of the symmetry orbit of wrapped end angles: J(a, b) = J(b, a) (the
+/// segment turned end for end: r0 and r1 swap, S changes sign) and J(a, b) = J(-a, -b)
+/// (mirrored: S changes sign) hold exactly, so the exact mode and the tables work on the
+/// member whose first angle is the largest in size and positive, and map back.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Orbit {
+    /// Canonical first angle (in [0, π]).
+    pub a: f64,
+    /// Canonical second angle (|b| <= a).
+    pub b: f64,
+    swap: bool,
+    neg: bool,
+}
+
+impl Orbit {
+    /// The orbit of the wrapped angles (a, b) in (-π, π].
+    pub fn of(a: f64, b: f64) -> Orbit {
+        let (swap, neg) = if a.abs() >= b.abs() {
+            (false, a < 0.0)
+        } else {
+            (true, b < 0.0)
+        };
+        let (mut a2, mut b2) = if swap { (b, a) } else { (a, b) };
+        if neg {
+            // Exact negation; -π is π.
+            let flip = |x: f64| if x == PI { PI } else { -x };
+            (a2, b2) = (flip(a2), flip(b2));
+        }
+        Orbit {
+            a: a2,
+            b: b2,
+            swap,
+            neg,
+        }
+    }
+
+    /// Tangent lengths and area found at the canonical angles, mapped back to the original
+    /// ones (J, E and L are the same).
+    pub fn back(&self, r0: f64, r1: f64, area: f64) -> (f64, f64, f64) {
+        let (r0, r1) = if self.swap { (r1, r0) } else { (r0, r1) };
+        let area = if self.swap != self.neg { -area } else { area };
+        (r0, r1, area)
+    }
 }
 
 /// [`segment_minima`] for wrapped angles (a, b); `theta0`, `theta1` as given, for messages.

@@ -366,22 +366,9 @@ impl PseudoTables {
         // S changes sign) and J(a, b) = J(-a, -b) (mirrored: S changes sign) hold exactly:
         // look up the member of the orbit whose first angle is the largest in size and
         // positive.
-        let (swap, neg) = if a.abs() >= b.abs() {
-            (false, a < 0.0)
-        } else {
-            (true, b < 0.0)
-        };
-        let (mut a2, mut b2) = if swap { (b, a) } else { (a, b) };
-        if neg {
-            (a2, b2) = (wrap(-a2), wrap(-b2));
-        }
-        let mut r = self.segment_canonical(a2, b2)?;
-        if swap {
-            (r.r0, r.r1) = (r.r1, r.r0);
-        }
-        if swap != neg {
-            r.area = -r.area;
-        }
+        let orbit = crate::pseudo_spline::Orbit::of(a, b);
+        let mut r = self.segment_canonical(orbit.a, orbit.b)?;
+        (r.r0, r.r1, r.area) = orbit.back(r.r0, r.r1, r.area);
         Ok(r)
     }
 

@@ -267,12 +267,7 @@ pub fn lac_existence(
         .map(|(i, k)| LacSegment::triangle_angles([p0, p1, grid.centre(i, k)]).ok())
         .collect();
     let exact = |a: &Option<(f64, f64)>| -> bool {
-        a.map(|(td, phi)| {
-            (0.0..=1.0).contains(&alpha)
-                || (phi - 0.5 * td).abs() <= 1e-15 * td
-                || LacSegment::theta_lim(alpha, td).is_ok_and(|lim| phi < lim)
-        })
-        .unwrap_or(false)
+        a.is_some_and(|(td, phi)| LacSegment::exists_for_angles(alpha, td, phi).unwrap_or(false))
     };
     let table = if (0.0..=1.0).contains(&alpha) {
         None
@@ -285,15 +280,11 @@ pub fn lac_existence(
             });
         ThetaLimTable::new(alpha, lo, hi)
     };
-    let cells: Vec<usize> = (0..angles.len()).collect();
     let judge = |n: usize| -> bool {
         match (&table, angles[n]) {
             (_, None) => false,
             (None, _) => exact(&angles[n]),
             (Some(t), Some((td, phi))) => {
-                if (phi - 0.5 * td).abs() <= 1e-15 * td {
-                    return true;
-                }
                 let lim = t.at(td);
                 if (phi - lim).abs() <= t.guard {
                     exact(&angles[n])
@@ -303,13 +294,7 @@ pub fn lac_existence(
             }
         }
     };
-    let pairs: Vec<(usize, usize)> = cells.iter().map(|&n| (n / grid.nx, n % grid.nx)).collect();
-    let verdicts = judge_cells(&pairs, threads, &|i, k| judge(i * grid.nx + k));
-    Ok(Region {
-        grid,
-        judged: verdicts.len(),
-        cells: verdicts,
-    })
+    Ok(every_cell(grid, threads, &|i, k| judge(i * grid.nx + k)))
 }
 
 /// Nodes of the θ_lim interpolant of [`lac_existence`].
