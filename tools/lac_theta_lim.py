@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference values of theta_lim(alpha, theta_d) (math.md 3.1): the base angle at the
+"""Reference values of theta_lim(alpha, theta_d) (docs/math.md §3.1): the base angle at the
 high-curvature end of the limiting segment Lambda = Lambda_max = 1/(|alpha-1| theta_d),
 computed with mpmath at 40 digits (tanh-sinh quadrature, which handles the singular end of
 the domain). alpha < 0: interval [0, theta_d], end rho -> infinity; alpha > 1: interval

@@ -73,6 +73,7 @@ pub fn parse_points_text(text: &str) -> anyhow::Result<Vec<aesthetic_curves::Poi
             .collect());
     }
     let mut out = Vec::new();
+    let mut header = false;
     for (i, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
@@ -92,7 +93,8 @@ pub fn parse_points_text(text: &str) -> anyhow::Result<Vec<aesthetic_curves::Poi
                 );
                 out.push(aesthetic_curves::Point::new(v[0], v[1]));
             }
-            _ if out.is_empty() && i == 0 => {} // header
+            // One header row (such as `x,y`) before the first point.
+            _ if out.is_empty() && !header => header = true,
             _ => anyhow::bail!("line {}: expected 'x,y', got '{line}'", i + 1),
         }
     }

@@ -12,7 +12,10 @@ use std::time::Duration;
 #[command(
     name = "aecurve",
     version,
-    about = "Aesthetic curves: checks, batch protocol, benchmarks, plots"
+    about = "Aesthetic curves: checks, batch protocol, benchmarks, plots",
+    after_help = "Papers cited as S0-S4 and the sections cited as docs/math.md §N are in the \
+                  repository's docs/ folder (bibliography.md, math.md); the JSON protocol is \
+                  docs/protocol.md."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -92,7 +95,7 @@ enum Cmd {
             required_unless_present = "inflection"
         )]
         alpha: Option<f64>,
-        /// A segment with an inflection point at the first control point (math.md §3.2):
+        /// A segment with an inflection point at the first control point (docs/math.md §3.2):
         /// alpha < 0 comes from the triangle.
         #[arg(long, conflicts_with = "alpha")]
         inflection: bool,
@@ -281,6 +284,27 @@ fn main() {
     }
 }
 
+/// Every file path a command will write (its `-o`, `--map`, `--curvature-plot`).
+fn output_paths(cli: &Cli) -> Vec<&std::path::Path> {
+    let mut out: Vec<&std::path::Path> = cli.curvature_plot.iter().map(|p| p.as_path()).collect();
+    match &cli.cmd {
+        Cmd::Monotone { output, .. }
+        | Cmd::Lac { output, .. }
+        | Cmd::Lcg { output, .. }
+        | Cmd::Spline { output, .. }
+        | Cmd::Sketch { output, .. } => out.extend(output.iter().map(|p| p.as_path())),
+        Cmd::Approx { output, map, .. } => {
+            out.extend(output.iter().map(|p| p.as_path()));
+            out.extend(map.iter().map(|p| p.as_path()));
+        }
+        Cmd::Bench {
+            what: BenchCmd::Monotone { output, .. },
+        } => out.extend(output.iter().map(|p| p.as_path())),
+        _ => {}
+    }
+    out
+}
+
 fn run() -> Result<()> {
     let cli = Cli::parse();
     if let Some(p) = &cli.curvature_plot {
@@ -314,6 +338,13 @@ fn run() -> Result<()> {
             what: BenchCmd::Monotone { output, .. },
         } => plot::check_picture_paths(output.as_slice())?,
         _ => {}
+    }
+    // Outputs go where the user says: create their folders.
+    for path in output_paths(&cli) {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("creating the folder {}", dir.display()))?;
+        }
     }
     match cli.cmd {
         Cmd::Batch { max_line_bytes } => {
@@ -863,7 +894,7 @@ fn approx_gallery(out: &std::path::Path) -> Result<String> {
     use aesthetic_curves::{Point, Vec2};
     let mut html = String::from(
         "<h2>One rational cubic per LAC segment (S0 Fig. 4-7)</h2>\n<p>Each LAC segment \
-         (turning 90 degrees) is replaced by the rational cubic of math.md §4 that matches \
+         (turning 90 degrees) is replaced by the rational cubic of docs/math.md §4 that matches \
          its end points, tangents and curvatures, with (f0, f1) chosen by the global search; \
          the exact test proves its curvature monotone. Errors are relative to the arc \
          length. An isosceles triangle gives the circular arc to rounding.</p>\n\
@@ -1212,7 +1243,7 @@ fn inflection_gallery(out: &std::path::Path) -> Result<String> {
         ),
     )?;
     Ok(format!(
-        "<h2>Segments with an inflection end (S4 Fig. 1-3, math.md §3.2)</h2>\n<p>The \
+        "<h2>Segments with an inflection end (S4 Fig. 1-3, docs/math.md §3.2)</h2>\n<p>The \
          inflection point is (0, 0) with its tangent along x, the other end is (√2 + 1, 1) and \
          the direction angle θ there runs from 50° to 130°; alpha follows from the triangle. \
          As S4 says, the curvature at the far end and alpha both increase with θ: that \
@@ -1237,17 +1268,11 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
          per piece, its curvature proven monotone. Grey: the input; red: the result; \
          circles: the joints; blue: the curvature comb (continuous across every joint: G2).</p>\n",
     );
-    let prius = [
-        include_str!("../assets/prius/ps_1.csv"),
-        include_str!("../assets/prius/ps_2.csv"),
-        include_str!("../assets/prius/ps_3.csv"),
-        include_str!("../assets/prius/ps_4.csv"),
-        include_str!("../assets/prius/ps_5.csv"),
-    ];
+    let prius = aesthetic_curves_data::PRIUS.map(|l| l.csv);
     let mut inputs: Vec<(String, &str, String, Option<f64>)> = vec![(
         "sketch-stroke".into(),
-        include_str!("../../../examples/sketch-stroke.csv"),
-        "A pen stroke (240 points with hand jitter, examples/sketch-stroke.csv), default \
+        aesthetic_curves_data::HAND_STROKE,
+        "A pen stroke (240 points with hand jitter), default \
          tolerance (0.5% of its size)."
             .into(),
         None,
@@ -1382,8 +1407,7 @@ const S2_TABLE5: [f64; 8] = [
 
 /// Independent reference for the unit circle (mpmath, `tools/pseudo_reference.py`): rows
 /// "n length area r J".
-const CIRCLE_REFERENCE: &str =
-    include_str!("../../aesthetic-curves/tests/data/pseudo_circle_reference.txt");
+const CIRCLE_REFERENCE: &str = aesthetic_curves_data::PSEUDO_UNIT_CIRCLE_REFERENCE;
 
 /// S2 Tables 4-5 (unit circle), Fig. 8-12 (Table 1 data) and Fig. 13-17 (Table 2 data):
 /// the pseudo-elastic spline against the cubic splines and Hermite curves S2 compares it
@@ -1729,7 +1753,7 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     }
     pb.inc(1);
     pb.set_message("log-aesthetic segments");
-    html += "<h2>Log-aesthetic segments in one triangle (S0 §3, math.md §3.1)</h2>\n";
+    html += "<h2>Log-aesthetic segments in one triangle (S0 §3, docs/math.md §3.1)</h2>\n";
     let mut kappa_series = Vec::new();
     let tri = [
         aesthetic_curves::Point::new(0.0, 0.0),

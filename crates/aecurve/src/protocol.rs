@@ -1,4 +1,4 @@
-//! The JSON protocol of `aecurve batch` and the editor (`shared/spec/batch-protocol.md`).
+//! The JSON protocol of `aecurve batch` and the editor (`docs/protocol.md` in the repository).
 //!
 //! [`handle_line`] turns one request line into one response object and never panics: a line
 //! that is not JSON gets a `parse` error, an unknown op `unknown_op`, a bad parameter

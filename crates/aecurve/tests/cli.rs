@@ -196,7 +196,7 @@ fn lac_inflection_form() {
         "0,0 1,0 1,0.5773502691896257",
         "--json",
     ]));
-    // 90 degrees of turning, 30 degrees at the inflection end: math.md's check value.
+    // 90 degrees of turning, 30 degrees at the inflection end: docs/math.md §3.2's check value.
     assert!(
         (v["alpha"].as_f64().unwrap() + 1.066636984).abs() < 1e-8,
         "{}",

@@ -1,4 +1,4 @@
-//! One rational cubic Bézier per log-aesthetic segment (math.md §4; S0 §5–6, S3), and
+//! One rational cubic Bézier per log-aesthetic segment (docs/math.md §4; S0 §5–6, S3), and
 //! rational cubic B-splines for segments that need several pieces.
 //!
 //! **Construction** ([`construct`]): for a segment with control triangle P0, P1, P2,

@@ -38,7 +38,7 @@ impl Derivs {
         self.d1.cross(self.d2) / (s * s * s)
     }
 
-    /// `dkappa/ds = (det(x',x''') |x'|^2 - 3 det(x',x'') (x'.x'')) / |x'|^6` (math.md §1).
+    /// `dkappa/ds = (det(x',x''') |x'|^2 - 3 det(x',x'') (x'.x'')) / |x'|^6` (docs/math.md §1).
     pub fn dkappa_ds(&self) -> f64 {
         let s2 = self.d1.hypot2();
         (self.d1.cross(self.d3) * s2 - 3.0 * self.d1.cross(self.d2) * self.d1.dot(self.d2))
@@ -339,7 +339,7 @@ impl RationalBezier {
         Point::new(h[0][0] / h[0][2], h[0][1] / h[0][2])
     }
 
-    /// Curvature at t = 0 by the closed form of math.md §1:
+    /// Curvature at t = 0 by the closed form of docs/math.md §1:
     /// `((n-1)/n) (w0 w2 / w1^2) det(b1-b0, b2-b1) / |b1-b0|^3`.
     pub fn kappa_start(&self) -> f64 {
         end_curvature(&self.points, &self.weights)

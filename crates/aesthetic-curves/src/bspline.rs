@@ -1,4 +1,4 @@
-//! Cubic B-splines and their least-squares fit to point sequences (math.md §6 step 2).
+//! Cubic B-splines and their least-squares fit to point sequences (docs/math.md §6 step 2).
 //!
 //! [`fit`] parametrises the points by cumulative chord length, then fits clamped cubic
 //! B-splines from one span, halving the spans that hold points beyond the tolerance

@@ -1,7 +1,7 @@
 //! The library's one error type.
 //!
 //! Every fallible operation returns [`Error`]. Its [`Error::kind`] is the `snake_case` error
-//! kind of the JSON protocol (`../shared/spec/batch-protocol.md`), so the CLI and the editor
+//! kind of the JSON protocol (`docs/protocol.md`), so the CLI and the editor
 //! map library errors to protocol errors without a table of their own.
 
 /// What went wrong, in terms a user can act on.

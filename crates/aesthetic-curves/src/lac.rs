@@ -1,4 +1,4 @@
-//! Log-aesthetic curves (LAC) in standard form (math.md §3; seeds S0 §3, S4 §2).
+//! Log-aesthetic curves (LAC) in standard form (docs/math.md §3; seeds S0 §3, S4 §2).
 //!
 //! Tangent angle θ is the parameter; the radius of curvature is
 //! `ρ(ψ) = ((α-1) Λ ψ + 1)^(1/(α-1))` (α ≠ 1) or `e^(Λψ)` (α = 1) and
@@ -748,7 +748,7 @@ fn log_spiral(l: f64, theta: f64) -> Vec2 {
     Vec2::new((num.x * l + num.y) / d, (num.y * l - num.x) / d)
 }
 
-/// A log-aesthetic segment fitted into a control triangle (math.md §3.1; Yoshida & Saito
+/// A log-aesthetic segment fitted into a control triangle (docs/math.md §3.1; Yoshida & Saito
 /// 2006): start, tangent intersection, end.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LacSegment {
@@ -1087,7 +1087,7 @@ impl LacSegment {
         self.map.scale()
     }
 
-    /// +1 when the segment turns counter-clockwise from control[0] to control[2].
+    /// +1 when the segment turns counter-clockwise from `control[0]` to `control[2]`.
     fn turn_sign(&self) -> f64 {
         let c = self.control;
         (c[1] - c[0]).cross(c[2] - c[1]).signum()
@@ -1099,7 +1099,7 @@ impl LacSegment {
         Ok((self.standard.arc_length(b)? - self.standard.arc_length(a)?).abs() * self.scale())
     }
 
-    /// Standard-form parameters of `n >= 2` samples from control[0] to control[2], evenly
+    /// Standard-form parameters of `n >= 2` samples from `control[0]` to `control[2]`, evenly
     /// spaced in tangent angle.
     fn sample_thetas(&self, n: usize) -> Vec<f64> {
         let (a, b) = if self.reversed {
@@ -1112,7 +1112,7 @@ impl LacSegment {
             .collect()
     }
 
-    /// `n >= 2` points from control[0] to control[2] (ends exact) and their signed curvature.
+    /// `n >= 2` points from `control[0]` to `control[2]` (ends exact) and their signed curvature.
     pub fn sample(&self, n: usize) -> Result<(Vec<Point>, Vec<f64>)> {
         if n < 2 {
             return Err(Error::invalid("samples", "need at least 2"));
@@ -1161,7 +1161,7 @@ impl LacSegment {
             .collect()
     }
 
-    /// Standard-form θ at turning angle `tau` from control[0].
+    /// Standard-form θ at turning angle `tau` from `control[0]`.
     fn theta_at_turning(&self, tau: f64) -> f64 {
         if self.reversed {
             self.interval.1 - tau
@@ -1171,7 +1171,7 @@ impl LacSegment {
     }
 
     /// Points and derivatives dP/dτ (length = radius of curvature, direction = tangent) at
-    /// turning angles τ measured from control[0] (τ = 0) to control[2] (τ = θ_d); τ outside
+    /// turning angles τ measured from `control[0]` (τ = 0) to `control[2]` (τ = θ_d); τ outside
     /// [0, θ_d] is clamped.
     pub fn eval_turning(&self, taus: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
         if let Some(i) = taus.iter().position(|t| !t.is_finite()) {
@@ -1193,7 +1193,7 @@ impl LacSegment {
         Ok((points, derivs))
     }
 
-    /// The part of this segment between turning angles `ta < tb` (from control[0]): the same
+    /// The part of this segment between turning angles `ta < tb` (from `control[0]`): the same
     /// curve (no new solve), with its own control triangle.
     pub fn sub_segment(&self, ta: f64, tb: f64) -> Result<LacSegment> {
         if !(ta.is_finite() && tb.is_finite() && 0.0 <= ta && ta < tb && tb <= self.theta_d) {
@@ -1232,7 +1232,7 @@ impl LacSegment {
         Ok(seg)
     }
 
-    /// Signed curvature at control[0] and control[2].
+    /// Signed curvature at `control[0]` and `control[2]`.
     pub fn end_curvatures(&self) -> Result<(f64, f64)> {
         let th = self.sample_thetas(2);
         let s = self.turn_sign() / self.scale();
@@ -1249,7 +1249,7 @@ impl LacSegment {
     }
 }
 
-/// A log-aesthetic segment with an inflection point at its start (math.md §3.2; S4 §2.2):
+/// A log-aesthetic segment with an inflection point at its start (docs/math.md §3.2; S4 §2.2):
 /// `C(s) = ∫_0^s e^{i t^q} dt`, `q = (α-1)/α > 1` (α < 0), tangent angle `θ = s^q`,
 /// curvature `q s^(q-1)`, zero at s = 0. Given the triangle, α follows from the base angle at
 /// the inflection end, which runs from 0 (α → 0-) to θ_d/2 (α → -∞, a circle).
@@ -1259,7 +1259,7 @@ pub struct LacInflectionSegment {
     pub alpha: f64,
     /// Turning angle θ_d in (0, π).
     pub theta_d: f64,
-    /// Control triangle; control[0] is the inflection end.
+    /// Control triangle; `control[0]` is the inflection end.
     pub control: [Point; 3],
     /// From the standard form to the input.
     map: Similarity,
@@ -1310,7 +1310,7 @@ impl LacInflectionSegment {
         Self::base_angle_r(alpha / (alpha - 1.0), theta_d)
     }
 
-    /// Whether an inflection-end segment exists in the triangle `control` (control[0] =
+    /// Whether an inflection-end segment exists in the triangle `control` (`control[0]` =
     /// inflection end): the base angle there must lie in (0, θ_d/2). No integral; agrees
     /// with [`LacInflectionSegment::new`] succeeding. Degenerate triangles are errors.
     pub fn exists(control: [Point; 3]) -> Result<bool> {
@@ -1322,7 +1322,7 @@ impl LacInflectionSegment {
         Ok(phi > 0.0 && phi < 0.5 * theta_d)
     }
 
-    /// The segment in the triangle `control` (control[0] = inflection end).
+    /// The segment in the triangle `control` (`control[0]` = inflection end).
     pub fn new(control: [Point; 3]) -> Result<Self> {
         let TriangleAngles {
             theta_d,
@@ -1376,7 +1376,7 @@ impl LacInflectionSegment {
         self.map.scale()
     }
 
-    /// The mapped tangent intersection (equals control[1] up to the accuracy of α).
+    /// The mapped tangent intersection (equals `control[1]` up to the accuracy of α).
     pub fn tangent_intersection(&self) -> Result<Point> {
         Ok(self
             .map
@@ -1425,20 +1425,20 @@ impl LacInflectionSegment {
         Ok((head, tail))
     }
 
-    /// +1 when the segment turns counter-clockwise from control[0] to control[2].
+    /// +1 when the segment turns counter-clockwise from `control[0]` to `control[2]`.
     fn turn_sign(&self) -> f64 {
         let c = self.control;
         (c[1] - c[0]).cross(c[2] - c[1]).signum()
     }
 
-    /// Signed curvature at control[2] (the curvature at the inflection end control[0] is 0):
+    /// Signed curvature at `control[2]` (the curvature at the inflection end `control[0]` is 0):
     /// `q θ_d^(1-1/q)` over the scale.
     pub fn end_curvature(&self) -> f64 {
         let r = self.r();
         self.turn_sign() * self.theta_d.powf(1.0 - r) / (r * self.scale())
     }
 
-    /// Points at turning angles τ from the inflection end (τ = 0) to control[2] (τ = θ_d),
+    /// Points at turning angles τ from the inflection end (τ = 0) to `control[2]` (τ = θ_d),
     /// and the unit tangents there; τ outside [0, θ_d] is clamped. Ascending τ are
     /// integrated incrementally.
     pub fn eval_turning(&self, taus: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
@@ -1474,7 +1474,7 @@ impl LacInflectionSegment {
         Ok((pts, tangents))
     }
 
-    /// `n >= 2` points from the inflection end to control[2], evenly spaced in tangent angle,
+    /// `n >= 2` points from the inflection end to `control[2]`, evenly spaced in tangent angle,
     /// and their signed curvature (0 at the start).
     pub fn sample(&self, n: usize) -> Result<(Vec<Point>, Vec<f64>)> {
         if n < 2 {
@@ -1721,7 +1721,7 @@ mod tests {
     #[test]
     fn inflection_segment_values_and_identity() {
         let d = FRAC_PI_2;
-        // math.md: 90 deg turning, 30 deg at the inflection end: alpha = -1.066636984.
+        // docs/math.md §3.2: 90 deg turning, 30 deg at the inflection end: alpha = -1.066636984.
         // Build a triangle with base angles 30 (at P0) and 60 deg: P2 on the ray at 30 deg
         // from P0 and on the ray at 90 deg from P1.
         let p2 = Point::new(1.0, 30f64.to_radians().tan());

@@ -4,7 +4,7 @@
 //!
 //! Two objectives ([`LacFitObjective`]): the paper's, each point against the curve point at
 //! the same fraction of arc length (default), or point-to-curve distances alone. On the
-//! shallow Prius key lines of that paper (`shared/data/prius`) the shape alone hardly
+//! shallow Prius key lines of that paper (shipped in the `aesthetic-curves-data` crate) the shape alone hardly
 //! determines alpha (the point-to-curve cost changes little along it); the arc-length
 //! correspondence does.
 //!

@@ -1,4 +1,4 @@
-//! The logarithmic curvature graph (LCG) and the estimation of alpha (math.md §3.3).
+//! The logarithmic curvature graph (LCG) and the estimation of alpha (docs/math.md §3.3).
 //!
 //! For a curve with radius of curvature rho(s), the LCG plots `log rho` against
 //! `log |rho ds/drho|`. With kappa = 1/rho this is the point

@@ -1,4 +1,4 @@
-//! Curvature monotonicity of Bézier curves (math.md §2; seeds S0 §4, S1 §3).
+//! Curvature monotonicity of Bézier curves (docs/math.md §2; seeds S0 §4, S1 §3).
 //!
 //! ## The exact test
 //!
@@ -7,7 +7,7 @@
 //!
 //! - **polynomial curve, degree n**: with `d_i = b_{i+1} - b_i`, `A = sum B_i^{n-2} d_i`,
 //!   `B = sum B_i^{n-2} d_{i+1}` one has `det(x', x'') = G = n^2 (n-1) det(A, B)` (degree
-//!   2n-4) and `K = G' |x'|^2 - 3 G (x'.x'')`, exactly the numerator of math.md §1 since
+//!   2n-4) and `K = G' |x'|^2 - 3 G (x'.x'')`, exactly the numerator of docs/math.md §1 since
 //!   `G' = det(x', x''')`. Its degree is **4n-7**: the top coefficient of the papers' nominal
 //!   degree-(4n-6) form cancels and never gets computed.
 //! - **rational curve, degree n**: with homogeneous points `H_i = w_i (b_i, 1)`,

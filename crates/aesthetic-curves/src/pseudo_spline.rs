@@ -1,4 +1,4 @@
-//! The pseudo-elastic spline of S2 (math.md §5): interpolation through points by cubic
+//! The pseudo-elastic spline of S2 (docs/math.md §5): interpolation through points by cubic
 //! Hermite segments whose tangent lengths minimise the pseudo-energy J = E L².
 //!
 //! One segment on the unit chord (P0 = (0,0), P1 = (1,0)) with end tangent angles θ0, θ1 and

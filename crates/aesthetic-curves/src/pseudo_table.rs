@@ -1,4 +1,4 @@
-//! Tables of the pseudo-elastic segment (S2 §3, math.md §5): J, r0, r1, length L and area S
+//! Tables of the pseudo-elastic segment (S2 §3, docs/math.md §5): J, r0, r1, length L and area S
 //! of the optimal unit-chord Hermite segment over the end angles (θ0, θ1) ∈ (-π, π]², and
 //! the single-angle function J(θ) = min over θ1 of J(θ, θ1) with its minimiser θ1(θ).
 //!

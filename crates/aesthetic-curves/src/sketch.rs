@@ -1,4 +1,4 @@
-//! Pen input to a G2 aesthetic curve (math.md §6; S4 §3).
+//! Pen input to a G2 aesthetic curve (docs/math.md §6; S4 §3).
 //!
 //! The pipeline of [`fit_sketch`]:
 //! 1. a least-squares cubic B-spline through the points ([`crate::bspline::fit`]) within
@@ -9,7 +9,7 @@
 //!    between them are noise and dropped, one curvature maximum is kept between two
 //!    inflections, and pieces turning more than [`SketchOptions::max_turn`] are split;
 //! 3. per piece, α from the least-squares line of its logarithmic curvature graph; a piece
-//!    with an inflection at one end becomes an inflection-end segment (math.md §3.2, α from
+//!    with an inflection at one end becomes an inflection-end segment (docs/math.md §3.2, α from
 //!    its triangle); every other piece a LAC segment in the triangle of its end points and
 //!    end tangents (§3.1). When the triangle lies outside the existence region for that α,
 //!    the nearest admissible α (towards the log spiral) is used instead;
@@ -71,9 +71,9 @@ impl SketchOptions {
 /// Kind of a piece.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PieceKind {
-    /// A LAC segment in its control triangle (math.md §3.1).
+    /// A LAC segment in its control triangle (docs/math.md §3.1).
     Lac,
-    /// A segment with an inflection (zero curvature) at one end (math.md §3.2).
+    /// A segment with an inflection (zero curvature) at one end (docs/math.md §3.2).
     LacInflection,
 }
 
@@ -90,9 +90,9 @@ impl PieceKind {
 /// The curve of a piece.
 #[derive(Clone, Debug)]
 pub enum PieceCurve {
-    /// A LAC segment; its control[0] is the piece's start.
+    /// A LAC segment; its `control[0]` is the piece's start.
     Lac(LacSegment),
-    /// An inflection-end segment; its control[0] (the inflection) is the piece's start when
+    /// An inflection-end segment; its `control[0]` (the inflection) is the piece's start when
     /// `inflection_at_start`, else its end.
     Inflection {
         /// The segment.

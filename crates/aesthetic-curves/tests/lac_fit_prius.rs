@@ -1,37 +1,24 @@
 //! `fit_lac` on the Prius key lines against the published fits of Graiff Zurita, Kajiwara &
-//! Miura (2023), `shared/data/prius/ps_N-published-fit.txt`.
+//! Miura (2023), shipped in the `aesthetic-curves-data` crate (`data/prius`).
 
 use aesthetic_curves::lac_fit::{fit_lac, LacFitOptions, LacFitStart};
 use aesthetic_curves::Point;
 
-fn data(name: &str) -> String {
-    let path = format!(
-        "{}/../../../shared/data/prius/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    std::fs::read_to_string(&path).expect("prius data beside the checkout")
-}
-
 fn points(i: usize) -> Vec<Point> {
-    data(&format!("ps_{i}.csv"))
-        .lines()
-        .skip(1)
-        .filter_map(|l| {
-            let v: Vec<f64> = l.split(',').filter_map(|x| x.trim().parse().ok()).collect();
-            (v.len() == 2).then(|| Point::new(v[0], v[1]))
-        })
+    aesthetic_curves_data::PRIUS[i - 1]
+        .points()
+        .into_iter()
+        .map(|[x, y]| Point::new(x, y))
         .collect()
 }
 
 /// (guess, output) alpha of the published fit.
 fn published(i: usize) -> (f64, f64) {
-    let text = data(&format!("ps_{i}-published-fit.txt"));
-    let a: Vec<f64> = text
-        .lines()
-        .filter(|l| l.starts_with("alpha"))
-        .map(|l| l.split_whitespace().nth(1).unwrap().parse().unwrap())
-        .collect();
-    (a[0], a[1])
+    let line = &aesthetic_curves_data::PRIUS[i - 1];
+    (
+        line.published("alpha", false).unwrap(),
+        line.published("alpha", true).unwrap(),
+    )
 }
 
 #[test]

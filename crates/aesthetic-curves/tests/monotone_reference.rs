@@ -205,12 +205,26 @@ fn assert_tally(label: &str, t: &Tally) {
     );
 }
 
+/// The default run checks a quarter of each random set (about 5 s); the whole sets (4,200
+/// curves, about 20 s) are a slow oracle that `.ci/run` runs with `--ignored`.
+const DEFAULT_SHARE: usize = 4;
+
 #[test]
 fn polynomial_degrees_3_4_5_match_the_exact_reference() {
+    polynomial_against_reference(1000 / DEFAULT_SHARE);
+}
+
+#[test]
+#[ignore = "slow oracle (all 3,000 curves); .ci/run runs it"]
+fn polynomial_degrees_3_4_5_match_the_exact_reference_all() {
+    polynomial_against_reference(1000);
+}
+
+fn polynomial_against_reference(count: usize) {
     for degree in [3usize, 4, 5] {
         let mut rng = ChaCha8Rng::seed_from_u64(1000 + degree as u64);
         let mut tally = Tally::default();
-        for i in 0..1000 {
+        for i in 0..count {
             let (pts, _) = random_points(&mut rng, degree);
             let curve = Bezier::new(pts.clone()).unwrap();
             let reference = reference_poly(&pts);
@@ -231,7 +245,17 @@ fn polynomial_degrees_3_4_5_match_the_exact_reference() {
 
 #[test]
 fn rational_cubics_and_quartics_match_the_exact_reference() {
-    for (degree, count) in [(3usize, 1000), (4, 200)] {
+    rational_against_reference(DEFAULT_SHARE);
+}
+
+#[test]
+#[ignore = "slow oracle (all 1,200 curves); .ci/run runs it"]
+fn rational_cubics_and_quartics_match_the_exact_reference_all() {
+    rational_against_reference(1);
+}
+
+fn rational_against_reference(share: usize) {
+    for (degree, count) in [(3usize, 1000 / share), (4, 200 / share)] {
         let mut rng = ChaCha8Rng::seed_from_u64(77 + degree as u64);
         let mut tally = Tally::default();
         for i in 0..count {

@@ -161,20 +161,10 @@ fn s_curve_through_an_inflection() {
 }
 
 fn prius(i: usize) -> Vec<Point> {
-    let path = format!(
-        "{}/../../../shared/data/prius/ps_{i}.csv",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).expect("prius data beside the checkout");
-    text.lines()
-        .skip(1)
-        .filter_map(|l| {
-            let mut it = l.split(',').map(|v| v.trim().parse::<f64>());
-            match (it.next(), it.next()) {
-                (Some(Ok(x)), Some(Ok(y))) => Some(p(x, y)),
-                _ => None,
-            }
-        })
+    aesthetic_curves_data::PRIUS[i - 1]
+        .points()
+        .into_iter()
+        .map(|[x, y]| p(x, y))
         .collect()
 }
 
