@@ -178,8 +178,29 @@ pub fn table(rows: &[BenchRow]) -> String {
     s
 }
 
-/// S1 Fig. 4-like chart: time per curve against degree, one line per method.
-pub fn chart(rows: &[BenchRow]) -> String {
+/// The conditions a run was measured under, for a person: the curve set, the rounds, the
+/// build and the machine. Times mean little without them.
+pub fn conditions(cfg: &BenchConfig) -> String {
+    format!(
+        "{} random curves per degree (seed {}), median of {} interleaved rounds of at least {} \
+         ms;\n{} build, one thread of a {}-thread {} machine",
+        cfg.curves,
+        cfg.seed,
+        cfg.rounds,
+        cfg.round_time.as_millis(),
+        if cfg!(debug_assertions) {
+            "unoptimised (debug)"
+        } else {
+            "optimised"
+        },
+        std::thread::available_parallelism().map_or(1, |n| n.get()),
+        std::env::consts::ARCH
+    )
+}
+
+/// S1 Fig. 4-like chart: time per curve against degree, one line per method, with the
+/// conditions of the run under the title.
+pub fn chart(rows: &[BenchRow], conditions: &str) -> String {
     let mut methods: Vec<Option<usize>> = Vec::new();
     for r in rows {
         if !methods.contains(&r.samples) {
@@ -206,7 +227,7 @@ pub fn chart(rows: &[BenchRow]) -> String {
         })
         .collect();
     crate::plot::line_chart(
-        "Curvature-monotonicity test: time per curve",
+        &format!("Curvature-monotonicity test: time per curve\n{conditions}"),
         "degree of the Bézier curve",
         "time per curve (µs, log scale)",
         &series,

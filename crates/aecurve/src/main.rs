@@ -48,7 +48,12 @@ fn write_curvature_plot(samples: &[plot::CombSample], title: &str) -> Result<()>
     series.markers = false;
     plot::write_picture(
         path,
-        &plot::fitted_chart(title, "arc length", "curvature", &[series]),
+        &plot::fitted_chart(
+            title,
+            "arc length (input units)",
+            "curvature (1 / input unit)",
+            &[series],
+        ),
     )?;
     eprintln!("wrote {}", path.display());
     Ok(())
@@ -383,7 +388,7 @@ fn run() -> Result<()> {
                 print!("{}", bench::table(&rows));
             }
             if let Some(path) = output {
-                plot::write_picture(&path, &bench::chart(&rows))?;
+                plot::write_picture(&path, &bench::chart(&rows, &bench::conditions(&cfg)))?;
                 eprintln!("wrote {}", path.display());
             }
         }
@@ -893,7 +898,7 @@ fn approx_gallery(out: &std::path::Path) -> Result<String> {
     use aesthetic_curves::lac::{LacSegment, LacStandard};
     use aesthetic_curves::{Point, Vec2};
     let mut html = String::from(
-        "<h2>One rational cubic per LAC segment (S0 Fig. 4-7)</h2>\n<p>Each LAC segment \
+        "<h2>One rational cubic per log-aesthetic segment — Yoshida &amp; Saito (S0), Fig. 4-7</h2>\n<p>Each LAC segment \
          (turning 90 degrees) is replaced by the rational cubic of docs/math.md §4 that matches \
          its end points, tangents and curvatures, with (f0, f1) chosen by the global search; \
          the exact test proves its curvature monotone. Errors are relative to the arc \
@@ -984,7 +989,7 @@ fn approx_gallery(out: &std::path::Path) -> Result<String> {
         ),
     )?;
     html += &format!(
-        "<h2>The error surface (S3 Fig. 3 and 5)</h2>\n<figure><img src=\"approx-map-s3.svg\" \
+        "<h2>Where the rational cubic fit can go wrong: its error over the two free handle ratios — the stable-approximation paper (S3), Fig. 3 and 5</h2>\n<figure><img src=\"approx-map-s3.svg\" \
          alt=\"error map\"><figcaption>Rms error over (f0, f1) for alpha = 1, Lambda = 1, \
          theta in [0, 1.57]; hatched: the cubic's curvature is not monotone. The global search \
          returns f0 = {:.3}, f1 = {:.3} (rms {:.2e}, circled); S3 reports the global minimum \
@@ -1188,10 +1193,10 @@ fn inflection_gallery(out: &std::path::Path) -> Result<String> {
         let p1 = Point::new(p2.x - p2.y / th.tan(), 0.0);
         let seg = LacInflectionSegment::new([Point::ORIGIN, p1, p2])?;
         let (pts, _) = seg.sample(120)?;
-        curves.push(plot::Series::new(
+        curves.push(plot::Series::nth(
             format!("θ = {deg}°"),
             pts.iter().map(|p| (p.x, p.y)).collect(),
-            plot::PALETTE[k % plot::PALETTE.len()],
+            k,
         ));
         let kap = seg.end_curvature();
         kappa.push((deg as f64, kap));
@@ -1229,7 +1234,7 @@ fn inflection_gallery(out: &std::path::Path) -> Result<String> {
         plot::fitted_chart(
             "S4 Fig. 2: curvature at the far end against its direction angle",
             "θ (degrees)",
-            "κ at (√2 + 1, 1)",
+            "κ at (√2 + 1, 1)  (1 / length unit)",
             &[plot::Series::new("κ", kappa, plot::PALETTE[0])],
         ),
     )?;
@@ -1243,7 +1248,7 @@ fn inflection_gallery(out: &std::path::Path) -> Result<String> {
         ),
     )?;
     Ok(format!(
-        "<h2>Segments with an inflection end (S4 Fig. 1-3, docs/math.md §3.2)</h2>\n<p>The \
+        "<h2>Log-aesthetic segments that start at an inflection — Miura, Yagi, Kawata &amp; Fujisawa (S4), Fig. 1-3</h2>\n<p>The \
          inflection point is (0, 0) with its tangent along x, the other end is (√2 + 1, 1) and \
          the direction angle θ there runs from 50° to 130°; alpha follows from the triangle. \
          As S4 says, the curvature at the far end and alpha both increase with θ: that \
@@ -1261,7 +1266,7 @@ fn inflection_gallery(out: &std::path::Path) -> Result<String> {
 fn sketch_gallery(out: &std::path::Path) -> Result<String> {
     use aesthetic_curves::sketch::{fit_sketch, SketchOptions};
     let mut html = String::from(
-        "<h2>Pen input to a G2 aesthetic curve (S4 §3, Fig. 9-12)</h2>\n<p>Points → \
+        "<h2>From pen strokes and measured lines to a G2 aesthetic curve — Miura et al. (S4) §3, Fig. 9-12</h2>\n<p>Points → \
          least-squares cubic B-spline → pieces at inflections and curvature maxima → one \
          log-aesthetic segment per piece (alpha from its curvature graph; inflection-end \
          segments at inflections) → G2 fairing of the joint tangents → one rational cubic \
@@ -1291,6 +1296,12 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
     }
     for (name, text, caption, tol) in &inputs {
         let (name, text, caption, tol) = (name.as_str(), *text, caption.as_str(), *tol);
+        // The Prius lines are measured in millimetres, the pen stroke in pixels.
+        let unit = if name.starts_with("sketch-prius") {
+            "mm"
+        } else {
+            "px"
+        };
         let pts = aecurve::parse_points_text(text)?;
         let tol = tol.unwrap_or_else(|| aesthetic_curves::sketch::default_tolerance(&pts));
         let t0 = std::time::Instant::now();
@@ -1310,17 +1321,13 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
                 prev = d.p;
                 line.push((s_acc, d.kappa()));
             }
-            let mut series = plot::Series::new(
-                format!("{i}: α {:.2}", p.alpha),
-                line,
-                plot::PALETTE[i % plot::PALETTE.len()],
-            );
+            let mut series = plot::Series::nth(format!("{i}: α {:.2}", p.alpha), line, i);
             series.markers = false;
             kappa_s.push(series);
         }
         let joints = sk.joints();
         let title = format!(
-            "{} pieces, deviation {:.3} (tolerance {:.3}), curvature jump {:.1e}",
+            "{} pieces, deviation {:.3} {unit} (tolerance {:.3} {unit}), curvature jump {:.1e}",
             sk.pieces.len(),
             sk.max_deviation,
             tol,
@@ -1328,25 +1335,25 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
         );
         std::fs::write(
             out.join(format!("{name}.svg")),
-            plot::comb_svg(&samples, &pts, &joints, &title),
+            plot::comb_svg_in(&samples, &pts, &joints, &title, unit),
         )?;
         std::fs::write(
             out.join(format!("{name}-curvature.svg")),
             plot::fitted_chart(
                 "signed curvature of the result (one colour per piece)",
-                "arc length",
-                "curvature",
+                &format!("arc length ({unit})"),
+                &format!("curvature (1/{unit})"),
                 &kappa_s,
             ),
         )?;
         html += &format!(
-            "<h3>{name}</h3><p>{caption} {} pieces in {ms:.0} ms; largest deviation {:.4} \
-             (tolerance {:.4}); largest curvature jump {:.1e} of the largest curvature ({}); \
+            "<h3>{name}</h3><p>{caption} {} pieces in {ms:.0} ms; largest deviation {:.4} {unit} \
+             (tolerance {:.4} {unit}); largest curvature jump {:.1e} of the largest curvature ({}); \
              {}.</p>\n<figure><img src=\"{name}.svg\" alt=\"{name}\"></figure>\n\
              <figure><img src=\"{name}-curvature.svg\" alt=\"curvature\"><figcaption>Curvature \
              against arc length: monotone on each piece, continuous at the joints.\
              </figcaption></figure>\n<table border=\"1\" cellpadding=\"4\"><tr><th>piece</th>\
-             <th>kind</th><th>alpha</th><th>curvature at start</th><th>at end</th>\
+             <th>kind</th><th>alpha</th><th>curvature at start (1/{unit})</th><th>at end (1/{unit})</th>\
              <th>monotone (exact test)</th></tr>\n",
             sk.pieces.len(),
             sk.max_deviation,
@@ -1419,13 +1426,13 @@ fn spline_gallery(out: &std::path::Path, quick: bool) -> Result<String> {
     use aesthetic_curves::Point;
     use std::f64::consts::PI;
     let mut html = String::from(
-        "<h2>Pseudo-elastic spline (S2)</h2>\n<p>Hermite cubics through the points; each \
+        "<h2>The pseudo-elastic spline through points — Inoue &amp; Shibata (S2)</h2>\n<p>Hermite cubics through the points; each \
          span's tangent lengths minimise the pseudo-energy J = E L² (E = ∫κ²ds, L its length); \
          tangent directions by S2 eq. 11-12. <b>Table mode</b> reads J, r0, r1, L and S from \
          tables over the end angles (288 x 288 nodes, 1.25°, against S2's 36 x 36) and J(θ) \
          from a 1-D table, so a 1000-point curve takes well under a millisecond; \
          <b>exact mode</b> minimises at every span.</p>\n\
-         <h3>S2 Tables 4 and 5: n points on the unit circle, closed curve</h3>\n\
+         <h3>A closed spline through n points of the unit circle: length and area (S2 Tables 4 and 5)</h3>\n\
          <p>The reference is independent of this library: mpmath at 40 digits \
          (tools/pseudo_reference.py; the exact mode matches it to 1e-7, tested). S2's printed \
          values came from its 36 x 36 table: within 1e-4 where the span's end angle 180°/n \
@@ -1511,7 +1518,7 @@ fn spline_gallery(out: &std::path::Path, quick: bool) -> Result<String> {
     };
     let fair_head = "<table border=\"1\" cellpadding=\"4\"><tr><th>curve</th><th>∫κ²ds</th>\
                      <th>∫(dκ/ds)²ds</th><th>curvature extrema</th><th>max |κ|</th></tr>\n";
-    html += "<h3>S2 Fig. 8-12: Table 1 data</h3>\n<p>Nine points on a line, the middle one \
+    html += "<h3>Nine points with the middle one raised: the five methods compared (S2 Fig. 8-12)</h3>\n<p>Nine points on a line, the middle one \
              raised to Y = 0..5; one picture per method with the six curves. Cubic spline A \
              (uniform parameters, natural ends) wiggles beside the raised point; cubic spline \
              B (chord-length parameters) overshoots; the Hermite curves (tangent length = \
@@ -1542,10 +1549,10 @@ fn spline_gallery(out: &std::path::Path, quick: bool) -> Result<String> {
                 }
             }
             let samples = span_samples(&spans, 24)?;
-            series.push(plot::Series::new(
+            series.push(plot::Series::nth(
                 format!("Y = {y}"),
                 samples.iter().map(|s| (s.0.x, s.0.y)).collect(),
-                plot::PALETTE[k % plot::PALETTE.len()],
+                k,
             ));
             dots.extend(pts);
         }
@@ -1583,7 +1590,8 @@ fn spline_gallery(out: &std::path::Path, quick: bool) -> Result<String> {
         Point::new(1.0, -0.1),
         Point::new(3.0, 0.0),
     ];
-    html += "<h3>S2 Fig. 13-17: Table 2 data</h3>\n<p>Four points that double back: \
+    html +=
+        "<h3>Four points that double back (S2 Fig. 13-17)</h3>\n<p>Four points that double back: \
              (0, 0), (2, -0.1), (1, -0.1), (3, 0). Each curve with its curvature comb.</p>\n";
     let mut fair = String::from(fair_head);
     for (fig, (name, m)) in methods.iter().enumerate() {
@@ -1718,7 +1726,7 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
          </head><body><h1>aesthetic-curves: gallery</h1>\n\
          <p>Every picture and number on this page was computed by this build.</p>\n",
     );
-    html += "<h2>Curvature monotonicity (S1)</h2>\n";
+    html += "<h2>Is the curvature monotone? The exact test on Bézier curves — Katayama, Yoshida &amp; Saito (S1)</h2>\n";
     for ex in &examples {
         let pts: Vec<_> = ex
             .points
@@ -1753,7 +1761,7 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     }
     pb.inc(1);
     pb.set_message("log-aesthetic segments");
-    html += "<h2>Log-aesthetic segments in one triangle (S0 §3, docs/math.md §3.1)</h2>\n";
+    html += "<h2>Log-aesthetic segments of every alpha in one control triangle — Yoshida &amp; Saito 2006, S0 §3</h2>\n";
     let mut kappa_series = Vec::new();
     let tri = [
         aesthetic_curves::Point::new(0.0, 0.0),
@@ -1771,11 +1779,7 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
             }
             series.push((arc, *k));
         }
-        let mut se = plot::Series::new(
-            format!("alpha = {alpha}"),
-            series,
-            plot::PALETTE[kappa_series.len() % plot::PALETTE.len()],
-        );
+        let mut se = plot::Series::nth(format!("alpha = {alpha}"), series, kappa_series.len());
         se.markers = false;
         kappa_series.push(se);
         let file = format!("lac-alpha{alpha}.svg");
@@ -1802,8 +1806,8 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
         out.join("lac-curvature.svg"),
         plot::fitted_chart(
             "Curvature along the four LAC segments",
-            "arc length",
-            "curvature",
+            "arc length (length units of the triangle)",
+            "curvature (1 / length unit)",
             &kappa_series,
         ),
     )?;
@@ -1835,16 +1839,42 @@ fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     let rows = bench::run(&cfg);
     pb.inc(1);
     pb.finish_and_clear();
-    std::fs::write(out.join("bench-monotone.svg"), bench::chart(&rows))?;
+    let conditions = bench::conditions(&cfg);
+    std::fs::write(
+        out.join("bench-monotone.svg"),
+        bench::chart(&rows, &conditions),
+    )?;
     html += &format!(
-        "<h3>S1 Fig. 4: exact test against sampling</h3>\
-         <figure><img src=\"bench-monotone.svg\" alt=\"timing chart\"><figcaption>Time per curve \
-         on {} random curves per degree (the same set for every method). The sampling test \
-         costs grow with N and it still misjudges curves whose extrema fall between samples \
-         (column 'disagreements').</figcaption></figure><pre>{}</pre>\n",
-        cfg.curves,
+        "<h3>How long each test takes: exact test against sampling (S1 Fig. 4)</h3>\
+         <figure><img src=\"bench-monotone.svg\" alt=\"timing chart\"><figcaption>Time per curve, \
+         measured while this gallery was written: {conditions}; the same curves for every \
+         method. The ratios in the table hold for this run on this machine only (compare them \
+         within one run). The sampling test's cost grows with N and it still misjudges \
+         curves whose extrema fall between samples (column 'disagreements').</figcaption>\
+         </figure><pre>{}</pre>\n",
         bench::table(&rows)
     );
+    html += "<h2 id=\"papers\">The papers cited on this page</h2>\n<ul>\
+             <li><b>S0</b>: N. Yoshida and T. Saito, Approximation of an aesthetic curve segment \
+             by a rational cubic Bézier curve segment (Japanese; English version: Quasi-aesthetic \
+             curves in rational cubic Bézier forms, Computer-Aided Design and Applications 4, \
+             2007).</li>\
+             <li><b>S1</b>: R. Katayama, N. Yoshida and T. Saito, On the monotonicity of the \
+             curvature of polynomial curves (Japanese).</li>\
+             <li><b>S2</b>: H. Inoue and Y. Shibata, Pseudo-spline curve (Japanese, Gunma \
+             University).</li>\
+             <li><b>S3</b>: a short Japanese paper on the stable approximation of log-aesthetic \
+             curves by rational cubic Bézier curves.</li>\
+             <li><b>S4</b>: K. T. Miura, M. Yagi, Y. Kawata and M. Fujisawa, Input of aesthetic \
+             curve segments with inflection end points and generation of aesthetic curves with \
+             G2 continuity (Japanese).</li>\
+             <li>Yoshida &amp; Saito 2006: Interactive aesthetic curve segments, The Visual \
+             Computer 22, 896-905.</li>\
+             <li>Graiff Zurita, Kajiwara &amp; Miura 2023: Fairing of planar curves to \
+             log-aesthetic curves, Japan J. Indust. Appl. Math. 40, 1203-1219 (the Prius key \
+             lines, MIT licence).</li></ul>\n<p>Full citations, and what the project takes from \
+             each, in the repository's docs/bibliography.md; \"docs/math.md §N\" refers to \
+             section N of docs/math.md.</p>\n";
     html += "</body></html>\n";
     let index = out.join("index.html");
     std::fs::write(&index, html)?;

@@ -21,6 +21,15 @@ pub struct Series {
 }
 
 impl Series {
+    /// Series number `i` of a chart: its own colour ([`series_style`]).
+    pub fn nth(name: impl Into<String>, points: Vec<(f64, f64)>, i: usize) -> Self {
+        let (color, dashed) = series_style(i);
+        Series {
+            dashed,
+            ..Series::new(name, points, color)
+        }
+    }
+
     /// A solid line with a dot at each point.
     pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>, color: &'static str) -> Self {
         Series {
@@ -34,10 +43,17 @@ impl Series {
     }
 }
 
-/// Distinct colours for series.
-pub const PALETTE: [&str; 6] = [
-    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
+/// Distinct colours for series (twelve, no two alike; charts with more series than
+/// colours dash the second round).
+pub const PALETTE: [&str; 12] = [
+    "#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf",
+    "#7f7f7f", "#bcbd22", "#393b79", "#000000",
 ];
+
+/// The colour of series `i`, and whether it must be dashed to stay distinct.
+pub fn series_style(i: usize) -> (&'static str, bool) {
+    (PALETTE[i % PALETTE.len()], i >= PALETTE.len())
+}
 
 fn esc(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -75,6 +91,15 @@ fn fmt_tick(v: f64) -> String {
     }
 }
 
+/// A value with three significant digits, for labels.
+fn fmt_sig(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1e4 || v.abs() < 1e-2) {
+        format!("{v:.2e}")
+    } else {
+        format!("{}", (v * 1000.0).round() / 1000.0)
+    }
+}
+
 /// A line chart with axes, ticks, grid and legend. `log_y` plots log10(y) with decade ticks;
 /// otherwise a y range that is all positive starts at zero.
 pub fn line_chart(
@@ -100,8 +125,10 @@ fn chart(
     log_y: bool,
     y_from_zero: bool,
 ) -> String {
-    let (w, h) = (720.0, 460.0);
-    let (l, r, t, b) = (80.0, 190.0, 50.0, 60.0);
+    let mut lines = title.lines();
+    let (title, subtitle) = (lines.next().unwrap_or(""), lines.collect::<Vec<_>>());
+    let (w, h) = (720.0, 460.0 + 16.0 * subtitle.len() as f64);
+    let (l, r, t, b) = (80.0, 190.0, 50.0 + 16.0 * subtitle.len() as f64, 60.0);
     let ty = |y: f64| if log_y { y.max(1e-300).log10() } else { y };
     let all: Vec<(f64, f64)> = series
         .iter()
@@ -148,6 +175,15 @@ fn chart(
         (l + w - r) / 2.0,
         esc(title)
     );
+    for (i, line) in subtitle.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            r##"<text x="{}" y="{}" text-anchor="middle" font-size="11" fill="#444">{}</text>"##,
+            w / 2.0,
+            46.0 + 16.0 * i as f64,
+            esc(line)
+        );
+    }
     let yt: Vec<f64> = if log_y {
         (y0 as i64..=y1 as i64).map(|e| e as f64).collect()
     } else {
@@ -296,57 +332,182 @@ pub fn polyline_samples(points: &[aesthetic_curves::Point], kappa: &[f64]) -> Ve
 }
 
 /// The curve (as comb samples), its control polygon, its curvature comb and circled marks.
+/// Input units are unnamed; see [`comb_svg_in`].
 pub fn comb_svg(
     samples: &[CombSample],
     control: &[aesthetic_curves::Point],
     marks: &[aesthetic_curves::Point],
     caption: &str,
 ) -> String {
-    let (mut x0, mut x1, mut y0, mut y1) = control.iter().fold(
-        (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |(a, b, c, d), p| (a.min(p.x), b.max(p.x), c.min(p.y), d.max(p.y)),
-    );
-    let size = (x1 - x0).max(y1 - y0).max(1e-9);
-    let kmax = samples.iter().map(|s| s.2.abs()).fold(0.0, f64::max);
-    // Comb teeth point away from the centre of curvature, longest = 0.25 of the size.
-    let comb = if kmax > 0.0 { -0.25 * size / kmax } else { 0.0 };
-    let tips: Vec<aesthetic_curves::Point> = samples
+    comb_svg_in(samples, control, marks, caption, "")
+}
+
+/// A "nice" length near `x` (1, 2 or 5 times a power of ten, not above `x`).
+fn nice_length(x: f64) -> f64 {
+    let mag = 10f64.powf(x.log10().floor());
+    [5.0, 2.0, 1.0]
         .iter()
-        .map(|(p, nv, k)| *p + *nv * (k * comb))
+        .map(|m| m * mag)
+        .find(|v| *v <= x)
+        .unwrap_or(mag)
+}
+
+/// [`comb_svg`] with the unit of the coordinates (`"mm"`, or `""` when they have none),
+/// shown on the scale bar.
+///
+/// The picture is fitted to the curve: a long shallow curve (its extent across the chord
+/// of its ends under a fifth of the extent along it) is turned so that the chord is
+/// horizontal, the caption says by how much, and the canvas takes the curve's aspect, so
+/// the shape and the comb fill the picture instead of a sliver of it. The comb's longest
+/// tooth is a quarter of the curve's extent, on the convex side; a scale bar gives the
+/// size.
+pub fn comb_svg_in(
+    samples: &[CombSample],
+    control: &[aesthetic_curves::Point],
+    marks: &[aesthetic_curves::Point],
+    caption: &str,
+    unit: &str,
+) -> String {
+    use aesthetic_curves::{Point, Vec2};
+    let pts_all = || {
+        samples
+            .iter()
+            .map(|s| s.0)
+            .chain(control.iter().copied())
+            .filter(|p| p.is_finite())
+    };
+    let bbox = |it: &mut dyn Iterator<Item = Point>| {
+        it.fold(
+            (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ),
+            |(a, b, c, d), p| (a.min(p.x), b.max(p.x), c.min(p.y), d.max(p.y)),
+        )
+    };
+    // Turn long shallow curves so that the chord of their ends is horizontal.
+    let mut angle = 0.0;
+    if let (Some(first), Some(last)) = (samples.first(), samples.last()) {
+        let chord = last.0 - first.0;
+        if chord.hypot() > 0.0 {
+            let a = -chord.y.atan2(chord.x);
+            let (c, s) = (a.cos(), a.sin());
+            let rot = |p: Point| Point::new(c * p.x - s * p.y, s * p.x + c * p.y);
+            let (x0, x1, y0, y1) = bbox(&mut pts_all().map(rot));
+            if (y1 - y0) < (x1 - x0) / 5.0 {
+                angle = a;
+            }
+        }
+    }
+    let (ca, sa) = (angle.cos(), angle.sin());
+    let rot = |p: Point| Point::new(ca * p.x - sa * p.y, sa * p.x + ca * p.y);
+    let rotv = |v: Vec2| Vec2::new(ca * v.x - sa * v.y, sa * v.x + ca * v.y);
+    let samples: Vec<CombSample> = samples
+        .iter()
+        .map(|(p, n, k)| (rot(*p), rotv(*n), *k))
         .collect();
-    for p in &tips {
+    let control: Vec<Point> = control.iter().map(|p| rot(*p)).collect();
+    let marks: Vec<Point> = marks.iter().map(|p| rot(*p)).collect();
+    let (mut x0, mut x1, mut y0, mut y1) = bbox(
+        &mut samples
+            .iter()
+            .map(|s| s.0)
+            .chain(control.iter().copied())
+            .filter(|p| p.is_finite()),
+    );
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    let size = (x1 - x0).max(y1 - y0).max(1e-9);
+    // Comb teeth point away from the centre of curvature, the longest a quarter of the size.
+    // A short stretch of far larger curvature than the rest (a hook) would flatten the rest
+    // of the comb to nothing: when the largest curvature exceeds 8 times the 90th percentile
+    // by arc length, the scale follows 4 times that percentile, and longer teeth are cut at
+    // 1.5 times the nominal length and drawn in orange.
+    let mut ks: Vec<(f64, f64)> = samples
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let next = samples.get(i + 1).map_or(s.0, |n| n.0);
+            (s.2.abs(), (next - s.0).hypot())
+        })
+        .filter(|k| k.0.is_finite() && k.1.is_finite())
+        .collect();
+    ks.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let kmax = ks.last().map_or(0.0, |k| k.0);
+    let total: f64 = ks.iter().map(|k| k.1).sum();
+    let mut acc = 0.0;
+    let k90 = ks
+        .iter()
+        .find(|k| {
+            acc += k.1;
+            acc >= 0.9 * total
+        })
+        .map_or(kmax, |k| k.0);
+    let kscale = if kmax > 8.0 * k90 && k90 > 0.0 {
+        4.0 * k90
+    } else {
+        kmax
+    };
+    let comb = if kscale > 0.0 {
+        -0.25 * size / kscale
+    } else {
+        0.0
+    };
+    let kclip = 1.5 * kscale;
+    let tips: Vec<Point> = samples
+        .iter()
+        .map(|(p, nv, k)| *p + *nv * (k.clamp(-kclip, kclip) * comb))
+        .collect();
+    let clipped = kmax > kclip;
+    for p in tips.iter().filter(|p| p.is_finite()) {
         x0 = x0.min(p.x);
         x1 = x1.max(p.x);
         y0 = y0.min(p.y);
         y1 = y1.max(p.y);
     }
-    let (w, h) = (640.0, 480.0);
-    let m = 40.0;
-    let sc =
-        ((w - 2.0 * m) / (x1 - x0).max(1e-12)).min((h - 2.0 * m - 30.0) / (y1 - y0).max(1e-12));
-    let px = |p: aesthetic_curves::Point| (m + (p.x - x0) * sc, h - m - (p.y - y0) * sc);
+    // Canvas: 900 wide, as tall as the drawing needs (220 to 640).
+    let (w, m, top, bottom) = (900.0, 30.0, 44.0, 44.0);
+    let (dx, dy) = ((x1 - x0).max(1e-12), (y1 - y0).max(1e-12));
+    let sc = ((w - 2.0 * m) / dx).min((640.0 - top - bottom) / dy);
+    let h = (top + bottom + dy * sc).max(220.0);
+    let ox = (w - dx * sc) / 2.0;
+    let oy = top + ((h - top - bottom) + dy * sc) / 2.0;
+    let px = |p: Point| (ox + (p.x - x0) * sc, oy - (p.y - y0) * sc);
+    let turned = if angle != 0.0 {
+        format!(
+            " (turned {:.1}° to lay its chord flat)",
+            -angle.to_degrees()
+        )
+    } else {
+        String::new()
+    };
     let mut s = format!(
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="14">
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h:.0}" viewBox="0 0 {w} {h:.0}" font-family="sans-serif" font-size="14">
 <rect width="100%" height="100%" fill="white"/>
-<text x="{}" y="24" text-anchor="middle">{}</text>
+<text x="{}" y="24" text-anchor="middle">{}{}</text>
 "#,
         w / 2.0,
-        esc(caption)
+        esc(caption),
+        esc(&turned)
     );
-    for (i, (p, _, _)) in samples.iter().enumerate().step_by(4) {
+    let step = (samples.len() / 60).max(1);
+    for (i, (p, _, k)) in samples.iter().enumerate() {
+        let cut = k.abs() > kclip;
+        if i % step != 0 && !cut {
+            continue;
+        }
         let (a, b) = px(*p);
         let (c, d) = px(tips[i]);
+        let color = if cut { "#ff7f0e" } else { "#9ecae1" };
         let _ = writeln!(
             s,
-            r##"<line x1="{a:.1}" y1="{b:.1}" x2="{c:.1}" y2="{d:.1}" stroke="#9ecae1"/>"##
+            r##"<line x1="{a:.1}" y1="{b:.1}" x2="{c:.1}" y2="{d:.1}" stroke="{color}"/>"##
         );
     }
-    let coords = |pts: &mut dyn Iterator<Item = aesthetic_curves::Point>| -> Vec<String> {
+    let coords = |pts: &mut dyn Iterator<Item = Point>| -> Vec<String> {
         pts.map(|p| {
             let (a, b) = px(p);
             format!("{a:.1},{b:.1}")
@@ -365,11 +526,13 @@ pub fn comb_svg(
         r##"<polyline points="{}" fill="none" stroke="#999" stroke-dasharray="4 3"/>"##,
         poly.join(" ")
     );
-    for p in control {
+    // Many control points (a point sequence): small dots.
+    let r = if control.len() > 40 { 1.5 } else { 4.0 };
+    for p in &control {
         let (a, b) = px(*p);
         let _ = writeln!(
             s,
-            r##"<circle cx="{a:.1}" cy="{b:.1}" r="4" fill="#666"/>"##
+            r##"<circle cx="{a:.1}" cy="{b:.1}" r="{r}" fill="#666"/>"##
         );
     }
     let cpts = coords(&mut samples.iter().map(|s| s.0));
@@ -378,13 +541,52 @@ pub fn comb_svg(
         r##"<polyline points="{}" fill="none" stroke="#d62728" stroke-width="2.5"/>"##,
         cpts.join(" ")
     );
-    for &m in marks {
-        let (a, b) = px(m);
+    for &mk in &marks {
+        let (a, b) = px(mk);
         let _ = writeln!(
             s,
             r##"<circle cx="{a:.1}" cy="{b:.1}" r="6" fill="none" stroke="#000" stroke-width="2"/>"##
         );
     }
+    // Scale bar, bottom left: a round length of about a fifth of the width; the comb's scale
+    // beside it in the same length.
+    let len = nice_length(0.2 * (w - 2.0 * m) / sc);
+    let (bx, by) = (m, h - 16.0);
+    let u = if unit.is_empty() { "" } else { unit };
+    let per = if u.is_empty() {
+        String::new()
+    } else {
+        format!(" /{u}")
+    };
+    let comb_text = if comb != 0.0 {
+        let mut t = format!(
+            "; comb: a tooth of {} {u} = curvature {}{per}",
+            fmt_tick(len),
+            fmt_sig(len / comb.abs())
+        );
+        if clipped {
+            t += &format!(" (orange: cut, curvature up to {}{per})", fmt_sig(kmax));
+        }
+        t
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        s,
+        r##"<line x1="{bx}" y1="{by}" x2="{:.1}" y2="{by}" stroke="#333" stroke-width="2"/><line x1="{bx}" y1="{:.1}" x2="{bx}" y2="{:.1}" stroke="#333"/><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#333"/><text x="{:.1}" y="{:.1}" font-size="13">{} {}{}</text>"##,
+        bx + len * sc,
+        by - 4.0,
+        by + 4.0,
+        bx + len * sc,
+        by - 4.0,
+        bx + len * sc,
+        by + 4.0,
+        bx + len * sc + 8.0,
+        by + 5.0,
+        fmt_tick(len),
+        esc(u),
+        esc(&comb_text)
+    );
     s.push_str("</svg>\n");
     s
 }
