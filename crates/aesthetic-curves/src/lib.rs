@@ -93,6 +93,7 @@
 //! - [`roots`]: bracketed root finding (Illinois) shared by the solvers.
 //! - [`samples`]: reproducible random curve sets for benchmarks and tests.
 //! - [`sketch`]: pen input to a G2 curve of log-aesthetic pieces (as rational cubics).
+//! - [`solve`]: minimisers that report whether they converged (Nelder–Mead).
 //!
 //! Points and vectors are [`kurbo::Point`] and [`kurbo::Vec2`]; angles are radians; signed
 //! curvature is positive where the curve turns counter-clockwise (kurbo's curvature has
@@ -117,6 +118,7 @@ pub mod region;
 pub mod roots;
 pub mod samples;
 pub mod sketch;
+pub mod solve;
 
 pub use bezier::{Bezier, PlanarCurve, RationalBezier};
 pub use error::{Error, Result};

@@ -164,6 +164,13 @@ pub struct Sketch {
     pub all_monotone: bool,
 }
 
+/// Share of the tolerance the fair spline of noisy input may use (the smoothest spline
+/// within it shapes the pieces); the rest is left to the LAC pieces and their cubics.
+const FAIR_SHARE: f64 = 0.75;
+
+/// Share of the tolerance within which two neighbouring pieces merge into one LAC segment.
+const MERGE_SHARE: f64 = 0.95;
+
 /// The default tolerance of a sketch: 0.5 % of the diagonal of the points' bounding box
 /// (the protocol's `sketch.fit` default).
 pub fn default_tolerance(points: &[Point]) -> f64 {
@@ -297,8 +304,16 @@ struct Slot {
     ub: f64,
     cut_a: Cut,
     cut_b: Cut,
-    /// α estimated from the B-spline's LCG over the piece.
+    /// α of the piece: least squares against the input points, or the B-spline's LCG
+    /// slope where that fit has not run or found no segment.
     alpha: Option<f64>,
+    /// Whether the least-squares fit of α ran.
+    fitted: bool,
+    /// Tangent at the curve's start or end fitted with α (end slots only): replaces the
+    /// spline's there.
+    dir_a: Option<Vec2>,
+    /// As `dir_a`, at the slot's end.
+    dir_b: Option<Vec2>,
 }
 
 /// Parameters where the curve turns by `turn` (in [0, total]) from `ua`, by bisection.
@@ -432,6 +447,9 @@ fn slot(track: &Track, a: (f64, Cut), b: (f64, Cut)) -> Slot {
         cut_a: a.1,
         cut_b: b.1,
         alpha: lcg_alpha(track, a.0, b.0),
+        fitted: false,
+        dir_a: None,
+        dir_b: None,
     }
 }
 
@@ -802,20 +820,28 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     let sigma = noise_level(points);
     // Precise data (noise below 1e-6 of the size) get a tight fit, whose tangents and
     // curvature graphs are accurate; noisy data half the tolerance, the smoothest fit allowed.
-    let fit_tol = if 4.0 * sigma > 1e-6 * size {
-        0.5 * opts.tolerance
+    let noisy = 4.0 * sigma > 1e-6 * size;
+    let fit_tol = if noisy {
+        FAIR_SHARE * opts.tolerance
     } else {
         (4.0 * sigma).max(1e-5 * size).min(0.5 * opts.tolerance)
     };
-    // Outliers the noise estimate ignores can keep the tight fit from converging: then
-    // half the tolerance.
-    let fit = bspline::fit(
-        points,
-        FitOptions {
-            tolerance: fit_tol,
-            max_segments: 200,
-        },
-    );
+    // Noisy data (measured lines, pen strokes): fair first. The smoothest spline within
+    // half the tolerance carries no hooks or wiggles the tolerance does not demand; its few
+    // events cut the pieces. Precise data: the tight fit, whose tangents and curvature are
+    // accurate. Outliers the noise estimate ignores can keep the tight fit from converging:
+    // then half the tolerance.
+    let fit = if noisy {
+        bspline::smoothing_fit(points, fit_tol)
+    } else {
+        bspline::fit(
+            points,
+            FitOptions {
+                tolerance: fit_tol,
+                max_segments: 200,
+            },
+        )
+    };
     let (fit, fit_tol) = match fit {
         Err(Error::NoConvergence(_)) if fit_tol < 0.5 * opts.tolerance => (
             bspline::fit(
@@ -852,7 +878,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     // so a parameter carries over.
     let shape_tol = 0.25 * opts.tolerance;
     let shape_fit;
-    let shape = if shape_tol > 2.0 * fit_tol {
+    let shape = if !noisy && shape_tol > 2.0 * fit_tol {
         let f = bspline::fit(
             points,
             FitOptions {
@@ -867,22 +893,53 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     };
     let mut slots = segment(&track, shape, opts)?;
     split_s_shapes(&track, &mut slots)?;
+    // The curve runs from the first input point to the last (their end tangents are fitted
+    // with the end pieces' α, so an artefact in the last few points bends nothing).
+    let ends = EndPoints::Input(fit.points[0], *fit.points.last().unwrap());
+    merge_slots(
+        &track,
+        &fit,
+        &mut slots,
+        ends,
+        MERGE_SHARE * opts.tolerance,
+        opts.max_turn,
+    );
+    // The pieces at the curve's ends fit their outer tangent with α.
+    let last = slots.len() - 1;
+    fit_slot_alpha(&track, &fit, &mut slots[0], ends, true);
+    if last > 0 {
+        fit_slot_alpha(&track, &fit, &mut slots[last], ends, true);
+    }
     let mut peak_splits = 0;
     loop {
+        let last = slots.len() - 1;
+        for (i, s) in slots.iter_mut().enumerate().filter(|(_, s)| !s.fitted) {
+            fit_slot_alpha(&track, &fit, s, ends, i == 0 || i == last);
+        }
         let pts: Vec<Point> = slots
             .iter()
             .map(|s| track.point(s.ua))
             .chain(std::iter::once(track.point(slots.last().unwrap().ub)))
             .collect();
         let mut pts = pts;
-        // The curve's ends are the input's ends.
-        pts[0] = fit.points[0];
-        *pts.last_mut().unwrap() = *fit.points.last().unwrap();
+        // The curve's ends are the input's ends (a faired curve keeps its own, within the
+        // tolerance of them).
+        if ends != EndPoints::Track {
+            pts[0] = fit.points[0];
+            *pts.last_mut().unwrap() = *fit.points.last().unwrap();
+        }
         let mut dirs: Vec<Vec2> = slots
             .iter()
             .map(|s| track.direction(s.ua))
             .chain(std::iter::once(track.direction(slots.last().unwrap().ub)))
             .collect();
+        // Fitted end tangents replace the spline's.
+        if let Some(d) = slots[0].dir_a {
+            dirs[0] = d;
+        }
+        if let Some(d) = slots.last().unwrap().dir_b {
+            *dirs.last_mut().unwrap() = d;
+        }
         let failed = settle_inflections(&slots, &pts, &mut dirs);
         if !failed.is_empty() && peak_splits < 2 * opts.max_pieces && slots.len() < opts.max_pieces
         {
@@ -967,7 +1024,8 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             })
             .collect();
         let (mut worst, mut worst_piece, mut sum) = (0.0f64, 0usize, 0.0);
-        for q in &fit.points {
+        let mut worst_u = 0.0;
+        for (q, &u) in fit.points.iter().zip(&fit.params) {
             let (d, i) = pieces
                 .iter()
                 .enumerate()
@@ -978,11 +1036,15 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             if d > worst {
                 worst = d;
                 worst_piece = i;
+                worst_u = u;
             }
         }
         let rms = (sum / fit.points.len() as f64).sqrt();
         if worst > opts.tolerance && slots.len() < opts.max_pieces {
-            split_at_mid_turn(&track, &mut slots, worst_piece)?;
+            // Split where the curve misses the points most (kept off the piece's ends).
+            let s = &slots[worst_piece];
+            let u = worst_u.clamp(s.ua + 0.25 * (s.ub - s.ua), s.ub - 0.25 * (s.ub - s.ua));
+            split_at(&track, &mut slots, worst_piece, u)?;
             continue;
         }
         if worst > opts.tolerance {
@@ -1082,6 +1144,14 @@ fn inflection_fallback(seg: &LacInflectionSegment) -> Result<crate::approx::Rati
 }
 
 /// Split `slots[i]` where it has turned half its turning, then any S-shaped results.
+fn split_at(track: &Track, slots: &mut Vec<Slot>, i: usize, u: f64) -> Result<()> {
+    let s = slots[i].clone();
+    let left = slot(track, (s.ua, s.cut_a), (u, Cut::Other));
+    let right = slot(track, (u, Cut::Other), (s.ub, s.cut_b));
+    slots.splice(i..=i, [left, right]);
+    split_s_shapes(track, slots)
+}
+
 fn split_at_mid_turn(track: &Track, slots: &mut Vec<Slot>, i: usize) -> Result<()> {
     let s = slots[i].clone();
     let mid = u_at_turn(
@@ -1157,4 +1227,256 @@ fn reverse(c: &RationalBezier) -> RationalBezier {
     p.reverse();
     w.reverse();
     RationalBezier::new(p, w).expect("reversal keeps a valid curve")
+}
+
+/// Distance from `q` to a curve sampled at an odd number of points: each pair of
+/// neighbouring chords is read as the parabola through its three points (chord plus the
+/// bulge of its middle sample), which removes the chord's sagitta from the distance; the
+/// nearest of all of them (no assumption that the points advance along the curve).
+fn curve_distance(samples: &[Point], q: Point) -> f64 {
+    let mut best = f64::INFINITY;
+    let mut k = 0;
+    while k + 2 < samples.len() {
+        let (p0, p1, p2) = (samples[k], samples[k + 1], samples[k + 2]);
+        let d = p2 - p0;
+        let l2 = d.hypot2();
+        let t = if l2 > 0.0 {
+            ((q - p0).dot(d) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let bulge = p1 - p0.midpoint(p2);
+        let c = p0 + d * t + bulge * (4.0 * t * (1.0 - t));
+        best = best.min((c - q).hypot2());
+        k += 2;
+    }
+    best.sqrt()
+}
+
+/// Sum of squared and largest distance of `pts` to the LAC segment of shape `alpha` in
+/// `tri`; `None` where the segment does not exist.
+fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point]) -> Option<(f64, f64)> {
+    let seg = LacSegment::new(alpha, tri).ok()?;
+    let (poly, _) = seg.sample(129).ok()?;
+    let (mut sum, mut max) = (0.0, 0.0f64);
+    for q in pts {
+        let d = curve_distance(&poly, *q);
+        sum += d * d;
+        max = max.max(d);
+    }
+    Some((sum, max))
+}
+
+/// Bounds of α in the least-squares fit of a piece: beyond them the logarithmic curvature
+/// graph is too steep for the data to tell alphas apart.
+pub const ALPHA_BOUNDS: (f64, f64) = (-5.0, 5.0);
+
+/// α of the LAC segment in `tri` closest to `pts` in the least-squares sense (point-to-curve
+/// distances), and the largest distance of all `pts`: a scan over [`ALPHA_BOUNDS`] then
+/// golden-section refinement to 1e-4, on at most 64 of the points (evenly spread; the
+/// largest distance is measured on all). `None` when no α of the range gives a segment.
+fn fit_alpha(tri: [Point; 3], all: &[Point]) -> Option<(f64, f64)> {
+    let stride = all.len().div_ceil(64).max(1);
+    let sub: Vec<Point> = all.iter().step_by(stride).copied().collect();
+    let pts = &sub[..];
+    let (lo, hi) = ALPHA_BOUNDS;
+    let steps = 20;
+    let grid: Vec<(f64, f64)> = (0..=steps)
+        .filter_map(|k| {
+            let a = lo + (hi - lo) * k as f64 / steps as f64;
+            lac_cost(a, tri, pts).map(|c| (a, c.0))
+        })
+        .collect();
+    let &(a0, _) = grid.iter().min_by(|x, y| x.1.total_cmp(&y.1))?;
+    let h = (hi - lo) / steps as f64;
+    let f = |a: f64| lac_cost(a, tri, pts).map_or(f64::INFINITY, |c| c.0);
+    let (mut a, mut b) = ((a0 - h).max(lo), (a0 + h).min(hi));
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..40 {
+        if b - a < 1e-4 {
+            break;
+        }
+        if fc <= fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    // The best of the refined point and the grid's (the refinement never loses it).
+    let cand = [(0.5 * (a + b)), a0];
+    let best = cand
+        .iter()
+        .copied()
+        .filter(|&x| f(x).is_finite())
+        .min_by(|x, y| f(*x).total_cmp(&f(*y)))?;
+    lac_cost(best, tri, all).map(|c| (best, c.1))
+}
+
+/// The input points whose foot parameters lie in [ua, ub].
+fn points_in(fit: &bspline::BSplineFit, ua: f64, ub: f64) -> Vec<Point> {
+    fit.points
+        .iter()
+        .zip(&fit.params)
+        .filter(|(_, u)| **u >= ua && **u <= ub)
+        .map(|(q, _)| *q)
+        .collect()
+}
+
+/// The curve's end points: the input's own ([`EndPoints::Input`], precise data) or the
+/// fair spline's ([`EndPoints::Track`]).
+#[derive(Clone, Copy, PartialEq)]
+enum EndPoints {
+    Input(Point, Point),
+    Track,
+}
+
+/// Where slot `s` starts and ends.
+fn slot_ends(track: &Track, s: &Slot, ends: EndPoints) -> (Point, Point) {
+    let (mut a, mut b) = (track.point(s.ua), track.point(s.ub));
+    if let EndPoints::Input(first, last) = ends {
+        if s.cut_a == Cut::End {
+            a = first;
+        }
+        if s.cut_b == Cut::End {
+            b = last;
+        }
+    }
+    (a, b)
+}
+
+/// The LAC piece of slot `s` (not an inflection piece) fitted to its input points: α by
+/// least squares in the triangle of its end points and the track's tangents; with
+/// `free_ends`, the tangent at an end of the whole curve is fitted too (Nelder–Mead over α
+/// and the tangent angles, from the α of the fixed triangle). Returns the largest distance,
+/// or `None` when the slot has no triangle or no segment.
+fn fit_slot_alpha(
+    track: &Track,
+    fit: &bspline::BSplineFit,
+    s: &mut Slot,
+    ends: EndPoints,
+    free_ends: bool,
+) -> Option<f64> {
+    if s.cut_a == Cut::Inflection || s.cut_b == Cut::Inflection {
+        return None;
+    }
+    let (pa, pb) = slot_ends(track, s, ends);
+    let (da, db) = (track.direction(s.ua), track.direction(s.ub));
+    let tri = triangle(pa, da, pb, db)?;
+    let pts = points_in(fit, s.ua, s.ub);
+    if pts.len() < 3 {
+        return None;
+    }
+    s.fitted = true;
+    let (alpha, max) = fit_alpha(tri, &pts)?;
+    s.alpha = Some(alpha);
+    let (free_a, free_b) = (
+        free_ends && s.cut_a == Cut::End,
+        free_ends && s.cut_b == Cut::End,
+    );
+    if !(free_a || free_b) {
+        return Some(max);
+    }
+    let stride = pts.len().div_ceil(64).max(1);
+    let sub: Vec<Point> = pts.iter().step_by(stride).copied().collect();
+    let make = |x: &[f64]| {
+        let a = if free_a { rotate(da, x[1]) } else { da };
+        let b = if free_b { rotate(db, x[2]) } else { db };
+        (a, b)
+    };
+    let mut cost = |x: &[f64]| -> f64 {
+        let (a, b) = make(x);
+        triangle(pa, a, pb, b)
+            .and_then(|t| lac_cost(x[0].clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1), t, &sub))
+            .map_or(f64::INFINITY, |c| c.0)
+    };
+    let start = [alpha, 0.0, 0.0];
+    let scale = cost(&start);
+    let m = crate::solve::nelder_mead(
+        &mut cost,
+        &start,
+        &[0.25, 0.01, 0.01],
+        crate::solve::Options {
+            f_tol: 1e-10 * scale,
+            x_tol: 1e-5,
+            max_evaluations: 400,
+        },
+    );
+    if !(m.value < scale) {
+        return Some(max);
+    }
+    let (a, b) = make(&m.x);
+    let alpha = m.x[0].clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1);
+    let tri = triangle(pa, a, pb, b)?;
+    let (_, max) = lac_cost(alpha, tri, &pts)?;
+    s.alpha = Some(alpha);
+    s.dir_a = free_a.then_some(a);
+    s.dir_b = free_b.then_some(b);
+    Some(max)
+}
+
+/// Merge neighbouring pieces (across curvature-extremum cuts, never across inflections or
+/// the curve's ends) while one LAC segment, α fitted by least squares, stays within
+/// `limit` of the input points and turns less than `max_turn`: as few pieces as the
+/// tolerance allows. Each remaining LAC slot gets its least-squares α.
+fn merge_slots(
+    track: &Track,
+    fit: &bspline::BSplineFit,
+    slots: &mut Vec<Slot>,
+    ends: EndPoints,
+    limit: f64,
+    max_turn: f64,
+) {
+    for s in slots.iter_mut() {
+        fit_slot_alpha(track, fit, s, ends, false);
+    }
+    // The merged slot of each neighbouring pair and its deviation (None: no merge),
+    // recomputed only next to a merge.
+    let pair = |a: &Slot, b: &Slot| -> Option<(Slot, f64)> {
+        if a.cut_b != Cut::Other || track.angle_between(a.ua, b.ub).abs() > max_turn {
+            return None;
+        }
+        let mut m = Slot {
+            ua: a.ua,
+            ub: b.ub,
+            cut_a: a.cut_a,
+            cut_b: b.cut_b,
+            alpha: None,
+            fitted: false,
+            dir_a: None,
+            dir_b: None,
+        };
+        // A merge that reaches an end of the curve fits the tangent there too.
+        let d = fit_slot_alpha(track, fit, &mut m, ends, true)?;
+        (d <= limit).then_some((m, d))
+    };
+    let mut pairs: Vec<Option<(Slot, f64)>> =
+        slots.windows(2).map(|w| pair(&w[0], &w[1])).collect();
+    loop {
+        // The merge that leaves the smallest deviation first.
+        let best = pairs
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| p.as_ref().map(|(_, d)| (i, *d)))
+            .min_by(|x, y| x.1.total_cmp(&y.1));
+        let Some((i, _)) = best else { break };
+        let (m, _) = pairs[i].take().expect("chosen pair");
+        slots.splice(i..=i + 1, [m]);
+        pairs.remove(i);
+        if i > 0 {
+            pairs[i - 1] = pair(&slots[i - 1], &slots[i]);
+        }
+        if i < pairs.len() {
+            pairs[i] = pair(&slots[i], &slots[i + 1]);
+        }
+    }
 }
