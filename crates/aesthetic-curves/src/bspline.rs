@@ -507,102 +507,6 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::PlanarCurve;
-
-    #[test]
-    fn a_cubic_is_fitted_within_tolerance() {
-        let b = Bezier::new(vec![
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 2.0),
-            Point::new(3.0, 2.5),
-            Point::new(4.0, 0.0),
-        ])
-        .unwrap();
-        let pts: Vec<Point> = (0..50).map(|i| b.eval(i as f64 / 49.0)).collect();
-        // Chord length is not the cubic's own parameter; parameter correction narrows the
-        // gap but converges slowly, so a tight tolerance takes a few segments.
-        let f = fit(
-            &pts,
-            FitOptions {
-                tolerance: 1e-2,
-                max_segments: 10,
-            },
-        )
-        .unwrap();
-        assert!(f.max_deviation < 1e-2, "{}", f.max_deviation);
-        assert_eq!(f.spline.control_points.len(), 4, "{}", f.max_deviation);
-        let f = fit(
-            &pts,
-            FitOptions {
-                tolerance: 1e-5,
-                max_segments: 30,
-            },
-        )
-        .unwrap();
-        assert!(f.max_deviation < 1e-5, "{}", f.max_deviation);
-    }
-
-    #[test]
-    fn circle_needs_more_segments_and_beziers_match() {
-        let pts: Vec<Point> = (0..200)
-            .map(|i| {
-                let a = 3.0 * i as f64 / 199.0;
-                Point::new(10.0 * a.cos(), 10.0 * a.sin())
-            })
-            .collect();
-        let f = fit(
-            &pts,
-            FitOptions {
-                tolerance: 1e-4,
-                max_segments: 40,
-            },
-        )
-        .unwrap();
-        assert!(f.max_deviation <= 1e-4);
-        let segs = f.spline.control_points.len() - 3;
-        assert!(segs >= 3, "{segs}");
-        // Every point of the fit is within tolerance of the circle.
-        for i in 0..=400 {
-            let q = f.spline.eval(i as f64 / 400.0);
-            assert!((q.to_vec2().hypot() - 10.0).abs() < 2e-4);
-        }
-        let beziers = f.spline.to_beziers().unwrap();
-        assert_eq!(beziers.len(), segs);
-        for (i, b) in beziers.iter().enumerate() {
-            for j in 0..=10 {
-                let t = j as f64 / 10.0;
-                let u = (i as f64 + t) / segs as f64;
-                assert!((b.eval(t) - f.spline.eval(u)).hypot() < 1e-12, "span {i}");
-            }
-        }
-    }
-
-    #[test]
-    fn bad_input() {
-        let p = Point::new(1.0, 1.0);
-        let opts = FitOptions {
-            tolerance: 1e-3,
-            max_segments: 5,
-        };
-        assert!(matches!(
-            fit(&[p, p, p, p, p], opts),
-            Err(Error::InvalidInput { .. })
-        ));
-        assert!(fit(&[Point::new(f64::NAN, 0.0); 5], opts).is_err());
-        assert!(fit(
-            &[p; 3],
-            FitOptions {
-                tolerance: -1.0,
-                max_segments: 5
-            }
-        )
-        .is_err());
-    }
-}
-
 /// The smoothest cubic B-spline within a distance of the points: the fair curve a designer
 /// asks for when the data carry noise or measurement artefacts.
 ///
@@ -762,4 +666,100 @@ pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit>
         max_deviation: dmax,
         rms_deviation: rms,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::PlanarCurve;
+
+    #[test]
+    fn a_cubic_is_fitted_within_tolerance() {
+        let b = Bezier::new(vec![
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 2.0),
+            Point::new(3.0, 2.5),
+            Point::new(4.0, 0.0),
+        ])
+        .unwrap();
+        let pts: Vec<Point> = (0..50).map(|i| b.eval(i as f64 / 49.0)).collect();
+        // Chord length is not the cubic's own parameter; parameter correction narrows the
+        // gap but converges slowly, so a tight tolerance takes a few segments.
+        let f = fit(
+            &pts,
+            FitOptions {
+                tolerance: 1e-2,
+                max_segments: 10,
+            },
+        )
+        .unwrap();
+        assert!(f.max_deviation < 1e-2, "{}", f.max_deviation);
+        assert_eq!(f.spline.control_points.len(), 4, "{}", f.max_deviation);
+        let f = fit(
+            &pts,
+            FitOptions {
+                tolerance: 1e-5,
+                max_segments: 30,
+            },
+        )
+        .unwrap();
+        assert!(f.max_deviation < 1e-5, "{}", f.max_deviation);
+    }
+
+    #[test]
+    fn circle_needs_more_segments_and_beziers_match() {
+        let pts: Vec<Point> = (0..200)
+            .map(|i| {
+                let a = 3.0 * i as f64 / 199.0;
+                Point::new(10.0 * a.cos(), 10.0 * a.sin())
+            })
+            .collect();
+        let f = fit(
+            &pts,
+            FitOptions {
+                tolerance: 1e-4,
+                max_segments: 40,
+            },
+        )
+        .unwrap();
+        assert!(f.max_deviation <= 1e-4);
+        let segs = f.spline.control_points.len() - 3;
+        assert!(segs >= 3, "{segs}");
+        // Every point of the fit is within tolerance of the circle.
+        for i in 0..=400 {
+            let q = f.spline.eval(i as f64 / 400.0);
+            assert!((q.to_vec2().hypot() - 10.0).abs() < 2e-4);
+        }
+        let beziers = f.spline.to_beziers().unwrap();
+        assert_eq!(beziers.len(), segs);
+        for (i, b) in beziers.iter().enumerate() {
+            for j in 0..=10 {
+                let t = j as f64 / 10.0;
+                let u = (i as f64 + t) / segs as f64;
+                assert!((b.eval(t) - f.spline.eval(u)).hypot() < 1e-12, "span {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn bad_input() {
+        let p = Point::new(1.0, 1.0);
+        let opts = FitOptions {
+            tolerance: 1e-3,
+            max_segments: 5,
+        };
+        assert!(matches!(
+            fit(&[p, p, p, p, p], opts),
+            Err(Error::InvalidInput { .. })
+        ));
+        assert!(fit(&[Point::new(f64::NAN, 0.0); 5], opts).is_err());
+        assert!(fit(
+            &[p; 3],
+            FitOptions {
+                tolerance: -1.0,
+                max_segments: 5
+            }
+        )
+        .is_err());
+    }
 }

@@ -1411,7 +1411,7 @@ fn fit_slot_alpha(
             max_evaluations: 400,
         },
     );
-    if !(m.value < scale) {
+    if m.value.partial_cmp(&scale) != Some(std::cmp::Ordering::Less) {
         return Some(max);
     }
     let (a, b) = make(&m.x);
