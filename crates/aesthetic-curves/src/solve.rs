@@ -108,8 +108,8 @@ pub fn nelder_mead(
             } else {
                 let b = simplex[0].0.clone();
                 for s in simplex.iter_mut().skip(1) {
-                    for i in 0..n {
-                        s.0[i] = b[i] + 0.5 * (s.0[i] - b[i]);
+                    for (x, bx) in s.0.iter_mut().zip(&b) {
+                        *x = bx + 0.5 * (*x - bx);
                     }
                     s.1 = eval(&s.0, &mut evals);
                 }
