@@ -954,6 +954,25 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                 continue;
             }
         }
+        // An end piece whose end tangents form no triangle (the input's end point and a
+        // fitted tangent can tip a shallow piece over): the fair spline's tangent there,
+        // then its end point too.
+        let m = slots.len();
+        let has = |pts: &[Point], dirs: &[Vec2], i: usize| {
+            triangle(pts[i], dirs[i], pts[i + 1], dirs[i + 1]).is_some()
+        };
+        if !has(&pts, &dirs, 0) {
+            dirs[0] = track.direction(slots[0].ua);
+            if !has(&pts, &dirs, 0) {
+                pts[0] = track.point(slots[0].ua);
+            }
+        }
+        if !has(&pts, &dirs, m - 1) {
+            dirs[m] = track.direction(slots[m - 1].ub);
+            if !has(&pts, &dirs, m - 1) {
+                pts[m] = track.point(slots[m - 1].ub);
+            }
+        }
         let (built, fairing) = fair(&slots, &pts, &mut dirs, opts)?;
         let mut pieces = Vec::with_capacity(slots.len());
         let mut split_here: Option<usize> = None;
