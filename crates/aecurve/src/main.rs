@@ -1034,14 +1034,19 @@ fn sketch(
             }
         );
         println!(
-            "  fairing: {} Newton iterations, jump {:.2e} -> {:.2e}",
-            sk.fairing.iterations, sk.fairing.initial_jump, sk.fairing.final_jump
+            "  {} inflections, {} curvature extrema; fairing: {} Newton iterations, jump {:.2e} -> {:.2e}",
+            sk.inflections,
+            sk.curvature_extrema,
+            sk.fairing.iterations,
+            sk.fairing.initial_jump,
+            sk.fairing.final_jump
         );
         for (i, p) in sk.pieces.iter().enumerate() {
             println!(
-                "  piece {i}: {:<14} alpha {:>8.4}  curvature {:+.4e} -> {:+.4e}  {}",
+                "  piece {i}: {:<14} alpha {:>8.4}{}  curvature {:+.4e} -> {:+.4e}  {}",
                 p.kind.as_str(),
                 p.alpha,
+                if p.alpha_at_bound { " (bound)" } else { "" },
                 p.end_curvatures.0,
                 p.end_curvatures.1,
                 if p.monotone {
@@ -1349,7 +1354,7 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
         html += &format!(
             "<h3>{name}</h3><p>{caption} {} pieces in {ms:.0} ms; largest deviation {:.4} {unit} \
              (tolerance {:.4} {unit}); largest curvature jump {:.1e} of the largest curvature ({}); \
-             {}.</p>\n<figure><img src=\"{name}.svg\" alt=\"{name}\"></figure>\n\
+             {}; {} inflections and {} curvature extrema.</p>\n<figure><img src=\"{name}.svg\" alt=\"{name}\"></figure>\n\
              <figure><img src=\"{name}-curvature.svg\" alt=\"curvature\"><figcaption>Curvature \
              against arc length: monotone on each piece, continuous at the joints.\
              </figcaption></figure>\n<table border=\"1\" cellpadding=\"4\"><tr><th>piece</th>\
@@ -1364,13 +1369,16 @@ fn sketch_gallery(out: &std::path::Path) -> Result<String> {
                 "every piece curvature-monotone"
             } else {
                 "NOT every piece curvature-monotone"
-            }
+            },
+            sk.inflections,
+            sk.curvature_extrema
         );
         for (i, p) in sk.pieces.iter().enumerate() {
             html += &format!(
-                "<tr><td>{i}</td><td>{}</td><td>{:.4}</td><td>{:+.4e}</td><td>{:+.4e}</td><td>{}</td></tr>\n",
+                "<tr><td>{i}</td><td>{}</td><td>{:.4}{}</td><td>{:+.4e}</td><td>{:+.4e}</td><td>{}</td></tr>\n",
                 p.kind.as_str(),
                 p.alpha,
+                if p.alpha_at_bound { " (at its bound)" } else { "" },
                 p.end_curvatures.0,
                 p.end_curvatures.1,
                 p.monotone

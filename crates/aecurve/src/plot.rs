@@ -552,7 +552,12 @@ pub fn comb_svg_in(
     // beside it in the same length.
     let len = nice_length(0.2 * (w - 2.0 * m) / sc);
     let (bx, by) = (m, h - 16.0);
-    let u = if unit.is_empty() { "" } else { unit };
+    let u = unit;
+    let unit_text = if u.is_empty() {
+        String::new()
+    } else {
+        format!(" {u}")
+    };
     let per = if u.is_empty() {
         String::new()
     } else {
@@ -573,7 +578,7 @@ pub fn comb_svg_in(
     };
     let _ = writeln!(
         s,
-        r##"<line x1="{bx}" y1="{by}" x2="{:.1}" y2="{by}" stroke="#333" stroke-width="2"/><line x1="{bx}" y1="{:.1}" x2="{bx}" y2="{:.1}" stroke="#333"/><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#333"/><text x="{:.1}" y="{:.1}" font-size="13">{} {}{}</text>"##,
+        r##"<line x1="{bx}" y1="{by}" x2="{:.1}" y2="{by}" stroke="#333" stroke-width="2"/><line x1="{bx}" y1="{:.1}" x2="{bx}" y2="{:.1}" stroke="#333"/><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#333"/><text x="{:.1}" y="{:.1}" font-size="13">{}{}{}</text>"##,
         bx + len * sc,
         by - 4.0,
         by + 4.0,
@@ -584,7 +589,7 @@ pub fn comb_svg_in(
         bx + len * sc + 8.0,
         by + 5.0,
         fmt_tick(len),
-        esc(u),
+        esc(&unit_text),
         esc(&comb_text)
     );
     s.push_str("</svg>\n");

@@ -596,6 +596,7 @@ pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Val
                     "weights": p.rational.weights(),
                 },
                 "monotone": p.monotone,
+                "alpha_at_bound": p.alpha_at_bound,
             });
             put(&mut o, "alpha_estimate", p.alpha_estimate);
             put(&mut o, "rational_error", Some(p.rational_error));
@@ -620,6 +621,8 @@ pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Val
         "rms_deviation": sk.rms_deviation,
         "g2": sk.g2,
         "all_monotone": sk.all_monotone,
+        "inflections": sk.inflections,
+        "curvature_extrema": sk.curvature_extrema,
         "fairing": fairing,
     });
     put(&mut o, "max_curvature_jump", Some(sk.max_curvature_jump));

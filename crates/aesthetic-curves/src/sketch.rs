@@ -124,6 +124,9 @@ pub struct SketchPiece {
     pub rational_error: f64,
     /// Curvature monotonicity of the rational cubic, proven by the exact test.
     pub monotone: bool,
+    /// α sits on a bound of its least-squares fit ([`ALPHA_BOUNDS`]): the data do not pin
+    /// it down (a shallow piece) or want a steeper curvature graph than allowed.
+    pub alpha_at_bound: bool,
     /// Parameter range on the intermediate B-spline.
     pub u_range: (f64, f64),
 }
@@ -162,6 +165,40 @@ pub struct Sketch {
     pub fairing: FairingReport,
     /// Every rational piece proven curvature-monotone.
     pub all_monotone: bool,
+    /// Inflections of the result (sign changes of its curvature).
+    pub inflections: usize,
+    /// Interior curvature extrema of the result (the pieces are monotone, so these sit at
+    /// joints where the curvature turns back).
+    pub curvature_extrema: usize,
+}
+
+/// Inflections and interior curvature extrema of a curve made of curvature-monotone pieces
+/// with signed end curvatures `ends` (curve order): the curvature between two ends is
+/// monotone, so the sign changes and turns of the sequence of end values are all of them.
+pub fn count_events(ends: &[(f64, f64)]) -> (usize, usize) {
+    let mut ks: Vec<f64> = Vec::with_capacity(ends.len() + 1);
+    for (i, e) in ends.iter().enumerate() {
+        if i == 0 {
+            ks.push(e.0);
+        }
+        ks.push(e.1);
+    }
+    let scale = ks.iter().fold(0.0f64, |m, k| m.max(k.abs()));
+    let tiny = 1e-9 * scale;
+    let signs: Vec<f64> = ks
+        .iter()
+        .filter(|k| k.abs() > tiny)
+        .map(|k| k.signum())
+        .collect();
+    let inflections = signs.windows(2).filter(|w| w[0] != w[1]).count();
+    let steps: Vec<f64> = ks
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|d| d.abs() > tiny)
+        .map(|d| d.signum())
+        .collect();
+    let extrema = steps.windows(2).filter(|w| w[0] != w[1]).count();
+    (inflections, extrema)
 }
 
 /// Share of the tolerance the fair spline of noisy input may use (the smoothest spline
@@ -171,10 +208,12 @@ const FAIR_SHARE: f64 = 0.75;
 /// Share of the tolerance within which two neighbouring pieces merge into one LAC segment.
 const MERGE_SHARE: f64 = 0.95;
 
-/// The default tolerance of a sketch: 0.5 % of the diagonal of the points' bounding box
-/// (the protocol's `sketch.fit` default).
+/// The default tolerance of a sketch (the protocol's `sketch.fit` default): 0.5 % of the
+/// diagonal of the points' bounding box, but never below 6 times the noise estimated from
+/// the points themselves (per coordinate, from local cubic fits), so that a fair curve can
+/// meet it: a hand's jitter of a few pixels is not a shape to follow.
 pub fn default_tolerance(points: &[Point]) -> f64 {
-    0.005 * bbox_diagonal(points)
+    (0.005 * bbox_diagonal(points)).max(6.0 * noise_level(points))
 }
 
 impl Sketch {
@@ -377,6 +416,40 @@ fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Result<Vec<Slo
         }
         if infl.len() == before {
             break;
+        }
+    }
+    // An inflection pair (or an inflection and an end) with hardly any curvature between
+    // them is a flat stretch crossed by noise, not an S: drop it (below a tenth of the
+    // curve's largest |κ|).
+    let kappa_max_on = |a: f64, b: f64| {
+        (0..=16)
+            .map(|k| track.abs_kappa(a + (b - a) * k as f64 / 16.0))
+            .fold(0.0, f64::max)
+    };
+    let k_all = kappa_max_on(u0, u1);
+    loop {
+        let mut bounds = vec![u0];
+        bounds.extend(&infl);
+        bounds.push(u1);
+        // The flattest stretch next to an inflection, if it is flat enough.
+        let flat = (0..bounds.len() - 1)
+            .map(|i| (i, kappa_max_on(bounds[i], bounds[i + 1])))
+            .filter(|(_, k)| *k < 0.1 * k_all)
+            .min_by(|x, y| x.1.total_cmp(&y.1));
+        let Some((i, _)) = flat else { break };
+        // Stretch i lies between bounds i and i + 1; inflections are bounds 1..=len.
+        let (first, last) = (i == 0, i + 1 == bounds.len() - 1);
+        match (first, last) {
+            (true, true) => break,
+            (true, false) => {
+                infl.remove(0);
+            }
+            (false, true) => {
+                infl.pop();
+            }
+            (false, false) => {
+                infl.drain(i - 1..=i);
+            }
         }
     }
     // Boundaries: ends and inflections; one |κ| maximum per interval.
@@ -1023,6 +1096,8 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                 rational: rat.curve,
                 rational_error: rat.max_error,
                 monotone: rat.monotone,
+                alpha_at_bound: kind == PieceKind::Lac
+                    && (alpha <= ALPHA_BOUNDS.0 + 1e-9 || alpha >= ALPHA_BOUNDS.1 - 1e-9),
                 u_range: (s.ua, s.ub),
             });
         }
@@ -1087,7 +1162,14 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             .map(|w| (w[0].rational.kappa_end() - w[1].rational.kappa_start()).abs())
             .fold(0.0, f64::max)
             / kmax.max(f64::MIN_POSITIVE);
+        let ends: Vec<(f64, f64)> = pieces
+            .iter()
+            .map(|p| (p.rational.kappa_start(), p.rational.kappa_end()))
+            .collect();
+        let (inflections, curvature_extrema) = count_events(&ends);
         return Ok(Sketch {
+            inflections,
+            curvature_extrema,
             bspline: fit.spline.clone(),
             bspline_deviation: fit.max_deviation,
             all_monotone: pieces.iter().all(|p| p.monotone),
@@ -1497,5 +1579,48 @@ fn merge_slots(
         if i < pairs.len() {
             pairs[i] = pair(&slots[i], &slots[i + 1]);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn events_of_monotone_pieces() {
+        // One bump: up then down, one sign: one extremum, no inflection.
+        assert_eq!(count_events(&[(0.1, 0.3), (0.3, 0.2)]), (0, 1));
+        // An S through an inflection joint (zero at the joint), monotone across it.
+        assert_eq!(count_events(&[(0.2, 0.0), (0.0, -0.3)]), (1, 0));
+        // A piece crossing zero inside, then turning back.
+        assert_eq!(count_events(&[(0.2, -0.1), (-0.1, 0.05)]), (2, 1));
+        // Constant curvature: nothing.
+        assert_eq!(count_events(&[(0.5, 0.5), (0.5, 0.5)]), (0, 0));
+    }
+
+    #[test]
+    fn curve_distance_removes_the_sagitta() {
+        // Unit circle sampled coarsely: points on it are at distance ~0, the centre at 1.
+        let samples: Vec<Point> = (0..=8)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::FRAC_PI_2 / 8.0;
+                Point::new(a.cos(), a.sin())
+            })
+            .collect();
+        let on = Point::new(0.3f64.cos(), 0.3f64.sin());
+        let chord_only = polyline_like(&samples, on);
+        assert!(curve_distance(&samples, on) < 0.05 * chord_only);
+        assert!((curve_distance(&samples, Point::ZERO) - 1.0).abs() < 1e-3);
+    }
+
+    /// Distance to the chords alone, for comparison.
+    fn polyline_like(poly: &[Point], q: Point) -> f64 {
+        poly.windows(2)
+            .map(|w| {
+                let d = w[1] - w[0];
+                let t = ((q - w[0]).dot(d) / d.hypot2()).clamp(0.0, 1.0);
+                (w[0] + d * t - q).hypot()
+            })
+            .fold(f64::INFINITY, f64::min)
     }
 }
