@@ -1117,15 +1117,48 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                     .collect()
             })
             .collect();
+        // Each piece's box, grown by its longest sample step: a piece whose box lies
+        // farther from a point than the nearest distance found so far cannot hold a nearer
+        // point, so it is skipped (the distance stays the true nearest one; the piece
+        // around the point's parameter is tried first).
+        let boxes: Vec<(kurbo::Rect, f64)> = samples
+            .iter()
+            .map(|sm| {
+                let r = sm
+                    .iter()
+                    .fold(kurbo::Rect::from_points(sm[0].1, sm[0].1), |r, s| {
+                        r.union_pt(s.1)
+                    });
+                let step = sm
+                    .windows(2)
+                    .map(|w| (w[1].1 - w[0].1).hypot())
+                    .fold(0.0, f64::max);
+                (r, step)
+            })
+            .collect();
+        let box_distance = |r: &kurbo::Rect, q: Point| {
+            let dx = (r.x0 - q.x).max(q.x - r.x1).max(0.0);
+            let dy = (r.y0 - q.y).max(q.y - r.y1).max(0.0);
+            dx.hypot(dy)
+        };
         let (mut worst, mut worst_piece, mut sum) = (0.0f64, 0usize, 0.0);
         let mut worst_u = 0.0;
         for (q, &u) in fit.points.iter().zip(&fit.params) {
-            let (d, i) = pieces
+            let home = pieces
                 .iter()
-                .enumerate()
-                .map(|(i, p)| (project(&p.rational, *q, &samples[i]).0, i))
-                .min_by(|a, b| a.0.total_cmp(&b.0))
-                .unwrap();
+                .position(|p| u <= p.u_range.1)
+                .unwrap_or(pieces.len() - 1);
+            let mut best = (project(&pieces[home].rational, *q, &samples[home]).0, home);
+            for (i, p) in pieces.iter().enumerate() {
+                if i == home || box_distance(&boxes[i].0, *q) > best.0 + boxes[i].1 {
+                    continue;
+                }
+                let d = project(&p.rational, *q, &samples[i]).0;
+                if d < best.0 {
+                    best = (d, i);
+                }
+            }
+            let (d, i) = best;
             sum += d * d;
             if d > worst {
                 worst = d;
@@ -1487,6 +1520,7 @@ fn fit_slot_alpha(
     if !(free_a || free_b) {
         return Some(max);
     }
+    // The search runs on 64 of the points; the result is measured on all of them.
     let stride = pts.len().div_ceil(64).max(1);
     let sub: Vec<Point> = pts.iter().step_by(stride).copied().collect();
     let make = |x: &[f64]| {
@@ -1507,9 +1541,9 @@ fn fit_slot_alpha(
         &start,
         &[0.25, 0.01, 0.01],
         crate::solve::Options {
-            f_tol: 1e-10 * scale,
-            x_tol: 1e-5,
-            max_evaluations: 400,
+            f_tol: 1e-8 * scale,
+            x_tol: 1e-4,
+            max_evaluations: 150,
         },
     );
     if m.value.partial_cmp(&scale) != Some(std::cmp::Ordering::Less) {
@@ -1556,8 +1590,15 @@ fn merge_slots(
             dir_a: None,
             dir_b: None,
         };
-        // A merge that reaches an end of the curve fits the tangent there too.
-        let d = fit_slot_alpha(track, fit, &mut m, ends, true)?;
+        // A merge that reaches an end of the curve fits the tangent there too, when the
+        // spline's tangent alone comes close.
+        let d = fit_slot_alpha(track, fit, &mut m, ends, false)?;
+        let touches_end = m.cut_a == Cut::End || m.cut_b == Cut::End;
+        let d = if d > limit && d < 3.0 * limit && touches_end {
+            fit_slot_alpha(track, fit, &mut m, ends, true)?
+        } else {
+            d
+        };
         (d <= limit).then_some((m, d))
     };
     let mut pairs: Vec<Option<(Slot, f64)>> =
