@@ -12,6 +12,10 @@
 //! exactly, only within the tolerance with enough segments. The reported deviations are true
 //! point-to-curve distances (Newton projection), not parameter-matched residuals.
 //! [`BSpline::to_beziers`] extracts the segments as cubic Bézier curves by knot insertion.
+//!
+//! [`smoothing_fit`] is the other fit: not the tightest spline but the smoothest one within
+//! a distance of the points (penalised least squares on the third derivative, the weight as
+//! large as the distance allows), the fair curve of noisy or measured input.
 
 use crate::bezier::Bezier;
 use crate::error::{Error, Result};

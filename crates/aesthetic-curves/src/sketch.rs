@@ -1,28 +1,34 @@
-//! Pen input to a G2 aesthetic curve (docs/math.md §6; S4 §3).
+//! Pen input to a G2 aesthetic curve (docs/math.md §6; S4 §3): fair first, then segment.
 //!
 //! The pipeline of [`fit_sketch`]:
-//! 1. a least-squares cubic B-spline through the points ([`crate::bspline::fit`]) within
-//!    half the tolerance;
+//! 1. a fair spline: for noisy input (measured lines, pen strokes) the smoothest cubic
+//!    B-spline within 3/4 of the tolerance ([`crate::bspline::smoothing_fit`]), so the
+//!    pieces inherit no noise and no end hook; for precise input the tight least-squares
+//!    B-spline ([`crate::bspline::fit`]), whose tangents and curvature are accurate;
 //! 2. its inflections (sign changes of `g = x'y'' - y'x''`) and curvature extrema (of
 //!    `h = 2 g' f - 3 g f'`, `f = |x'|²`), isolated exactly on each Bézier span's Bernstein
-//!    form; simplified as in S4: inflection pairs turning less than [`SketchOptions::min_turn`]
-//!    between them are noise and dropped, one curvature maximum is kept between two
-//!    inflections, and pieces turning more than [`SketchOptions::max_turn`] are split;
-//! 3. per piece, α from the least-squares line of its logarithmic curvature graph; a piece
-//!    with an inflection at one end becomes an inflection-end segment (docs/math.md §3.2, α from
-//!    its triangle); every other piece a LAC segment in the triangle of its end points and
-//!    end tangents (§3.1). When the triangle lies outside the existence region for that α,
-//!    the nearest admissible α (towards the log spiral) is used instead;
-//! 4. **G2 fairing**: the tangent directions at the joints are the unknowns, the curvature
+//!    form; simplified as in S4 (one curvature maximum between two inflections, pieces
+//!    turning more than [`SketchOptions::max_turn`] split) and without inflection pairs
+//!    across a flat stretch (noise);
+//! 3. neighbouring pieces merge while one LAC segment still fits their input points;
+//! 4. per piece, α by least squares against its input points (point-to-curve distances) in
+//!    the triangle of its end points and tangents, the tangent at the curve's ends fitted
+//!    with it; a piece with an inflection at one end becomes an inflection-end segment
+//!    (docs/math.md §3.2, α from its triangle). α outside the triangle's existence region
+//!    moves to the nearest admissible value; α on its bound ([`ALPHA_BOUNDS`]) is reported;
+//! 5. **G2 fairing**: the tangent directions at the joints are the unknowns, the curvature
 //!    mismatches at the joints the equations; Newton's method with a finite-difference
 //!    Jacobian (tridiagonal: a joint's tangent moves its two pieces) and a backtracking line
 //!    search, until the largest jump is below [`SketchOptions::g2_tolerance`] of the largest
 //!    curvature. Joints where both sides are inflection ends have zero curvature on both sides
 //!    by construction and keep their tangent;
-//! 5. each piece becomes one rational cubic ([`crate::approx`]): G2 to its LAC at both ends,
+//! 6. each piece becomes one rational cubic ([`crate::approx`]): G2 to its LAC at both ends,
 //!    so G2 at every joint, with curvature monotonicity proven by the exact test;
-//! 6. the input points' distance to the result is measured; while it exceeds the tolerance,
-//!    the piece holding the worst point is split and steps 3-5 repeat.
+//! 7. the input points' true nearest-point distance to the delivered cubics is measured;
+//!    while it exceeds the tolerance, the piece holding the worst point is split there and
+//!    steps 4-7 repeat.
+//!
+//! The result reports its inflections and curvature extrema ([`count_events`]).
 
 use crate::approx::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions};
 use crate::bernstein::sign_change_roots;
