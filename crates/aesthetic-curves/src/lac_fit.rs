@@ -209,10 +209,14 @@ fn residuals(alpha: f64, tri: [Point; 3], points: &[Point], out: &mut Vec<f64>) 
     out.clear();
     let mut j = 0usize;
     for q in points {
-        // Walk forward to the nearest vertex (points are ordered along the curve), then
-        // project on the two chords around it.
+        // Descend to the nearest vertex from the previous point's, forward or backward
+        // (measured points can step back along the curve), then project on the two chords
+        // around it.
         while j + 1 < poly.len() && (poly[j + 1] - *q).hypot2() <= (poly[j] - *q).hypot2() {
             j += 1;
+        }
+        while j > 0 && (poly[j - 1] - *q).hypot2() < (poly[j] - *q).hypot2() {
+            j -= 1;
         }
         let mut best = (f64::INFINITY, 0.0);
         for k in [j.saturating_sub(1), j] {

@@ -56,3 +56,41 @@ fn paper_procedure_reproduces_the_published_alphas() {
         assert!(scan.rms_correspondence <= paper.rms_correspondence * 1.001);
     }
 }
+
+/// The distances `fit_lac` reports are true of the fitted segment: checked against the
+/// nearest point of a dense polyline of it (every chord, no assumption that the measured
+/// points advance along the line; ps_4 has points that step back).
+#[test]
+fn reported_distances_are_the_true_ones() {
+    for i in 1..=5 {
+        let pts = points(i);
+        let fit = fit_lac(&pts, LacFitOptions::default()).unwrap();
+        let (poly, _) = fit.segment.sample(6001).unwrap();
+        let d: Vec<f64> = pts
+            .iter()
+            .map(|q| {
+                poly.windows(2)
+                    .map(|w| {
+                        let v = w[1] - w[0];
+                        let t = ((*q - w[0]).dot(v) / v.hypot2()).clamp(0.0, 1.0);
+                        (w[0] + v * t - *q).hypot()
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect();
+        let max = d.iter().copied().fold(0.0, f64::max);
+        let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
+        println!(
+            "ps_{i}: alpha {:.3}; reported max {:.4} rms {:.4}; measured max {max:.4} rms {rms:.4}",
+            fit.alpha, fit.max_deviation, fit.rms_deviation
+        );
+        assert!(
+            (fit.max_deviation - max).abs() <= 2e-3 + 1e-3 * max,
+            "ps_{i}: max"
+        );
+        assert!(
+            (fit.rms_deviation - rms).abs() <= 2e-3 + 1e-3 * rms,
+            "ps_{i}: rms"
+        );
+    }
+}
