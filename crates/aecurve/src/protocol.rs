@@ -545,15 +545,20 @@ fn lac_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         },
     )?;
     let c = f.segment.control;
-    Ok(json!({
+    let mut o = json!({
         "alpha": f.alpha,
         "control": c.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
         "rms_deviation": f.rms_deviation,
         "max_deviation": f.max_deviation,
         "rms_correspondence": f.rms_correspondence,
-        "alpha_guess": f.alpha_guess,
+        "converged": f.converged,
         "objective": if objective == LacFitObjective::ArcLength { "arc_length" } else { "distance" },
-    }))
+    });
+    // The paper start's guess, where there is one (absent rather than null otherwise).
+    if let Some(g) = f.alpha_guess {
+        o["alpha_guess"] = json!(g);
+    }
+    Ok(o)
 }
 
 /// Largest point sequence `sketch.fit` accepts.

@@ -75,6 +75,9 @@ pub struct LacFit {
     pub rms_correspondence: f64,
     /// The paper's curvature-graph guess of alpha ([`LacFitStart::Paper`] only).
     pub alpha_guess: Option<f64>,
+    /// Whether the final least-squares solve converged (false: it stopped at its iteration
+    /// limit or where the segment stopped existing; the fit is then the best point found).
+    pub converged: bool,
 }
 
 /// Indices of `n` pivots of a polyline, both ends included, added greedily in
@@ -334,17 +337,17 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     // For each alpha of the scan (or the fixed one), fit the triangle with alpha fixed; then
     // free alpha from the best (alpha is poorly determined on shallow curves, and the cost
     // has several minima along it).
-    let mut best: Option<(f64, Vec<f64>, f64)> = None;
+    let mut best: Option<(f64, Vec<f64>, f64, bool)> = None;
     for &(a, _) in &starts {
         let x0: Vec<f64> = tri0.iter().flat_map(|p| [p.x / size, p.y / size]).collect();
-        let (x, c) = levenberg_marquardt(&x0, &|x, out| objective(a, triangle(x, size), out));
+        let (x, c, conv) = levenberg_marquardt(&x0, &|x, out| objective(a, triangle(x, size), out));
         if best.as_ref().is_none_or(|b| c < b.2) {
-            best = Some((a, x, c));
+            best = Some((a, x, c, conv));
         }
     }
-    let (a_best, x_tri, _) = best.expect("at least one start");
-    let (alpha, tri) = if opts.alpha.is_some() {
-        (a_best, triangle(&x_tri, size))
+    let (a_best, x_tri, _, conv_tri) = best.expect("at least one start");
+    let (alpha, tri, converged) = if opts.alpha.is_some() {
+        (a_best, triangle(&x_tri, size), conv_tri)
     } else {
         let mut x0 = vec![a_best];
         x0.extend(&x_tri);
@@ -353,13 +356,13 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
             Some(g) => (g - 0.1 * g.abs(), g + 0.1 * g.abs()),
             None => (f64::NEG_INFINITY, f64::INFINITY),
         };
-        let (x, _) = levenberg_marquardt(&x0, &|x, out| {
+        let (x, _, conv) = levenberg_marquardt(&x0, &|x, out| {
             if x[0] < lo || x[0] > hi {
                 return None;
             }
             objective(x[0], triangle(&x[1..], size), out)
         });
-        (x[0], triangle(&x[1..], size))
+        (x[0], triangle(&x[1..], size), conv)
     };
     let segment = LacSegment::new(alpha, tri)?;
     residuals(alpha, tri, &pts, &mut r)
@@ -375,6 +378,7 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
         max_deviation: r.iter().map(|v| v.abs()).fold(0.0, f64::max),
         rms_correspondence: (cost(&rc) / pts.len() as f64).sqrt(),
         alpha_guess: guess,
+        converged,
     })
 }
 
@@ -391,12 +395,16 @@ type ResidualFn<'a> = dyn Fn(&[f64], &mut Vec<f64>) -> Option<()> + 'a;
 
 /// Levenberg–Marquardt with a forward-difference Jacobian; steps where `eval` fails (no
 /// segment) are refused. Returns the point and its cost.
-fn levenberg_marquardt(x0: &[f64], eval: &ResidualFn) -> (Vec<f64>, f64) {
+/// Levenberg–Marquardt from `x0`: the point, its cost, and whether it converged (stopped
+/// because no step gains any more, not at the iteration limit or on a residual that could
+/// not be evaluated).
+fn levenberg_marquardt(x0: &[f64], eval: &ResidualFn) -> (Vec<f64>, f64, bool) {
     let mut x = x0.to_vec();
     let mut r = Vec::new();
     if eval(&x, &mut r).is_none() {
-        return (x, f64::INFINITY);
+        return (x, f64::INFINITY, false);
     }
+    let mut converged = false;
     let mut c = cost(&r);
     let k = x.len();
     let mut mu = 1e-3;
@@ -453,10 +461,11 @@ fn levenberg_marquardt(x0: &[f64], eval: &ResidualFn) -> (Vec<f64>, f64) {
             mu *= 10.0;
         }
         if !improved {
+            converged = true;
             break;
         }
     }
-    (x, c)
+    (x, c, converged)
 }
 #[cfg(test)]
 mod tests {

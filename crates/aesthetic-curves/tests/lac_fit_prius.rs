@@ -81,8 +81,9 @@ fn reported_distances_are_the_true_ones() {
         let max = d.iter().copied().fold(0.0, f64::max);
         let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
         println!(
-            "ps_{i}: alpha {:.3}; reported max {:.4} rms {:.4}; measured max {max:.4} rms {rms:.4}",
-            fit.alpha, fit.max_deviation, fit.rms_deviation
+            "ps_{i}: alpha {:.3} (converged {}); reported max {:.4} rms {:.4}; measured max \
+             {max:.4} rms {rms:.4}",
+            fit.alpha, fit.converged, fit.max_deviation, fit.rms_deviation
         );
         assert!(
             (fit.max_deviation - max).abs() <= 2e-3 + 1e-3 * max,
