@@ -1399,8 +1399,20 @@ fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point]) -> Option<(f64, f64)> {
     let seg = LacSegment::new(alpha, tri).ok()?;
     let (poly, _) = seg.sample(129).ok()?;
     let (mut sum, mut max) = (0.0, 0.0f64);
+    // The nearest sample by descent from the previous point's (either way: points may step
+    // back), then the parabolic arcs around it.
+    let mut j = 0usize;
     for q in pts {
-        let d = curve_distance(&poly, *q);
+        while j + 1 < poly.len() && (poly[j + 1] - *q).hypot2() <= (poly[j] - *q).hypot2() {
+            j += 1;
+        }
+        while j > 0 && (poly[j - 1] - *q).hypot2() < (poly[j] - *q).hypot2() {
+            j -= 1;
+        }
+        // Arcs start at even samples: the ones holding j and its neighbours.
+        let lo = (j.saturating_sub(2)) & !1;
+        let hi = (j + 4).min(poly.len());
+        let d = curve_distance(&poly[lo..hi], *q);
         sum += d * d;
         max = max.max(d);
     }
