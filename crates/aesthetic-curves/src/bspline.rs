@@ -383,15 +383,10 @@ fn project_all(s: &BSpline, pts: &[Point], params: &[f64]) -> Result<Vec<(f64, f
         .collect())
 }
 
-/// Most parameter corrections per segment count.
-const CORRECTIONS: usize = 40;
-
-/// Fit a cubic B-spline to an ordered point sequence within `opts.tolerance` (see the
-/// module documentation). Consecutive duplicate points are dropped; at least 4 distinct
-/// points are needed. Errors with [`Error::NoConvergence`] when `max_segments` are not
-/// enough.
-pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
-    if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
+/// The points without consecutive duplicates, after checking the tolerance (positive) and
+/// the points (finite, at least 4 distinct: fewer is `degenerate`).
+fn distinct_points(points: &[Point], tolerance: f64) -> Result<Vec<Point>> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(Error::invalid("tolerance", "must be a positive number"));
     }
     if let Some(i) = points.iter().position(|p| !p.is_finite()) {
@@ -404,11 +399,23 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
         }
     }
     if pts.len() < 4 {
-        return Err(Error::invalid(
-            "points",
-            format!("need at least 4 distinct points, got {}", pts.len()),
-        ));
+        return Err(Error::Degenerate(format!(
+            "need at least 4 distinct points, got {}",
+            pts.len()
+        )));
     }
+    Ok(pts)
+}
+
+/// Most parameter corrections per segment count.
+const CORRECTIONS: usize = 40;
+
+/// Fit a cubic B-spline to an ordered point sequence within `opts.tolerance` (see the
+/// module documentation). Consecutive duplicate points are dropped; at least 4 distinct
+/// points are needed. Errors with [`Error::NoConvergence`] when `max_segments` are not
+/// enough.
+pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
+    let pts = distinct_points(points, opts.tolerance)?;
     let chord = chord_parameters(&pts)?;
     let max_seg = opts.max_segments.clamp(1, pts.len() - 3);
     // Grow the segment count geometrically until a fit is within tolerance, then bisect
@@ -527,24 +534,7 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
 /// for fewer than 4 distinct points, `no_convergence` when even the least-smoothed member of
 /// the family (λ → 0, a least-squares fit) is not within `max_deviation`.
 pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit> {
-    if !(max_deviation.is_finite() && max_deviation > 0.0) {
-        return Err(Error::invalid("tolerance", "must be a positive number"));
-    }
-    if let Some(i) = points.iter().position(|p| !p.is_finite()) {
-        return Err(Error::invalid(format!("points[{i}]"), "must be finite"));
-    }
-    let mut pts: Vec<Point> = Vec::with_capacity(points.len());
-    for p in points {
-        if pts.last() != Some(p) {
-            pts.push(*p);
-        }
-    }
-    if pts.len() < 4 {
-        return Err(Error::Degenerate(format!(
-            "need at least 4 distinct points, got {}",
-            pts.len()
-        )));
-    }
+    let pts = distinct_points(points, max_deviation)?;
     let mut params = chord_parameters(&pts)?;
     let spans = (pts.len() / 4).clamp(4, 64);
     let p = 3;
@@ -752,9 +742,10 @@ mod tests {
             tolerance: 1e-3,
             max_segments: 5,
         };
+        // Five copies of one point: one distinct point, a degenerate input.
         assert!(matches!(
             fit(&[p, p, p, p, p], opts),
-            Err(Error::InvalidInput { .. })
+            Err(Error::Degenerate(_))
         ));
         assert!(fit(&[Point::new(f64::NAN, 0.0); 5], opts).is_err());
         assert!(fit(

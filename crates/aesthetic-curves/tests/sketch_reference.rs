@@ -189,6 +189,35 @@ fn delivered(sk: &aesthetic_curves::sketch::Sketch) -> Vec<(Point, f64)> {
     out
 }
 
+/// Distance from `q` to the nearest point of a dense polyline (every chord).
+fn nearest(d: &[(Point, f64)], q: Point) -> f64 {
+    d.windows(2)
+        .map(|w| {
+            let (a, b) = (w[0].0, w[1].0);
+            let v = b - a;
+            let t = ((q - a).dot(v) / v.hypot2().max(1e-300)).clamp(0.0, 1.0);
+            (a + v * t - q).hypot()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Signed curvature along the smoothest spline within `tol` of the points (the reference
+/// for hooks and inflections).
+fn smoothest_curvature(pts: &[Point], tol: f64) -> Vec<f64> {
+    let smooth = aesthetic_curves::bspline::smoothing_fit(pts, tol).unwrap();
+    smooth
+        .spline
+        .to_beziers()
+        .unwrap()
+        .iter()
+        .flat_map(|b| {
+            (0..=50)
+                .map(|j| aesthetic_curves::PlanarCurve::kappa(b, j as f64 / 50.0))
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
 /// The measured Prius lines at 0.3 mm, judged on the delivered curve: every input point
 /// within the tolerance (nearest point of a dense polyline, no assumption of order), no
 /// hook (largest |κ| at most twice that of the smoothest spline within the tolerance), no
@@ -200,31 +229,10 @@ fn prius_key_lines_are_faired_not_followed() {
         let tol = 0.3;
         let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
         let d = delivered(&sk);
-        let mut worst = 0.0f64;
-        for q in &pts {
-            let mut best = f64::INFINITY;
-            for w in d.windows(2) {
-                let (a, b) = (w[0].0, w[1].0);
-                let v = b - a;
-                let t = ((*q - a).dot(v) / v.hypot2().max(1e-300)).clamp(0.0, 1.0);
-                best = best.min((a + v * t - *q).hypot());
-            }
-            worst = worst.max(best);
-        }
+        let worst = pts.iter().map(|q| nearest(&d, *q)).fold(0.0, f64::max);
         let kmax = d.iter().map(|x| x.1.abs()).fold(0.0, f64::max);
         let inflections = d.windows(2).filter(|w| w[0].1 * w[1].1 < 0.0).count();
-        let smooth = aesthetic_curves::bspline::smoothing_fit(&pts, tol).unwrap();
-        let ks: Vec<f64> = smooth
-            .spline
-            .to_beziers()
-            .unwrap()
-            .iter()
-            .flat_map(|b| {
-                (0..=50)
-                    .map(|j| aesthetic_curves::PlanarCurve::kappa(b, j as f64 / 50.0))
-                    .collect::<Vec<_>>()
-            })
-            .collect();
+        let ks = smoothest_curvature(&pts, tol);
         let kref = ks.iter().map(|k| k.abs()).fold(0.0, f64::max);
         let ref_inflections = ks.windows(2).filter(|w| w[0] * w[1] < 0.0).count();
         println!(
@@ -372,18 +380,9 @@ fn jittery_strokes_at_the_default_tolerance() {
         let ms = t0.elapsed().as_secs_f64() * 1e3;
         let d = delivered(&sk);
         let kmax = d.iter().map(|x| x.1.abs()).fold(0.0, f64::max);
-        let smooth = aesthetic_curves::bspline::smoothing_fit(&pts, tol).unwrap();
-        let kref = smooth
-            .spline
-            .to_beziers()
-            .unwrap()
+        let kref = smoothest_curvature(&pts, tol)
             .iter()
-            .flat_map(|b| {
-                (0..=50)
-                    .map(|j| aesthetic_curves::PlanarCurve::kappa(b, j as f64 / 50.0).abs())
-                    .collect::<Vec<_>>()
-            })
-            .fold(0.0, f64::max);
+            .fold(0.0f64, |m, k| m.max(k.abs()));
         println!(
             "{name}: tolerance {tol:.2} px, {} pieces, {} inflections, {} extrema, deviation \
              {:.2}, max |k| {kmax:.4} vs smoothest {kref:.4}, jump {:.1e}, {ms:.0} ms",
