@@ -244,6 +244,9 @@ fn cost(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
 
+/// The range of alpha of a free fit.
+pub const ALPHA_RANGE: (f64, f64) = (-5.0, 5.0);
+
 /// The least-squares LAC segment through `points` (ordered, at least 6 distinct).
 pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     if let Some(a) = opts.alpha {
@@ -320,7 +323,7 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
         (Some(a), _) => vec![a],
         (None, Some(g)) => vec![g],
         (None, None) => vec![
-            -6.0, -4.0, -2.0, -1.0, 0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.5, 6.0,
+            -5.0, -4.0, -2.0, -1.0, 0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0,
         ],
     };
     let mut starts: Vec<(f64, f64)> = Vec::new();
@@ -351,10 +354,12 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     } else {
         let mut x0 = vec![a_best];
         x0.extend(&x_tri);
-        // The paper keeps alpha within ±10 % of its guess.
+        // The paper keeps alpha within ±10 % of its guess; the free fit within [-5, 5] (past
+        // those the curvature graph is so steep that the segment ends in a hook: ρ → 0 at
+        // one end for alpha > 1, a long near-straight tail for alpha < 0).
         let (lo, hi) = match guess {
             Some(g) => (g - 0.1 * g.abs(), g + 0.1 * g.abs()),
-            None => (f64::NEG_INFINITY, f64::INFINITY),
+            None => ALPHA_RANGE,
         };
         let (x, _, conv) = levenberg_marquardt(&x0, &|x, out| {
             if x[0] < lo || x[0] > hi {

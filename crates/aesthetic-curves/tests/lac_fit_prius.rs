@@ -80,9 +80,10 @@ fn reported_distances_are_the_true_ones() {
             .collect();
         let max = d.iter().copied().fold(0.0, f64::max);
         let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
+        let (k0, k1) = fit.segment.end_curvatures().unwrap();
         println!(
             "ps_{i}: alpha {:.3} (converged {}); reported max {:.4} rms {:.4}; measured max \
-             {max:.4} rms {rms:.4}",
+             {max:.4} rms {rms:.4}; end curvatures {k0:.2e} {k1:.2e}",
             fit.alpha, fit.converged, fit.max_deviation, fit.rms_deviation
         );
         assert!(
