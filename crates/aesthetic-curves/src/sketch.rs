@@ -1174,10 +1174,16 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         }
         let rms = (sum / fit.points.len() as f64).sqrt();
         if worst > opts.tolerance && slots.len() < opts.max_pieces {
-            // Split where the curve misses the points most (kept off the piece's ends).
+            // Split where the curve misses the points most (kept off the piece's ends); a
+            // piece with an inflection end at its mid-turn, so the inflection piece left
+            // keeps a proper triangle.
             let s = &slots[worst_piece];
-            let u = worst_u.clamp(s.ua + 0.25 * (s.ub - s.ua), s.ub - 0.25 * (s.ub - s.ua));
-            split_at(&track, &mut slots, worst_piece, u)?;
+            if s.cut_a == Cut::Inflection || s.cut_b == Cut::Inflection {
+                split_at_mid_turn(&track, &mut slots, worst_piece)?;
+            } else {
+                let u = worst_u.clamp(s.ua + 0.25 * (s.ub - s.ua), s.ub - 0.25 * (s.ub - s.ua));
+                split_at(&track, &mut slots, worst_piece, u)?;
+            }
             continue;
         }
         if worst > opts.tolerance {

@@ -398,14 +398,16 @@ fn jittery_strokes_at_the_default_tolerance() {
         );
         assert!(sk.max_deviation <= tol);
         assert!(sk.all_monotone, "{name}: monotone pieces");
-        if *name == "wave" {
-            // Not there yet: on this wave (one and a half periods) the pieces next to the
-            // inflections keep the fairing from reaching G2 (the jump stays near 0.2 of the
-            // largest curvature) and it takes about 11 pieces. Reported, not hidden.
-            continue;
-        }
         assert!(sk.g2 && sk.max_curvature_jump < 1e-10, "{name}: G2");
-        assert!(sk.pieces.len() <= 8, "{name}: {} pieces", sk.pieces.len());
+        // Not there yet: this wave (one and a half periods) takes 13 pieces (the
+        // inflection-end pieces next to its crests cannot follow a quarter sine and are
+        // split) and over a second. Reported, not hidden.
+        let most = if *name == "wave" { 16 } else { 8 };
+        assert!(
+            sk.pieces.len() <= most,
+            "{name}: {} pieces",
+            sk.pieces.len()
+        );
         assert!(kmax <= 2.0 * kref, "{name}: hook {kmax} vs {kref}");
     }
 }
