@@ -1604,6 +1604,39 @@ fn merge_slots(
         if a.cut_b != Cut::Other || track.angle_between(a.ua, b.ub).abs() > max_turn {
             return None;
         }
+        // A merge with an inflection at one end is an inflection-end segment: its α comes
+        // from its triangle; it merges when that segment fits the points.
+        let infl_a = a.cut_a == Cut::Inflection;
+        let infl_b = b.cut_b == Cut::Inflection;
+        if infl_a || infl_b {
+            if infl_a && infl_b {
+                return None;
+            }
+            let m = Slot {
+                ua: a.ua,
+                ub: b.ub,
+                cut_a: a.cut_a,
+                cut_b: b.cut_b,
+                alpha: None,
+                fitted: true,
+                dir_a: None,
+                dir_b: None,
+            };
+            let (pa, pb) = slot_ends(track, &m, ends);
+            let tri = triangle(pa, track.direction(m.ua), pb, track.direction(m.ub))?;
+            let ctrl = if infl_a {
+                tri
+            } else {
+                [tri[2], tri[1], tri[0]]
+            };
+            let seg = LacInflectionSegment::new(ctrl).ok()?;
+            let (poly, _) = seg.sample(129).ok()?;
+            let d = points_in(fit, m.ua, m.ub)
+                .iter()
+                .map(|q| curve_distance(&poly, *q))
+                .fold(0.0, f64::max);
+            return (d <= limit).then_some((m, d));
+        }
         let mut m = Slot {
             ua: a.ua,
             ub: b.ub,
