@@ -974,7 +974,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     split_s_shapes(&track, &mut slots)?;
     // The curve runs from the first input point to the last (their end tangents are fitted
     // with the end pieces' α, so an artefact in the last few points bends nothing).
-    let ends = EndPoints::Input(fit.points[0], *fit.points.last().unwrap());
+    let ends: EndPoints = (fit.points[0], *fit.points.last().unwrap());
     merge_slots(
         &track,
         &fit,
@@ -1001,12 +1001,9 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             .chain(std::iter::once(track.point(slots.last().unwrap().ub)))
             .collect();
         let mut pts = pts;
-        // The curve's ends are the input's ends (a faired curve keeps its own, within the
-        // tolerance of them).
-        if ends != EndPoints::Track {
-            pts[0] = fit.points[0];
-            *pts.last_mut().unwrap() = *fit.points.last().unwrap();
-        }
+        // The curve's ends are the input's ends.
+        pts[0] = ends.0;
+        *pts.last_mut().unwrap() = ends.1;
         let mut dirs: Vec<Vec2> = slots
             .iter()
             .map(|s| track.direction(s.ua))
@@ -1490,25 +1487,21 @@ fn points_in(fit: &bspline::BSplineFit, ua: f64, ub: f64) -> Vec<Point> {
         .collect()
 }
 
-/// The curve's end points: the input's own ([`EndPoints::Input`], precise data) or the
-/// fair spline's ([`EndPoints::Track`]).
-#[derive(Clone, Copy, PartialEq)]
-enum EndPoints {
-    Input(Point, Point),
-    Track,
-}
+/// The curve's end points: the first and last input points.
+type EndPoints = (Point, Point);
 
-/// Where slot `s` starts and ends.
+/// Where slot `s` starts and ends: on the track, or at the curve's end points.
 fn slot_ends(track: &Track, s: &Slot, ends: EndPoints) -> (Point, Point) {
-    let (mut a, mut b) = (track.point(s.ua), track.point(s.ub));
-    if let EndPoints::Input(first, last) = ends {
-        if s.cut_a == Cut::End {
-            a = first;
-        }
-        if s.cut_b == Cut::End {
-            b = last;
-        }
-    }
+    let a = if s.cut_a == Cut::End {
+        ends.0
+    } else {
+        track.point(s.ua)
+    };
+    let b = if s.cut_b == Cut::End {
+        ends.1
+    } else {
+        track.point(s.ub)
+    };
     (a, b)
 }
 
