@@ -1540,9 +1540,11 @@ fn fit_slot_alpha(
     // The search runs on 64 of the points; the result is measured on all of them.
     let stride = pts.len().div_ceil(64).max(1);
     let sub: Vec<Point> = pts.iter().step_by(stride).copied().collect();
+    // Unknowns: α, then the turn of each free end tangent (only those).
+    let ib = if free_a { 2 } else { 1 };
     let make = |x: &[f64]| {
         let a = if free_a { rotate(da, x[1]) } else { da };
-        let b = if free_b { rotate(db, x[2]) } else { db };
+        let b = if free_b { rotate(db, x[ib]) } else { db };
         (a, b)
     };
     let mut cost = |x: &[f64]| -> f64 {
@@ -1551,12 +1553,14 @@ fn fit_slot_alpha(
             .and_then(|t| lac_cost(x[0].clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1), t, &sub))
             .map_or(f64::INFINITY, |c| c.0)
     };
+    let n = 1 + usize::from(free_a) + usize::from(free_b);
     let start = [alpha, 0.0, 0.0];
-    let scale = cost(&start);
+    let step = [0.25, 0.01, 0.01];
+    let scale = cost(&start[..n]);
     let m = crate::solve::nelder_mead(
         &mut cost,
-        &start,
-        &[0.25, 0.01, 0.01],
+        &start[..n],
+        &step[..n],
         crate::solve::Options {
             f_tol: 1e-8 * scale,
             x_tol: 1e-4,
