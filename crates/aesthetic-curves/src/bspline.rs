@@ -566,7 +566,9 @@ pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit>
             }
         }
     }
-    let solve = |params: &[f64], lambda: f64| -> Option<BSpline> {
+    // The data term's normal equations depend on the parameters only: built once per
+    // parameter set, solved for every λ tried.
+    let normal = |params: &[f64]| -> (DMatrix<f64>, DMatrix<f64>) {
         let mut ata = DMatrix::<f64>::zeros(n, n);
         let mut atb = DMatrix::<f64>::zeros(n, 2);
         for (&u, q) in params.iter().zip(&pts) {
@@ -580,10 +582,13 @@ pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit>
                 atb[(s - p + x, 1)] += nb[x] * q.y;
             }
         }
+        (ata, atb)
+    };
+    let solve = |(ata, atb): &(DMatrix<f64>, DMatrix<f64>), lambda: f64| -> Option<BSpline> {
         // λ relative to the data term's scale, so it means the same for any point count.
         let scale = ata.trace() / pen.trace();
         let sys = ata + &pen * (lambda * scale);
-        let sol = sys.cholesky()?.solve(&atb);
+        let sol = sys.cholesky()?.solve(atb);
         Some(BSpline {
             degree: p,
             knots: knots.clone(),
@@ -599,7 +604,8 @@ pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit>
     let singular = || Error::NoConvergence("smoothing spline: singular system".into());
     // Bracket: the least smoothing must be within the deviation, then bisect log λ.
     let (mut lo, mut hi) = (-10.0f64, 8.0f64);
-    let s_lo = solve(&params, 10f64.powf(lo)).ok_or_else(singular)?;
+    let eqs = normal(&params);
+    let s_lo = solve(&eqs, 10f64.powf(lo)).ok_or_else(singular)?;
     let (d_lo, _) = worst(&s_lo, &params)?;
     if d_lo > max_deviation {
         return Err(Error::NoConvergence(format!(
@@ -608,7 +614,7 @@ pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit>
         )));
     }
     let mut best = s_lo;
-    let s_hi = solve(&params, 10f64.powf(hi)).ok_or_else(singular)?;
+    let s_hi = solve(&eqs, 10f64.powf(hi)).ok_or_else(singular)?;
     if worst(&s_hi, &params)?.0 <= max_deviation {
         best = s_hi;
         lo = hi;
@@ -618,7 +624,7 @@ pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit>
                 break;
             }
             let mid = 0.5 * (lo + hi);
-            let s = solve(&params, 10f64.powf(mid)).ok_or_else(singular)?;
+            let s = solve(&eqs, 10f64.powf(mid)).ok_or_else(singular)?;
             if worst(&s, &params)?.0 <= max_deviation {
                 lo = mid;
                 best = s;
@@ -632,10 +638,11 @@ pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit>
     let (mut dmax, mut proj) = worst(&best, &params)?;
     for _ in 0..2 {
         let np: Vec<f64> = proj.iter().map(|x| x.1).collect();
+        let eqs = normal(&np);
         let mut l = lo;
         let mut accepted = false;
         for _ in 0..8 {
-            let s = solve(&np, 10f64.powf(l)).ok_or_else(singular)?;
+            let s = solve(&eqs, 10f64.powf(l)).ok_or_else(singular)?;
             let (d, pr) = worst(&s, &np)?;
             if d <= max_deviation {
                 best = s;

@@ -898,7 +898,8 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     let size = bbox_diagonal(points);
     let sigma = noise_level(points);
     // Precise data (noise below 1e-6 of the size) get a tight fit, whose tangents and
-    // curvature graphs are accurate; noisy data half the tolerance, the smoothest fit allowed.
+    // curvature graphs are accurate; noisy data the smoothest fit within FAIR_SHARE of the
+    // tolerance.
     let noisy = 4.0 * sigma > 1e-6 * size;
     let fit_tol = if noisy {
         FAIR_SHARE * opts.tolerance
@@ -906,8 +907,8 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         (4.0 * sigma).max(1e-5 * size).min(0.5 * opts.tolerance)
     };
     // Noisy data (measured lines, pen strokes): fair first. The smoothest spline within
-    // half the tolerance carries no hooks or wiggles the tolerance does not demand; its few
-    // events cut the pieces. Precise data: the tight fit, whose tangents and curvature are
+    // FAIR_SHARE of the tolerance carries no hooks or wiggles the tolerance does not demand;
+    // its few events cut the pieces. Precise data: the tight fit, whose tangents and curvature are
     // accurate. Outliers the noise estimate ignores can keep the tight fit from converging:
     // then half the tolerance.
     let fit = if noisy {
@@ -983,11 +984,10 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         MERGE_SHARE * opts.tolerance,
         opts.max_turn,
     );
-    // The pieces at the curve's ends fit their outer tangent with α.
-    let last = slots.len() - 1;
-    fit_slot_alpha(&track, &fit, &mut slots[0], ends, true);
-    if last > 0 {
-        fit_slot_alpha(&track, &fit, &mut slots[last], ends, true);
+    // The pieces at the curve's ends fit their outer tangent with α (in the loop).
+    slots[0].fitted = false;
+    if let Some(s) = slots.last_mut() {
+        s.fitted = false;
     }
     let mut peak_splits = 0;
     loop {
@@ -1286,7 +1286,7 @@ fn inflection_fallback(seg: &LacInflectionSegment) -> Result<crate::approx::Rati
     })
 }
 
-/// Split `slots[i]` where it has turned half its turning, then any S-shaped results.
+/// Split `slots[i]` at parameter `u`, then any S-shaped results.
 fn split_at(track: &Track, slots: &mut Vec<Slot>, i: usize, u: f64) -> Result<()> {
     let s = slots[i].clone();
     let left = slot(track, (s.ua, s.cut_a), (u, Cut::Other));
@@ -1295,18 +1295,11 @@ fn split_at(track: &Track, slots: &mut Vec<Slot>, i: usize, u: f64) -> Result<()
     split_s_shapes(track, slots)
 }
 
+/// Split `slots[i]` where it has turned half its turning, then any S-shaped results.
 fn split_at_mid_turn(track: &Track, slots: &mut Vec<Slot>, i: usize) -> Result<()> {
-    let s = slots[i].clone();
-    let mid = u_at_turn(
-        track,
-        s.ua,
-        s.ub,
-        0.5 * track.angle_between(s.ua, s.ub).abs(),
-    );
-    let left = slot(track, (s.ua, s.cut_a), (mid, Cut::Other));
-    let right = slot(track, (mid, Cut::Other), (s.ub, s.cut_b));
-    slots.splice(i..=i, [left, right]);
-    split_s_shapes(track, slots)
+    let (ua, ub) = (slots[i].ua, slots[i].ub);
+    let mid = u_at_turn(track, ua, ub, 0.5 * track.angle_between(ua, ub).abs());
+    split_at(track, slots, i, mid)
 }
 
 /// Diagonal of the bounding box.
@@ -1431,8 +1424,7 @@ pub const ALPHA_BOUNDS: (f64, f64) = (-5.0, 5.0);
 /// golden-section refinement to 1e-4, on at most 64 of the points (evenly spread; the
 /// largest distance is measured on all). `None` when no α of the range gives a segment.
 fn fit_alpha(tri: [Point; 3], all: &[Point]) -> Option<(f64, f64)> {
-    let stride = all.len().div_ceil(64).max(1);
-    let sub: Vec<Point> = all.iter().step_by(stride).copied().collect();
+    let sub = spread(all, 64);
     let pts = &sub[..];
     let (lo, hi) = ALPHA_BOUNDS;
     let steps = 20;
@@ -1475,6 +1467,15 @@ fn fit_alpha(tri: [Point; 3], all: &[Point]) -> Option<(f64, f64)> {
         .filter(|&x| f(x).is_finite())
         .min_by(|x, y| f(*x).total_cmp(&f(*y)))?;
     lac_cost(best, tri, all).map(|c| (best, c.1))
+}
+
+/// At most `n` of `pts`, evenly spread (every k-th), for the searches; results are measured
+/// on all of them.
+fn spread(pts: &[Point], n: usize) -> Vec<Point> {
+    pts.iter()
+        .step_by(pts.len().div_ceil(n).max(1))
+        .copied()
+        .collect()
 }
 
 /// The input points whose foot parameters lie in [ua, ub].
@@ -1537,9 +1538,7 @@ fn fit_slot_alpha(
     if !(free_a || free_b) {
         return Some(max);
     }
-    // The search runs on 64 of the points; the result is measured on all of them.
-    let stride = pts.len().div_ceil(64).max(1);
-    let sub: Vec<Point> = pts.iter().step_by(stride).copied().collect();
+    let sub = spread(&pts, 64);
     // Unknowns: α, then the turn of each free end tangent (only those).
     let ib = if free_a { 2 } else { 1 };
     let make = |x: &[f64]| {
@@ -1601,6 +1600,16 @@ fn merge_slots(
         if a.cut_b != Cut::Other || track.angle_between(a.ua, b.ub).abs() > max_turn {
             return None;
         }
+        let mut m = Slot {
+            ua: a.ua,
+            ub: b.ub,
+            cut_a: a.cut_a,
+            cut_b: b.cut_b,
+            alpha: None,
+            fitted: false,
+            dir_a: None,
+            dir_b: None,
+        };
         // A merge with an inflection at one end is an inflection-end segment: its α comes
         // from its triangle; it merges when that segment fits the points.
         let infl_a = a.cut_a == Cut::Inflection;
@@ -1609,16 +1618,7 @@ fn merge_slots(
             if infl_a && infl_b {
                 return None;
             }
-            let m = Slot {
-                ua: a.ua,
-                ub: b.ub,
-                cut_a: a.cut_a,
-                cut_b: b.cut_b,
-                alpha: None,
-                fitted: true,
-                dir_a: None,
-                dir_b: None,
-            };
+            m.fitted = true;
             let (pa, pb) = slot_ends(track, &m, ends);
             let tri = triangle(pa, track.direction(m.ua), pb, track.direction(m.ub))?;
             let ctrl = if infl_a {
@@ -1634,16 +1634,6 @@ fn merge_slots(
                 .fold(0.0, f64::max);
             return (d <= limit).then_some((m, d));
         }
-        let mut m = Slot {
-            ua: a.ua,
-            ub: b.ub,
-            cut_a: a.cut_a,
-            cut_b: b.cut_b,
-            alpha: None,
-            fitted: false,
-            dir_a: None,
-            dir_b: None,
-        };
         // A merge that reaches an end of the curve fits the tangent there too, when the
         // spline's tangent alone comes close.
         let d = fit_slot_alpha(track, fit, &mut m, ends, false)?;
