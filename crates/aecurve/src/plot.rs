@@ -552,20 +552,14 @@ pub fn comb_svg_in(
     // beside it in the same length.
     let len = nice_length(0.2 * (w - 2.0 * m) / sc);
     let (bx, by) = (m, h - 16.0);
-    let u = unit;
-    let unit_text = if u.is_empty() {
-        String::new()
+    let (unit_text, per) = if unit.is_empty() {
+        (String::new(), String::new())
     } else {
-        format!(" {u}")
-    };
-    let per = if u.is_empty() {
-        String::new()
-    } else {
-        format!(" /{u}")
+        (format!(" {unit}"), format!(" /{unit}"))
     };
     let comb_text = if comb != 0.0 {
         let mut t = format!(
-            "; comb: a tooth of {} {u} = curvature {}{per}",
+            "; comb: a tooth of {}{unit_text} = curvature {}{per}",
             fmt_tick(len),
             fmt_sig(len / comb.abs())
         );
