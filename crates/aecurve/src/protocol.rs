@@ -513,13 +513,15 @@ fn lac_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let alpha = optional_number(obj, "alpha")?;
     use aesthetic_curves::lac_fit::LacFitObjective;
     let objective = match obj.get("objective") {
-        None | Some(Value::Null) => LacFitObjective::ArcLength,
+        None | Some(Value::Null) => LacFitObjective::Band,
+        Some(Value::String(s)) if s == "band" => LacFitObjective::Band,
         Some(Value::String(s)) if s == "arc_length" => LacFitObjective::ArcLength,
         Some(Value::String(s)) if s == "distance" => LacFitObjective::Distance,
         Some(_) => {
             return Err(ProtoError::invalid(
                 "objective",
-                "must be \"arc_length\" (default) or \"distance\"",
+                "must be \"band\" (default: the narrowest band around the curve), \
+                 \"distance\" (least squares) or \"arc_length\" (the paper's)",
             ))
         }
     };
@@ -552,8 +554,13 @@ fn lac_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "max_deviation": f.max_deviation,
         "rms_correspondence": f.rms_correspondence,
         "converged": f.converged,
-        "objective": if objective == LacFitObjective::ArcLength { "arc_length" } else { "distance" },
+        "objective": objective.as_str(),
+        "max_curvature": f.max_curvature,
+        "alpha_at_bound": f.alpha_at_bound,
     });
+    if let Some(c) = f.curvature_cap {
+        o["curvature_cap"] = json!(c);
+    }
     // The paper start's guess, where there is one (absent rather than null otherwise).
     if let Some(g) = f.alpha_guess {
         o["alpha_guess"] = json!(g);

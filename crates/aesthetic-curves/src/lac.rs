@@ -1181,7 +1181,12 @@ impl LacSegment {
             .iter()
             .map(|t| self.theta_at_turning(t.clamp(0.0, self.theta_d)))
             .collect();
-        let (pts, kappa) = self.standard.eval_many_with_kappa(&th)?;
+        self.eval_thetas(&th)
+    }
+
+    /// Points and dP/dτ at standard-form angles (no clamping).
+    fn eval_thetas(&self, th: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+        let (pts, kappa) = self.standard.eval_many_with_kappa(th)?;
         let dir = if self.reversed { -1.0 } else { 1.0 };
         let o = self.map.apply(Vec2::ZERO);
         let points = pts.iter().map(|p| self.map.apply(p.to_vec2())).collect();
@@ -1191,6 +1196,39 @@ impl LacSegment {
             .map(|(t, k)| self.map.apply(Vec2::from_angle(*t) * (dir / k)) - o)
             .collect();
         Ok((points, derivs))
+    }
+
+    /// The turning angle (from `control[0]`, possibly outside `[0, θ_d]`: on the curve's
+    /// extension) of the foot of the perpendicular from `q`, by Newton's method from `tau0`;
+    /// `None` if it leaves the curve's domain or does not converge.
+    pub fn project_turning(&self, q: Point, tau0: f64) -> Option<f64> {
+        let (lo, hi) = self.standard.domain();
+        let mut tau = tau0;
+        for _ in 0..50 {
+            let th = self.theta_at_turning(tau);
+            if !(lo < th && th < hi) {
+                return None;
+            }
+            let (p, d) = self.eval_thetas(&[th]).ok()?;
+            let rho = d[0].hypot();
+            let (u, n) = (d[0] / rho, Vec2::new(-d[0].y, d[0].x) / rho);
+            // g(τ) = (q - P)·u, g'(τ) = -ρ + (q - P)·u' with u' = ±n (the tangent turns by
+            // dτ towards the side the curve bends to).
+            let sign = self.turn_sign();
+            let r = q - p[0];
+            let g = r.dot(u);
+            let dg = -rho + sign * r.dot(n);
+            if dg.is_nan() || dg >= 0.0 {
+                return None;
+            }
+            let step = g / dg;
+            let step = step.clamp(-0.5, 0.5);
+            tau -= step;
+            if step.abs() <= 1e-13 * (1.0 + tau.abs()) {
+                return Some(tau);
+            }
+        }
+        None
     }
 
     /// The part of this segment between turning angles `ta < tb` (from `control[0]`): the same
@@ -1205,7 +1243,35 @@ impl LacSegment {
                 ),
             ));
         }
-        let (pts, der) = self.eval_turning(&[ta, tb])?;
+        self.between(ta, tb)
+    }
+
+    /// The same curve between turning angles `ta < tb` measured from `control[0]`, which may
+    /// lie outside `[0, θ_d]`: the segment trimmed or extended along its own curve (no new
+    /// solve). The extension must stay inside the curve's domain (α > 0 curves end where the
+    /// radius of curvature reaches 0, α < 0 curves where it becomes infinite) and turn by
+    /// less than π in all.
+    pub fn extended(&self, ta: f64, tb: f64) -> Result<LacSegment> {
+        if !(ta.is_finite() && tb.is_finite() && ta < tb && tb - ta < std::f64::consts::PI) {
+            return Err(Error::invalid(
+                "turning",
+                format!("need ta < tb < ta + pi, got {ta}, {tb}"),
+            ));
+        }
+        let (a, b) = (self.theta_at_turning(ta), self.theta_at_turning(tb));
+        let (lo, hi) = self.standard.domain();
+        if !(lo < a.min(b) && a.max(b) < hi) {
+            return Err(Error::NoSegment(format!(
+                "the curve ends inside the requested extension (turning {ta:.4}..{tb:.4} \
+                 leaves its domain)"
+            )));
+        }
+        self.between(ta, tb)
+    }
+
+    fn between(&self, ta: f64, tb: f64) -> Result<LacSegment> {
+        let (a, b) = (self.theta_at_turning(ta), self.theta_at_turning(tb));
+        let (pts, der) = self.eval_thetas(&[a, b])?;
         // The segment's own ends stay exact.
         let p0 = if ta == 0.0 { self.control[0] } else { pts[0] };
         let p2 = if tb == self.theta_d {
@@ -1215,7 +1281,6 @@ impl LacSegment {
         };
         let denom = der[0].cross(der[1]);
         let x = p0 + der[0] * ((p2 - p0).cross(der[1]) / denom);
-        let (a, b) = (self.theta_at_turning(ta), self.theta_at_turning(tb));
         let seg = LacSegment {
             standard: self.standard,
             theta_d: tb - ta,
@@ -1804,5 +1869,47 @@ mod tests {
         // (α-1) Λ θ + 1 > 0: θ < 1/0.9 for α = -2, Λ = 0.3.
         assert!(c.eval(1.2).is_err());
         assert!(LacStandard::new(f64::NAN, 0.1).is_err());
+    }
+
+    /// Extending a segment and cutting the extension off again gives the segment back; the
+    /// extension lies on the same curve (its sub-segment is the original), and the feet of
+    /// perpendiculars land where the points were taken.
+    #[test]
+    fn extension_and_projection_stay_on_the_curve() {
+        let tri = [
+            Point::new(0.0, 0.0),
+            Point::new(5.0, 0.5),
+            Point::new(9.0, 4.0),
+        ];
+        for alpha in [-1.5, 0.0, 0.5, 2.0] {
+            let seg = LacSegment::new(alpha, tri).unwrap();
+            let td = seg.theta_d;
+            let ext = seg.extended(-0.1 * td, 1.1 * td).unwrap();
+            assert!((ext.theta_d - 1.2 * td).abs() < 1e-12);
+            let back = ext.sub_segment(0.1 * td, 1.1 * td).unwrap();
+            for (a, b) in back.control.iter().zip(&tri) {
+                assert!((*a - *b).hypot() < 1e-9, "{alpha}: {a:?} vs {b:?}");
+            }
+            // A point of the extension, moved off the curve along its normal, projects back.
+            let (p, d) = ext.eval_turning(&[0.03 * td]).unwrap();
+            let n = Vec2::new(-d[0].y, d[0].x).normalize();
+            let q = p[0] + n * 0.2;
+            let tau = seg.project_turning(q, 0.0).unwrap();
+            assert!(
+                (tau - (-0.07 * td)).abs() < 1e-9,
+                "{alpha}: {tau} vs {}",
+                -0.07 * td
+            );
+            // Trimming works the same way.
+            let t = seg.extended(0.2 * td, 0.7 * td).unwrap();
+            let s = seg.sub_segment(0.2 * td, 0.7 * td).unwrap();
+            for (a, b) in t.control.iter().zip(&s.control) {
+                assert!((*a - *b).hypot() < 1e-12);
+            }
+        }
+        // An alpha > 0 curve ends where its radius of curvature reaches 0.
+        let seg = LacSegment::new(2.0, tri).unwrap();
+        assert!(seg.extended(-3.0, 0.5).is_err() || seg.extended(0.0, 3.0).is_err());
+        assert!(seg.extended(0.5, 0.2).is_err());
     }
 }

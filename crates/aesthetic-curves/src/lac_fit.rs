@@ -23,14 +23,31 @@ use kurbo::Point;
 /// What [`fit_lac`] minimises.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum LacFitObjective {
+    /// The narrowest band around the curve that holds the points: the L8 norm of the
+    /// point-to-curve distances (a smooth stand-in for their maximum that still weighs every
+    /// point, so the rms stays close to the least-squares one). The default: a CAD user
+    /// judges a fit by its tolerance band.
+    #[default]
+    Band,
     /// The paper's L2 distance of parametrised curves: the n-th point against the curve
     /// point at the same fraction of arc length (the points' cumulative chord length over
     /// their total). It constrains how curvature is spread along the curve, which is what
     /// determines alpha on shallow lines.
-    #[default]
     ArcLength,
-    /// Point-to-curve distances only (the shape, whatever the spacing of the points).
+    /// Point-to-curve distances, least squares (the shape, whatever the spacing of the
+    /// points).
     Distance,
+}
+
+impl LacFitObjective {
+    /// The protocol's name: `band`, `arc_length` or `distance`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            LacFitObjective::Band => "band",
+            LacFitObjective::ArcLength => "arc_length",
+            LacFitObjective::Distance => "distance",
+        }
+    }
 }
 
 /// Where [`fit_lac`] starts alpha and how far it lets it move.
@@ -78,6 +95,15 @@ pub struct LacFit {
     /// Whether the final least-squares solve converged (false: it stopped at its iteration
     /// limit or where the segment stopped existing; the fit is then the best point found).
     pub converged: bool,
+    /// Largest |curvature| of the segment (at one of its ends: the curvature is monotone).
+    pub max_curvature: f64,
+    /// The bound the hook rule puts on the curvature: [`HOOK_FACTOR`] times the largest
+    /// curvature of the smoothest spline as close to the points (`None` if that spline could
+    /// not be made, e.g. for points on a straight line).
+    pub curvature_cap: Option<f64>,
+    /// Whether the free alpha ended on a bound of [`ALPHA_RANGE`] (the data ask for a
+    /// steeper curvature graph than the range allows).
+    pub alpha_at_bound: bool,
 }
 
 /// Indices of `n` pivots of a polyline, both ends included, added greedily in
@@ -159,15 +185,13 @@ fn paper_alpha_guess(pts: &[Point]) -> Result<f64> {
 }
 
 /// Distances from `points` to the segment's points at the arc-length fractions `sigma`,
-/// as x and y components (None if the segment does not exist).
+/// as x and y components (None if they cannot be evaluated).
 fn correspondence(
-    alpha: f64,
-    tri: [Point; 3],
+    seg: &LacSegment,
     points: &[Point],
     sigma: &[f64],
     out: &mut Vec<f64>,
 ) -> Option<()> {
-    let seg = LacSegment::new(alpha, tri).ok()?;
     let c = &seg.standard;
     let (ta, tb) = if seg.reversed {
         (seg.interval.1, seg.interval.0)
@@ -204,17 +228,17 @@ fn correspondence(
     out.iter().all(|v| v.is_finite()).then_some(())
 }
 
-/// Signed distances of `points` to the segment (None if the segment does not exist).
-fn residuals(alpha: f64, tri: [Point; 3], points: &[Point], out: &mut Vec<f64>) -> Option<()> {
-    let seg = LacSegment::new(alpha, tri).ok()?;
+/// Signed distances of `points` to the segment, from a polyline of `2n + 200` samples
+/// (even in turning angle): each point's nearest vertex is found by descent from the
+/// previous point's, forward or backward (measured points can step back along the line),
+/// then projected on the two chords around it. Fast enough for every step of the solver;
+/// the reported distances are re-measured without the descent ([`nearest_distances`]).
+fn distances(seg: &LacSegment, points: &[Point], out: &mut Vec<f64>) -> Option<()> {
     let m = 2 * points.len() + 200;
     let (poly, _) = seg.sample(m).ok()?;
     out.clear();
     let mut j = 0usize;
     for q in points {
-        // Descend to the nearest vertex from the previous point's, forward or backward
-        // (measured points can step back along the curve), then project on the two chords
-        // around it.
         while j + 1 < poly.len() && (poly[j + 1] - *q).hypot2() <= (poly[j] - *q).hypot2() {
             j += 1;
         }
@@ -240,6 +264,51 @@ fn residuals(alpha: f64, tri: [Point; 3], points: &[Point], out: &mut Vec<f64>) 
     out.iter().all(|v| v.is_finite()).then_some(())
 }
 
+/// True nearest distances from `points` to a polyline: every chord is a candidate (chords
+/// whose bounding box, grown by the best distance so far, misses the point are skipped), so
+/// nothing assumes the points advance along it.
+pub(crate) fn nearest_distances(poly: &[Point], points: &[Point]) -> Vec<f64> {
+    let boxes: Vec<(Point, Point)> = poly
+        .windows(2)
+        .map(|w| {
+            (
+                Point::new(w[0].x.min(w[1].x), w[0].y.min(w[1].y)),
+                Point::new(w[0].x.max(w[1].x), w[0].y.max(w[1].y)),
+            )
+        })
+        .collect();
+    let mut hint = 0usize;
+    points
+        .iter()
+        .map(|q| {
+            let chord = |k: usize| {
+                let (a, b) = (poly[k], poly[k + 1]);
+                let ab = b - a;
+                let l2 = ab.hypot2();
+                let t = if l2 > 0.0 {
+                    ((*q - a).dot(ab) / l2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                (a + ab * t - *q).hypot()
+            };
+            let mut best = chord(hint.min(boxes.len() - 1));
+            for (k, (lo, hi)) in boxes.iter().enumerate() {
+                if q.x < lo.x - best || q.x > hi.x + best || q.y < lo.y - best || q.y > hi.y + best
+                {
+                    continue;
+                }
+                let d = chord(k);
+                if d < best {
+                    best = d;
+                    hint = k;
+                }
+            }
+            best
+        })
+        .collect()
+}
+
 fn cost(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
@@ -247,7 +316,41 @@ fn cost(r: &[f64]) -> f64 {
 /// The range of alpha of a free fit.
 pub const ALPHA_RANGE: (f64, f64) = (-5.0, 5.0);
 
-/// The least-squares LAC segment through `points` (ordered, at least 6 distinct).
+/// How much more sharply than the smoothest spline as close to the points a fitted segment
+/// may bend (see [`fit_lac`]).
+pub const HOOK_FACTOR: f64 = 1.5;
+
+/// Largest |curvature| of a cubic B-spline, sampled 64 times per span.
+fn spline_max_curvature(spline: &crate::bspline::BSpline) -> Result<f64> {
+    use crate::PlanarCurve;
+    let mut k = 0.0f64;
+    for b in spline.to_beziers()? {
+        for j in 0..=64 {
+            let v = b.kappa(j as f64 / 64.0);
+            if v.is_finite() {
+                k = k.max(v.abs());
+            }
+        }
+    }
+    Ok(k)
+}
+
+/// The log-aesthetic segment closest to `points` (ordered, at least 6 distinct).
+///
+/// 1. Start: the triangle of a least-squares B-spline's end points and end tangents; each
+///    alpha of a scan from -5 to 5 (or the fixed one, or the paper's guess) fits the
+///    triangle by Levenberg–Marquardt on the objective.
+/// 2. No hooks: a segment may bend at most [`HOOK_FACTOR`] times as sharply as the smoothest
+///    cubic spline within the scan's best max deviation of the points
+///    ([`crate::bspline::smoothing_fit`]); steps past that are refused, as are steps out of
+///    the segment's existence region. A line whose first millimetres turn (a measurement
+///    artifact) so keeps its fair shape instead of ending in a hook.
+/// 3. Alpha is freed from the best scan fit (within [`ALPHA_RANGE`], or ±10 % of the paper's
+///    guess) and optimised with the triangle.
+/// 4. The segment spans the data: it is trimmed or extended along its own curve so that its
+///    ends are the feet of the perpendiculars from the first and last points.
+///
+/// The reported distances are true nearest-point distances to the delivered segment.
 pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     if let Some(a) = opts.alpha {
         if !a.is_finite() {
@@ -302,7 +405,6 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     }
     let p1 = p0 + d0 * ((p2 - p0).cross(d1) / den);
     let tri0 = [p0, p1, p2];
-    let mut r = Vec::new();
     let mut sigma = vec![0.0; pts.len()];
     for i in 1..pts.len() {
         sigma[i] = sigma[i - 1] + (pts[i] - pts[i - 1]).hypot();
@@ -311,9 +413,30 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     for v in &mut sigma {
         *v /= total;
     }
-    let objective = |a: f64, tri: [Point; 3], out: &mut Vec<f64>| match opts.objective {
-        LacFitObjective::Distance => residuals(a, tri, &pts, out),
-        LacFitObjective::ArcLength => correspondence(a, tri, &pts, &sigma, out),
+    // The band objective's residuals are σ (d/σ)^4 (their squares sum to σ^-6 Σ d^8), σ a
+    // fixed length of the order of the distances, for conditioning.
+    let band_scale = std::cell::Cell::new(1e-3 * size);
+    let objective = |seg: &LacSegment, out: &mut Vec<f64>| match opts.objective {
+        LacFitObjective::Distance => distances(seg, &pts, out),
+        LacFitObjective::Band => {
+            distances(seg, &pts, out)?;
+            let s = band_scale.get();
+            for v in out.iter_mut() {
+                let u = *v / s;
+                *v = s * u * u * u * u * v.signum();
+            }
+            Some(())
+        }
+        LacFitObjective::ArcLength => correspondence(seg, &pts, &sigma, out),
+    };
+    let cap = std::cell::Cell::new(f64::INFINITY);
+    let eval = |a: f64, tri: [Point; 3], out: &mut Vec<f64>| -> Option<()> {
+        let seg = LacSegment::new(a, tri).ok()?;
+        let (k0, k1) = seg.end_curvatures().ok()?;
+        if k0.abs().max(k1.abs()) > cap.get() {
+            return None;
+        }
+        objective(&seg, out)
     };
     let guess = match (opts.alpha, opts.start) {
         (None, LacFitStart::Paper) => Some(paper_alpha_guess(&pts)?),
@@ -322,14 +445,20 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     let alphas: Vec<f64> = match (opts.alpha, guess) {
         (Some(a), _) => vec![a],
         (None, Some(g)) => vec![g],
-        (None, None) => vec![
-            -5.0, -4.0, -2.0, -1.0, 0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0,
-        ],
+        (None, None) => vec![-4.5, -3.0, -1.5, -0.5, 0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.5],
     };
-    let mut starts: Vec<(f64, f64)> = Vec::new();
+    let mut r = Vec::new();
+    // The distances of the start triangle set the band objective's scale.
+    let mut start_rms: Option<f64> = None;
+    let mut starts: Vec<f64> = Vec::new();
     for a in alphas {
-        if objective(a, tri0, &mut r).is_some() {
-            starts.push((a, cost(&r)));
+        let Ok(seg) = LacSegment::new(a, tri0) else {
+            continue;
+        };
+        if distances(&seg, &pts, &mut r).is_some() {
+            let rms = (cost(&r) / r.len() as f64).sqrt();
+            start_rms = Some(start_rms.map_or(rms, |v: f64| v.min(rms)));
+            starts.push(a);
         }
     }
     if starts.is_empty() {
@@ -337,26 +466,57 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
             "no log-aesthetic segment exists in the triangle of the points' end tangents".into(),
         ));
     }
-    // For each alpha of the scan (or the fixed one), fit the triangle with alpha fixed; then
-    // free alpha from the best (alpha is poorly determined on shallow curves, and the cost
-    // has several minima along it).
-    let mut best: Option<(f64, Vec<f64>, f64, bool)> = None;
-    for &(a, _) in &starts {
-        let x0: Vec<f64> = tri0.iter().flat_map(|p| [p.x / size, p.y / size]).collect();
-        let (x, c, conv) = levenberg_marquardt(&x0, &|x, out| objective(a, triangle(x, size), out));
-        if best.as_ref().is_none_or(|b| c < b.2) {
-            best = Some((a, x, c, conv));
+    if let Some(rms) = start_rms.filter(|v| *v > 0.0) {
+        band_scale.set(rms.max(1e-9 * size));
+    }
+    let x_start: Vec<f64> = tri0.iter().flat_map(|p| [p.x / size, p.y / size]).collect();
+    // For each alpha of the scan (or the fixed one), fit the triangle with alpha fixed; the
+    // best such fit's max deviation sets the hook cap; then again under the cap.
+    let scan = |out: &mut Option<(f64, Vec<f64>, f64, bool)>| {
+        for &a in &starts {
+            let (x, c, conv) = levenberg_marquardt(&x_start, &|x, o| eval(a, triangle(x, size), o));
+            if c.is_finite() && out.as_ref().is_none_or(|b| c < b.2) {
+                *out = Some((a, x, c, conv));
+            }
+        }
+    };
+    let mut best = None;
+    scan(&mut best);
+    let Some((a_free, x_free, _, _)) = best.clone() else {
+        return Err(Error::NoConvergence(
+            "no start of the least-squares fit could be evaluated".into(),
+        ));
+    };
+    let free_seg = LacSegment::new(a_free, triangle(&x_free, size))?;
+    let free_max = max_deviation(&free_seg, &pts)?;
+    let reference = crate::bspline::smoothing_fit(&pts, free_max.max(1e-9 * size))
+        .ok()
+        .and_then(|f| spline_max_curvature(&f.spline).ok())
+        .filter(|k| *k > 0.0);
+    let hook_cap = reference.map(|k| HOOK_FACTOR * k);
+    let free_kmax = {
+        let (k0, k1) = free_seg.end_curvatures()?;
+        k0.abs().max(k1.abs())
+    };
+    // The cap holds from here on (the free-alpha solve included).
+    cap.set(hook_cap.unwrap_or(f64::INFINITY));
+    if hook_cap.is_some_and(|c| free_kmax > c) {
+        best = None;
+        scan(&mut best);
+        if best.is_none() {
+            // No start satisfies the cap: keep the uncapped fit rather than fail.
+            cap.set(f64::INFINITY);
+            best = Some((a_free, x_free, 0.0, false));
         }
     }
-    let (a_best, x_tri, _, conv_tri) = best.expect("at least one start");
+    let (a_best, x_tri, _, conv_tri) = best.expect("a start");
     let (alpha, tri, converged) = if opts.alpha.is_some() {
         (a_best, triangle(&x_tri, size), conv_tri)
     } else {
         let mut x0 = vec![a_best];
         x0.extend(&x_tri);
         // The paper keeps alpha within ±10 % of its guess; the free fit within [-5, 5] (past
-        // those the curvature graph is so steep that the segment ends in a hook: ρ → 0 at
-        // one end for alpha > 1, a long near-straight tail for alpha < 0).
+        // those the curvature graph is so steep that the shape hardly changes with alpha).
         let (lo, hi) = match guess {
             Some(g) => (g - 0.1 * g.abs(), g + 0.1 * g.abs()),
             None => ALPHA_RANGE,
@@ -365,26 +525,50 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
             if x[0] < lo || x[0] > hi {
                 return None;
             }
-            objective(x[0], triangle(&x[1..], size), out)
+            eval(x[0], triangle(&x[1..], size), out)
         });
         (x[0], triangle(&x[1..], size), conv)
     };
-    let segment = LacSegment::new(alpha, tri)?;
-    residuals(alpha, tri, &pts, &mut r)
-        .ok_or_else(|| Error::NoConvergence("the fitted segment vanished".into()))?;
-    let n = r.len() as f64;
+    let fitted = LacSegment::new(alpha, tri)?;
+    // Span the data: ends at the feet of the perpendiculars from the first and last points.
+    let last = pts[pts.len() - 1];
+    let segment = match (
+        fitted.project_turning(pts[0], 0.0),
+        fitted.project_turning(last, fitted.theta_d),
+    ) {
+        (Some(ta), Some(tb)) if ta < tb => fitted.extended(ta, tb).unwrap_or(fitted),
+        _ => fitted,
+    };
+    let (poly, _) = segment.sample(4 * pts.len() + 400)?;
+    let d = nearest_distances(&poly, &pts);
+    let n = d.len() as f64;
     let mut rc = Vec::new();
-    correspondence(alpha, tri, &pts, &sigma, &mut rc)
+    correspondence(&segment, &pts, &sigma, &mut rc)
         .ok_or_else(|| Error::NoConvergence("the fitted segment vanished".into()))?;
+    let (k0, k1) = segment.end_curvatures()?;
+    let (lo, hi) = ALPHA_RANGE;
     Ok(LacFit {
-        segment,
         alpha,
-        rms_deviation: (cost(&r) / n).sqrt(),
-        max_deviation: r.iter().map(|v| v.abs()).fold(0.0, f64::max),
+        rms_deviation: (d.iter().map(|v| v * v).sum::<f64>() / n).sqrt(),
+        max_deviation: d.iter().copied().fold(0.0, f64::max),
         rms_correspondence: (cost(&rc) / pts.len() as f64).sqrt(),
         alpha_guess: guess,
         converged,
+        max_curvature: k0.abs().max(k1.abs()),
+        curvature_cap: hook_cap,
+        alpha_at_bound: opts.alpha.is_none()
+            && guess.is_none()
+            && ((alpha - lo).abs() < 1e-6 || (alpha - hi).abs() < 1e-6),
+        segment,
     })
+}
+
+/// Largest true distance from `pts` to `seg`.
+fn max_deviation(seg: &LacSegment, pts: &[Point]) -> Result<f64> {
+    let (poly, _) = seg.sample(2 * pts.len() + 200)?;
+    Ok(nearest_distances(&poly, pts)
+        .into_iter()
+        .fold(0.0, f64::max))
 }
 
 fn triangle(c: &[f64], size: f64) -> [Point; 3] {
