@@ -30,7 +30,7 @@
 //!
 //! The result reports its inflections and curvature extrema ([`count_events`]).
 
-use crate::approx::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions};
+use crate::approx::{fit_inflection_cubic_from, fit_rational_cubic, ApproxOptions};
 use crate::bernstein::sign_change_roots;
 use crate::bezier::{Bezier, PlanarCurve, RationalBezier};
 use crate::bspline::{self, BSpline, FitOptions};
@@ -574,6 +574,20 @@ fn triangle(pa: Point, da: Vec2, pb: Point, db: Vec2) -> Option<[Point; 3]> {
 type Built = (PieceCurve, f64, (f64, f64));
 
 /// The segment of a piece with end points and tangent angles given.
+/// The memo key of a piece: its kind, alpha and control points, bit for bit.
+fn memo_key(kind: u64, alpha: u64, c: &[Point; 3]) -> [u64; 8] {
+    [
+        kind,
+        alpha,
+        c[0].x.to_bits(),
+        c[0].y.to_bits(),
+        c[1].x.to_bits(),
+        c[1].y.to_bits(),
+        c[2].x.to_bits(),
+        c[2].y.to_bits(),
+    ]
+}
+
 fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2) -> Result<Built> {
     let tri = triangle(pa, da, pb, db).ok_or_else(|| {
         Error::Degenerate("the end tangents of a piece do not form a triangle".into())
@@ -990,6 +1004,13 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         s.fitted = false;
     }
     let mut peak_splits = 0;
+    // Optima of the inflection-end cubic fits so far, by shape (α, θ_d): warm starts for
+    // the next rounds, whose pieces differ only a little.
+    let mut inflection_starts: Vec<((f64, f64), (f64, f64))> = Vec::new();
+    // The rational cubic of every piece fitted so far, by its exact segment: a piece that
+    // no round changed is not fitted again.
+    let mut memo: std::collections::HashMap<[u64; 8], crate::approx::RationalCubicFit> =
+        std::collections::HashMap::new();
     loop {
         let last = slots.len() - 1;
         for (i, s) in slots.iter_mut().enumerate().filter(|(_, s)| !s.fitted) {
@@ -1054,8 +1075,19 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         let mut split_here: Option<usize> = None;
         for (s, (curve, alpha, ends)) in slots.iter().zip(built) {
             let (kind, control, rat) = match &curve {
-                PieceCurve::Lac(seg) => match fit_rational_cubic(seg, &opts.approx) {
-                    Ok(f) => (PieceKind::Lac, seg.control, f),
+                PieceCurve::Lac(seg) => match memo
+                    .get(&memo_key(0, seg.standard.alpha().to_bits(), &seg.control))
+                    .cloned()
+                    .map(Ok)
+                    .unwrap_or_else(|| fit_rational_cubic(seg, &opts.approx))
+                {
+                    Ok(f) => {
+                        memo.insert(
+                            memo_key(0, seg.standard.alpha().to_bits(), &seg.control),
+                            f.clone(),
+                        );
+                        (PieceKind::Lac, seg.control, f)
+                    }
                     // No monotone cubic for this segment (it turns too far for its
                     // curvature range): split the piece and start the round again.
                     Err(Error::NoSegment(_)) if slots.len() < opts.max_pieces => {
@@ -1068,8 +1100,35 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                     segment,
                     inflection_at_start,
                 } => {
-                    let f = match fit_inflection_cubic(segment, &opts.approx) {
-                        Ok(f) => f,
+                    // A warm start from the optimum of the nearest shape (α, θ_d) fitted
+                    // so far; the same shape has the same optimum.
+                    let key = (segment.alpha, segment.theta_d);
+                    let warm = inflection_starts
+                        .iter()
+                        .filter(|(k, _)| {
+                            (k.0 - key.0).abs() <= 0.25 && (k.1 - key.1).abs() <= 0.1 * key.1
+                        })
+                        .min_by(|a, b| {
+                            let d = |k: (f64, f64)| (k.0 - key.0).abs() + (k.1 - key.1).abs();
+                            d(a.0).total_cmp(&d(b.0))
+                        })
+                        .map(|e| e.1);
+                    let same = inflection_starts.iter().any(|(k, _)| {
+                        k.0.to_bits() == key.0.to_bits() && k.1.to_bits() == key.1.to_bits()
+                    });
+                    let mkey = memo_key(1, segment.alpha.to_bits(), &segment.control);
+                    let fitted = match memo.get(&mkey) {
+                        Some(f) => Ok((f.clone(), (f64::NAN, f64::NAN))),
+                        None => fit_inflection_cubic_from(segment, &opts.approx, warm, !same),
+                    };
+                    let f = match fitted {
+                        Ok((f, x)) => {
+                            if !same && x.0.is_finite() {
+                                inflection_starts.push((key, x));
+                            }
+                            memo.insert(mkey, f.clone());
+                            f
+                        }
                         // No curvature-monotone cubic of the family: the G2 cubic of the
                         // family's centre, reported as not monotone.
                         Err(Error::NoSegment(_)) => inflection_fallback(segment)?,
