@@ -619,17 +619,37 @@ fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2) -> Result<
     let seg = match LacSegment::new(target, tri) {
         Ok(s) => s,
         Err(Error::NoSegment(_)) => {
-            // Nearest admissible α towards 0.5 (0 <= α <= 1 always admits a triangle).
+            // Nearest admissible α towards 0.5 (0 <= α <= 1 always admits a triangle):
+            // bisection on the existence test (no Λ solve), then the solve just inside the
+            // boundary, where it can still refuse (the curve overflows f64 right at it);
+            // failing that, bisection on the solve itself.
             let (mut bad, mut good) = (target, 0.5);
             for _ in 0..40 {
                 let mid = 0.5 * (bad + good);
-                if LacSegment::new(mid, tri).is_ok() {
+                if LacSegment::exists(mid, tri).unwrap_or(false) {
                     good = mid;
                 } else {
                     bad = mid;
                 }
             }
-            LacSegment::new(good, tri)?
+            let inside = [0.0, 1e-9, 1e-6, 1e-3]
+                .iter()
+                .find_map(|f| LacSegment::new(good + (0.5 - good) * f, tri).ok());
+            match inside {
+                Some(s) => s,
+                None => {
+                    let (mut bad, mut good) = (target, 0.5);
+                    for _ in 0..40 {
+                        let mid = 0.5 * (bad + good);
+                        if LacSegment::new(mid, tri).is_ok() {
+                            good = mid;
+                        } else {
+                            bad = mid;
+                        }
+                    }
+                    LacSegment::new(good, tri)?
+                }
+            }
         }
         Err(e) => return Err(e),
     };

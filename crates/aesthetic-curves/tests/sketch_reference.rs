@@ -411,3 +411,82 @@ fn jittery_strokes_at_the_default_tolerance() {
         assert!(kmax <= 2.0 * kref, "{name}: hook {kmax} vs {kref}");
     }
 }
+
+/// The probe's strokes (`tests/data/sketch-slow-*.json`: random-walk turning, unit steps,
+/// tight tolerances) that took 28 to 39 s, then failed outright once the fair smoothing
+/// spline came in: both fit, within their tolerance, in seconds.
+#[test]
+fn probe_strokes_fit_in_seconds() {
+    for (name, text) in [
+        ("52 points", include_str!("data/sketch-slow-52-points.json")),
+        (
+            "181 points",
+            include_str!("data/sketch-slow-181-points.json"),
+        ),
+    ] {
+        // {"op": ..., "points": [[x, y], ...], "tolerance": t, ...}: read without a JSON crate.
+        let after = |key: &str| &text[text.find(key).unwrap() + key.len()..];
+        let pts_text = after("\"points\":");
+        let pts_text = &pts_text[..pts_text.find("]]").unwrap() + 2];
+        let nums: Vec<f64> = pts_text
+            .split(|c: char| c == '[' || c == ']' || c == ',' || c.is_whitespace())
+            .filter(|s| !s.is_empty())
+            .map(|s| s.parse().unwrap())
+            .collect();
+        let pts: Vec<Point> = nums.chunks(2).map(|c| p(c[0], c[1])).collect();
+        let tol: f64 = after("\"tolerance\":")
+            .split(|c: char| c == ',' || c == '}')
+            .next()
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap();
+        let t = std::time::Instant::now();
+        let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
+        let secs = t.elapsed().as_secs_f64();
+        let d = delivered(&sk);
+        let worst = pts.iter().map(|q| nearest(&d, *q)).fold(0.0, f64::max);
+        println!(
+            "{name}: {} pieces, deviation {worst:.3e} (tolerance {tol:.3e}), G2 {} (jump \
+             {:.1e}), {secs:.2} s",
+            sk.pieces.len(),
+            sk.g2,
+            sk.max_curvature_jump
+        );
+        assert_eq!(pts.len(), if name == "52 points" { 52 } else { 181 });
+        assert!(worst <= tol * (1.0 + 1e-6), "{name}: {worst} > {tol}");
+        assert!(sk.all_monotone, "{name}");
+        assert!(secs < 20.0, "{name}: {secs} s");
+    }
+}
+
+/// A stroke of 200,000 points (a jittery arc) works within seconds.
+#[test]
+fn a_stroke_of_200_000_points_fits_in_seconds() {
+    let n = 200_000;
+    let mut seed = 7u64;
+    let mut rnd = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let pts: Vec<Point> = (0..n)
+        .map(|i| {
+            let t = 2.5 * i as f64 / (n - 1) as f64;
+            p(300.0 * t.cos() + 2.0 * rnd(), 300.0 * t.sin() + 2.0 * rnd())
+        })
+        .collect();
+    let tol = aesthetic_curves::sketch::default_tolerance(&pts);
+    let t = std::time::Instant::now();
+    let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
+    let secs = t.elapsed().as_secs_f64();
+    println!(
+        "200,000 points: {} pieces, deviation {:.3} (tolerance {tol:.3}), {secs:.2} s",
+        sk.pieces.len(),
+        sk.max_deviation
+    );
+    assert!(sk.max_deviation <= tol && sk.g2 && sk.all_monotone);
+    assert!(sk.pieces.len() <= 3, "{} pieces", sk.pieces.len());
+    assert!(secs < 10.0, "{secs} s");
+}
