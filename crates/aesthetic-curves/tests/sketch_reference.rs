@@ -435,7 +435,7 @@ fn probe_strokes_fit_in_seconds() {
             .collect();
         let pts: Vec<Point> = nums.chunks(2).map(|c| p(c[0], c[1])).collect();
         let tol: f64 = after("\"tolerance\":")
-            .split(|c: char| c == ',' || c == '}')
+            .split([',', '}'])
             .next()
             .unwrap()
             .trim()
