@@ -30,7 +30,9 @@
 //!
 //! The result reports its inflections and curvature extrema ([`count_events`]).
 
-use crate::approx::{fit_inflection_cubic_from, fit_rational_cubic, ApproxOptions};
+use crate::approx::{
+    fit_inflection_cubic_from, fit_rational_cubic, ApproxOptions, RationalCubicFit,
+};
 use crate::bernstein::sign_change_roots;
 use crate::bezier::{Bezier, PlanarCurve, RationalBezier};
 use crate::bspline::{self, BSpline, FitOptions};
@@ -39,6 +41,7 @@ use crate::lac::{LacInflectionSegment, LacSegment};
 use crate::lcg::{fit_line, lcg_point};
 use kurbo::{Point, Vec2};
 use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
 
 /// Options of [`fit_sketch`].
 #[derive(Clone, Debug)]
@@ -574,6 +577,77 @@ fn triangle(pa: Point, da: Vec2, pb: Point, db: Vec2) -> Option<[Point; 3]> {
 type Built = (PieceCurve, f64, (f64, f64));
 
 /// The segment of a piece with end points and tangent angles given.
+/// Split where the curve misses the points most (kept off the piece's ends); a piece with an
+/// inflection end at its mid-turn, so the inflection piece left keeps a proper triangle.
+fn split_worst(track: &Track, slots: &mut Vec<Slot>, piece: usize, u: f64) -> Result<()> {
+    let s = &slots[piece];
+    if s.cut_a == Cut::Inflection || s.cut_b == Cut::Inflection {
+        split_at_mid_turn(track, slots, piece)
+    } else {
+        let u = u.clamp(s.ua + 0.25 * (s.ub - s.ua), s.ub - 0.25 * (s.ub - s.ua));
+        split_at(track, slots, piece, u)
+    }
+}
+
+/// The largest distance from `points` (spline parameters `params`) to polylines of the
+/// pieces (spline parameter ranges `ranges`), with its piece and parameter: the piece
+/// around a point's parameter first, then every piece whose box, grown by the distance so
+/// far, reaches the point.
+fn polyline_deviation(
+    points: &[Point],
+    params: &[f64],
+    ranges: &[(f64, f64)],
+    polys: &[Vec<Point>],
+) -> (f64, usize, f64) {
+    let boxes: Vec<kurbo::Rect> = polys
+        .iter()
+        .map(|p| {
+            p.iter()
+                .fold(kurbo::Rect::from_points(p[0], p[0]), |r, q| r.union_pt(*q))
+        })
+        .collect();
+    let to_poly = |poly: &[Point], q: Point| {
+        poly.windows(2)
+            .map(|w| {
+                let ab = w[1] - w[0];
+                let l2 = ab.hypot2();
+                let t = if l2 > 0.0 {
+                    ((q - w[0]).dot(ab) / l2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                (w[0] + ab * t - q).hypot()
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let (mut worst, mut piece, mut at) = (0.0f64, 0usize, 0.0);
+    for (q, &u) in points.iter().zip(params) {
+        let home = ranges
+            .iter()
+            .position(|r| u <= r.1)
+            .unwrap_or(ranges.len() - 1);
+        let mut best = (to_poly(&polys[home], *q), home);
+        for (i, r) in boxes.iter().enumerate() {
+            let dx = (r.x0 - q.x).max(q.x - r.x1).max(0.0);
+            let dy = (r.y0 - q.y).max(q.y - r.y1).max(0.0);
+            if i == home || dx.hypot(dy) > best.0 {
+                continue;
+            }
+            let d = to_poly(&polys[i], *q);
+            if d < best.0 {
+                best = (d, i);
+            }
+        }
+        if best.0 > worst {
+            (worst, piece, at) = (best.0, best.1, u);
+        }
+    }
+    (worst, piece, at)
+}
+
+/// An inflection-end piece's shape (α, θ_d) and the optimum (f0, ln w0) of its cubic.
+type InflectionStart = ((f64, f64), (f64, f64));
+
 /// The memo key of a piece: its kind, alpha and control points, bit for bit.
 fn memo_key(kind: u64, alpha: u64, c: &[Point; 3]) -> [u64; 8] {
     [
@@ -1026,10 +1100,10 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     let mut peak_splits = 0;
     // Optima of the inflection-end cubic fits so far, by shape (α, θ_d): warm starts for
     // the next rounds, whose pieces differ only a little.
-    let mut inflection_starts: Vec<((f64, f64), (f64, f64))> = Vec::new();
+    let mut inflection_starts: Vec<InflectionStart> = Vec::new();
     // The rational cubic of every piece fitted so far, by its exact segment: a piece that
     // no round changed is not fitted again.
-    let mut memo: std::collections::HashMap<[u64; 8], crate::approx::RationalCubicFit> =
+    let mut memo: std::collections::HashMap<[u64; 8], RationalCubicFit> =
         std::collections::HashMap::new();
     loop {
         let last = slots.len() - 1;
@@ -1091,17 +1165,73 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             }
         }
         let (built, fairing) = fair(&slots, &pts, &mut dirs, opts)?;
+        // A round whose fairing failed and whose LAC pieces miss a point by more than twice
+        // the tolerance splits where they miss most, without fitting rational cubics to
+        // pieces that will not be kept (those fits cost most of such a round).
+        if !fairing.converged && slots.len() < opts.max_pieces {
+            let polys: Option<Vec<Vec<Point>>> = built
+                .iter()
+                .map(|(c, _, _)| match c {
+                    PieceCurve::Lac(seg) => seg.sample(129).ok().map(|x| x.0),
+                    PieceCurve::Inflection { segment, .. } => segment.sample(129).ok().map(|x| x.0),
+                })
+                .collect();
+            if let Some(polys) = polys {
+                let ranges: Vec<(f64, f64)> = slots.iter().map(|s| (s.ua, s.ub)).collect();
+                let (worst, piece, u) =
+                    polyline_deviation(&fit.points, &fit.params, &ranges, &polys);
+                if worst > 2.0 * opts.tolerance {
+                    split_worst(&track, &mut slots, piece, u)?;
+                    continue;
+                }
+            }
+        }
+        // The rational cubic of every piece, fitted in parallel (each fit is pure work on
+        // its own piece); the memo and the warm starts are read here and updated in curve
+        // order below.
+        type Fitted = (RationalCubicFit, Option<InflectionStart>);
+        let fits: Vec<Result<Fitted>> = built
+            .par_iter()
+            .map(|(curve, _, _)| match curve {
+                PieceCurve::Lac(seg) => {
+                    let key = memo_key(0, seg.standard.alpha().to_bits(), &seg.control);
+                    match memo.get(&key) {
+                        Some(f) => Ok((f.clone(), None)),
+                        None => fit_rational_cubic(seg, &opts.approx).map(|f| (f, None)),
+                    }
+                }
+                PieceCurve::Inflection { segment, .. } => {
+                    let key = memo_key(1, segment.alpha.to_bits(), &segment.control);
+                    if let Some(f) = memo.get(&key) {
+                        return Ok((f.clone(), None));
+                    }
+                    // A warm start from the optimum of the nearest shape (α, θ_d) fitted
+                    // so far; the same shape has the same optimum.
+                    let shape = (segment.alpha, segment.theta_d);
+                    let warm = inflection_starts
+                        .iter()
+                        .filter(|(k, _)| {
+                            (k.0 - shape.0).abs() <= 0.25 && (k.1 - shape.1).abs() <= 0.1 * shape.1
+                        })
+                        .min_by(|a, b| {
+                            let d = |k: (f64, f64)| (k.0 - shape.0).abs() + (k.1 - shape.1).abs();
+                            d(a.0).total_cmp(&d(b.0))
+                        })
+                        .map(|e| e.1);
+                    let same = inflection_starts.iter().any(|(k, _)| {
+                        k.0.to_bits() == shape.0.to_bits() && k.1.to_bits() == shape.1.to_bits()
+                    });
+                    fit_inflection_cubic_from(segment, &opts.approx, warm, !same)
+                        .map(|(f, x)| (f, (!same).then_some((shape, x))))
+                }
+            })
+            .collect();
         let mut pieces = Vec::with_capacity(slots.len());
         let mut split_here: Option<usize> = None;
-        for (s, (curve, alpha, ends)) in slots.iter().zip(built) {
+        for ((s, (curve, alpha, ends)), fitted) in slots.iter().zip(built).zip(fits) {
             let (kind, control, rat) = match &curve {
-                PieceCurve::Lac(seg) => match memo
-                    .get(&memo_key(0, seg.standard.alpha().to_bits(), &seg.control))
-                    .cloned()
-                    .map(Ok)
-                    .unwrap_or_else(|| fit_rational_cubic(seg, &opts.approx))
-                {
-                    Ok(f) => {
+                PieceCurve::Lac(seg) => match fitted {
+                    Ok((f, _)) => {
                         memo.insert(
                             memo_key(0, seg.standard.alpha().to_bits(), &seg.control),
                             f.clone(),
@@ -1120,33 +1250,15 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                     segment,
                     inflection_at_start,
                 } => {
-                    // A warm start from the optimum of the nearest shape (α, θ_d) fitted
-                    // so far; the same shape has the same optimum.
-                    let key = (segment.alpha, segment.theta_d);
-                    let warm = inflection_starts
-                        .iter()
-                        .filter(|(k, _)| {
-                            (k.0 - key.0).abs() <= 0.25 && (k.1 - key.1).abs() <= 0.1 * key.1
-                        })
-                        .min_by(|a, b| {
-                            let d = |k: (f64, f64)| (k.0 - key.0).abs() + (k.1 - key.1).abs();
-                            d(a.0).total_cmp(&d(b.0))
-                        })
-                        .map(|e| e.1);
-                    let same = inflection_starts.iter().any(|(k, _)| {
-                        k.0.to_bits() == key.0.to_bits() && k.1.to_bits() == key.1.to_bits()
-                    });
-                    let mkey = memo_key(1, segment.alpha.to_bits(), &segment.control);
-                    let fitted = match memo.get(&mkey) {
-                        Some(f) => Ok((f.clone(), (f64::NAN, f64::NAN))),
-                        None => fit_inflection_cubic_from(segment, &opts.approx, warm, !same),
-                    };
                     let f = match fitted {
-                        Ok((f, x)) => {
-                            if !same && x.0.is_finite() {
-                                inflection_starts.push((key, x));
+                        Ok((f, start)) => {
+                            if let Some(st) = start.filter(|st| st.1 .0.is_finite()) {
+                                inflection_starts.push(st);
                             }
-                            memo.insert(mkey, f.clone());
+                            memo.insert(
+                                memo_key(1, segment.alpha.to_bits(), &segment.control),
+                                f.clone(),
+                            );
                             f
                         }
                         // No curvature-monotone cubic of the family: the G2 cubic of the
@@ -1253,13 +1365,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             // Split where the curve misses the points most (kept off the piece's ends); a
             // piece with an inflection end at its mid-turn, so the inflection piece left
             // keeps a proper triangle.
-            let s = &slots[worst_piece];
-            if s.cut_a == Cut::Inflection || s.cut_b == Cut::Inflection {
-                split_at_mid_turn(&track, &mut slots, worst_piece)?;
-            } else {
-                let u = worst_u.clamp(s.ua + 0.25 * (s.ub - s.ua), s.ub - 0.25 * (s.ub - s.ua));
-                split_at(&track, &mut slots, worst_piece, u)?;
-            }
+            split_worst(&track, &mut slots, worst_piece, worst_u)?;
             continue;
         }
         if worst > opts.tolerance {
