@@ -476,8 +476,11 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
     // Smooth stretches keep long spans; a local feature gets short ones.
     let uniform = |k: usize| -> Vec<f64> { (1..k).map(|i| i as f64 / k as f64).collect() };
     let mut interior = uniform(1);
+    // Each attempt starts from the foot parameters of the previous one (closer to the final
+    // ones than chord length, so fewer corrections are needed).
+    let mut start = chord;
     loop {
-        let f = attempt(&interior, &chord)?;
+        let f = attempt(&interior, &start)?;
         if f.max_deviation <= opts.tolerance {
             return Ok(f);
         }
@@ -515,6 +518,7 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
             )));
         }
         interior = next;
+        start = f.params;
     }
 }
 
