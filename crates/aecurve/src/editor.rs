@@ -9,8 +9,10 @@
 //! - `POST /api/export`: a NURBS (`degree`, `knots`, `control_points`, `weights`) as a
 //!   `dxf`, `step`, `iges`, `svg` or `json` file.
 //!
-//! Bodies over [`MAX_BODY`] get 413. The computations run on tokio's blocking pool, so
-//! concurrent requests proceed in parallel.
+//! Security model: loopback only, same origin only (the `Host` must be this server, an
+//! `Origin` must be its own page, POST bodies must be JSON: see [`router`]), bodies over
+//! [`MAX_BODY`] get 413. The computations run on tokio's blocking pool, so concurrent
+//! requests proceed in parallel.
 
 use crate::protocol;
 use aesthetic_curves::nurbs::Nurbs;
@@ -34,8 +36,82 @@ static INDEX_HTML: &str = include_str!("../assets/editor/index.html");
 static APP_JS: &str = include_str!("../assets/editor/app.js");
 static STYLE_CSS: &str = include_str!("../assets/editor/style.css");
 
-/// The editor's routes.
-pub fn router() -> Router {
+/// Whether a `Host` header names this server: `127.0.0.1`, `localhost` or `[::1]` with the
+/// port it listens on. Any other name is how a DNS-rebinding page would reach it.
+fn host_ok(host: &str, port: u16) -> bool {
+    ["127.0.0.1", "localhost", "[::1]"]
+        .iter()
+        .any(|h| host.eq_ignore_ascii_case(&format!("{h}:{port}")))
+}
+
+/// Same origin only. Every request must name this server in `Host` (421 otherwise); a
+/// request whose `Origin` is present must come from this server's own page (403); a POST
+/// must say `Content-Type: application/json` (415): a page elsewhere can send forms and
+/// `text/plain` without asking, not JSON.
+async fn same_origin(
+    axum::extract::State(port): axum::extract::State<u16>,
+    req: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    let headers = req.headers();
+    let text = |name: header::HeaderName| headers.get(name).and_then(|v| v.to_str().ok());
+    let refuse = |status: StatusCode, why: &str| {
+        (
+            status,
+            [(header::CONTENT_TYPE, "application/json")],
+            protocol::error_response(
+                Value::Null,
+                protocol::ProtoError {
+                    kind: "forbidden",
+                    message: why.to_string(),
+                },
+            )
+            .to_string(),
+        )
+            .into_response()
+    };
+    if !text(header::HOST).is_some_and(|h| host_ok(h, port)) {
+        return refuse(
+            StatusCode::MISDIRECTED_REQUEST,
+            "the editor answers only requests addressed to 127.0.0.1, localhost or [::1] \
+             with its port",
+        );
+    }
+    if let Some(origin) = headers.get(header::ORIGIN) {
+        let own = origin
+            .to_str()
+            .ok()
+            .and_then(|o| o.strip_prefix("http://"))
+            .is_some_and(|h| host_ok(h, port));
+        if !own {
+            return refuse(
+                StatusCode::FORBIDDEN,
+                "cross-origin requests are refused: the editor answers its own page only",
+            );
+        }
+    }
+    if req.method() == axum::http::Method::POST {
+        let json = text(header::CONTENT_TYPE).is_some_and(|c| {
+            c.split(';')
+                .next()
+                .is_some_and(|m| m.trim().eq_ignore_ascii_case("application/json"))
+        });
+        if !json {
+            return refuse(
+                StatusCode::UNSUPPORTED_MEDIA_TYPE,
+                "requests must be sent as Content-Type: application/json",
+            );
+        }
+    }
+    next.run(req).await
+}
+
+/// The editor's routes, for a server listening on `port`.
+pub fn router(port: u16, limits: Limits) -> Router {
+    let compute = Compute {
+        slots: std::sync::Arc::new(tokio::sync::Semaphore::new(limits.computations.max(1))),
+        timeout: limits.request_timeout,
+    };
     Router::new()
         .route(
             "/",
@@ -53,6 +129,8 @@ pub fn router() -> Router {
         .route("/api/region", post(region))
         .route("/api/export", post(export))
         .layer(DefaultBodyLimit::max(MAX_BODY))
+        .layer(axum::middleware::from_fn_with_state(port, same_origin))
+        .with_state(compute)
 }
 
 fn asset(body: &'static str, kind: &'static str) -> Response {
@@ -86,18 +164,102 @@ fn parse_error(msg: String) -> Value {
     )
 }
 
-async fn blocking<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> Option<T> {
-    tokio::task::spawn_blocking(f).await.ok()
+/// Limits of the editor's server.
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// Wall-clock limit of one request's computation (the client then gets a `timeout`
+    /// error; the computation itself runs on to its end, holding its slot).
+    pub request_timeout: std::time::Duration,
+    /// Computations at once (further requests wait for a slot, within their time limit).
+    pub computations: usize,
+    /// Open connections at once (at the cap, the oldest is closed for the new one).
+    pub connections: usize,
+    /// Time a client has to send a request's headers (slow or idle connections are closed).
+    pub header_timeout: std::time::Duration,
+    /// Longest life of a connection (a slowly sent body included).
+    pub connection_lifetime: std::time::Duration,
 }
 
-async fn api(body: Bytes) -> Response {
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            request_timeout: std::time::Duration::from_secs(5),
+            computations: std::thread::available_parallelism().map_or(2, |n| n.get().max(2)),
+            connections: 128,
+            header_timeout: std::time::Duration::from_secs(5),
+            connection_lifetime: std::time::Duration::from_secs(60),
+        }
+    }
+}
+
+/// The computation slots and the request time limit.
+#[derive(Clone)]
+struct Compute {
+    slots: std::sync::Arc<tokio::sync::Semaphore>,
+    timeout: std::time::Duration,
+}
+
+/// Why a computation was not answered.
+enum NotAnswered {
+    Timeout(std::time::Duration),
+    Internal,
+}
+
+impl NotAnswered {
+    fn value(&self) -> Value {
+        let e = match self {
+            NotAnswered::Timeout(t) => protocol::ProtoError {
+                kind: "timeout",
+                message: format!(
+                    "the request did not finish within the editor's limit of {:.1} s",
+                    t.as_secs_f64()
+                ),
+            },
+            NotAnswered::Internal => protocol::ProtoError {
+                kind: "internal",
+                message: "the request was not answered".into(),
+            },
+        };
+        protocol::error_response(Value::Null, e)
+    }
+}
+
+impl Compute {
+    /// Run `f` on the blocking pool in one of the slots, within the time limit (waiting for
+    /// a slot counts).
+    async fn run<T: Send + 'static>(
+        &self,
+        f: impl FnOnce() -> T + Send + 'static,
+    ) -> Result<T, NotAnswered> {
+        let slots = self.slots.clone();
+        let work = async move {
+            let permit = slots
+                .acquire_owned()
+                .await
+                .map_err(|_| NotAnswered::Internal)?;
+            tokio::task::spawn_blocking(move || {
+                let out = f();
+                drop(permit);
+                out
+            })
+            .await
+            .map_err(|_| NotAnswered::Internal)
+        };
+        tokio::time::timeout(self.timeout, work)
+            .await
+            .map_err(|_| NotAnswered::Timeout(self.timeout))?
+    }
+}
+
+async fn api(axum::extract::State(c): axum::extract::State<Compute>, body: Bytes) -> Response {
     let started = Instant::now();
-    let v = blocking(move || match std::str::from_utf8(&body) {
-        Ok(text) => protocol::handle_line(text),
-        Err(e) => parse_error(format!("request is not UTF-8: {e}")),
-    })
-    .await
-    .unwrap_or_else(|| parse_error("internal: the request was not answered".into()));
+    let v = c
+        .run(move || match std::str::from_utf8(&body) {
+            Ok(text) => protocol::handle_line(text),
+            Err(e) => parse_error(format!("request is not UTF-8: {e}")),
+        })
+        .await
+        .unwrap_or_else(|e| e.value());
     timed_json(v, started)
 }
 
@@ -192,14 +354,15 @@ fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
     Ok(json!({"ok": true, "result": {"rows": r.rows(), "judged": r.judged()}}))
 }
 
-async fn region(body: Bytes) -> Response {
+async fn region(axum::extract::State(c): axum::extract::State<Compute>, body: Bytes) -> Response {
     let started = Instant::now();
-    let v = blocking(move || match serde_json::from_slice::<Value>(&body) {
-        Ok(v) => region_answer(&v).unwrap_or_else(|e| protocol::error_response(Value::Null, e)),
-        Err(e) => parse_error(format!("request is not valid JSON: {e}")),
-    })
-    .await
-    .unwrap_or_else(|| parse_error("internal: the request was not answered".into()));
+    let v = c
+        .run(move || match serde_json::from_slice::<Value>(&body) {
+            Ok(v) => region_answer(&v).unwrap_or_else(|e| protocol::error_response(Value::Null, e)),
+            Err(e) => parse_error(format!("request is not valid JSON: {e}")),
+        })
+        .await
+        .unwrap_or_else(|e| e.value());
     timed_json(v, started)
 }
 
@@ -258,14 +421,15 @@ fn export_file(v: &Value) -> Result<(&'static str, String, Vec<u8>), protocol::P
     })
 }
 
-async fn export(body: Bytes) -> Response {
+async fn export(axum::extract::State(c): axum::extract::State<Compute>, body: Bytes) -> Response {
     let started = Instant::now();
-    let r = blocking(move || match serde_json::from_slice::<Value>(&body) {
-        Ok(v) => export_file(&v).map_err(|e| protocol::error_response(Value::Null, e)),
-        Err(e) => Err(parse_error(format!("request is not valid JSON: {e}"))),
-    })
-    .await
-    .unwrap_or_else(|| Err(parse_error("internal: the request was not answered".into())));
+    let r = c
+        .run(move || match serde_json::from_slice::<Value>(&body) {
+            Ok(v) => export_file(&v).map_err(|e| protocol::error_response(Value::Null, e)),
+            Err(e) => Err(parse_error(format!("request is not valid JSON: {e}"))),
+        })
+        .await
+        .unwrap_or_else(|e| Err(e.value()));
     match r {
         Ok((kind, file, bytes)) => (
             StatusCode::OK,
@@ -283,9 +447,20 @@ async fn export(body: Bytes) -> Response {
     }
 }
 
+/// The editor's open connections, oldest first, and the last connection number.
+#[derive(Default)]
+struct OpenConnections {
+    next: u64,
+    open: std::collections::VecDeque<(u64, tokio::task::AbortHandle)>,
+}
+
 /// Serve the editor on 127.0.0.1:`port` (0: any free port); prints the URL, then opens it
 /// in the system's browser unless `open` is false. Runs until the process is stopped.
-pub fn serve(port: u16, open: bool) -> anyhow::Result<()> {
+///
+/// Connections: at most `limits.connections` open (at the cap the oldest is closed), headers within
+/// `limits.header_timeout` (a client that sends them slowly, or keeps a connection idle, is
+/// cut off), each connection closed after `limits.connection_lifetime`.
+pub fn serve(port: u16, open: bool, limits: Limits) -> anyhow::Result<()> {
     let rt = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()?;
@@ -306,7 +481,44 @@ pub fn serve(port: u16, open: bool) -> anyhow::Result<()> {
                 .stderr(std::process::Stdio::null())
                 .spawn();
         }
-        axum::serve(listener, router()).await?;
-        Ok(())
+        let app = router(addr.port(), limits);
+        // The open connections, oldest first: at the cap, the oldest is closed to make room
+        // (a flood of idle connections cannot lock a new request out).
+        let open_conns: std::sync::Arc<std::sync::Mutex<OpenConnections>> = Default::default();
+        loop {
+            let (stream, _) = match listener.accept().await {
+                Ok(c) => c,
+                // Out of file descriptors and the like: wait and go on.
+                Err(_) => {
+                    tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+                    continue;
+                }
+            };
+            let id = {
+                let mut c = open_conns.lock().unwrap_or_else(|e| e.into_inner());
+                while c.open.len() >= limits.connections.max(1) {
+                    if let Some((_, h)) = c.open.pop_front() {
+                        h.abort();
+                    }
+                }
+                c.next += 1;
+                c.next
+            };
+            let svc = hyper_util::service::TowerToHyperService::new(app.clone());
+            let registry = open_conns.clone();
+            let task = tokio::spawn(async move {
+                let conn = hyper::server::conn::http1::Builder::new()
+                    .timer(hyper_util::rt::TokioTimer::new())
+                    .header_read_timeout(limits.header_timeout)
+                    .serve_connection(hyper_util::rt::TokioIo::new(stream), svc);
+                let _ = tokio::time::timeout(limits.connection_lifetime, conn).await;
+                let mut c = registry.lock().unwrap_or_else(|e| e.into_inner());
+                c.open.retain(|(i, _)| *i != id);
+            });
+            let mut c = open_conns.lock().unwrap_or_else(|e| e.into_inner());
+            if !task.is_finished() {
+                c.open.push_back((id, task.abort_handle()));
+            }
+        }
     })
 }

@@ -51,27 +51,58 @@ pub fn read_points_file(path: &std::path::Path) -> anyhow::Result<Vec<aesthetic_
     use anyhow::Context;
     let text =
         std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-    parse_points_text(&text).with_context(|| format!("in {}", path.display()))
+    // The extension decides where it names a format; the content otherwise.
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let parsed = match ext.as_deref() {
+        Some("svg") => svg_path_points(text.trim_start()),
+        Some("json") => json_points(text.trim_start()),
+        Some("csv") | Some("txt") | Some("tsv") => csv_points(&text),
+        _ => parse_points_text(&text),
+    };
+    parsed.with_context(|| format!("in {}", path.display()))
 }
 
-/// [`read_points_file`] on text.
+/// Whether text is SVG path data: `M` or `m` followed by a coordinate (so a CSV header such
+/// as `mx,my` is not taken for one).
+fn is_path_data(t: &str) -> bool {
+    let mut it = t.chars();
+    matches!(it.next(), Some('M' | 'm'))
+        && it
+            .find(|c| !c.is_whitespace())
+            .is_some_and(|c| c.is_ascii_digit() || matches!(c, '-' | '+' | '.'))
+}
+
+/// [`read_points_file`] on text: an SVG document or path data, a JSON array of pairs, or
+/// CSV rows, recognised by their content.
 pub fn parse_points_text(text: &str) -> anyhow::Result<Vec<aesthetic_curves::Point>> {
     let trimmed = text.trim_start();
-    if trimmed.starts_with('<') || trimmed.starts_with('M') || trimmed.starts_with('m') {
+    if trimmed.starts_with('<') || is_path_data(trimmed) {
         return svg_path_points(trimmed);
     }
     if trimmed.starts_with('[') {
-        let v: Vec<[f64; 2]> = serde_json::from_str(trimmed)
-            .map_err(|e| anyhow::anyhow!("not a JSON array of [x, y] pairs: {e}"))?;
-        anyhow::ensure!(
-            v.iter().all(|p| p[0].is_finite() && p[1].is_finite()),
-            "coordinates must be finite"
-        );
-        return Ok(v
-            .into_iter()
-            .map(|p| aesthetic_curves::Point::new(p[0], p[1]))
-            .collect());
+        return json_points(trimmed);
     }
+    csv_points(text)
+}
+
+/// A JSON array of `[x, y]` pairs.
+fn json_points(trimmed: &str) -> anyhow::Result<Vec<aesthetic_curves::Point>> {
+    let v: Vec<[f64; 2]> = serde_json::from_str(trimmed)
+        .map_err(|e| anyhow::anyhow!("not a JSON array of [x, y] pairs: {e}"))?;
+    anyhow::ensure!(
+        v.iter().all(|p| p[0].is_finite() && p[1].is_finite()),
+        "coordinates must be finite"
+    );
+    Ok(v.into_iter()
+        .map(|p| aesthetic_curves::Point::new(p[0], p[1]))
+        .collect())
+}
+
+/// CSV rows `x,y` (also `;`, tab or space separated), comments `#`, one header line.
+fn csv_points(text: &str) -> anyhow::Result<Vec<aesthetic_curves::Point>> {
     let mut out = Vec::new();
     let mut header = false;
     for (i, line) in text.lines().enumerate() {

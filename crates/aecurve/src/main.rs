@@ -63,8 +63,8 @@ fn write_curvature_plot(samples: &[plot::CombSample], title: &str) -> Result<()>
 enum Cmd {
     /// JSON Lines requests on stdin, one response line per request on stdout.
     Batch {
-        /// Largest accepted request line in bytes.
-        #[arg(long, default_value_t = batch::DEFAULT_MAX_LINE)]
+        /// Largest accepted request line in bytes (1 to 1 GiB).
+        #[arg(long, default_value_t = batch::DEFAULT_MAX_LINE, value_parser = count::<1, 1_073_741_824>)]
         max_line_bytes: usize,
     },
     /// Is the curvature of one Bézier curve monotone?
@@ -78,8 +78,8 @@ enum Cmd {
         /// Which test.
         #[arg(long, value_enum, default_value_t = Method::Exact)]
         method: Method,
-        /// Divisions of the sampling test.
-        #[arg(long, default_value_t = 100)]
+        /// Divisions of the sampling test (1 to 10,000,000).
+        #[arg(long, default_value_t = 100, value_parser = count::<1, 10_000_000>)]
         samples: usize,
         /// Print the protocol's JSON result instead of text.
         #[arg(long)]
@@ -107,8 +107,8 @@ enum Cmd {
         /// Control triangle: "x,y x,y x,y" (start, tangent intersection, end).
         #[arg(long, allow_hyphen_values = true)]
         control: String,
-        /// Samples along the curve.
-        #[arg(long, default_value_t = 65)]
+        /// Samples along the curve (2 to 1,000,000).
+        #[arg(long, default_value_t = 65, value_parser = count::<2, 1_000_000>)]
         samples: usize,
         /// Print the protocol's JSON result.
         #[arg(long)]
@@ -157,7 +157,7 @@ enum Cmd {
         #[arg(long, allow_hyphen_values = true)]
         control: String,
         /// Largest distance to the LAC (input units): as many G2-joined pieces as needed.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true, value_parser = positive)]
         tolerance: Option<f64>,
         /// Print the protocol's JSON result.
         #[arg(long)]
@@ -170,8 +170,8 @@ enum Cmd {
         /// Write the error map over (f0, f1) with the monotone region (S3 Fig. 3 and 5).
         #[arg(long)]
         map: Option<PathBuf>,
-        /// Cells per axis of the error map.
-        #[arg(long, default_value_t = 100)]
+        /// Cells per axis of the error map (2 to 2,000).
+        #[arg(long, default_value_t = 100, value_parser = count::<2, 2000>)]
         map_cells: usize,
     },
     /// The pseudo-elastic spline (S2) through points from a file (CSV rows "x,y" or a JSON
@@ -202,7 +202,7 @@ enum Cmd {
         input: PathBuf,
         /// Largest distance from an input point to the result (default 0.5% of the bounding
         /// box diagonal).
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true, value_parser = positive)]
         tolerance: Option<f64>,
         /// Print the protocol's JSON result.
         #[arg(long)]
@@ -236,21 +236,69 @@ enum Cmd {
         /// Do not open the page in the system's browser.
         #[arg(long)]
         no_open: bool,
+        /// Wall-clock limit of one request, in seconds (0.1 to 600); a request past it gets
+        /// a `timeout` error.
+        #[arg(long, default_value_t = 5.0, value_parser = parse_timeout)]
+        timeout: f64,
     },
+}
+
+/// A count within `LO..=HI` (a size option: refused with its range rather than tried).
+fn count<const LO: usize, const HI: usize>(s: &str) -> Result<usize, String> {
+    let v: usize = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is not a whole number"))?;
+    if (LO..=HI).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} is outside {LO} to {HI}"))
+    }
+}
+
+/// Milliseconds, 1 to 60,000.
+fn millis(s: &str) -> Result<u64, String> {
+    count::<1, 60_000>(s).map(|v| v as u64)
+}
+
+/// A positive finite number (a tolerance).
+fn positive(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is not a number"))?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("{v} is not a positive length"))
+    }
+}
+
+/// A request time limit in seconds, 0.1 to 600.
+fn parse_timeout(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .parse()
+        .map_err(|_| format!("{s:?} is not a number of seconds"))?;
+    if (0.1..=600.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} s is outside 0.1 to 600 s"))
+    }
 }
 
 #[derive(Subcommand)]
 enum BenchCmd {
     /// Exact test against the sampling test (S1's comparison), degrees 3, 4, 5.
     Monotone {
-        /// Random curves per degree.
-        #[arg(long, default_value_t = 2000)]
+        /// Random curves per degree (1 to 1,000,000).
+        #[arg(long, default_value_t = 2000, value_parser = count::<1, 1_000_000>)]
         curves: usize,
         /// Seed of the random curve set.
         #[arg(long, default_value_t = 2024)]
         seed: u64,
-        /// Minimum milliseconds per timing round (7 interleaved rounds, median reported).
-        #[arg(long, default_value_t = 40)]
+        /// Minimum milliseconds per timing round (7 interleaved rounds, median reported; 1 to
+        /// 60,000).
+        #[arg(long, default_value_t = 40, value_parser = millis)]
         round_ms: u64,
         /// Print JSON instead of the table.
         #[arg(long)]
@@ -280,6 +328,12 @@ fn main() {
             .unwrap_or("");
         if msg.contains("Broken pipe") {
             std::process::exit(141);
+        }
+        // Any other failure to write the output (a full disk, /dev/full): a message and a
+        // failure status, not a panic.
+        if let Some(why) = msg.strip_prefix("failed printing to stdout: ") {
+            eprintln!("error: cannot write the output: {why}");
+            std::process::exit(1);
         }
         default_hook(info);
     }));
@@ -393,7 +447,18 @@ fn run() -> Result<()> {
             }
         }
         Cmd::Demo { out, quick } => demo(&out, quick)?,
-        Cmd::Editor { port, no_open } => aecurve::editor::serve(port, !no_open)?,
+        Cmd::Editor {
+            port,
+            no_open,
+            timeout,
+        } => aecurve::editor::serve(
+            port,
+            !no_open,
+            aecurve::editor::Limits {
+                request_timeout: std::time::Duration::from_secs_f64(timeout),
+                ..Default::default()
+            },
+        )?,
         Cmd::Lac {
             alpha,
             inflection,

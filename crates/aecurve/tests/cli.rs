@@ -463,12 +463,36 @@ fn sketch_command_and_op() {
 
 /// One HTTP/1.1 request over a plain socket; returns (status, headers + body text).
 fn http(addr: std::net::SocketAddr, method: &str, path: &str, body: &[u8]) -> (u16, String) {
+    http_with(
+        addr,
+        method,
+        path,
+        &[
+            ("Host", addr.to_string()),
+            ("Content-Type", "application/json".into()),
+        ],
+        body,
+    )
+}
+
+/// [`http`] with the given `Host`, `Content-Type` and other headers.
+fn http_with(
+    addr: std::net::SocketAddr,
+    method: &str,
+    path: &str,
+    headers: &[(&str, String)],
+    body: &[u8],
+) -> (u16, String) {
     use std::io::Read;
     let mut s = std::net::TcpStream::connect(addr).unwrap();
     s.set_read_timeout(Some(std::time::Duration::from_secs(30)))
         .unwrap();
+    let extra: String = headers
+        .iter()
+        .map(|(k, v)| format!("{k}: {v}\r\n"))
+        .collect();
     let head = format!(
-        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
+        "{method} {path} HTTP/1.1\r\n{extra}Content-Length: {}\r\nConnection: close\r\n\r\n",
         body.len()
     );
     s.write_all(head.as_bytes()).unwrap();
@@ -483,6 +507,116 @@ fn http(addr: std::net::SocketAddr, method: &str, path: &str, body: &[u8]) -> (u
         .and_then(|c| c.parse().ok())
         .unwrap_or(0);
     (status, text)
+}
+
+/// Start `aecurve editor` on a free port: the child and its address.
+fn start_editor() -> (std::process::Child, std::net::SocketAddr) {
+    start_editor_with(&[])
+}
+
+/// [`start_editor`] with more arguments.
+fn start_editor_with(args: &[&str]) -> (std::process::Child, std::net::SocketAddr) {
+    use std::io::BufRead;
+    let mut child = aecurve()
+        .args(["editor", "--port", "0", "--no-open"])
+        .args(args)
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    std::io::BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let url = line.trim().strip_prefix("editor: ").unwrap().to_string();
+    let addr = url
+        .trim_start_matches("http://")
+        .trim_end_matches('/')
+        .parse()
+        .unwrap();
+    (child, addr)
+}
+
+/// Same origin only: what a page on another site (or a DNS-rebinding name) can send is
+/// refused, what the editor's own page sends is answered.
+#[test]
+fn editor_refuses_other_origins() {
+    let (mut child, addr) = start_editor();
+    let port = addr.port();
+    let req = br#"{"id": 1, "op": "lac.segment", "alpha": 0.5, "control": [[0,0],[4,0],[6,3]]}"#;
+    let json = || ("Content-Type", "application/json".to_string());
+    let host = || ("Host", addr.to_string());
+    // A simple cross-site request: text/plain needs no preflight.
+    let (st, r) = http_with(
+        addr,
+        "POST",
+        "/api",
+        &[host(), ("Content-Type", "text/plain".into())],
+        req,
+    );
+    assert_eq!(st, 415, "{r}");
+    assert!(r.contains("application/json"), "{r}");
+    for path in ["/api", "/api/region", "/api/export"] {
+        let (st, _) = http_with(
+            addr,
+            "POST",
+            path,
+            &[
+                host(),
+                ("Content-Type", "application/x-www-form-urlencoded".into()),
+            ],
+            b"a=1",
+        );
+        assert_eq!(st, 415, "{path}");
+        // Another site's page, even with the JSON type (a browser would ask first; a
+        // script outside a browser is refused all the same).
+        let (st, r) = http_with(
+            addr,
+            "POST",
+            path,
+            &[host(), json(), ("Origin", "http://evil.example".into())],
+            req,
+        );
+        assert_eq!(st, 403, "{path}: {r}");
+    }
+    // DNS rebinding: the right address under another name.
+    for name in [
+        "evil.example",
+        &format!("evil.example:{port}"),
+        "127.0.0.1:1",
+    ] {
+        let (st, _) = http_with(addr, "GET", "/", &[("Host", name.to_string())], b"");
+        assert_eq!(st, 421, "{name}");
+        let (st, _) = http_with(
+            addr,
+            "POST",
+            "/api",
+            &[("Host", name.to_string()), json()],
+            req,
+        );
+        assert_eq!(st, 421, "{name}");
+    }
+    // The editor's own page, under each loopback name.
+    for name in [
+        format!("127.0.0.1:{port}"),
+        format!("localhost:{port}"),
+        format!("[::1]:{port}"),
+    ] {
+        let (st, r) = http_with(
+            addr,
+            "POST",
+            "/api",
+            &[
+                ("Host", name.clone()),
+                json(),
+                ("Origin", format!("http://{name}")),
+            ],
+            req,
+        );
+        assert_eq!(st, 200, "{name}: {r}");
+        assert!(r.contains(r#""ok":true"#), "{r}");
+    }
+    child.kill().unwrap();
+    let _ = child.wait();
 }
 
 #[test]
@@ -560,4 +694,177 @@ fn editor_serves_on_loopback_only_with_limits() {
     }
     child.kill().unwrap();
     let _ = child.wait();
+}
+
+/// Server hygiene: 300 connections that send half a header and wait do not lock a normal
+/// request out (it answers within a second), and the server closes them once the header
+/// time limit (5 s) has passed.
+#[test]
+fn editor_survives_idle_and_slow_connections() {
+    use std::io::Read;
+    let (mut child, addr) = start_editor();
+    let mut hostile: Vec<std::net::TcpStream> = (0..300)
+        .filter_map(|_| std::net::TcpStream::connect(addr).ok())
+        .collect();
+    for s in &mut hostile {
+        let _ = s.write_all(b"GET / HTTP/1.1\r\nHo");
+    }
+    let t = std::time::Instant::now();
+    let (st, r) = http(
+        addr,
+        "POST",
+        "/api",
+        br#"{"id": 1, "op": "lac.segment", "alpha": 0.5, "control": [[0,0],[4,0],[6,3]]}"#,
+    );
+    let secs = t.elapsed().as_secs_f64();
+    println!("normal request among 300 idle connections: {st} in {secs:.3} s");
+    assert_eq!(st, 200, "{r}");
+    assert!(secs < 1.0, "{secs} s");
+    // After the header limit, the held connections are closed by the server.
+    std::thread::sleep(std::time::Duration::from_secs(7));
+    let mut closed = 0;
+    for s in &mut hostile {
+        s.set_read_timeout(Some(std::time::Duration::from_millis(200)))
+            .unwrap();
+        let mut buf = [0u8; 256];
+        match s.read(&mut buf) {
+            Ok(_) => closed += 1, // end of stream, or the server's error response and close
+            Err(e)
+                if e.kind() != std::io::ErrorKind::WouldBlock
+                    && e.kind() != std::io::ErrorKind::TimedOut =>
+            {
+                closed += 1
+            }
+            Err(_) => {}
+        }
+    }
+    println!(
+        "{closed} of {} held connections closed by the server",
+        hostile.len()
+    );
+    assert_eq!(closed, hostile.len());
+    child.kill().unwrap();
+    let _ = child.wait();
+}
+
+/// A request past the editor's time limit gets a typed `timeout` error in time, and the
+/// server goes on answering.
+#[test]
+fn editor_times_requests_out() {
+    let (mut child, addr) = start_editor_with(&["--timeout", "0.5"]);
+    // Exact mode minimises directly: seconds for a handful of points.
+    let slow = br#"{"id": 7, "op": "spline.pseudo_elastic", "mode": "exact", "points": [[0,0],[1,2],[3,3],[5,2],[6,0],[8,1],[9,3],[11,4]]}"#;
+    let t = std::time::Instant::now();
+    let (st, r) = http(addr, "POST", "/api", slow);
+    let secs = t.elapsed().as_secs_f64();
+    println!("slow request: {st} in {secs:.2} s");
+    assert_eq!(st, 200);
+    assert!(r.contains(r#""kind":"timeout""#), "{r}");
+    assert!(secs < 2.0, "{secs} s");
+    let (st, r) = http(
+        addr,
+        "POST",
+        "/api",
+        br#"{"id": 1, "op": "lac.segment", "alpha": 0.5, "control": [[0,0],[4,0],[6,3]]}"#,
+    );
+    assert_eq!(st, 200);
+    assert!(r.contains(r#""ok":true"#), "{r}");
+    // Out of range limits are refused with a message.
+    let out = aecurve()
+        .args(["editor", "--port", "0", "--no-open", "--timeout", "0"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("outside 0.1 to 600"));
+    child.kill().unwrap();
+    let _ = child.wait();
+}
+
+/// A full disk, an absurd size and a negative tolerance get a message and a failure status,
+/// never a panic or an abort; a CSV whose header starts with "m" is read as CSV.
+#[test]
+fn write_errors_and_limits_get_messages() {
+    let stroke = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/sketch-stroke.csv"
+    );
+    let spline = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/spline-points.csv"
+    );
+    if std::path::Path::new("/dev/full").exists() {
+        let runs: [&[&str]; 5] = [
+            &["lac", "--alpha", "0.5", "--control", "0,0 4,0 6,3"],
+            &[
+                "lac",
+                "--alpha",
+                "0.5",
+                "--control",
+                "0,0 4,0 6,3",
+                "--json",
+            ],
+            &["sketch", stroke],
+            &["spline", spline, "--json"],
+            &[
+                "approx",
+                "--alpha",
+                "0.5",
+                "--control",
+                "0,0 4,0 6,3",
+                "--json",
+            ],
+        ];
+        for args in runs {
+            let full = std::fs::OpenOptions::new()
+                .write(true)
+                .open("/dev/full")
+                .unwrap();
+            let out = aecurve().args(args).stdout(full).output().unwrap();
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+            assert!(err.contains("cannot write the output"), "{args:?}: {err}");
+            assert!(!err.contains("panicked"), "{args:?}: {err}");
+        }
+    }
+    for (args, want) in [
+        (
+            vec![
+                "lac",
+                "--alpha",
+                "0.5",
+                "--control",
+                "0,0 4,0 6,3",
+                "--samples",
+                "10000000000",
+            ],
+            "outside 2 to 1000000",
+        ),
+        (
+            vec!["sketch", stroke, "--tolerance", "-1"],
+            "not a positive length",
+        ),
+        (
+            vec!["sketch", stroke, "--tolerance", "nan"],
+            "not a positive length",
+        ),
+    ] {
+        let out = aecurve().args(&args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+    }
+    let dir = std::env::temp_dir().join(format!("aecurve-mxmy-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in ["m.csv", "m.dat"] {
+        let path = dir.join(name);
+        std::fs::write(&path, "mx,my\n0,0\n1,1\n2,1.5\n3,1.2\n4,0.5\n5,0\n").unwrap();
+        let out = aecurve().arg("sketch").arg(&path).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(String::from_utf8_lossy(&out.stdout).contains("sketch of 6 points"));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
