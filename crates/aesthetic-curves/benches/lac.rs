@@ -1,5 +1,6 @@
 //! Criterion benchmarks of log-aesthetic curve evaluation (issue target: 1000 samples of a
-//! solved segment under 100 µs).
+//! solved segment under 100 µs) and of the single-LAC fit (`lac_fit/*`: a measured Prius
+//! line, and 20,000 points, target under 1 s).
 
 use aesthetic_curves::lac::{LacSegment, LacStandard};
 use aesthetic_curves::Point;
@@ -54,5 +55,34 @@ fn bench_lac(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_lac);
+fn bench_lac_fit(c: &mut Criterion) {
+    use aesthetic_curves::lac_fit::{fit_lac, LacFitOptions};
+    let mut g = c.benchmark_group("lac_fit");
+    g.sample_size(10);
+    let prius: Vec<Point> = aesthetic_curves_data::PRIUS[0]
+        .points()
+        .into_iter()
+        .map(|[x, y]| Point::new(x, y))
+        .collect();
+    g.bench_function("prius_ps_1", |b| {
+        b.iter(|| fit_lac(black_box(&prius), LacFitOptions::default()).unwrap())
+    });
+    // 20,000 points along a shallow arc with a ripple (the protocol's largest lac.fit).
+    let n = 20_000;
+    let many: Vec<Point> = (0..n)
+        .map(|i| {
+            let u = i as f64 / (n - 1) as f64;
+            Point::new(
+                1500.0 * u,
+                80.0 * (0.9 * std::f64::consts::PI * u).sin() + 0.2 * (1.7 * i as f64).sin(),
+            )
+        })
+        .collect();
+    g.bench_function("points_20000", |b| {
+        b.iter(|| fit_lac(black_box(&many), LacFitOptions::default()).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench_lac, bench_lac_fit);
 criterion_main!(benches);

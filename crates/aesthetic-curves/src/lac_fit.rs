@@ -264,47 +264,70 @@ fn distances(seg: &LacSegment, points: &[Point], out: &mut Vec<f64>) -> Option<(
     out.iter().all(|v| v.is_finite()).then_some(())
 }
 
-/// True nearest distances from `points` to a polyline: every chord is a candidate (chords
-/// whose bounding box, grown by the best distance so far, misses the point are skipped), so
-/// nothing assumes the points advance along it.
+/// True nearest distances from `points` to a polyline: every chord is a candidate, so
+/// nothing assumes the points advance along it. Chords are grouped in runs of 32 with one
+/// box per run; a run whose box, grown by the best distance so far, misses the point is
+/// skipped whole (the run around the previous point's nearest chord is tried first).
 pub(crate) fn nearest_distances(poly: &[Point], points: &[Point]) -> Vec<f64> {
-    let boxes: Vec<(Point, Point)> = poly
-        .windows(2)
-        .map(|w| {
-            (
-                Point::new(w[0].x.min(w[1].x), w[0].y.min(w[1].y)),
-                Point::new(w[0].x.max(w[1].x), w[0].y.max(w[1].y)),
-            )
+    const RUN: usize = 32;
+    let chords = poly.len().saturating_sub(1);
+    if chords == 0 {
+        return points
+            .iter()
+            .map(|q| poly.first().map_or(f64::INFINITY, |p| (*p - *q).hypot()))
+            .collect();
+    }
+    let runs: Vec<(Point, Point)> = (0..chords.div_ceil(RUN))
+        .map(|r| {
+            let seg = &poly[r * RUN..=((r + 1) * RUN).min(chords)];
+            seg.iter().fold((seg[0], seg[0]), |(lo, hi), p| {
+                (
+                    Point::new(lo.x.min(p.x), lo.y.min(p.y)),
+                    Point::new(hi.x.max(p.x), hi.y.max(p.y)),
+                )
+            })
         })
         .collect();
+    let chord = |k: usize, q: Point| {
+        let (a, b) = (poly[k], poly[k + 1]);
+        let ab = b - a;
+        let l2 = ab.hypot2();
+        let t = if l2 > 0.0 {
+            ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (a + ab * t - q).hypot()
+    };
     let mut hint = 0usize;
     points
         .iter()
         .map(|q| {
-            let chord = |k: usize| {
-                let (a, b) = (poly[k], poly[k + 1]);
-                let ab = b - a;
-                let l2 = ab.hypot2();
-                let t = if l2 > 0.0 {
-                    ((*q - a).dot(ab) / l2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (a + ab * t - *q).hypot()
+            let q = *q;
+            let scan = |r: usize, best: &mut (f64, usize)| {
+                for k in r * RUN..((r + 1) * RUN).min(chords) {
+                    let d = chord(k, q);
+                    if d < best.0 {
+                        *best = (d, k);
+                    }
+                }
             };
-            let mut best = chord(hint.min(boxes.len() - 1));
-            for (k, (lo, hi)) in boxes.iter().enumerate() {
-                if q.x < lo.x - best || q.x > hi.x + best || q.y < lo.y - best || q.y > hi.y + best
+            let mut best = (f64::INFINITY, hint);
+            scan(hint / RUN, &mut best);
+            for (r, (lo, hi)) in runs.iter().enumerate() {
+                let g = best.0;
+                if r == hint / RUN
+                    || q.x < lo.x - g
+                    || q.x > hi.x + g
+                    || q.y < lo.y - g
+                    || q.y > hi.y + g
                 {
                     continue;
                 }
-                let d = chord(k);
-                if d < best {
-                    best = d;
-                    hint = k;
-                }
+                scan(r, &mut best);
             }
-            best
+            hint = best.1;
+            best.0
         })
         .collect()
 }
@@ -312,6 +335,13 @@ pub(crate) fn nearest_distances(poly: &[Point], points: &[Point]) -> Vec<f64> {
 fn cost(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
+
+/// Points beyond which [`fit_lac`] solves on an even subsample of this many, then polishes
+/// on every point.
+pub const MAX_SOLVE_POINTS: usize = 1000;
+
+/// Levenberg–Marquardt iterations of the polish on every point.
+const POLISH_ITERATIONS: usize = 8;
 
 /// The range of alpha of a free fit.
 pub const ALPHA_RANGE: (f64, f64) = (-5.0, 5.0);
@@ -377,6 +407,29 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
         y1 = y1.max(p.y);
     }
     let size = (x1 - x0).hypot(y1 - y0);
+    // Long sequences are fitted on an even subsample (both ends kept), then polished on
+    // every point; the reported distances are measured on every point.
+    let all = pts;
+    let subsampled = all.len() > MAX_SOLVE_POINTS;
+    let pts: Vec<Point> = if subsampled {
+        let m = MAX_SOLVE_POINTS;
+        (0..m)
+            .map(|k| all[(k * (all.len() - 1) + (m - 1) / 2) / (m - 1)])
+            .collect()
+    } else {
+        all.clone()
+    };
+    let sigma_of = |pts: &[Point]| {
+        let mut sigma = vec![0.0; pts.len()];
+        for i in 1..pts.len() {
+            sigma[i] = sigma[i - 1] + (pts[i] - pts[i - 1]).hypot();
+        }
+        let total = sigma[pts.len() - 1];
+        for v in &mut sigma {
+            *v /= total;
+        }
+        sigma
+    };
     // Start: end points and end tangents of a smooth spline fit.
     let spline = fit(
         &pts,
@@ -405,29 +458,38 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     }
     let p1 = p0 + d0 * ((p2 - p0).cross(d1) / den);
     let tri0 = [p0, p1, p2];
-    let mut sigma = vec![0.0; pts.len()];
-    for i in 1..pts.len() {
-        sigma[i] = sigma[i - 1] + (pts[i] - pts[i - 1]).hypot();
-    }
-    let total = sigma[pts.len() - 1];
-    for v in &mut sigma {
-        *v /= total;
-    }
+    let sigma = sigma_of(&pts);
+    let sigma_all = if subsampled {
+        sigma_of(&all)
+    } else {
+        sigma.clone()
+    };
+    // Which point set the objective measures: the working one, or every point (polish).
+    let on_all = std::cell::Cell::new(false);
     // The band objective's residuals are σ (d/σ)^4 (their squares sum to σ^-6 Σ d^8), σ a
     // fixed length of the order of the distances, for conditioning.
     let band_scale = std::cell::Cell::new(1e-3 * size);
-    let objective = |seg: &LacSegment, out: &mut Vec<f64>| match opts.objective {
-        LacFitObjective::Distance => distances(seg, &pts, out),
-        LacFitObjective::Band => {
-            distances(seg, &pts, out)?;
-            let s = band_scale.get();
-            for v in out.iter_mut() {
-                let u = *v / s;
-                *v = s * u * u * u * u * v.signum();
+    let objective_on =
+        |seg: &LacSegment, pts: &[Point], sigma: &[f64], out: &mut Vec<f64>| match opts.objective {
+            LacFitObjective::Distance => distances(seg, pts, out),
+            LacFitObjective::Band => {
+                distances(seg, pts, out)?;
+                let s = band_scale.get();
+                for v in out.iter_mut() {
+                    let u = *v / s;
+                    *v = s * u * u * u * u * v.signum();
+                }
+                Some(())
             }
-            Some(())
-        }
-        LacFitObjective::ArcLength => correspondence(seg, &pts, &sigma, out),
+            LacFitObjective::ArcLength => correspondence(seg, pts, sigma, out),
+        };
+    let objective = |seg: &LacSegment, out: &mut Vec<f64>| {
+        let (pts, sigma) = if on_all.get() {
+            (&all, &sigma_all)
+        } else {
+            (&pts, &sigma)
+        };
+        objective_on(seg, pts, sigma, out)
     };
     let cap = std::cell::Cell::new(f64::INFINITY);
     let eval = |a: f64, tri: [Point; 3], out: &mut Vec<f64>| -> Option<()> {
@@ -529,8 +591,34 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
         });
         (x[0], triangle(&x[1..], size), conv)
     };
+    // Polish on every point (a subsampled fit), alpha free as before.
+    let (alpha, tri, converged) = if subsampled {
+        on_all.set(true);
+        let mut x0 = vec![alpha];
+        x0.extend(tri.iter().flat_map(|p| [p.x / size, p.y / size]));
+        let (lo, hi) = match (opts.alpha, guess) {
+            (Some(a), _) => (a, a),
+            (None, Some(g)) => (g - 0.1 * g.abs(), g + 0.1 * g.abs()),
+            (None, None) => ALPHA_RANGE,
+        };
+        let (x, _, conv) = levenberg_marquardt_n(
+            &x0,
+            &|x, out| {
+                if x[0] < lo || x[0] > hi {
+                    return None;
+                }
+                eval(x[0], triangle(&x[1..], size), out)
+            },
+            POLISH_ITERATIONS,
+        );
+        (x[0], triangle(&x[1..], size), conv && converged)
+    } else {
+        (alpha, tri, converged)
+    };
     let fitted = LacSegment::new(alpha, tri)?;
     // Span the data: ends at the feet of the perpendiculars from the first and last points.
+    let pts = all;
+    let sigma = sigma_all;
     let last = pts[pts.len() - 1];
     let segment = match (
         fitted.project_turning(pts[0], 0.0),
@@ -588,6 +676,15 @@ type ResidualFn<'a> = dyn Fn(&[f64], &mut Vec<f64>) -> Option<()> + 'a;
 /// because no step gains any more, not at the iteration limit or on a residual that could
 /// not be evaluated).
 fn levenberg_marquardt(x0: &[f64], eval: &ResidualFn) -> (Vec<f64>, f64, bool) {
+    levenberg_marquardt_n(x0, eval, 60)
+}
+
+/// [`levenberg_marquardt`] with at most `iterations` steps.
+fn levenberg_marquardt_n(
+    x0: &[f64],
+    eval: &ResidualFn,
+    iterations: usize,
+) -> (Vec<f64>, f64, bool) {
     let mut x = x0.to_vec();
     let mut r = Vec::new();
     if eval(&x, &mut r).is_none() {
@@ -599,7 +696,7 @@ fn levenberg_marquardt(x0: &[f64], eval: &ResidualFn) -> (Vec<f64>, f64, bool) {
     let mut mu = 1e-3;
     let mut rp = Vec::new();
     let mut jac: Vec<Vec<f64>> = vec![Vec::new(); k];
-    for _ in 0..60 {
+    for _ in 0..iterations {
         let mut ok = true;
         for (i, col) in jac.iter_mut().enumerate() {
             let h = 1e-7 * x[i].abs().max(1.0);

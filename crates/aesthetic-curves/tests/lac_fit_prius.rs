@@ -169,3 +169,40 @@ fn reported_distances_are_the_true_ones() {
         );
     }
 }
+
+/// 20,000 points (the protocol's limit) are fitted on a subsample and polished on all of
+/// them, in about a second; the reported distances are those of every point.
+#[test]
+fn twenty_thousand_points_fit_in_about_a_second() {
+    let line = points(1);
+    // Every measured point and 24 points between each pair, on the chords.
+    let mut many = Vec::new();
+    for w in line.windows(2) {
+        for k in 0..25 {
+            many.push(w[0] + (w[1] - w[0]) * (k as f64 / 25.0));
+        }
+    }
+    many.truncate(20_000);
+    let t = std::time::Instant::now();
+    let fit = fit_lac(&many, LacFitOptions::default()).unwrap();
+    let secs = t.elapsed().as_secs_f64();
+    let (poly, _) = fit.segment.sample(6001).unwrap();
+    let (max, rms) = max_rms(&distances(
+        &poly,
+        &many[..many.len()]
+            .iter()
+            .step_by(7)
+            .copied()
+            .collect::<Vec<_>>(),
+    ));
+    println!(
+        "20,000 points: {secs:.2} s, alpha {:.3}, reported max {:.3} rms {:.3} (every 7th point: {max:.3} {rms:.3})",
+        fit.alpha, fit.max_deviation, fit.rms_deviation
+    );
+    assert!(secs < 5.0, "{secs} s");
+    assert!(max <= fit.max_deviation + 2e-3);
+    assert!((rms - fit.rms_deviation).abs() < 0.05 * fit.rms_deviation + 2e-3);
+    // As close as the fit of the line itself (the added points lie on its chords).
+    let own = fit_lac(&line, LacFitOptions::default()).unwrap();
+    assert!(fit.max_deviation <= 1.05 * own.max_deviation + 1e-3);
+}
