@@ -29,6 +29,11 @@ use std::time::Instant;
 /// Largest request body (bytes).
 pub const MAX_BODY: usize = 4 * 1024 * 1024;
 
+/// The work budget of a Bézier region request: cells times (Bernstein degree of the exact
+/// test)^1.5, about 0.5 µs each on one core, so the worst case (every cell judged) stays near
+/// 2 s; a cubic's region may have 200 x 200 cells, a degree-20 rational curve's about 47 x 47.
+pub const REGION_WORK_BUDGET: f64 = 4.0e6;
+
 /// Largest region grid (cells per side).
 pub const MAX_REGION_CELLS: usize = 200;
 
@@ -316,41 +321,63 @@ fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
     let grid = grid_param(obj.get("grid").unwrap_or(&Value::Null))?;
     let kind = obj.get("kind").and_then(Value::as_str).unwrap_or("");
     let threads = region_threads();
-    let r = match kind {
-        "lac" => {
-            let alpha = match obj.get("alpha").and_then(Value::as_f64) {
-                Some(a) if a.is_finite() => a,
-                _ => return Err(protocol::ProtoError::invalid("alpha", "must be a number")),
-            };
-            let c = protocol::points_param(obj, "control", 3, 3)?;
-            region::lac_existence(alpha, c[0], c[1], grid, threads)?
-        }
-        "inflection" => {
-            let c = protocol::points_param(obj, "control", 3, 3)?;
-            region::inflection_existence(c[0], c[1], grid, threads)?
-        }
-        "bezier" => {
-            let pts = protocol::points_param(obj, "control_points", 3, 21)?;
-            let weights = match obj.get("weights") {
-                None | Some(Value::Null) => None,
-                Some(_) => protocol::numbers_param(obj, "weights", pts.len())?,
-            };
-            let index = obj
-                .get("index")
-                .and_then(Value::as_u64)
-                .filter(|i| (*i as usize) < pts.len())
-                .ok_or_else(|| {
-                    protocol::ProtoError::invalid("index", "must name a control point")
-                })? as usize;
-            region::bezier_monotone(&pts, weights.as_deref(), index, grid, 4, threads)?
-        }
-        _ => {
-            return Err(protocol::ProtoError::invalid(
-                "kind",
-                "must be \"lac\", \"inflection\" or \"bezier\"",
-            ))
-        }
-    };
+    let r =
+        match kind {
+            "lac" => {
+                let alpha = match obj.get("alpha").and_then(Value::as_f64) {
+                    Some(a) if a.is_finite() => a,
+                    _ => return Err(protocol::ProtoError::invalid("alpha", "must be a number")),
+                };
+                let c = protocol::points_param(obj, "control", 3, 3)?;
+                region::lac_existence(alpha, c[0], c[1], grid, threads)?
+            }
+            "inflection" => {
+                let c = protocol::points_param(obj, "control", 3, 3)?;
+                region::inflection_existence(c[0], c[1], grid, threads)?
+            }
+            "bezier" => {
+                let pts = protocol::points_param(obj, "control_points", 3, 21)?;
+                let weights = match obj.get("weights") {
+                    None | Some(Value::Null) => None,
+                    Some(_) => protocol::numbers_param(obj, "weights", pts.len())?,
+                };
+                let index = obj
+                    .get("index")
+                    .and_then(Value::as_u64)
+                    .filter(|i| (*i as usize) < pts.len())
+                    .ok_or_else(|| {
+                        protocol::ProtoError::invalid("index", "must name a control point")
+                    })? as usize;
+                // Work budget: the exact test costs about td^1.5 (td its Bernstein degree) per
+                // judged cell; the budget holds the worst case (every cell judged) to a couple
+                // of seconds.
+                let n = pts.len() - 1;
+                let td = if weights.is_some() {
+                    8 * n - 12
+                } else {
+                    4 * n - 7
+                } as f64;
+                let cells = grid.nx() * grid.ny();
+                let most = (REGION_WORK_BUDGET / td.powf(1.5)).floor() as usize;
+                if cells > most {
+                    return Err(protocol::ProtoError::invalid(
+                        "grid",
+                        format!(
+                        "{cells} cells exceed the region budget for a {} Bézier curve of degree \
+                         {n} (exact test of degree {td}): at most {most} cells",
+                        if weights.is_some() { "rational" } else { "polynomial" }
+                    ),
+                    ));
+                }
+                region::bezier_monotone(&pts, weights.as_deref(), index, grid, 4, threads)?
+            }
+            _ => {
+                return Err(protocol::ProtoError::invalid(
+                    "kind",
+                    "must be \"lac\", \"inflection\" or \"bezier\"",
+                ))
+            }
+        };
     Ok(json!({"ok": true, "result": {"rows": r.rows(), "judged": r.judged()}}))
 }
 
@@ -384,6 +411,8 @@ fn export_file(v: &Value) -> Result<(&'static str, String, Vec<u8>), protocol::P
     let weights =
         protocol::numbers_param(obj, "weights", pts.len())?.unwrap_or(vec![1.0; pts.len()]);
     let curve = Nurbs::new(degree as usize, knots, pts, weights)?;
+    crate::export::check_exportable(&curve)
+        .map_err(|e| protocol::ProtoError::invalid("control_points", e.to_string()))?;
     let name = "aesthetic_curve";
     let bad = |e: anyhow::Error| protocol::ProtoError::invalid("format", e.to_string());
     Ok(match format {

@@ -18,8 +18,22 @@ pub fn extension(path: &Path) -> Option<String> {
         .map(|e| e.to_ascii_lowercase())
 }
 
+/// Whether a curve can be written: its extent must be finite (control points of ±1e308 are
+/// finite, but the size of their box is not, and a file would carry `inf` or `NaN`).
+pub fn check_exportable(curve: &Nurbs) -> Result<()> {
+    let finite = curve.control_points.iter().all(|p| p.is_finite())
+        && curve.weights.iter().all(|w| w.is_finite())
+        && curve.size().is_finite();
+    anyhow::ensure!(
+        finite,
+        "the curve's coordinates are too large to export: its extent overflows f64"
+    );
+    Ok(())
+}
+
 /// Write `curve` to `path` in the format its extension names (one of [`CURVE_FORMATS`]).
 pub fn write_curve(path: &Path, curve: &Nurbs, name: &str) -> Result<()> {
+    check_exportable(curve)?;
     let ext = extension(path).unwrap_or_default();
     match ext.as_str() {
         "dxf" => write_dxf(path, curve),

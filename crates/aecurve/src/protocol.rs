@@ -126,7 +126,16 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "sketch.fit" => sketch_fit(obj),
         _ => Err(ProtoError {
             kind: "unknown_op",
-            message: format!("unknown op '{op}'; known: {}", OPS.join(", ")),
+            message: format!(
+                "unknown op '{}'; known: {}",
+                // A long name is not echoed whole.
+                if op.chars().count() > 64 {
+                    format!("{}...", op.chars().take(64).collect::<String>())
+                } else {
+                    op.to_string()
+                },
+                OPS.join(", ")
+            ),
         }),
     }
 }

@@ -868,3 +868,65 @@ fn write_errors_and_limits_get_messages() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A region request over its work budget (a degree-20 rational curve on 200 x 200 cells,
+/// 10 s of work) is refused at once with the limit named; a cubic's region on the same grid
+/// is answered.
+#[test]
+fn editor_region_budget() {
+    let (mut child, addr) = start_editor();
+    let pts: Vec<String> = (0..=20)
+        .map(|i| format!("[{}, {}]", i, (i as f64 * 0.7).sin() * 3.0))
+        .collect();
+    let w: Vec<String> = (0..=20)
+        .map(|i| format!("{}", 1.0 + 0.3 * (i % 3) as f64))
+        .collect();
+    let grid = r#"{"x0": -2, "y0": -5, "x1": 22, "y1": 8, "nx": 200, "ny": 200}"#;
+    let req = format!(
+        r#"{{"kind": "bezier", "control_points": [{}], "weights": [{}], "index": 10, "grid": {grid}}}"#,
+        pts.join(","),
+        w.join(",")
+    );
+    let t = std::time::Instant::now();
+    let (st, r) = http(addr, "POST", "/api/region", req.as_bytes());
+    assert_eq!(st, 200);
+    assert!(r.contains("invalid_input") && r.contains("at most"), "{r}");
+    assert!(t.elapsed().as_secs_f64() < 1.0);
+    let cubic = format!(
+        r#"{{"kind": "bezier", "control_points": [[0,0],[1,2],[3,2],[4,0]], "index": 1, "grid": {grid}}}"#
+    );
+    let (st, r) = http(addr, "POST", "/api/region", cubic.as_bytes());
+    assert_eq!(st, 200);
+    assert!(r.contains(r#""rows""#), "{r}");
+    child.kill().unwrap();
+    let _ = child.wait();
+}
+
+/// Export: a clamped spline with simple interior knots is written as SVG (its Bézier spans
+/// by knot insertion); a curve whose extent overflows f64 is refused, never written as
+/// `inf` or `NaN`.
+#[test]
+fn editor_export_simple_knots_and_huge_coordinates() {
+    let (mut child, addr) = start_editor();
+    let simple = br#"{"format": "svg", "degree": 3, "knots": [0,0,0,0,0.3,0.6,1,1,1,1], "control_points": [[0,0],[1,2],[2,3],[4,3],[5,1],[6,0]]}"#;
+    let (st, r) = http(addr, "POST", "/api/export", simple);
+    assert_eq!(st, 200);
+    assert!(r.contains("<svg") && r.contains(" C "), "{r}");
+    for fmt in ["svg", "iges", "step", "dxf", "json"] {
+        let huge = format!(
+            r#"{{"format": "{fmt}", "degree": 1, "knots": [0,0,1,1], "control_points": [[-1e308,-1e308],[1e308,1e308]]}}"#
+        );
+        let (st, r) = http(addr, "POST", "/api/export", huge.as_bytes());
+        assert_eq!(st, 200, "{fmt}");
+        assert!(
+            r.contains("invalid_input") && r.contains("too large"),
+            "{fmt}: {r}"
+        );
+        assert!(
+            !r.contains("inf") || r.contains("invalid_input"),
+            "{fmt}: {r}"
+        );
+    }
+    child.kill().unwrap();
+    let _ = child.wait();
+}

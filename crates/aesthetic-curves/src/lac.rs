@@ -844,6 +844,12 @@ fn triangle_angles(control: &[Point; 3]) -> Result<TriangleAngles> {
     let (p0, p1, p2) = (control[0], control[1], control[2]);
     let (u, v, w) = (p1 - p0, p2 - p1, p2 - p0);
     let size = u.hypot().max(v.hypot());
+    if !(size.is_finite() && w.hypot().is_finite()) {
+        return Err(Error::invalid(
+            "control",
+            "the coordinates are too large: the triangle's sides overflow f64",
+        ));
+    }
     if size == 0.0 || u.hypot() <= 1e-12 * size || v.hypot() <= 1e-12 * size {
         return Err(Error::Degenerate(
             "coincident control points: the end tangents are undefined".into(),

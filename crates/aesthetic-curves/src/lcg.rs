@@ -196,6 +196,16 @@ pub fn sampled_curvature(
             "coordinates must be finite",
         ));
     }
+    // Steps between points must be finite too (±1e308 coordinates overflow them).
+    if points
+        .windows(2)
+        .any(|w| !(w[1] - w[0]).hypot().is_finite())
+    {
+        return Err(Error::invalid(
+            "points",
+            "the coordinates are too large: the steps between them overflow f64",
+        ));
+    }
     let mut pts: Vec<Point> = Vec::with_capacity(points.len());
     for p in points {
         if pts.last() != Some(p) {

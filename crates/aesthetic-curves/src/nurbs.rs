@@ -157,10 +157,73 @@ impl Nurbs {
         )
     }
 
-    /// The Bézier spans (between distinct knots) as rational Bézier curves, when every
-    /// interior knot has multiplicity `degree` (as the splines of this library do); `None`
-    /// otherwise.
+    /// The same curve with the knot `u` (strictly inside the domain) inserted once (Boehm's
+    /// algorithm on the homogeneous control points).
+    pub fn insert_knot(&self, u: f64) -> Nurbs {
+        let p = self.degree;
+        let n = self.control_points.len();
+        // The span k with knots[k] <= u < knots[k + 1], k in p..n.
+        let k = (p..n).rev().find(|&k| self.knots[k] <= u).unwrap_or(p);
+        let hom = |i: usize| {
+            let w = self.weights[i];
+            (
+                self.control_points[i].x * w,
+                self.control_points[i].y * w,
+                w,
+            )
+        };
+        let mut pts = Vec::with_capacity(n + 1);
+        let mut ws = Vec::with_capacity(n + 1);
+        for i in 0..=n {
+            let (x, y, w) = if i + p <= k {
+                hom(i)
+            } else if i > k {
+                hom(i - 1)
+            } else {
+                let a = (u - self.knots[i]) / (self.knots[i + p] - self.knots[i]);
+                let (x0, y0, w0) = hom(i - 1);
+                let (x1, y1, w1) = hom(i);
+                (
+                    (1.0 - a) * x0 + a * x1,
+                    (1.0 - a) * y0 + a * y1,
+                    (1.0 - a) * w0 + a * w1,
+                )
+            };
+            pts.push(Point::new(x / w, y / w));
+            ws.push(w);
+        }
+        let mut knots = self.knots.clone();
+        knots.insert(k + 1, u);
+        Nurbs {
+            degree: p,
+            knots,
+            control_points: pts,
+            weights: ws,
+        }
+    }
+
+    /// The Bézier spans (between distinct knots) as rational Bézier curves: interior knots
+    /// are first raised to multiplicity `degree` by knot insertion (the curve is unchanged).
+    /// `None` only if a span's control points do not form a valid curve.
     pub fn bezier_spans(&self) -> Option<Vec<RationalBezier>> {
+        let p = self.degree;
+        let n = self.control_points.len();
+        let (lo, hi) = (self.knots[p], self.knots[n]);
+        let mut c = self.clone();
+        let mut i = p + 1;
+        while i < c.knots.len() && c.knots[i] < hi {
+            let u = c.knots[i];
+            let mult = c.knots.iter().filter(|k| **k == u).count();
+            if u > lo && mult < p {
+                c = c.insert_knot(u);
+                continue;
+            }
+            i += 1;
+        }
+        c.bezier_spans_of_full_multiplicity()
+    }
+
+    fn bezier_spans_of_full_multiplicity(&self) -> Option<Vec<RationalBezier>> {
         let p = self.degree;
         let n = self.control_points.len();
         if (n - 1) % p != 0 {
@@ -241,6 +304,37 @@ pub(crate) fn de_boor(
 mod tests {
     use super::*;
     use crate::PlanarCurve;
+
+    /// A clamped spline with simple interior knots (degree 2, 3 and 5, rational) splits into
+    /// Bézier spans that trace the same curve.
+    #[test]
+    fn simple_knots_split_into_the_same_curve() {
+        for (p, n) in [(2usize, 6usize), (3, 7), (5, 9)] {
+            let pts: Vec<Point> = (0..n)
+                .map(|i| Point::new(i as f64, ((i * 7) % 5) as f64 - 2.0))
+                .collect();
+            let w: Vec<f64> = (0..n).map(|i| 1.0 + 0.4 * ((i * 3) % 4) as f64).collect();
+            let inner = n - p - 1;
+            let mut knots = vec![0.0; p + 1];
+            // Uneven interior knots.
+            knots.extend((1..=inner).map(|i| (i as f64 / (inner + 1) as f64).powf(1.3)));
+            knots.extend(vec![1.0; p + 1]);
+            let c = Nurbs::new(p, knots.clone(), pts, w).unwrap();
+            let spans = c.bezier_spans().expect("spans");
+            assert_eq!(spans.len(), inner + 1, "degree {p}");
+            let mut breaks = vec![0.0];
+            breaks.extend_from_slice(&knots[p + 1..p + 1 + inner]);
+            breaks.push(1.0);
+            for (s, b) in spans.iter().zip(breaks.windows(2)) {
+                for j in 0..=10 {
+                    let t = j as f64 / 10.0;
+                    let u = b[0] + (b[1] - b[0]) * t;
+                    let d = (s.eval(t) - c.eval(u)).hypot();
+                    assert!(d < 1e-12, "degree {p}: {d}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn bezier_round_trip_and_validation() {

@@ -991,6 +991,27 @@ fn project(c: &RationalBezier, q: Point, samples: &[(f64, Point)]) -> (f64, f64)
 /// tangents that do not form triangles; [`Error::NoConvergence`] when `max_pieces` are not
 /// enough for the tolerance.
 pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
+    // The points first: a tolerance derived from unusable points is not the cause.
+    if points.iter().any(|q| !q.is_finite()) {
+        return Err(Error::invalid("points", "must be finite"));
+    }
+    let diagonal = if points.len() >= 2 {
+        bbox_diagonal(points)
+    } else {
+        0.0
+    };
+    if !diagonal.is_finite() {
+        return Err(Error::invalid(
+            "points",
+            "the coordinates are too large: their extent overflows f64",
+        ));
+    }
+    if points.len() >= 2 && diagonal == 0.0 {
+        return Err(Error::Degenerate(format!(
+            "all {} points coincide: no curve runs through them",
+            points.len()
+        )));
+    }
     if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
         return Err(Error::invalid("tolerance", "must be a positive number"));
     }
