@@ -172,8 +172,9 @@ fn parse_error(msg: String) -> Value {
 /// Limits of the editor's server.
 #[derive(Clone, Copy, Debug)]
 pub struct Limits {
-    /// Wall-clock limit of one request's computation (the client then gets a `timeout`
-    /// error; the computation itself runs on to its end, holding its slot).
+    /// Wall-clock limit of one request's computation: the client then gets a `timeout`
+    /// error, and the library's long loops stop at the same deadline
+    /// ([`aesthetic_curves::deadline`]), freeing the slot.
     pub request_timeout: std::time::Duration,
     /// Computations at once (further requests wait for a slot, within their time limit).
     pub computations: usize,
@@ -237,13 +238,16 @@ impl Compute {
         f: impl FnOnce() -> T + Send + 'static,
     ) -> Result<T, NotAnswered> {
         let slots = self.slots.clone();
+        // The library's long loops stop at the same deadline (cooperative cancellation), so
+        // a timed-out request frees its slot instead of running on for minutes.
+        let deadline = std::time::Instant::now() + self.timeout;
         let work = async move {
             let permit = slots
                 .acquire_owned()
                 .await
                 .map_err(|_| NotAnswered::Internal)?;
             tokio::task::spawn_blocking(move || {
-                let out = f();
+                let out = aesthetic_curves::deadline::with_deadline(deadline, f);
                 drop(permit);
                 out
             })

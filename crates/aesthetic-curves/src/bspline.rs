@@ -480,6 +480,7 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
     // ones than chord length, so fewer corrections are needed).
     let mut start = chord;
     loop {
+        crate::deadline::check()?;
         let f = attempt(&interior, &start)?;
         if f.max_deviation <= opts.tolerance {
             return Ok(f);
@@ -545,6 +546,7 @@ pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit>
     let most = (2 * pts.len()).clamp(4, MAX_SMOOTHING_SPANS);
     let mut spans = (pts.len() / 4).clamp(4, 64).min(most);
     loop {
+        crate::deadline::check()?;
         match smoothing_fit_spans(&pts, max_deviation, spans)? {
             Ok(fit) => return Ok(fit),
             Err(d_lo) if spans >= most => {

@@ -25,16 +25,21 @@ pub enum Error {
     /// A solver gave up before reaching its tolerance; the message says which.
     #[error("no convergence: {0}")]
     NoConvergence(String),
+    /// The work ran past the deadline its caller set ([`crate::deadline`]) and was stopped.
+    #[error("timeout: {0}")]
+    Timeout(String),
 }
 
 impl Error {
-    /// The protocol's error kind: `invalid_input`, `degenerate`, `no_segment` or `no_convergence`.
+    /// The protocol's error kind: `invalid_input`, `degenerate`, `no_segment`,
+    /// `no_convergence` or `timeout`.
     pub fn kind(&self) -> &'static str {
         match self {
             Error::InvalidInput { .. } => "invalid_input",
             Error::Degenerate(_) => "degenerate",
             Error::NoSegment(_) => "no_segment",
             Error::NoConvergence(_) => "no_convergence",
+            Error::Timeout(_) => "timeout",
         }
     }
 

@@ -615,6 +615,7 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     } else {
         (alpha, tri, converged)
     };
+    crate::deadline::check()?;
     let fitted = LacSegment::new(alpha, tri)?;
     // Span the data: ends at the feet of the perpendiculars from the first and last points.
     let pts = all;
@@ -697,6 +698,9 @@ fn levenberg_marquardt_n(
     let mut rp = Vec::new();
     let mut jac: Vec<Vec<f64>> = vec![Vec::new(); k];
     for _ in 0..iterations {
+        if crate::deadline::expired() {
+            break;
+        }
         let mut ok = true;
         for (i, col) in jac.iter_mut().enumerate() {
             let h = 1e-7 * x[i].abs().max(1.0);

@@ -76,6 +76,8 @@
 //!   derivatives, curvature, dkappa/ds, subdivision, elevation, power basis.
 //! - [`bspline`]: cubic B-splines, least-squares fitting of point sequences, Bézier
 //!   extraction.
+//! - [`deadline`]: cooperative cancellation: work run under a deadline stops with a
+//!   `timeout` error once it has passed.
 //! - [`error`]: the one error type, [`Error`], whose kinds are the JSON protocol's.
 //! - [`lac`]: log-aesthetic curves: standard form, segments from three control points,
 //!   segments with an inflection end.
@@ -105,6 +107,7 @@ pub mod approx;
 pub mod bernstein;
 pub mod bezier;
 pub mod bspline;
+pub mod deadline;
 pub mod error;
 pub mod lac;
 pub mod lac_fit;

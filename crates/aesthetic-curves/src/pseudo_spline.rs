@@ -232,6 +232,7 @@ pub fn shape_type(theta0: f64, theta1: f64, r0: f64, r1: f64) -> ShapeType {
 /// on the member of the orbit whose first angle is the largest in size and positive (as the
 /// tables do), so its results keep the symmetries even where a shallow valley is missed.
 pub fn segment_minima(theta0: f64, theta1: f64) -> Result<Vec<SegmentOptimum>> {
+    crate::deadline::check()?;
     if !(theta0.is_finite() && theta1.is_finite()) {
         return Err(Error::invalid("theta", "angles must be finite"));
     }
@@ -358,6 +359,7 @@ fn canonical_minima(a: f64, b: f64, theta0: f64, theta1: f64) -> Result<Vec<Segm
         if k >= 6 && (reliable > 0 || (k >= 40 && !found.is_empty())) {
             break;
         }
+        crate::deadline::check()?;
         let r = nelder_mead(&fast, s, 0.3, 1e-6);
         let inside = r.0 .0 > -4.5 && r.0 .1 > -4.5 && r.0 .0 < 3.5 && r.0 .1 < 3.5;
         let dup = coarse
@@ -848,6 +850,7 @@ fn pseudo_elastic_unit(points: &[Point], closed: bool, mode: Mode) -> Result<Pse
         (1..n - 1).collect()
     };
     for &i in &interior {
+        crate::deadline::check()?;
         let prev = if i == 0 { spans - 1 } else { i - 1 };
         let turn = wrap(phi[i] - phi[prev]);
         let (lp, li) = (l[prev], l[i]);

@@ -878,6 +878,7 @@ fn fair(
     };
     let na = active.len();
     while !report.converged && report.iterations < opts.max_fairing_iterations {
+        crate::deadline::check()?;
         report.iterations += 1;
         // Finite-difference Jacobian: joint k's angle moves pieces active[k]-1 and active[k].
         let mut jac = DMatrix::<f64>::zeros(na, na);
@@ -1127,6 +1128,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     let mut memo: std::collections::HashMap<[u64; 8], RationalCubicFit> =
         std::collections::HashMap::new();
     loop {
+        crate::deadline::check()?;
         let last = slots.len() - 1;
         for (i, s) in slots.iter_mut().enumerate().filter(|(_, s)| !s.fitted) {
             fit_slot_alpha(&track, &fit, s, ends, i == 0 || i == last);
