@@ -651,8 +651,9 @@ pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Val
 }
 
 /// Largest number of points `spline.pseudo_elastic` accepts in table mode (microseconds
-/// per point).
-pub const MAX_SPLINE_POINTS: usize = 1_000_000;
+/// per point, but about 3.5 KB of memory per point for the request and its answer: 20,000
+/// points keep a request near 70 MB; the library itself has no limit).
+pub const MAX_SPLINE_POINTS: usize = 20_000;
 
 /// Largest number of points in exact mode (a minimisation per point, seconds each).
 pub const MAX_EXACT_SPLINE_POINTS: usize = 64;
