@@ -53,7 +53,9 @@ async function step(name, fn) {
 
 const { child, url } = await startServer();
 console.log(`editor at ${url}`);
-const api = (body) => fetch(`${url}api`, { method: 'POST', body: typeof body === 'string' ? body : JSON.stringify(body) });
+// Every client must say it sends JSON (the editor refuses text/plain and forms: same origin only).
+const JSON_TYPE = { 'content-type': 'application/json' };
+const api = (body) => fetch(`${url}api`, { method: 'POST', headers: JSON_TYPE, body: typeof body === 'string' ? body : JSON.stringify(body) });
 const timing = (r) => +(/dur=([\d.]+)/.exec(r.headers.get('server-timing') || '') || [0, NaN])[1];
 
 await step('listens on loopback only', async () => {
@@ -98,6 +100,7 @@ await step('concurrent requests all come back, each with its own id', async () =
 await step('export returns a STEP file for a NURBS', async () => {
   const r = await fetch(`${url}api/export`, {
     method: 'POST',
+    headers: JSON_TYPE,
     body: JSON.stringify({ format: 'step', degree: 3, knots: [0, 0, 0, 0, 1, 1, 1, 1], control_points: [[0, 0], [1, 1], [2, 1], [3, 0]], weights: [1, 0.8, 0.8, 1] }),
   });
   assert.equal(r.status, 200);
