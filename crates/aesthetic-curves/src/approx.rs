@@ -858,7 +858,7 @@ impl RationalSpline {
     /// The point at knot parameter `u` in [0, 1], by de Boor's algorithm on homogeneous
     /// coordinates (independent of the pieces: a check of the assembled spline).
     pub fn eval(&self, u: f64) -> Point {
-        crate::nurbs::de_boor(
+        crate::bspline::de_boor(
             self.degree,
             &self.knots,
             &self.control_points,

@@ -52,7 +52,7 @@ impl BSpline {
 
     /// The point at `u` (clamped to the domain), by de Boor's algorithm.
     pub fn eval(&self, u: f64) -> Point {
-        crate::nurbs::de_boor(self.degree, &self.knots, &self.control_points, None, u)
+        de_boor(self.degree, &self.knots, &self.control_points, None, u)
     }
 
     /// First derivative at `u` (the derivative B-spline evaluated by de Boor).
@@ -699,6 +699,46 @@ fn smoothing_fit_spans(
         max_deviation: dmax,
         rms_deviation: rms,
     }))
+}
+
+/// De Boor's algorithm on homogeneous coordinates: the point at `u` (clamped to the
+/// domain) of the clamped B-spline of `degree` with `knots`, control points `pts` and
+/// optional weights (none: polynomial).
+pub(crate) fn de_boor(
+    degree: usize,
+    knots: &[f64],
+    pts: &[Point],
+    weights: Option<&[f64]>,
+    u: f64,
+) -> Point {
+    let p = degree;
+    let k = knots;
+    let n = pts.len();
+    let u = u.clamp(k[p], k[n]);
+    let mut s = p;
+    while s + 1 < n && k[s + 1] <= u {
+        s += 1;
+    }
+    let mut d: Vec<(f64, f64, f64)> = (0..=p)
+        .map(|j| {
+            let i = s + j - p;
+            let w = weights.map_or(1.0, |w| w[i]);
+            (pts[i].x * w, pts[i].y * w, w)
+        })
+        .collect();
+    for r in 1..=p {
+        for j in (r..=p).rev() {
+            let i = s + j - p;
+            let den = k[i + p + 1 - r] - k[i];
+            let a = if den > 0.0 { (u - k[i]) / den } else { 0.0 };
+            d[j] = (
+                (1.0 - a) * d[j - 1].0 + a * d[j].0,
+                (1.0 - a) * d[j - 1].1 + a * d[j].1,
+                (1.0 - a) * d[j - 1].2 + a * d[j].2,
+            );
+        }
+    }
+    Point::new(d[p].0 / d[p].2, d[p].1 / d[p].2)
 }
 
 #[cfg(test)]
