@@ -881,11 +881,9 @@ fn fair(
         crate::deadline::check()?;
         report.iterations += 1;
         // Finite-difference Jacobian: joint k's angle moves pieces active[k]-1 and active[k].
-        let mut jac = DMatrix::<f64>::zeros(na, na);
-        let mut jac_ok = true;
-        for (k, &j) in active.iter().enumerate() {
-            // Forward difference, backward where the forward step leaves the admissible set.
-            // Central difference; one-sided where a side leaves the admissible set.
+        // Central difference; one-sided where a side leaves the admissible set. The columns
+        // are independent: computed in parallel (the same numbers in any order).
+        let column = |j: usize| -> Option<Vec<f64>> {
             let at = |h: f64| -> Option<Vec<f64>> {
                 let mut trial = dirs.to_vec();
                 trial[j] = rotate(dirs[j], h);
@@ -896,7 +894,7 @@ fn fair(
                 Some(mismatches(&b2, &active).0)
             };
             let h = 1e-6;
-            let column = match (at(h), at(-h)) {
+            match (at(h), at(-h)) {
                 (Some(p), Some(m)) => Some(
                     (0..na)
                         .map(|r| (p[r] - m[r]) / (2.0 * h))
@@ -905,8 +903,17 @@ fn fair(
                 (Some(p), None) => Some((0..na).map(|r| (p[r] - d[r]) / h).collect()),
                 (None, Some(m)) => Some((0..na).map(|r| (d[r] - m[r]) / h).collect()),
                 (None, None) => None,
-            };
-            match column {
+            }
+        };
+        let columns: Vec<Option<Vec<f64>>> = if na >= 4 {
+            active.par_iter().map(|&j| column(j)).collect()
+        } else {
+            active.iter().map(|&j| column(j)).collect()
+        };
+        let mut jac = DMatrix::<f64>::zeros(na, na);
+        let mut jac_ok = true;
+        for (k, c) in columns.into_iter().enumerate() {
+            match c {
                 Some(c) => {
                     for (r, v) in c.into_iter().enumerate() {
                         jac[(r, k)] = v;
@@ -1130,9 +1137,14 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     loop {
         crate::deadline::check()?;
         let last = slots.len() - 1;
-        for (i, s) in slots.iter_mut().enumerate().filter(|(_, s)| !s.fitted) {
-            fit_slot_alpha(&track, &fit, s, ends, i == 0 || i == last);
-        }
+        // Each new slot's alpha on its own: in parallel (the same results in any order).
+        slots
+            .par_iter_mut()
+            .enumerate()
+            .filter(|(_, s)| !s.fitted)
+            .for_each(|(i, s)| {
+                fit_slot_alpha(&track, &fit, s, ends, i == 0 || i == last);
+            });
         let pts: Vec<Point> = slots
             .iter()
             .map(|s| track.point(s.ua))
