@@ -1461,19 +1461,7 @@ fn lac_fit_gallery(out: &std::path::Path) -> Result<String> {
     use aesthetic_curves::lac_fit::{fit_lac, LacFitOptions};
     use aesthetic_curves::Point;
     // Nearest distance from each point to a polyline, every chord a candidate.
-    let distances = |poly: &[Point], pts: &[Point]| -> Vec<f64> {
-        pts.iter()
-            .map(|q| {
-                poly.windows(2)
-                    .map(|w| {
-                        let v = w[1] - w[0];
-                        let t = ((*q - w[0]).dot(v) / v.hypot2()).clamp(0.0, 1.0);
-                        (w[0] + v * t - *q).hypot()
-                    })
-                    .fold(f64::INFINITY, f64::min)
-            })
-            .collect()
-    };
+    let distances = aesthetic_curves::lac_fit::nearest_distances;
     let max_rms = |d: &[f64]| {
         (
             d.iter().copied().fold(0.0, f64::max),

@@ -621,23 +621,8 @@ fn editor_refuses_other_origins() {
 
 #[test]
 fn editor_serves_on_loopback_only_with_limits() {
-    use std::io::BufRead;
-    let mut child = aecurve()
-        .args(["editor", "--port", "0", "--no-open"])
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut line = String::new();
-    std::io::BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut line)
-        .unwrap();
-    let url = line.trim().strip_prefix("editor: ").unwrap().to_string();
-    let hostport = url
-        .trim_start_matches("http://")
-        .trim_end_matches('/')
-        .to_string();
-    let addr: std::net::SocketAddr = hostport.parse().unwrap();
-    assert!(addr.ip().is_loopback(), "{url}");
+    let (mut child, addr) = start_editor();
+    assert!(addr.ip().is_loopback(), "{addr}");
     // The page and its script are embedded.
     let (st, page) = http(addr, "GET", "/", b"");
     assert_eq!(st, 200);

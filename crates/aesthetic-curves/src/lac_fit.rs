@@ -268,13 +268,21 @@ fn distances(seg: &LacSegment, points: &[Point], out: &mut Vec<f64>) -> Option<(
 /// nothing assumes the points advance along it. Chords are grouped in runs of 32 with one
 /// box per run; a run whose box, grown by the best distance so far, misses the point is
 /// skipped whole (the run around the previous point's nearest chord is tried first).
-pub(crate) fn nearest_distances(poly: &[Point], points: &[Point]) -> Vec<f64> {
+pub fn nearest_distances(poly: &[Point], points: &[Point]) -> Vec<f64> {
+    nearest_chords(poly, points)
+        .into_iter()
+        .map(|c| c.0)
+        .collect()
+}
+
+/// [`nearest_distances`] with the index of each point's nearest chord.
+pub(crate) fn nearest_chords(poly: &[Point], points: &[Point]) -> Vec<(f64, usize)> {
     const RUN: usize = 32;
     let chords = poly.len().saturating_sub(1);
     if chords == 0 {
         return points
             .iter()
-            .map(|q| poly.first().map_or(f64::INFINITY, |p| (*p - *q).hypot()))
+            .map(|q| (poly.first().map_or(f64::INFINITY, |p| (*p - *q).hypot()), 0))
             .collect();
     }
     let runs: Vec<(Point, Point)> = (0..chords.div_ceil(RUN))
@@ -327,7 +335,7 @@ pub(crate) fn nearest_distances(poly: &[Point], points: &[Point]) -> Vec<f64> {
                 scan(r, &mut best);
             }
             hint = best.1;
-            best.0
+            best
         })
         .collect()
 }

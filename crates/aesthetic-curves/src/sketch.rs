@@ -590,56 +590,24 @@ fn split_worst(track: &Track, slots: &mut Vec<Slot>, piece: usize, u: f64) -> Re
 }
 
 /// The largest distance from `points` (spline parameters `params`) to polylines of the
-/// pieces (spline parameter ranges `ranges`), with its piece and parameter: the piece
-/// around a point's parameter first, then every piece whose box, grown by the distance so
-/// far, reaches the point.
-fn polyline_deviation(
-    points: &[Point],
-    params: &[f64],
-    ranges: &[(f64, f64)],
-    polys: &[Vec<Point>],
-) -> (f64, usize, f64) {
-    let boxes: Vec<kurbo::Rect> = polys
-        .iter()
-        .map(|p| {
-            p.iter()
-                .fold(kurbo::Rect::from_points(p[0], p[0]), |r, q| r.union_pt(*q))
-        })
-        .collect();
-    let to_poly = |poly: &[Point], q: Point| {
-        poly.windows(2)
-            .map(|w| {
-                let ab = w[1] - w[0];
-                let l2 = ab.hypot2();
-                let t = if l2 > 0.0 {
-                    ((q - w[0]).dot(ab) / l2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (w[0] + ab * t - q).hypot()
-            })
-            .fold(f64::INFINITY, f64::min)
-    };
-    let (mut worst, mut piece, mut at) = (0.0f64, 0usize, 0.0);
-    for (q, &u) in points.iter().zip(params) {
-        let home = ranges
-            .iter()
-            .position(|r| u <= r.1)
-            .unwrap_or(ranges.len() - 1);
-        let mut best = (to_poly(&polys[home], *q), home);
-        for (i, r) in boxes.iter().enumerate() {
-            let dx = (r.x0 - q.x).max(q.x - r.x1).max(0.0);
-            let dy = (r.y0 - q.y).max(q.y - r.y1).max(0.0);
-            if i == home || dx.hypot(dy) > best.0 {
-                continue;
-            }
-            let d = to_poly(&polys[i], *q);
-            if d < best.0 {
-                best = (d, i);
-            }
+/// pieces, with its piece and parameter: the nearest point over all pieces (the pieces'
+/// polylines joined end to end, every chord a candidate: [`crate::lac_fit`]'s nearest
+/// search).
+fn polyline_deviation(points: &[Point], params: &[f64], polys: &[Vec<Point>]) -> (f64, usize, f64) {
+    let mut joined: Vec<Point> = Vec::new();
+    let mut piece_of_chord: Vec<usize> = Vec::new();
+    for (i, p) in polys.iter().enumerate() {
+        if !joined.is_empty() {
+            piece_of_chord.push(i);
         }
-        if best.0 > worst {
-            (worst, piece, at) = (best.0, best.1, u);
+        joined.extend_from_slice(p);
+        piece_of_chord.extend(std::iter::repeat_n(i, p.len().saturating_sub(1)));
+    }
+    let near = crate::lac_fit::nearest_chords(&joined, points);
+    let (mut worst, mut piece, mut at) = (0.0f64, 0usize, 0.0);
+    for ((d, k), &u) in near.into_iter().zip(params) {
+        if d > worst {
+            (worst, piece, at) = (d, piece_of_chord.get(k).copied().unwrap_or(0), u);
         }
     }
     (worst, piece, at)
@@ -1212,9 +1180,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                 })
                 .collect();
             if let Some(polys) = polys {
-                let ranges: Vec<(f64, f64)> = slots.iter().map(|s| (s.ua, s.ub)).collect();
-                let (worst, piece, u) =
-                    polyline_deviation(&fit.points, &fit.params, &ranges, &polys);
+                let (worst, piece, u) = polyline_deviation(&fit.points, &fit.params, &polys);
                 if worst > 2.0 * opts.tolerance {
                     split_worst(&track, &mut slots, piece, u)?;
                     continue;
