@@ -1,5 +1,6 @@
-//! The sketch pipeline end to end: 1000 points (target: under 20 ms median) and the five
-//! measured Prius key lines at 0.3 mm (target: under 50 ms each).
+//! The sketch pipeline end to end: 1000 points (target: under 20 ms median), the five
+//! measured Prius key lines at 0.3 mm (target: under 50 ms each) and the probe's two
+//! random-walk strokes at their tight tolerances (target: well under a second).
 
 use aesthetic_curves::lac::LacSegment;
 use aesthetic_curves::sketch::{fit_sketch, SketchOptions};
@@ -57,7 +58,33 @@ fn bench(c: &mut Criterion) {
             b.iter(|| fit_sketch(&pts, &opts).unwrap())
         });
     }
+    for (name, text) in [
+        (
+            "probe_52",
+            include_str!("../tests/data/sketch-slow-52-points.json"),
+        ),
+        (
+            "probe_181",
+            include_str!("../tests/data/sketch-slow-181-points.json"),
+        ),
+    ] {
+        let (pts, opts) = probe(text);
+        g.bench_function(name, |b| b.iter(|| fit_sketch(&pts, &opts).unwrap()));
+    }
     g.finish();
+}
+
+/// The points and tolerance of a `sketch.fit` request.
+fn probe(text: &str) -> (Vec<Point>, SketchOptions) {
+    let v: serde_json::Value = serde_json::from_str(text).unwrap();
+    let pts = v["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|q| Point::new(q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+        .collect();
+    let tol = v["tolerance"].as_f64().unwrap();
+    (pts, SketchOptions::with_tolerance(tol))
 }
 
 criterion_group!(benches, bench);

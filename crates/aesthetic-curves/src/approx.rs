@@ -523,11 +523,39 @@ fn refine(
     feasible: &dyn Fn(f64, f64) -> bool,
     abandon_above: f64,
 ) -> ((f64, f64), f64, usize) {
+    let residuals = |x: (f64, f64), out: &mut Vec<f64>| prob.residuals(x.0, x.1, ts, out);
+    let in_box = |x: (f64, f64)| x.0 > 0.0 && x.0 < 1.0 && x.1 > 0.0 && x.1 < 1.0;
+    levenberg_marquardt(
+        &residuals,
+        &|x| x.0 < 1.0 && x.1 < 1.0,
+        &|x| in_box(x) && feasible(x.0, x.1),
+        start,
+        max_iter,
+        abandon_above,
+    )
+}
+
+/// Residuals at a point of two parameters, written into the vector (None: invalid point).
+type Residuals<'a> = &'a dyn Fn((f64, f64), &mut Vec<f64>) -> Option<()>;
+
+/// Levenberg–Marquardt over two parameters on a residual vector (`residuals` fills its
+/// argument, None for an invalid point) from `start`; steps where `feasible` is false are
+/// refused. The forward-difference Jacobian steps by 1e-7, backwards where the forward
+/// point is outside `domain`. A run still above `abandon_above` (sum of squares) after 8
+/// iterations is abandoned. Returns the point, its sum of squares and the evaluations.
+fn levenberg_marquardt(
+    residuals: Residuals,
+    domain: &dyn Fn((f64, f64)) -> bool,
+    feasible: &dyn Fn((f64, f64)) -> bool,
+    start: (f64, f64),
+    max_iter: usize,
+    abandon_above: f64,
+) -> ((f64, f64), f64, usize) {
     let mut evals = 0;
     let mut r = Vec::new();
     let mut rp = Vec::new();
     let (mut f0, mut f1) = start;
-    if prob.residuals(f0, f1, ts, &mut r).is_none() {
+    if residuals(start, &mut r).is_none() {
         return (start, f64::INFINITY, 1);
     }
     evals += 1;
@@ -541,14 +569,14 @@ fn refine(
             break;
         }
         // Forward-difference Jacobian, stepping inward from the bounds.
-        let s0 = if f0 + step < 1.0 { step } else { -step };
-        let s1 = if f1 + step < 1.0 { step } else { -step };
-        if prob.residuals(f0 + s0, f1, ts, &mut rp).is_none() {
+        let s0 = if domain((f0 + step, f1)) { step } else { -step };
+        let s1 = if domain((f0, f1 + step)) { step } else { -step };
+        if residuals((f0 + s0, f1), &mut rp).is_none() {
             break;
         }
         j0.clear();
         j0.extend(rp.iter().zip(&r).map(|(a, b)| (a - b) / s0));
-        if prob.residuals(f0, f1 + s1, ts, &mut rp).is_none() {
+        if residuals((f0, f1 + s1), &mut rp).is_none() {
             break;
         }
         j1.clear();
@@ -573,8 +601,8 @@ fn refine(
             let d0 = -(m11 * g0 - a01 * g1) / det;
             let d1 = -(m00 * g1 - a01 * g0) / det;
             let (n0, n1) = (f0 + d0, f1 + d1);
-            let ok = n0 > 0.0 && n0 < 1.0 && n1 > 0.0 && n1 < 1.0 && feasible(n0, n1);
-            let new_cost = if ok && prob.residuals(n0, n1, ts, &mut rp).is_some() {
+            let ok = feasible((n0, n1));
+            let new_cost = if ok && residuals((n0, n1), &mut rp).is_some() {
                 evals += 1;
                 rp.iter().map(|v| v * v).sum()
             } else {
@@ -1187,6 +1215,25 @@ impl InflectionTable {
             .to_point()
     }
 
+    /// The residuals of [`InflectionTable::cost`] (x and y of each weighted distance),
+    /// appended to `out` after clearing it; None for an invalid cubic.
+    fn residuals(
+        &self,
+        curve: Option<RationalBezier>,
+        smp: &Samples,
+        out: &mut Vec<f64>,
+    ) -> Option<()> {
+        let c = curve?;
+        out.clear();
+        for (&t, &sw) in smp.t.iter().zip(&smp.sw) {
+            let tau = turning(self.d0, c.eval_d(t), self.sign);
+            let d = (c.eval(t) - self.at_turning(tau)) * (sw / self.len);
+            out.push(d.x);
+            out.push(d.y);
+        }
+        Some(())
+    }
+
     /// Weighted mean square distance (by turning-angle correspondence, over the length) of
     /// the cubic at the Gauss samples; infinite for an invalid cubic.
     fn cost(&self, curve: Option<RationalBezier>, smp: &Samples) -> f64 {
@@ -1209,9 +1256,12 @@ impl InflectionTable {
 const INFLECTION_STEP_FLOOR: f64 = 1e-6;
 
 /// The best curvature-monotone rational cubic of the inflection-end family (see
-/// `inflection_cubic`) for an inflection-end segment: a grid over (f0, ln w0), compass search
-/// from the best curvature-monotone grid points with non-monotone steps refused, the error
-/// reported on the exact segment at `opts.report_samples` uniform t. The curve starts at the
+/// `inflection_cubic`) for an inflection-end segment: a grid over (f0, ln w0);
+/// Levenberg–Marquardt, then a compass search, from the best curvature-monotone grid
+/// points with non-monotone steps refused; where the optimum lies on the boundary of the
+/// monotone set, a walk along it ([`crate::solve::along_boundary`]). The error is
+/// reported on the exact segment at `opts.report_samples` uniform t. Within 1 % of an
+/// exhaustive search in the tests. The curve starts at the
 /// inflection end (zero curvature) and matches the end point, tangent and curvature at C2:
 /// G2 at both ends. Errors: [`Error::NoSegment`] when no candidate is curvature-monotone.
 pub fn fit_inflection_cubic(
@@ -1271,15 +1321,31 @@ pub(crate) fn fit_inflection_cubic_from(
             .collect(),
     };
     let mut best: Option<(f64, (f64, f64))> = None;
+    let residuals = |x: (f64, f64), out: &mut Vec<f64>| table.residuals(make(x), &tr, out);
+    let domain = |x: (f64, f64)| x.0 < 1.0;
+    let feasible = |x: (f64, f64)| x.0 > 0.0 && x.0 < 1.0 && x.1.is_finite() && monotone(x);
     for s in starts {
-        // Compass search on the refine samples, monotone steps only.
+        // Levenberg–Marquardt on the refine samples (monotone steps only) goes down the
+        // valley; a compass search from there, monotone steps only, slides along the
+        // monotone boundary when the optimum lies on it.
         let mut x = s;
-        let mut cost = table.cost(make(x), &tr);
         let mut h = match (warm, search) {
             (Some(_), false) => 0.0,
-            (Some(_), true) => 0.02 / n as f64,
-            (None, _) => 0.5 / n as f64,
+            _ => {
+                let (y, _, e) = levenberg_marquardt(
+                    &residuals,
+                    &domain,
+                    &feasible,
+                    s,
+                    opts.max_iter,
+                    f64::INFINITY,
+                );
+                evals += e;
+                x = y;
+                0.02 / n as f64
+            }
         };
+        let mut cost = table.cost(make(x), &tr);
         while h > INFLECTION_STEP_FLOOR && evals < 20_000 {
             let mut step = (cost, x);
             for (d0, d1) in [
@@ -1304,6 +1370,16 @@ pub(crate) fn fit_inflection_cubic_from(
                 h *= 2.0;
             } else {
                 h *= 0.5;
+            }
+        }
+        // The compass stalls where the optimum lies on the monotone boundary and the
+        // boundary runs between its directions: walk along it.
+        if h > 0.0 {
+            let c = |y: (f64, f64)| table.cost(make(y), &tr);
+            if let Some((y, cy, e)) = crate::solve::along_boundary(&c, &feasible, x, (1.0, 6.0), 12)
+            {
+                evals += e;
+                (cost, x) = (cy, y);
             }
         }
         if best.is_none_or(|b| cost < b.0) {
@@ -1487,6 +1563,97 @@ mod tests {
             );
             assert!(fit.monotone && fit.max_error < 3e-3, "{}", fit.max_error);
         }
+    }
+
+    /// The inflection-end segment of shape `alpha` turning `theta_d` in a unit-based
+    /// triangle (interior angle φ at the inflection end, θ_d - φ at the other).
+    fn inflection_triangle(alpha: f64, theta_d: f64) -> [Point; 3] {
+        let phi = LacInflectionSegment::base_angle(alpha, theta_d).unwrap();
+        let t = phi.sin() / (theta_d - phi).sin();
+        let c1 = Point::new(1.0, 0.0);
+        [
+            Point::ORIGIN,
+            c1,
+            c1 + Vec2::new(theta_d.cos(), theta_d.sin()) * t,
+        ]
+    }
+
+    #[test]
+    fn inflection_fit_is_the_global_optimum() {
+        // Against an independent exhaustive search of the same family and objective: a
+        // 100 x 100 grid over (f0, ln w0) in (0, 1) x [-4, 4], then a fine pattern search
+        // (32 directions, monotone steps only, down to 1e-9) from its eight best monotone
+        // points. Shapes: alpha from -12 to -0.1 (log-uniform), turning 0.03 to 2.23 rad.
+        let opts = ApproxOptions::default();
+        let mut seed = 11u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut worst: f64 = 0.0;
+        for case in 0..40 {
+            let alpha = -(0.1f64.ln() + rnd() * (12.0f64.ln() - 0.1f64.ln())).exp();
+            let theta_d = 0.03 + rnd() * 2.2;
+            let seg = LacInflectionSegment::new(inflection_triangle(alpha, theta_d)).unwrap();
+            let table = InflectionTable::new(&seg, 256).unwrap();
+            let tr = Samples::gauss(opts.refine_samples);
+            let make = |x: (f64, f64)| inflection_cubic(&seg, x.0, x.1.exp());
+            let monotone = |x: (f64, f64)| {
+                make(x)
+                    .and_then(|c| c.is_curvature_monotone().ok())
+                    .unwrap_or(false)
+            };
+            let cost = |x: (f64, f64)| table.cost(make(x), &tr);
+            let n = 100;
+            let mut grid = Vec::new();
+            for i in 0..n {
+                for j in 0..n {
+                    let x = (
+                        (i as f64 + 0.5) / n as f64,
+                        -4.0 + 8.0 * (j as f64 + 0.5) / n as f64,
+                    );
+                    let c = cost(x);
+                    if c.is_finite() && monotone(x) {
+                        grid.push((c, x));
+                    }
+                }
+            }
+            grid.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let mut reference = f64::INFINITY;
+            for &(c0, x0) in grid.iter().take(8) {
+                let (mut c, mut x, mut h) = (c0, x0, 0.5 / n as f64);
+                while h > 1e-9 {
+                    let mut moved = false;
+                    for k in 0..32 {
+                        let a = k as f64 * std::f64::consts::PI / 16.0;
+                        let d = (a.cos(), a.sin());
+                        let y = (x.0 + d.0 * h, x.1 + 8.0 * d.1 * h);
+                        let cy = cost(y);
+                        if cy < c && monotone(y) {
+                            (c, x, moved) = (cy, y, true);
+                        }
+                    }
+                    if !moved {
+                        h *= 0.5;
+                    }
+                }
+                reference = reference.min(c);
+            }
+            let (fit, x) = fit_inflection_cubic_from(&seg, &opts, None, true).unwrap();
+            let got = cost(x);
+            assert!(fit.monotone);
+            let ratio = (got / reference).sqrt();
+            worst = worst.max(ratio);
+            assert!(
+                ratio <= 1.01,
+                "case {case}: alpha {alpha:.3}, theta_d {theta_d:.3}: rms {:.3e} vs exhaustive {:.3e}",
+                got.sqrt(),
+                reference.sqrt()
+            );
+        }
+        println!("worst rms ratio to the exhaustive optimum: {worst:.4}");
     }
 
     #[test]

@@ -95,7 +95,8 @@
 //! - [`roots`]: bracketed root finding (Illinois) shared by the solvers.
 //! - [`samples`]: reproducible random curve sets for benchmarks and tests.
 //! - [`sketch`]: pen input to a G2 curve of log-aesthetic pieces (as rational cubics).
-//! - [`solve`]: minimisers that report whether they converged (Nelder–Mead).
+//! - [`solve`]: minimisers: Nelder–Mead (reports whether it converged), Brent's method in
+//!   one variable, and a walk along the boundary of a feasible set.
 //!
 //! Points and vectors are [`kurbo::Point`] and [`kurbo::Vec2`]; angles are radians; signed
 //! curvature is positive where the curve turns counter-clockwise (kurbo's curvature has

@@ -482,78 +482,6 @@ pub fn wrap(a: f64) -> f64 {
     x
 }
 
-/// Brent's minimisation of `f` on [lo, hi] to `tol` (golden sections with parabolic
-/// steps; Brent 1973, "Algorithms for minimization without derivatives", ch. 5).
-fn golden(f: &mut dyn FnMut(f64) -> f64, lo: f64, hi: f64, tol: f64) -> (f64, f64) {
-    const CG: f64 = 0.381_966_011_250_105_1;
-    let (mut a, mut b) = (lo, hi);
-    let mut x = a + CG * (b - a);
-    let (mut w, mut v) = (x, x);
-    let mut fx = f(x);
-    let (mut fw, mut fv) = (fx, fx);
-    let (mut d, mut e): (f64, f64) = (0.0, 0.0);
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        let tol1 = tol * 0.5 + 1e-12 * x.abs();
-        let tol2 = 2.0 * tol1;
-        if (x - m).abs() <= tol2 - 0.5 * (b - a) {
-            break;
-        }
-        let mut golden_step = true;
-        if e.abs() > tol1 {
-            let r = (x - w) * (fx - fv);
-            let q0 = (x - v) * (fx - fw);
-            let mut p = (x - v) * q0 - (x - w) * r;
-            let mut q = 2.0 * (q0 - r);
-            if q > 0.0 {
-                p = -p;
-            }
-            q = q.abs();
-            if p.abs() < (0.5 * q * e).abs() && p > q * (a - x) && p < q * (b - x) {
-                e = d;
-                d = p / q;
-                let u = x + d;
-                if u - a < tol2 || b - u < tol2 {
-                    d = if x < m { tol1 } else { -tol1 };
-                }
-                golden_step = false;
-            }
-        }
-        if golden_step {
-            e = if x < m { b - x } else { a - x };
-            d = CG * e;
-        }
-        let u = if d.abs() >= tol1 {
-            x + d
-        } else if d > 0.0 {
-            x + tol1
-        } else {
-            x - tol1
-        };
-        let fu = f(u);
-        if fu <= fx {
-            if u < x {
-                b = x;
-            } else {
-                a = x;
-            }
-            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
-        } else {
-            if u < x {
-                a = u;
-            } else {
-                b = u;
-            }
-            if fu <= fw || w == x {
-                (v, fv, w, fw) = (w, fw, u, fu);
-            } else if fu <= fv || v == x || v == w {
-                (v, fv) = (u, fu);
-            }
-        }
-    }
-    (x, fx)
-}
-
 /// Global minimum of a function of an angle on the circle: a scan of `n` points, then
 /// golden-section refinement around the best to `tol`.
 fn circle_min(f: &mut dyn FnMut(f64) -> f64, n: usize, tol: f64) -> (f64, f64) {
@@ -566,7 +494,7 @@ fn circle_min(f: &mut dyn FnMut(f64) -> f64, n: usize, tol: f64) -> (f64, f64) {
             best = (x, v);
         }
     }
-    let (x, v) = golden(f, best.0 - h, best.0 + h, tol);
+    let (x, v) = crate::solve::brent(f, best.0 - h, best.0 + h, tol);
     if v < best.1 {
         (wrap(x), v)
     } else {
@@ -866,7 +794,7 @@ fn pseudo_elastic_unit(points: &[Point], closed: bool, mode: Mode) -> Result<Pse
             Some(a) => a,
             None => {
                 let tol = if mode == Mode::Exact { 1e-7 } else { 1e-9 };
-                golden(&mut w, guess - 0.6, guess + 0.6, tol).0
+                crate::solve::brent(&mut w, guess - 0.6, guess + 0.6, tol).0
             }
         };
         dir[i] = phi[i] + a;

@@ -616,6 +616,9 @@ fn polyline_deviation(points: &[Point], params: &[f64], polys: &[Vec<Point>]) ->
 /// An inflection-end piece's shape (α, θ_d) and the optimum (f0, ln w0) of its cubic.
 type InflectionStart = ((f64, f64), (f64, f64));
 
+/// Splits for missed points made one per round before they are made all at once.
+const BATCH_AFTER: usize = 4;
+
 /// The memo key of a piece: its kind, alpha and control points, bit for bit.
 fn memo_key(kind: u64, alpha: u64, c: &[Point; 3]) -> [u64; 8] {
     [
@@ -820,7 +823,7 @@ fn fair(
     // Joints where both sides are inflection ends have zero curvature on both sides; every
     // other joint (an inflection cut whose piece could not be an inflection piece too) is
     // faired.
-    let zero_both = |j: usize| {
+    let zero_both = |built: &[Built], j: usize| {
         matches!(
             built[j - 1].0,
             PieceCurve::Inflection {
@@ -835,7 +838,8 @@ fn fair(
             }
         )
     };
-    let active: Vec<usize> = (1..m).filter(|&j| !zero_both(j)).collect();
+    let active: Vec<usize> = (1..m).filter(|&j| !zero_both(&built, j)).collect();
+
     let (mut d, _) = mismatches(&built, &active);
     let initial = max_abs(&d);
     let mut report = FairingReport {
@@ -930,6 +934,12 @@ fn fair(
             break;
         }
     }
+    // The report covers every joint of the result: a step can turn a piece next to a joint
+    // left out (zero curvature on both sides) into an ordinary one, whose end curvature
+    // there is not zero.
+    let now: Vec<usize> = (1..m).filter(|&j| !zero_both(&built, j)).collect();
+    report.final_jump = max_abs(&mismatches(&built, &now).0);
+    report.converged = report.final_jump <= opts.g2_tolerance;
     Ok((built, report))
 }
 
@@ -1095,6 +1105,8 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         s.fitted = false;
     }
     let mut peak_splits = 0;
+    // Splits made because the curve missed the points.
+    let mut miss_splits = 0;
     // Optima of the inflection-end cubic fits so far, by shape (α, θ_d): warm starts for
     // the next rounds, whose pieces differ only a little.
     let mut inflection_starts: Vec<InflectionStart> = Vec::new();
@@ -1336,8 +1348,9 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             let dy = (r.y0 - q.y).max(q.y - r.y1).max(0.0);
             dx.hypot(dy)
         };
-        let (mut worst, mut worst_piece, mut sum) = (0.0f64, 0usize, 0.0);
-        let mut worst_u = 0.0;
+        let (mut worst, mut sum) = (0.0f64, 0.0);
+        // Each piece's largest deviation and its parameter.
+        let mut piece_worst = vec![(0.0f64, 0.0f64); pieces.len()];
         for (q, &u) in fit.points.iter().zip(&fit.params) {
             let home = pieces
                 .iter()
@@ -1355,18 +1368,33 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             }
             let (d, i) = best;
             sum += d * d;
-            if d > worst {
-                worst = d;
-                worst_piece = i;
-                worst_u = u;
+            worst = worst.max(d);
+            if d > piece_worst[i].0 {
+                piece_worst[i] = (d, u);
             }
         }
         let rms = (sum / fit.points.len() as f64).sqrt();
         if worst > opts.tolerance && slots.len() < opts.max_pieces {
-            // Split where the curve misses the points most (kept off the piece's ends); a
-            // piece with an inflection end at its mid-turn, so the inflection piece left
-            // keeps a proper triangle.
-            split_worst(&track, &mut slots, worst_piece, worst_u)?;
+            // Split the piece that misses a point most, where it misses most (kept off the
+            // piece's ends); a piece with an inflection end at its mid-turn, so the
+            // inflection piece left keeps a proper triangle. A line that has needed
+            // BATCH_AFTER such splits needs many pieces: from then on every piece that misses
+            // a point is split in the same round (the rounds, not the pieces, cost the time).
+            // Later pieces first, so the earlier indices stay valid; the worst pieces first
+            // within the piece budget.
+            let mut over: Vec<usize> = (0..pieces.len())
+                .filter(|&i| {
+                    piece_worst[i].0 == worst
+                        || (miss_splits >= BATCH_AFTER && piece_worst[i].0 > opts.tolerance)
+                })
+                .collect();
+            over.sort_by(|&a, &b| piece_worst[b].0.total_cmp(&piece_worst[a].0));
+            over.truncate(opts.max_pieces - slots.len());
+            over.sort_unstable_by(|a, b| b.cmp(a));
+            for i in over {
+                split_worst(&track, &mut slots, i, piece_worst[i].1)?;
+                miss_splits += 1;
+            }
             continue;
         }
         if worst > opts.tolerance {

@@ -1,5 +1,8 @@
 //! Derivative-free minimisation with a report: the solver layer's first member.
 //!
+//! [`brent`] minimises a function of one variable on an interval; [`along_boundary`]
+//! follows the boundary of a feasible set in two variables when the minimum lies on it.
+//!
 //! [`nelder_mead`] minimises a function of a few variables (the simplex method of Nelder and
 //! Mead with the standard coefficients: reflection 1, expansion 2, contraction 1/2, shrink
 //! 1/2). It stops when the simplex's spread of values is below `f_tol` (absolute) and its
@@ -126,6 +129,206 @@ pub fn nelder_mead(
     }
 }
 
+/// Brent's minimisation of `f` on [lo, hi] to `tol` (golden sections with parabolic
+/// steps; Brent 1973, "Algorithms for minimization without derivatives", ch. 5). Returns
+/// the minimiser and its value: a local minimum, the global one for a unimodal `f`.
+pub fn brent(f: &mut dyn FnMut(f64) -> f64, lo: f64, hi: f64, tol: f64) -> (f64, f64) {
+    const CG: f64 = 0.381_966_011_250_105_1;
+    let (mut a, mut b) = (lo, hi);
+    let mut x = a + CG * (b - a);
+    let (mut w, mut v) = (x, x);
+    let mut fx = f(x);
+    let (mut fw, mut fv) = (fx, fx);
+    let (mut d, mut e): (f64, f64) = (0.0, 0.0);
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        let tol1 = tol * 0.5 + 1e-12 * x.abs();
+        let tol2 = 2.0 * tol1;
+        if (x - m).abs() <= tol2 - 0.5 * (b - a) {
+            break;
+        }
+        let mut golden_step = true;
+        if e.abs() > tol1 {
+            let r = (x - w) * (fx - fv);
+            let q0 = (x - v) * (fx - fw);
+            let mut p = (x - v) * q0 - (x - w) * r;
+            let mut q = 2.0 * (q0 - r);
+            if q > 0.0 {
+                p = -p;
+            }
+            q = q.abs();
+            if p.abs() < (0.5 * q * e).abs() && p > q * (a - x) && p < q * (b - x) {
+                e = d;
+                d = p / q;
+                let u = x + d;
+                if u - a < tol2 || b - u < tol2 {
+                    d = if x < m { tol1 } else { -tol1 };
+                }
+                golden_step = false;
+            }
+        }
+        if golden_step {
+            e = if x < m { b - x } else { a - x };
+            d = CG * e;
+        }
+        let u = if d.abs() >= tol1 {
+            x + d
+        } else if d > 0.0 {
+            x + tol1
+        } else {
+            x - tol1
+        };
+        let fu = f(u);
+        if fu <= fx {
+            if u < x {
+                b = x;
+            } else {
+                a = x;
+            }
+            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
+        } else {
+            if u < x {
+                a = u;
+            } else {
+                b = u;
+            }
+            if fu <= fw || w == x {
+                (v, fv, w, fw) = (w, fw, u, fu);
+            } else if fu <= fv || v == x || v == w {
+                (v, fv) = (u, fu);
+            }
+        }
+    }
+    (x, fx)
+}
+
+/// Minimise a smooth `cost` of two variables over the set where `feasible` holds, from a
+/// point `x` on that set's boundary where the cost keeps falling outwards: the constrained
+/// minimum then lies on the boundary, which pattern searches with fixed directions cannot
+/// follow once it runs between their directions.
+///
+/// The boundary is walked as a curve: `u` is the cost's descent direction at `x` (central
+/// differences, step 1e-7 in the coordinates scaled by `scale`), the boundary near the line
+/// `x + s t` (t perpendicular to u) is found by bisection along u, and Brent's method
+/// minimises the cost of that boundary point over `s`, in a bracket grown until the cost
+/// rises. Up to `rounds` walks, each from the last one's end (a curved boundary). Returns
+/// None when the constraint is not active at `x` (a feasible step downhill exists) or no
+/// walk improves; else the feasible point, its cost and the evaluations of `cost`.
+pub fn along_boundary(
+    cost: &dyn Fn((f64, f64)) -> f64,
+    feasible: &dyn Fn((f64, f64)) -> bool,
+    x: (f64, f64),
+    scale: (f64, f64),
+    rounds: usize,
+) -> Option<((f64, f64), f64, usize)> {
+    let at =
+        |z: (f64, f64), d: (f64, f64), s: f64| (z.0 + s * d.0 * scale.0, z.1 + s * d.1 * scale.1);
+    let mut evals = 0usize;
+    let mut best = (x, cost(x));
+    evals += 1;
+    let mut improved = false;
+    for _ in 0..rounds {
+        let x = best.0;
+        let h = 1e-7;
+        let g0 = cost(at(x, (1.0, 0.0), h)) - cost(at(x, (1.0, 0.0), -h));
+        let g1 = cost(at(x, (0.0, 1.0), h)) - cost(at(x, (0.0, 1.0), -h));
+        evals += 4;
+        let norm = g0.hypot(g1);
+        if !(norm > 0.0 && norm.is_finite()) {
+            break;
+        }
+        let u = (-g0 / norm, -g1 / norm);
+        let t = (-u.1, u.0);
+        // Active: a short step downhill leaves the set.
+        let probe = at(x, u, 1e-6);
+        if feasible(probe) {
+            let c = cost(probe);
+            evals += 1;
+            if c < best.1 {
+                return improved.then_some((best.0, best.1, evals));
+            }
+        }
+        // The boundary point near x + s t: bisection along u between a feasible and an
+        // infeasible point, within ±(2|s| + 1e-4) of the line; the feasible end is kept.
+        let boundary = |s: f64| -> Option<(f64, f64)> {
+            let p = at(x, t, s);
+            let reach = 2.0 * s.abs() + 1e-4;
+            let (mut lo, mut hi) = (-reach, reach);
+            if !feasible(at(p, u, lo)) || feasible(at(p, u, hi)) {
+                return None;
+            }
+            for _ in 0..40 {
+                let mid = 0.5 * (lo + hi);
+                if feasible(at(p, u, mid)) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+                if hi - lo < 1e-10 * reach {
+                    break;
+                }
+            }
+            Some(at(p, u, lo))
+        };
+        let mut count = 0usize;
+        let mut phi = |s: f64| -> f64 {
+            count += 1;
+            boundary(s).map_or(f64::INFINITY, |z| {
+                let c = cost(z);
+                if c.is_nan() {
+                    f64::INFINITY
+                } else {
+                    c
+                }
+            })
+        };
+        // Bracket: the falling side, steps doubling from 1e-4 until the cost rises.
+        let f0 = phi(0.0);
+        let mut side = 0.0;
+        let mut step = 1e-4;
+        let mut prev = f0;
+        for dir in [1.0, -1.0] {
+            let v = phi(dir * step);
+            if v < f0 {
+                (side, prev) = (dir, v);
+                break;
+            }
+        }
+        if side == 0.0 {
+            evals += count;
+            break;
+        }
+        let mut far = step;
+        loop {
+            let next = 2.0 * far;
+            let v = phi(side * next);
+            if v.is_nan() || v >= prev || next > 1.0 {
+                far = next;
+                break;
+            }
+            prev = v;
+            step = far;
+            far = next;
+        }
+        let (lo, hi) = if side > 0.0 {
+            (0.5 * step, far)
+        } else {
+            (-far, -0.5 * step)
+        };
+        let (s, _) = brent(&mut phi, lo, hi, 1e-9);
+        evals += count;
+        let Some(z) = boundary(s) else { break };
+        let c = cost(z);
+        evals += 1;
+        if c.is_nan() || c >= best.1 * (1.0 - 1e-9) {
+            break;
+        }
+        best = (z, c);
+        improved = true;
+    }
+    improved.then_some((best.0, best.1, evals))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -150,6 +353,34 @@ mod tests {
             },
         );
         assert!(!m.converged && m.evaluations >= 20);
+    }
+
+    #[test]
+    fn brent_finds_the_minimum_of_a_unimodal_function() {
+        // cos on [2, 5]: minimum at π; x^4 at 0 (no parabola fits exactly there).
+        let (x, v) = brent(&mut |x: f64| x.cos(), 2.0, 5.0, 1e-10);
+        assert!((x - std::f64::consts::PI).abs() < 1e-8 && (v + 1.0).abs() < 1e-15);
+        let (x, _) = brent(&mut |x: f64| x.powi(4), -1.0, 2.0, 1e-10);
+        assert!(x.abs() < 1e-3, "{x}");
+    }
+
+    #[test]
+    fn along_boundary_follows_a_tilted_edge() {
+        // Minimise (x - 3)² + (y - 3)² over the half-plane x + 2y <= 1 (closed form: the
+        // foot of the perpendicular from (3, 3), (1.4, -0.2)), starting from a boundary point
+        // where a compass search with axis and diagonal steps is stuck.
+        let cost = |p: (f64, f64)| (p.0 - 3.0).powi(2) + (p.1 - 3.0).powi(2);
+        let feasible = |p: (f64, f64)| p.0 + 2.0 * p.1 <= 1.0;
+        let start = (-1.0, 1.0);
+        let (p, c, _) = along_boundary(&cost, &feasible, start, (1.0, 1.0), 12).unwrap();
+        assert!(feasible(p));
+        // The walk stops on the cost (relative progress below 1e-9), where the position is
+        // known to about the square root of that.
+        assert!((p.0 - 1.4).abs() < 1e-4 && (p.1 + 0.2).abs() < 1e-4, "{p:?}");
+        assert!((c - 12.8).abs() < 1e-8 * 12.8, "{c}");
+        // Not active (the minimum is inside): nothing to walk.
+        let inside = |p: (f64, f64)| p.0 + 2.0 * p.1 <= 100.0;
+        assert!(along_boundary(&cost, &inside, (3.0, 3.0), (1.0, 1.0), 4).is_none());
     }
 
     #[test]

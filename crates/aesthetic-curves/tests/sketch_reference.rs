@@ -414,9 +414,12 @@ fn jittery_strokes_at_the_default_tolerance() {
 
 /// The probe's strokes (`tests/data/sketch-slow-*.json`: random-walk turning, unit steps,
 /// tight tolerances) that took 28 to 39 s, then failed outright once the fair smoothing
-/// spline came in: both fit, within their tolerance, in seconds.
+/// spline came in: both fit, within their tolerance, in well under a second (release build;
+/// `cargo bench --bench sketch -- probe`); the bound here leaves room for the test profile
+/// and a busy machine. The fairing's report agrees with the delivered curve: the 181-point
+/// stroke is not G2 (an ordinary piece next to an inflection end), and says so.
 #[test]
-fn probe_strokes_fit_in_seconds() {
+fn probe_strokes_fit_in_well_under_a_second() {
     for (name, text) in [
         ("52 points", include_str!("data/sketch-slow-52-points.json")),
         (
@@ -424,23 +427,14 @@ fn probe_strokes_fit_in_seconds() {
             include_str!("data/sketch-slow-181-points.json"),
         ),
     ] {
-        // {"op": ..., "points": [[x, y], ...], "tolerance": t, ...}: read without a JSON crate.
-        let after = |key: &str| &text[text.find(key).unwrap() + key.len()..];
-        let pts_text = after("\"points\":");
-        let pts_text = &pts_text[..pts_text.find("]]").unwrap() + 2];
-        let nums: Vec<f64> = pts_text
-            .split(|c: char| c == '[' || c == ']' || c == ',' || c.is_whitespace())
-            .filter(|s| !s.is_empty())
-            .map(|s| s.parse().unwrap())
-            .collect();
-        let pts: Vec<Point> = nums.chunks(2).map(|c| p(c[0], c[1])).collect();
-        let tol: f64 = after("\"tolerance\":")
-            .split([',', '}'])
-            .next()
+        let v: serde_json::Value = serde_json::from_str(text).unwrap();
+        let pts: Vec<Point> = v["points"]
+            .as_array()
             .unwrap()
-            .trim()
-            .parse()
-            .unwrap();
+            .iter()
+            .map(|q| p(q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+            .collect();
+        let tol = v["tolerance"].as_f64().unwrap();
         let t = std::time::Instant::now();
         let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
         let secs = t.elapsed().as_secs_f64();
@@ -456,7 +450,8 @@ fn probe_strokes_fit_in_seconds() {
         assert_eq!(pts.len(), if name == "52 points" { 52 } else { 181 });
         assert!(worst <= tol * (1.0 + 1e-6), "{name}: {worst} > {tol}");
         assert!(sk.all_monotone, "{name}");
-        assert!(secs < 20.0, "{name}: {secs} s");
+        assert_eq!(sk.fairing.converged, sk.g2, "{name}: {:?}", sk.fairing);
+        assert!(secs < 2.0, "{name}: {secs} s");
     }
 }
 
