@@ -604,6 +604,118 @@ pub fn curvature_variation_rational(curve: &RationalBezier) -> CurvatureVariatio
     }
 }
 
+/// Product of two Bernstein polynomials given by their coefficients, into `out` (length
+/// `a.len() + b.len() - 1`): `(ab)_k = Σ C(m,i) C(n,j) / C(m+n,k) a_i b_j`.
+fn bernstein_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
+    let (m, n) = (a.len() - 1, b.len() - 1);
+    out[..=m + n].fill(0.0);
+    for (i, ai) in a.iter().enumerate() {
+        let ci = binomial(m, i) * ai;
+        for (j, bj) in b.iter().enumerate() {
+            out[i + j] += ci * binomial(n, j) * bj;
+        }
+    }
+    for (k, v) in out[..=m + n].iter_mut().enumerate() {
+        *v /= binomial(m + n, k);
+    }
+}
+
+/// Derivative of a Bernstein polynomial (degree n, n >= 1) into `out` (degree n - 1).
+fn bernstein_deriv(a: &[f64], out: &mut [f64]) {
+    let n = a.len() - 1;
+    for i in 0..n {
+        out[i] = n as f64 * (a[i + 1] - a[i]);
+    }
+}
+
+/// The fast verdict for a rational cubic: K (degree 13 before its exact reduction) from
+/// stack arrays, values only. All coefficients of one strict sign settle the curve as
+/// monotone whatever the rounding bounds (they only decide what counts as zero: see
+/// `poly_is_monotone_cap`); the regularity check still runs. `None`: the full test decides.
+fn rational_cubic_fast(curve: &RationalBezier) -> Option<Result<bool>> {
+    let b = curve.points();
+    let w = curve.weights();
+    // D1 = 3 Σ_{i,j<=2} B_i^2 B_j^2 w_i w_{j+1} (b_{j+1} - b_i), degree 4.
+    let (mut dx, mut dy) = ([0.0f64; 5], [0.0f64; 5]);
+    for i in 0..3 {
+        for j in 0..3 {
+            let c = binomial(2, i) * binomial(2, j) * w[i] * w[j + 1];
+            let d = b[j + 1] - b[i];
+            dx[i + j] += c * d.x;
+            dy[i + j] += c * d.y;
+        }
+    }
+    for l in 0..5 {
+        let s = 3.0 / binomial(4, l);
+        dx[l] *= s;
+        dy[l] *= s;
+    }
+    // G = 18 Σ_{i,j,k<=1} B_i^1 B_j^1 B_k^1 w_i w_{j+1} w_{k+2} det(b_{j+1} - b_i, b_{k+2} - b_i).
+    let mut g = [0.0f64; 4];
+    for i in 0..2 {
+        for j in 0..2 {
+            for k in 0..2 {
+                let c = w[i] * w[j + 1] * w[k + 2];
+                let (u, v) = (b[j + 1] - b[i], b[k + 2] - b[i]);
+                g[i + j + k] += c * u.cross(v);
+            }
+        }
+    }
+    for (l, v) in g.iter_mut().enumerate() {
+        *v *= 18.0 / binomial(3, l);
+    }
+    let (mut wd, mut gd) = ([0.0f64; 3], [0.0f64; 3]);
+    bernstein_deriv(w, &mut wd);
+    bernstein_deriv(&g, &mut gd);
+    // E = 3 W' G + W G' (degree 5), S = |D1|² (8), Q = D1 . D1' (7).
+    let (mut e, mut t5) = ([0.0f64; 6], [0.0f64; 6]);
+    bernstein_mul(&wd, &g, &mut e);
+    bernstein_mul(w, &gd, &mut t5);
+    for (a, b) in e.iter_mut().zip(&t5) {
+        *a = 3.0 * *a + b;
+    }
+    let (mut speed2, mut t9) = ([0.0f64; 9], [0.0f64; 9]);
+    bernstein_mul(&dx, &dx, &mut speed2);
+    bernstein_mul(&dy, &dy, &mut t9);
+    for (a, b) in speed2.iter_mut().zip(&t9) {
+        *a += b;
+    }
+    let (mut dxd, mut dyd) = ([0.0f64; 4], [0.0f64; 4]);
+    bernstein_deriv(&dx, &mut dxd);
+    bernstein_deriv(&dy, &mut dyd);
+    let (mut q, mut t8) = ([0.0f64; 8], [0.0f64; 8]);
+    bernstein_mul(&dx, &dxd, &mut q);
+    bernstein_mul(&dy, &dyd, &mut t8);
+    for (a, b) in q.iter_mut().zip(&t8) {
+        *a += b;
+    }
+    let mut wg = [0.0f64; 7];
+    bernstein_mul(w, &g, &mut wg);
+    // K = E S - 3 W G Q (degree 13).
+    let (mut k, mut t14) = ([0.0f64; 14], [0.0f64; 14]);
+    bernstein_mul(&e, &speed2, &mut k);
+    bernstein_mul(&wg, &q, &mut t14);
+    for (a, b) in k.iter_mut().zip(&t14) {
+        *a -= 3.0 * b;
+    }
+    if !(k.iter().all(|v| *v > 0.0) || k.iter().all(|v| *v < 0.0)) {
+        // K(0) and K(1) (the end coefficients) of strictly opposite signs, each far above
+        // its rounding (1e-8 of the terms it is made of; the full test's bound is about
+        // 1e-13 of them): a sign change, not monotone.
+        let size0 = (e[0] * speed2[0]).abs() + 3.0 * (wg[0] * q[0]).abs();
+        let size1 = (e[5] * speed2[8]).abs() + 3.0 * (wg[6] * q[7]).abs();
+        if k[0] * k[13] < 0.0 && k[0].abs() > 1e-8 * size0 && k[13].abs() > 1e-8 * size1 {
+            let hodograph: [Vec2; 5] = std::array::from_fn(|i| Vec2::new(dx[i], dy[i]));
+            let scale = hodograph.iter().map(|h| h.hypot2()).fold(0.0, f64::max);
+            return Some(check_regular(&hodograph, scale).map(|()| false));
+        }
+        return None;
+    }
+    let hodograph: [Vec2; 5] = std::array::from_fn(|i| Vec2::new(dx[i], dy[i]));
+    let scale = hodograph.iter().map(|h| h.hypot2()).fold(0.0, f64::max);
+    Some(check_regular(&hodograph, scale).map(|()| true))
+}
+
 fn abs_diff(p: Point, q: Point) -> (f64, f64) {
     (p.x.abs() + q.x.abs(), p.y.abs() + q.y.abs())
 }
@@ -815,6 +927,16 @@ impl CurvatureMonotone for RationalBezier {
     fn curvature_variation(&self) -> CurvatureVariation {
         curvature_variation_rational(self)
     }
+    fn is_curvature_monotone(&self) -> Result<bool> {
+        if self.degree() == 3 {
+            if let Some(verdict) = rational_cubic_fast(self) {
+                return verdict;
+            }
+        }
+        let cv = self.curvature_variation();
+        cv.check_regular()?;
+        Ok(cv.verdict(false).monotone)
+    }
 }
 
 /// Curvature of a polynomial curve from its precomputed first and second hodographs: what
@@ -911,6 +1033,59 @@ mod tests {
 
     fn bez(v: &[(f64, f64)]) -> Bezier {
         Bezier::new(v.iter().map(|&(x, y)| Point::new(x, y)).collect()).unwrap()
+    }
+
+    #[test]
+    fn rational_cubic_fast_path_agrees_with_the_full_test() {
+        // Random rational cubics (weights 0.1 to 10) and ones near the monotone boundary
+        // (the LAC family, where the optimiser probes): the fast verdict, when it gives
+        // one, is the full test's.
+        let mut curves = crate::samples::random_rational_curves(3, 20000, 77);
+        let seg = crate::lac::LacSegment::new(
+            -1.0,
+            [
+                Point::new(0.0, 0.0),
+                Point::new(10.0, 0.0),
+                Point::new(16.0, 9.0),
+            ],
+        )
+        .unwrap();
+        for i in 1..100 {
+            for j in 1..100 {
+                if let Ok(c) = crate::approx::construct(&seg, i as f64 / 100.0, j as f64 / 100.0) {
+                    curves.push(c);
+                }
+            }
+        }
+        let mut fast = 0;
+        for c in &curves {
+            let full = {
+                let cv = c.curvature_variation();
+                cv.check_regular().map(|()| cv.verdict(false).monotone)
+            };
+            if let Some(v) = rational_cubic_fast(c) {
+                fast += 1;
+                match (v, &full) {
+                    (Ok(a), Ok(b)) => assert_eq!(a, *b, "{c:?}"),
+                    (Err(_), Err(_)) => {}
+                    (a, b) => panic!("{c:?}: fast {a:?}, full {b:?}"),
+                }
+            }
+            assert_eq!(
+                c.is_curvature_monotone().ok(),
+                full.as_ref().ok().copied(),
+                "{c:?}"
+            );
+        }
+        let monotone = curves
+            .iter()
+            .filter(|c| c.is_curvature_monotone().unwrap_or(false))
+            .count();
+        println!(
+            "fast verdicts: {fast} of {} ({monotone} monotone)",
+            curves.len()
+        );
+        assert!(fast > curves.len() / 2, "{fast} of {}", curves.len());
     }
 
     #[test]
