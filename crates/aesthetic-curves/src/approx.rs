@@ -21,16 +21,21 @@
 //!    costs a few nanoseconds per sample;
 //! 2. a grid over (0, 1)² finds every basin the grid resolves; its local minima (up to
 //!    [`ApproxOptions::starts`]) start Levenberg–Marquardt on the residual vector;
-//! 3. the candidates are ranked by error and checked by the exact monotonicity test
+//! 3. near-exact fits have narrow valleys, sometimes two side by side a few hundredths
+//!    apart: the profile across the best valley (every 5e-4 over ±0.06, in the direction
+//!    where the error rises fastest) is scanned and its other dips refined too;
+//! 4. the candidates are ranked by error and checked by the exact monotonicity test
 //!    ([`crate::monotone`]); when the unconstrained minima are not curvature-monotone, the
 //!    search restarts from the best monotone grid points with steps into the non-monotone
 //!    region refused;
-//! 4. the winner's error is measured on the exact LAC (no table), and it is returned only if
+//! 5. the winner's error is measured on the exact LAC (no table), and it is returned only if
 //!    the exact test proves its curvature monotone; otherwise [`Error::NoSegment`].
 //!
 //! The result is the global optimum of the family up to the grid's resolution of basins,
 //! so it moves continuously with the input except where the global optimum itself jumps
-//! to another basin.
+//! to another basin. Measured against an independent exhaustive search on 1000 random
+//! segments (`tests/approx_sweep.rs`): within 1 % on 978; the other 22 are near-exact fits
+//! whose optimum lies in a narrow valley farther than the scan reaches.
 
 use crate::bezier::PlanarCurve;
 use crate::bezier::RationalBezier;
@@ -629,6 +634,64 @@ fn levenberg_marquardt(
     ((f0, f1), cost, evals)
 }
 
+/// Dips of the error across a valley through `x`: the direction in which the error rises
+/// fastest (the Gauss–Newton matrix's principal eigenvector) is sampled every 5e-4 over
+/// ±0.06, and the local minima of that profile away from `x` are returned (at most four,
+/// lowest first).
+fn across_valley(
+    prob: &Problem,
+    x: (f64, f64),
+    ts: &Samples,
+    buf: &mut Vec<f64>,
+    evals: &mut usize,
+) -> Vec<(f64, f64)> {
+    let mut r0 = Vec::new();
+    if prob.residuals(x.0, x.1, ts, &mut r0).is_none() {
+        return Vec::new();
+    }
+    let h = 1e-7;
+    let mut ja = Vec::new();
+    let mut jb = Vec::new();
+    let sa = if x.0 + h < 1.0 { h } else { -h };
+    let sb = if x.1 + h < 1.0 { h } else { -h };
+    if prob.residuals(x.0 + sa, x.1, ts, &mut ja).is_none()
+        || prob.residuals(x.0, x.1 + sb, ts, &mut jb).is_none()
+    {
+        return Vec::new();
+    }
+    *evals += 3;
+    let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+    for k in 0..r0.len() {
+        let (u, v) = ((ja[k] - r0[k]) / sa, (jb[k] - r0[k]) / sb);
+        a += u * u;
+        b += u * v;
+        c += v * v;
+    }
+    // Principal eigenvector of [[a, b], [b, c]].
+    let theta = 0.5 * (2.0 * b).atan2(a - c);
+    let dir = (theta.cos(), theta.sin());
+    let m = 120;
+    let step = 5e-4;
+    let profile: Vec<(f64, (f64, f64))> = (-m..=m)
+        .map(|i| {
+            let s = i as f64 * step;
+            let p = (x.0 + s * dir.0, x.1 + s * dir.1);
+            (prob.cost(p.0, p.1, ts, buf), p)
+        })
+        .collect();
+    *evals += profile.len();
+    let mut dips: Vec<(f64, (f64, f64))> = (1..profile.len() - 1)
+        .filter(|&i| {
+            let (l, v, r) = (profile[i - 1].0, profile[i].0, profile[i + 1].0);
+            v.is_finite() && v < l && v <= r && (i as i64 - m as i64).abs() > 4
+        })
+        .map(|i| profile[i])
+        .collect();
+    dips.sort_by(|p, q| p.0.total_cmp(&q.0));
+    dips.truncate(4);
+    dips.into_iter().map(|d| d.1).collect()
+}
+
 /// The best curvature-monotone rational cubic of the §4 family for `seg` (see the module
 /// documentation). Errors: [`Error::NoSegment`] when no candidate is curvature-monotone.
 pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<RationalCubicFit> {
@@ -748,6 +811,21 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
         candidates.push((x, c));
     }
     candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
+    // A near-exact fit's valley can have a narrow twin running beside it, a few hundredths
+    // away, too narrow for the grid: scan across the best valley (along the direction in
+    // which the error rises fastest) and refine from every other dip of that profile.
+    if let Some(&(x, c)) = candidates.first() {
+        if c.is_finite() {
+            let scan = Samples::gauss(6);
+            let twins = across_valley(&prob, x, &scan, &mut buf, &mut evals);
+            for start in twins {
+                let (y, cy, e) = refine(&prob, start, &tr, opts.max_iter, &|_, _| true, 100.0 * c);
+                evals += e;
+                candidates.push((y, cy));
+            }
+            candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
+        }
+    }
     let mut best: Option<((f64, f64), f64)> = None;
     for &(x, c) in &candidates {
         if c.is_finite() && prob.is_monotone(x.0, x.1) {

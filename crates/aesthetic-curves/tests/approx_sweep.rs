@@ -386,12 +386,13 @@ fn within_one_percent_of_the_exhaustive_optimum_on_1000_segments() {
         println!("  {f}");
     }
     // Not there yet (issue 17): the optimiser misses the global optimum on KNOWN_MISSES of
-    // the 1000 segments, by up to 48 times in rms. All are near-exact fits (rms 1e-10 to
-    // 1e-5 of the length) whose optimum lies in a second valley of the error surface, narrow
-    // (about 1e-3 wide) and parallel to the one found, 0.01 to 0.03 away: the 12 x 12 grid
-    // does not see it (a 24 x 24 grid still misses 31 and doubles the time). Reported, not
-    // hidden; the bound stops a regression and is lowered as the optimiser improves.
-    const KNOWN_MISSES: usize = 59;
+    // the 1000 segments (59 before the scan across the valley), by up to 2.5 times in rms.
+    // All are near-exact fits (rms 1e-10 to 1e-5 of the length) whose optimum lies in a
+    // second valley of the error surface, narrow and close to the one found; the scan
+    // across the best valley (±0.06) finds the nearer twins, not the farther ones (±0.15
+    // finds 6 more at 30 % more time). Reported, not hidden; the bound stops a regression
+    // and is lowered as the optimiser improves.
+    const KNOWN_MISSES: usize = 22;
     assert!(
         failures.len() <= KNOWN_MISSES,
         "{} of {} cases (known: {KNOWN_MISSES})",
