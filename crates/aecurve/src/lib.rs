@@ -3,6 +3,7 @@
 
 pub mod batch;
 pub mod bench;
+pub mod bench_targets;
 pub mod editor;
 pub mod export;
 pub mod plot;

@@ -307,6 +307,28 @@ enum BenchCmd {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+    /// The LAC segment solve (typical and near theta_lim) and the 1000-sample polyline,
+    /// against their targets.
+    Lac(TargetArgs),
+    /// The rational cubic fits and the rational monotone test, against their targets.
+    Approx(TargetArgs),
+    /// The pseudo-elastic spline in table mode on the point sets, against a tenth of
+    /// libspiro's times (the ratio itself: `cargo bench --features spiro-bench --bench
+    /// spiro_compare` in crates/aesthetic-curves, with libspiro installed).
+    Spline(TargetArgs),
+}
+
+#[derive(clap::Args)]
+struct TargetArgs {
+    /// Timing rounds (interleaved; the median is reported; 1 to 101).
+    #[arg(long, default_value_t = 7, value_parser = count::<1, 101>)]
+    rounds: usize,
+    /// Minimum milliseconds per round and work (1 to 60,000).
+    #[arg(long, default_value_t = 40, value_parser = millis)]
+    round_ms: u64,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq)]
@@ -362,6 +384,20 @@ fn output_paths(cli: &Cli) -> Vec<&std::path::Path> {
         _ => {}
     }
     out
+}
+
+/// `aecurve bench lac | approx | spline`: the table, or JSON.
+fn bench_targets(group: aecurve::bench_targets::Group, args: &TargetArgs) {
+    let rows =
+        aecurve::bench_targets::run(group, args.rounds, Duration::from_millis(args.round_ms));
+    if args.json {
+        println!(
+            "{}",
+            serde_json::json!({ "group": group.name(), "results": rows })
+        );
+    } else {
+        print!("{}", aecurve::bench_targets::table(&rows));
+    }
 }
 
 fn run() -> Result<()> {
@@ -446,6 +482,15 @@ fn run() -> Result<()> {
                 eprintln!("wrote {}", path.display());
             }
         }
+        Cmd::Bench {
+            what: BenchCmd::Lac(args),
+        } => bench_targets(aecurve::bench_targets::Group::Lac, &args),
+        Cmd::Bench {
+            what: BenchCmd::Approx(args),
+        } => bench_targets(aecurve::bench_targets::Group::Approx, &args),
+        Cmd::Bench {
+            what: BenchCmd::Spline(args),
+        } => bench_targets(aecurve::bench_targets::Group::Spline, &args),
         Cmd::Demo { out, quick } => demo(&out, quick)?,
         Cmd::Editor {
             port,

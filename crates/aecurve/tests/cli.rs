@@ -108,6 +108,39 @@ fn bench_json_has_the_promised_shape() {
 }
 
 #[test]
+fn bench_targets_report_every_hot_path() {
+    for (group, least) in [("lac", 8), ("approx", 6), ("spline", 4)] {
+        let v = json_output(aecurve().args([
+            "bench",
+            group,
+            "--rounds",
+            "1",
+            "--round-ms",
+            "1",
+            "--json",
+        ]));
+        assert_eq!(v["group"], group);
+        let rows = v["results"].as_array().unwrap();
+        assert!(rows.len() >= least, "{group}: {rows:?}");
+        for r in rows {
+            let ns = r["ns"].as_f64().unwrap();
+            assert!(ns > 0.0 && ns.is_finite(), "{r}");
+            assert!(r["work"].as_str().is_some_and(|w| !w.is_empty()));
+            match r["target_ns"].as_f64() {
+                Some(t) => assert_eq!(r["meets_target"].as_bool(), Some(ns <= t)),
+                None => assert!(r["meets_target"].is_null()),
+            }
+        }
+    }
+    // Sizes are capped with a message.
+    let out = aecurve()
+        .args(["bench", "lac", "--rounds", "0"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+}
+
+#[test]
 fn lac_command_summarises_and_refuses_outside_the_region() {
     let v = json_output(aecurve().args([
         "lac",
