@@ -838,8 +838,9 @@ fn fair(
             }
         )
     };
-    let active: Vec<usize> = (1..m).filter(|&j| !zero_both(&built, j)).collect();
-
+    let faired =
+        |built: &[Built]| -> Vec<usize> { (1..m).filter(|&j| !zero_both(built, j)).collect() };
+    let active = faired(&built);
     let (mut d, _) = mismatches(&built, &active);
     let initial = max_abs(&d);
     let mut report = FairingReport {
@@ -937,8 +938,7 @@ fn fair(
     // The report covers every joint of the result: a step can turn a piece next to a joint
     // left out (zero curvature on both sides) into an ordinary one, whose end curvature
     // there is not zero.
-    let now: Vec<usize> = (1..m).filter(|&j| !zero_both(&built, j)).collect();
-    report.final_jump = max_abs(&mismatches(&built, &now).0);
+    report.final_jump = max_abs(&mismatches(&built, &faired(&built)).0);
     report.converged = report.final_jump <= opts.g2_tolerance;
     Ok((built, report))
 }

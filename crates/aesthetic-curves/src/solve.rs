@@ -376,7 +376,10 @@ mod tests {
         assert!(feasible(p));
         // The walk stops on the cost (relative progress below 1e-9), where the position is
         // known to about the square root of that.
-        assert!((p.0 - 1.4).abs() < 1e-4 && (p.1 + 0.2).abs() < 1e-4, "{p:?}");
+        assert!(
+            (p.0 - 1.4).abs() < 1e-4 && (p.1 + 0.2).abs() < 1e-4,
+            "{p:?}"
+        );
         assert!((c - 12.8).abs() < 1e-8 * 12.8, "{c}");
         // Not active (the minimum is inside): nothing to walk.
         let inside = |p: (f64, f64)| p.0 + 2.0 * p.1 <= 100.0;

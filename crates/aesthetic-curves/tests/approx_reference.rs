@@ -5,23 +5,11 @@ use aesthetic_curves::approx::{approximation_error, construct, fit_rational_cubi
 use aesthetic_curves::lac::LacSegment;
 use aesthetic_curves::monotone::CurvatureMonotone;
 use aesthetic_curves::samples::SplitMix64;
-use aesthetic_curves::{PlanarCurve, Point, Vec2};
+use aesthetic_curves::PlanarCurve;
 
-/// Triangle with turning angle `td` and base angle `phi` at the start (start (0,0), tangent
-/// intersection (1,0)), scaled and rotated.
-fn triangle(td: f64, phi: f64, scale: f64, rot: f64) -> [Point; 3] {
-    let other = td - phi;
-    let d = phi.sin() / other.sin();
-    let end = Vec2::new(1.0 + d * td.cos(), d * td.sin());
-    let r = Vec2::from_angle(rot);
-    let m = |v: Vec2| {
-        Point::new(
-            scale * (v.x * r.x - v.y * r.y),
-            scale * (v.x * r.y + v.y * r.x),
-        )
-    };
-    [m(Vec2::ZERO), m(Vec2::new(1.0, 0.0)), m(end)]
-}
+#[path = "common/approx_cases.rs"]
+mod approx_cases;
+use approx_cases::{read_optima, triangle};
 
 /// The best rms of the family over a grid (exact error, 201 samples, exact monotone test),
 /// refined by a shrinking pattern search around the best monotone cell.
@@ -97,15 +85,7 @@ const EXHAUSTIVE: &str = concat!(
 /// The committed rows: the case and its exhaustive optimum (rms, f0, f1; rms `inf` when no
 /// monotone cubic exists).
 fn committed() -> Vec<([f64; 5], (f64, f64, f64))> {
-    std::fs::read_to_string(EXHAUSTIVE)
-        .expect("tests/data/approx_exhaustive.csv")
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.starts_with("alpha"))
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|x| x.trim().parse().unwrap()).collect();
-            ([v[0], v[1], v[2], v[3], v[4]], (v[5], v[6], v[7]))
-        })
-        .collect()
+    read_optima(EXHAUSTIVE)
 }
 
 /// Slow oracle (about 20 s): recompute the exhaustive optima and compare with the
