@@ -18,7 +18,8 @@
 //!    (convex hull property);
 //! 2. the strict signs show exactly one variation and the zero-within-noise coefficients sit
 //!    only between the two runs: exactly one sign change (Descartes' rule for the Bernstein
-//!    basis); the root is refined by bisection to `1e-15` in t;
+//!    basis); the root is refined by the Illinois method ([`crate::roots::illinois`]) to
+//!    `1e-15` in t;
 //! 3. otherwise split at 1/2 (de Casteljau) and recurse, to a depth limit; a piece that is
 //!    still undecided there is a piece where the polynomial is zero within rounding
 //!    (a root of even multiplicity, a cluster of roots closer than `2^-depth`).

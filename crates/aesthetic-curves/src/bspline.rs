@@ -5,7 +5,8 @@
 //! until the largest distance from a point to the curve is within it (knots concentrate
 //! at local features; smooth stretches keep long spans). The end control points are
 //! the first and last points (the curve interpolates its ends); the others solve the linear
-//! least-squares problem (SVD, so knot spans without data do not make it singular). Each fit
+//! least-squares problem (normal equations by Cholesky; the SVD of the design matrix when
+//! knot spans without data make them singular). Each fit
 //! is followed by parameter correction (Hoschek: the points' foot parameters on the curve
 //! replace the chord-length ones, and the fit is redone) while it gains at least 1 %; this
 //! converges slowly (about 20 % per step), so a polynomial's samples are not reproduced
@@ -139,9 +140,10 @@ pub struct FitOptions {
 /// A fitted spline and how well it fits.
 #[derive(Clone, Debug)]
 pub struct BSplineFit {
-    /// The curve (cubic, clamped, uniform interior knots on [0, 1]).
+    /// The curve (cubic, clamped on [0, 1]; interior knots where the fit needed them).
     pub spline: BSpline,
-    /// Chord-length parameter of each (de-duplicated) point.
+    /// Parameter of each (de-duplicated) point on the curve: chord length, then corrected
+    /// towards the foot of the point's perpendicular.
     pub params: Vec<f64>,
     /// The points fitted (consecutive duplicates removed).
     pub points: Vec<Point>,

@@ -247,7 +247,8 @@ impl Nurbs {
             .collect()
     }
 
-    /// Largest distance between control points: the size of the curve for tolerances.
+    /// The diagonal of the control points' bounding box: the size of the curve for
+    /// tolerances.
     pub fn size(&self) -> f64 {
         let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
         for q in &self.control_points {
