@@ -9,7 +9,7 @@ use aesthetic_curves::PlanarCurve;
 
 #[path = "common/approx_cases.rs"]
 mod approx_cases;
-use approx_cases::{read_optima, triangle};
+use approx_cases::{read_optima, triangle, write_optima};
 
 /// The best rms of the family over a grid (exact error, 201 samples, exact monotone test),
 /// refined by a shrinking pattern search around the best monotone cell.
@@ -100,19 +100,14 @@ fn committed_exhaustive_optima_are_current() {
         rows.push((c, exhaustive_best(&seg, 80)));
     }
     if std::env::var_os("AECURVE_WRITE_DATA").is_some() {
-        let mut text = String::from(
+        write_optima(
+            EXHAUSTIVE,
             "# Exhaustive optimum of the rational cubic family for random LAC segments: an 80 x 80\n\
              # grid over (f0, f1) of the exact rms (201 samples, exact monotone test), refined by a\n\
              # shrinking pattern search to 1e-7 (tests/approx_reference.rs, exhaustive_best).\n\
              alpha,theta_d,phi,scale,rotation,best_rms,f0,f1\n",
+            &rows,
         );
-        for (c, b) in &rows {
-            text += &format!(
-                "{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?}\n",
-                c[0], c[1], c[2], c[3], c[4], b.0, b.1, b.2
-            );
-        }
-        std::fs::write(EXHAUSTIVE, text).unwrap();
         return;
     }
     let old = committed();

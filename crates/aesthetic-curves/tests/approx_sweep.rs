@@ -27,7 +27,7 @@ use rayon::prelude::*;
 
 #[path = "common/approx_cases.rs"]
 mod approx_cases;
-use approx_cases::{read_optima, triangle};
+use approx_cases::{read_optima, triangle, write_optima};
 
 const CASES: usize = 1000;
 const SWEEP: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/approx_sweep.csv");
@@ -165,6 +165,12 @@ fn exhaustive(seg: &LacSegment) -> (f64, f64, f64) {
         }
         table.rms(&c, n)
     };
+    // The point at x along the grid line s: f0 = s for axis 0, f1 = s for axis 1.
+    let point = |axis: usize, s: f64, x: f64| if axis == 0 { (s, x) } else { (x, s) };
+    let along = |axis: usize, s: f64, x: f64| {
+        let (f0, f1) = point(axis, s, x);
+        rms(f0, f1, 201)
+    };
     // 1. The grid.
     let n = 160;
     let w = 1.0 / n as f64;
@@ -193,13 +199,7 @@ fn exhaustive(seg: &LacSegment) -> (f64, f64, f64) {
                 continue;
             };
             let line = at(i);
-            let mut f = |x: f64| {
-                if axis == 0 {
-                    rms(line, x, 201)
-                } else {
-                    rms(x, line, 201)
-                }
-            };
+            let mut f = |x: f64| along(axis, line, x);
             let (x, v) = golden(&mut f, at(j) - 2.0 * w, at(j) + 2.0 * w, 1e-10);
             let (x, v) = if v.is_finite() {
                 (x, v)
@@ -218,7 +218,7 @@ fn exhaustive(seg: &LacSegment) -> (f64, f64, f64) {
         if used.len() >= 8 || !v0.is_finite() {
             break;
         }
-        let pt = if axis == 0 { (line, x0) } else { (x0, line) };
+        let pt = point(axis, line, x0);
         if used
             .iter()
             .any(|u| (u.0 - pt.0).abs().max((u.1 - pt.1).abs()) < 3.0 * w)
@@ -228,32 +228,28 @@ fn exhaustive(seg: &LacSegment) -> (f64, f64, f64) {
         used.push(pt);
         let mut floor = x0;
         let mut g = |s: f64| {
-            let mut f = |x: f64| {
-                if axis == 0 {
-                    rms(s, x, 201)
-                } else {
-                    rms(x, s, 201)
-                }
-            };
-            let (x, v) = golden(&mut f, floor - 2.0 * w, floor + 2.0 * w, 1e-11);
+            let (x, v) = golden(
+                &mut |x| along(axis, s, x),
+                floor - 2.0 * w,
+                floor + 2.0 * w,
+                1e-11,
+            );
             if v.is_finite() {
                 floor = x;
             }
             v
         };
         let (s, v) = golden(&mut g, line - 1.5 * w, line + 1.5 * w, 1e-10);
-        let mut f = |x: f64| {
-            if axis == 0 {
-                rms(s, x, 201)
-            } else {
-                rms(x, s, 201)
-            }
-        };
-        let (x, v2) = golden(&mut f, floor - 2.0 * w, floor + 2.0 * w, 1e-11);
+        let (x, v2) = golden(
+            &mut |x| along(axis, s, x),
+            floor - 2.0 * w,
+            floor + 2.0 * w,
+            1e-11,
+        );
         let (v, p) = if v2 <= v.min(v0) {
-            (v2, if axis == 0 { (s, x) } else { (x, s) })
+            (v2, point(axis, s, x))
         } else if v <= v0 {
-            (v, if axis == 0 { (s, floor) } else { (floor, s) })
+            (v, point(axis, s, floor))
         } else {
             (v0, pt)
         };
@@ -297,20 +293,15 @@ fn generate_exhaustive_optima() {
         })
         .collect();
     if write {
-        let mut text = String::from(
+        write_optima(
+            SWEEP,
             "# Exhaustive optimum of the rational cubic family for 1000 random LAC segments\n\
              # (tests/approx_sweep.rs: a 160 x 160 grid at 41 samples over the curvature-monotone\n\
              # cubics, valley floors along every grid line and golden-section searches along the\n\
              # best eight valleys at 201 samples). best_rms = inf: no monotone cubic.\n\
              alpha,theta_d,phi,size,rotation,best_rms,f0,f1\n",
+            &rows,
         );
-        for (c, b) in &rows {
-            text += &format!(
-                "{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?}\n",
-                c[0], c[1], c[2], c[3], c[4], b.0, b.1, b.2
-            );
-        }
-        std::fs::write(SWEEP, text).unwrap();
         return;
     }
     let old = committed();
