@@ -16,11 +16,13 @@
 //!    with it; a piece with an inflection at one end becomes an inflection-end segment
 //!    (docs/math.md §3.2, α from its triangle). α outside the triangle's existence region
 //!    moves to the nearest admissible value; α on its bound ([`ALPHA_BOUNDS`]) is reported;
+//!    α keeps the segment's end curvatures within `HOOK_FACTOR` times the fair spline's
+//!    largest over the piece (no hooks from triangles at the edge of their existence region);
 //! 5. **G2 fairing**: the tangent directions at the joints are the unknowns, the curvature
 //!    mismatches at the joints the equations; Newton's method with a finite-difference
 //!    Jacobian (tridiagonal: a joint's tangent moves its two pieces) and a backtracking line
-//!    search, until the largest jump is below [`SketchOptions::g2_tolerance`] of the largest
-//!    curvature. Joints where both sides are inflection ends have zero curvature on both sides
+//!    search (its merit over the first build's largest curvature, held fixed), until the
+//!    largest jump is below [`SketchOptions::g2_tolerance`] of the largest curvature. Joints where both sides are inflection ends have zero curvature on both sides
 //!    by construction and keep their tangent;
 //! 6. each piece becomes one rational cubic ([`crate::approx`]): G2 to its LAC at both ends,
 //!    so G2 at every joint, with curvature monotonicity proven by the exact test;
@@ -784,18 +786,21 @@ fn split_at_peak(track: &Track, slots: &mut Vec<Slot>, i: usize) -> bool {
     true
 }
 
-/// Relative mismatch at each active joint and the curvature scale.
-fn mismatches(built: &[Built], active: &[usize]) -> (Vec<f64>, f64) {
-    let scale = built
+/// The largest end curvature of the pieces.
+fn curvature_scale(built: &[Built]) -> f64 {
+    built
         .iter()
         .map(|b| b.2 .0.abs().max(b.2 .1.abs()))
         .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
-    let d = active
+        .max(f64::MIN_POSITIVE)
+}
+
+/// The curvature mismatch at each active joint over `scale`.
+fn mismatches(built: &[Built], active: &[usize], scale: f64) -> Vec<f64> {
+    active
         .iter()
         .map(|&j| (built[j].2 .0 - built[j - 1].2 .1) / scale)
-        .collect();
-    (d, scale)
+        .collect()
 }
 
 fn rotate(v: Vec2, a: f64) -> Vec2 {
@@ -841,7 +846,11 @@ fn fair(
     let faired =
         |built: &[Built]| -> Vec<usize> { (1..m).filter(|&j| !zero_both(built, j)).collect() };
     let active = faired(&built);
-    let (mut d, _) = mismatches(&built, &active);
+    // The merit's scale stays that of the first build: measured against the trial's own
+    // largest curvature, a step that blows one free end up into a hook (a triangle at the
+    // edge of its existence region) would shrink every relative mismatch and be accepted.
+    let scale = curvature_scale(&built);
+    let mut d = mismatches(&built, &active, scale);
     let initial = max_abs(&d);
     let mut report = FairingReport {
         iterations: 0,
@@ -864,7 +873,7 @@ fn fair(
                 b2[j - 1] =
                     build_piece(&slots[j - 1], pts[j - 1], trial[j - 1], pts[j], trial[j]).ok()?;
                 b2[j] = build_piece(&slots[j], pts[j], trial[j], pts[j + 1], trial[j + 1]).ok()?;
-                Some(mismatches(&b2, &active).0)
+                Some(mismatches(&b2, &active, scale))
             };
             let h = 1e-6;
             match (at(h), at(-h)) {
@@ -917,7 +926,7 @@ fn fair(
                 trial[j] = rotate(dirs[j], lam * step[k]);
             }
             if let Ok(b2) = build_all(slots, pts, &trial) {
-                let (d2, _) = mismatches(&b2, &active);
+                let d2 = mismatches(&b2, &active, scale);
                 // Sum of squares: a joint that cannot match does not stop the others.
                 if sum_sq(&d2) < cur {
                     dirs.copy_from_slice(&trial);
@@ -938,7 +947,11 @@ fn fair(
     // The report covers every joint of the result: a step can turn a piece next to a joint
     // left out (zero curvature on both sides) into an ordinary one, whose end curvature
     // there is not zero.
-    report.final_jump = max_abs(&mismatches(&built, &faired(&built)).0);
+    report.final_jump = max_abs(&mismatches(
+        &built,
+        &faired(&built),
+        curvature_scale(&built),
+    ));
     report.converged = report.final_jump <= opts.g2_tolerance;
     Ok((built, report))
 }
@@ -1605,8 +1618,12 @@ fn curve_distance(samples: &[Point], q: Point) -> f64 {
 
 /// Sum of squared and largest distance of `pts` to the LAC segment of shape `alpha` in
 /// `tri`; `None` where the segment does not exist.
-fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point]) -> Option<(f64, f64)> {
+fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point], cap: f64) -> Option<(f64, f64)> {
     let seg = LacSegment::new(alpha, tri).ok()?;
+    let (k0, k1) = seg.end_curvatures().ok()?;
+    if k0.abs().max(k1.abs()) > cap {
+        return None;
+    }
     let (poly, _) = seg.sample(129).ok()?;
     let (mut sum, mut max) = (0.0, 0.0f64);
     // The nearest sample by descent from the previous point's (either way: points may step
@@ -1629,6 +1646,10 @@ fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point]) -> Option<(f64, f64)> {
     Some((sum, max))
 }
 
+/// How far a piece's end curvature may exceed the fair spline's largest curvature over
+/// the piece in the fit of its α.
+const HOOK_FACTOR: f64 = 4.0;
+
 /// Bounds of α in the least-squares fit of a piece: beyond them the logarithmic curvature
 /// graph is too steep for the data to tell alphas apart.
 pub const ALPHA_BOUNDS: (f64, f64) = (-5.0, 5.0);
@@ -1637,7 +1658,7 @@ pub const ALPHA_BOUNDS: (f64, f64) = (-5.0, 5.0);
 /// distances), and the largest distance of all `pts`: a scan over [`ALPHA_BOUNDS`] then
 /// golden-section refinement to 1e-4, on at most 64 of the points (evenly spread; the
 /// largest distance is measured on all). `None` when no α of the range gives a segment.
-fn fit_alpha(tri: [Point; 3], all: &[Point]) -> Option<(f64, f64)> {
+fn fit_alpha(tri: [Point; 3], all: &[Point], cap: f64) -> Option<(f64, f64)> {
     let sub = spread(all, 64);
     let pts = &sub[..];
     let (lo, hi) = ALPHA_BOUNDS;
@@ -1645,12 +1666,12 @@ fn fit_alpha(tri: [Point; 3], all: &[Point]) -> Option<(f64, f64)> {
     let grid: Vec<(f64, f64)> = (0..=steps)
         .filter_map(|k| {
             let a = lo + (hi - lo) * k as f64 / steps as f64;
-            lac_cost(a, tri, pts).map(|c| (a, c.0))
+            lac_cost(a, tri, pts, cap).map(|c| (a, c.0))
         })
         .collect();
     let &(a0, _) = grid.iter().min_by(|x, y| x.1.total_cmp(&y.1))?;
     let h = (hi - lo) / steps as f64;
-    let f = |a: f64| lac_cost(a, tri, pts).map_or(f64::INFINITY, |c| c.0);
+    let f = |a: f64| lac_cost(a, tri, pts, cap).map_or(f64::INFINITY, |c| c.0);
     let (mut a, mut b) = ((a0 - h).max(lo), (a0 + h).min(hi));
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
@@ -1680,7 +1701,7 @@ fn fit_alpha(tri: [Point; 3], all: &[Point]) -> Option<(f64, f64)> {
         .copied()
         .filter(|&x| f(x).is_finite())
         .min_by(|x, y| f(*x).total_cmp(&f(*y)))?;
-    lac_cost(best, tri, all).map(|c| (best, c.1))
+    lac_cost(best, tri, all, cap).map(|c| (best, c.1))
 }
 
 /// At most `n` of `pts`, evenly spread (every k-th), for the searches; results are measured
@@ -1743,7 +1764,14 @@ fn fit_slot_alpha(
         return None;
     }
     s.fitted = true;
-    let (alpha, max) = fit_alpha(tri, &pts)?;
+    // No hooks: the segment's end curvatures stay within HOOK_FACTOR of the fair spline's
+    // largest over the piece (near the edge of its existence region a segment's end
+    // curvature grows without bound while its shape, and the distances, barely change).
+    let cap = HOOK_FACTOR
+        * (0..=32)
+            .map(|k| track.abs_kappa(s.ua + (s.ub - s.ua) * k as f64 / 32.0))
+            .fold(0.0, f64::max);
+    let (alpha, max) = fit_alpha(tri, &pts, cap)?;
     s.alpha = Some(alpha);
     let (free_a, free_b) = (
         free_ends && s.cut_a == Cut::End,
@@ -1763,7 +1791,7 @@ fn fit_slot_alpha(
     let mut cost = |x: &[f64]| -> f64 {
         let (a, b) = make(x);
         triangle(pa, a, pb, b)
-            .and_then(|t| lac_cost(x[0].clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1), t, &sub))
+            .and_then(|t| lac_cost(x[0].clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1), t, &sub, cap))
             .map_or(f64::INFINITY, |c| c.0)
     };
     let n = 1 + usize::from(free_a) + usize::from(free_b);
@@ -1786,7 +1814,7 @@ fn fit_slot_alpha(
     let (a, b) = make(&m.x);
     let alpha = m.x[0].clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1);
     let tri = triangle(pa, a, pb, b)?;
-    let (_, max) = lac_cost(alpha, tri, &pts)?;
+    let (_, max) = lac_cost(alpha, tri, &pts, cap)?;
     s.alpha = Some(alpha);
     s.dir_a = free_a.then_some(a);
     s.dir_b = free_b.then_some(b);
