@@ -938,7 +938,8 @@ fn fair(
             }
             lam *= 0.5;
         }
-        report.final_jump = max_abs(&d);
+        // Converged by the measure of the final report: over the build's own curvature.
+        report.final_jump = max_abs(&mismatches(&built, &active, curvature_scale(&built)));
         report.converged = report.final_jump <= opts.g2_tolerance;
         if !accepted {
             break;
