@@ -945,6 +945,18 @@ fn fair(
             break;
         }
     }
+    if !report.converged {
+        free_alphas(
+            slots,
+            pts,
+            dirs,
+            opts,
+            &active,
+            scale,
+            &mut built,
+            &mut report,
+        )?;
+    }
     // The report covers every joint of the result: a step can turn a piece next to a joint
     // left out (zero curvature on both sides) into an ordinary one, whose end curvature
     // there is not zero.
@@ -955,6 +967,149 @@ fn fair(
     ));
     report.converged = report.final_jump <= opts.g2_tolerance;
     Ok((built, report))
+}
+
+/// The fairing's second stage, when the joint tangents alone leave a jump: the α of every
+/// LAC piece next to a joint that still jumps joins the unknowns (a joint between an
+/// inflection-end piece, whose end curvature its triangle fixes, and a short piece whose
+/// least-squares α sits on its bound can have no tangent that matches). More unknowns than
+/// equations: the minimum-norm Gauss–Newton step (α weighted by [`ALPHA_WEIGHT`]), α kept
+/// within [`ALPHA_BOUNDS`], the same merit and line search as the first stage.
+#[allow(clippy::too_many_arguments)]
+fn free_alphas(
+    slots: &[Slot],
+    pts: &[Point],
+    dirs: &mut [Vec2],
+    opts: &SketchOptions,
+    active: &[usize],
+    scale: f64,
+    built: &mut Vec<Built>,
+    report: &mut FairingReport,
+) -> Result<()> {
+    let na = active.len();
+    let tol = opts.g2_tolerance;
+    let d0 = mismatches(built, active, scale);
+    let mut free: Vec<usize> = Vec::new();
+    for (k, &j) in active.iter().enumerate() {
+        if d0[k].abs() > tol {
+            for i in [j - 1, j] {
+                if matches!(built[i].0, PieceCurve::Lac(_)) && !free.contains(&i) {
+                    free.push(i);
+                }
+            }
+        }
+    }
+    if free.is_empty() {
+        return Ok(());
+    }
+    free.sort_unstable();
+    // α as built (an α outside its triangle's existence region was moved inside).
+    let mut local: Vec<Slot> = slots.to_vec();
+    for &i in &free {
+        local[i].alpha = Some(built[i].1);
+    }
+    let nx = na + free.len();
+    let mut d = d0;
+    let mut iterations = 0;
+    while iterations < opts.max_fairing_iterations {
+        crate::deadline::check()?;
+        iterations += 1;
+        report.iterations += 1;
+        // Columns: the active joints' tangent angles, then the free pieces' α.
+        let column = |c: usize| -> Option<Vec<f64>> {
+            let at = |h: f64| -> Option<Vec<f64>> {
+                let mut b2 = built.clone();
+                if c < na {
+                    let j = active[c];
+                    let mut trial = dirs.to_vec();
+                    trial[j] = rotate(dirs[j], h);
+                    b2[j - 1] =
+                        build_piece(&local[j - 1], pts[j - 1], trial[j - 1], pts[j], trial[j])
+                            .ok()?;
+                    b2[j] =
+                        build_piece(&local[j], pts[j], trial[j], pts[j + 1], trial[j + 1]).ok()?;
+                } else {
+                    let i = free[c - na];
+                    let mut sl = local[i].clone();
+                    let a = sl.alpha? + h;
+                    if !(ALPHA_BOUNDS.0..=ALPHA_BOUNDS.1).contains(&a) {
+                        return None;
+                    }
+                    sl.alpha = Some(a);
+                    b2[i] = build_piece(&sl, pts[i], dirs[i], pts[i + 1], dirs[i + 1]).ok()?;
+                    if (b2[i].1 - a).abs() > 1e-12 {
+                        return None; // moved back inside the existence region: no derivative
+                    }
+                }
+                Some(mismatches(&b2, active, scale))
+            };
+            let h = if c < na { 1e-6 } else { 1e-5 };
+            match (at(h), at(-h)) {
+                (Some(p), Some(m)) => Some((0..na).map(|r| (p[r] - m[r]) / (2.0 * h)).collect()),
+                (Some(p), None) => Some((0..na).map(|r| (p[r] - d[r]) / h).collect()),
+                (None, Some(m)) => Some((0..na).map(|r| (d[r] - m[r]) / h).collect()),
+                (None, None) => Some(vec![0.0; na]),
+            }
+        };
+        let columns: Vec<Option<Vec<f64>>> = (0..nx).into_par_iter().map(column).collect();
+        let mut jac = DMatrix::<f64>::zeros(na, nx);
+        for (c, col) in columns.into_iter().enumerate() {
+            let Some(col) = col else { return Ok(()) };
+            let w = if c < na { 1.0 } else { ALPHA_WEIGHT.sqrt() };
+            for (r, v) in col.into_iter().enumerate() {
+                jac[(r, c)] = v * w;
+            }
+        }
+        // Minimum-norm step in the weighted unknowns: x = Jᵀ (J Jᵀ + μ I)⁻¹ (-d).
+        let jjt = &jac * jac.transpose();
+        let mu = 1e-12 * jjt.trace().max(f64::MIN_POSITIVE);
+        let Some(y) = (jjt + DMatrix::identity(na, na) * mu)
+            .lu()
+            .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))
+        else {
+            return Ok(());
+        };
+        let mut step = jac.transpose() * y;
+        for c in na..nx {
+            step[c] *= ALPHA_WEIGHT.sqrt();
+        }
+        let big_angle = (0..na).fold(0.0f64, |m, c| m.max(step[c].abs()));
+        let big_alpha = (na..nx).fold(0.0f64, |m, c| m.max(step[c].abs()));
+        let mut lam = 1.0f64
+            .min(0.3 / big_angle.max(1e-300))
+            .min(1.0 / big_alpha.max(1e-300));
+        let cur = sum_sq(&d);
+        let mut accepted = false;
+        for _ in 0..30 {
+            let mut trial = dirs.to_vec();
+            for (k, &j) in active.iter().enumerate() {
+                trial[j] = rotate(dirs[j], lam * step[k]);
+            }
+            let mut tl = local.clone();
+            for (k, &i) in free.iter().enumerate() {
+                let a = tl[i].alpha.unwrap_or(1.0) + lam * step[na + k];
+                tl[i].alpha = Some(a.clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1));
+            }
+            if let Ok(b2) = build_all(&tl, pts, &trial) {
+                let d2 = mismatches(&b2, active, scale);
+                if sum_sq(&d2) < cur {
+                    dirs.copy_from_slice(&trial);
+                    local = tl;
+                    *built = b2;
+                    d = d2;
+                    accepted = true;
+                    break;
+                }
+            }
+            lam *= 0.5;
+        }
+        report.final_jump = max_abs(&mismatches(built, active, curvature_scale(built)));
+        report.converged = report.final_jump <= tol;
+        if report.converged || !accepted {
+            break;
+        }
+    }
+    Ok(())
 }
 
 /// Distance from `q` to a rational cubic and the foot's parameter: the nearest of `n`
@@ -1650,6 +1805,11 @@ fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point], cap: f64) -> Option<(f64
 /// How far a piece's end curvature may exceed the fair spline's largest curvature over
 /// the piece in the fit of its α.
 const HOOK_FACTOR: f64 = 4.0;
+
+/// Weight of α against the joint tangent angles (radians) in the fairing's minimum-norm
+/// step, which minimises Σ Δangle² + Σ Δα²/ALPHA_WEIGHT: with 1, a change of α by 1 costs as
+/// much as a turn of 1 rad.
+const ALPHA_WEIGHT: f64 = 1.0;
 
 /// Bounds of α in the least-squares fit of a piece: beyond them the logarithmic curvature
 /// graph is too steep for the data to tell alphas apart.

@@ -530,3 +530,52 @@ fn prius_key_lines_are_stable_under_tiny_nudges() {
         );
     }
 }
+
+/// The editor's jittery hand strokes (captured from the end-to-end test), their points
+/// moved by 1e-11, 16 times each, at the default tolerance: within the tolerance every time
+/// and G2 in all but `KNOWN_NOT_G2` of the 64 fits. Before the fairing freed the α of the
+/// pieces next to a joint the tangents alone cannot match, the S was not G2 in 7 of its 16.
+#[test]
+fn editor_strokes_are_stable_under_tiny_nudges() {
+    const KNOWN_NOT_G2: usize = 1;
+    let v: serde_json::Value =
+        serde_json::from_str(include_str!("data/editor-strokes.json")).unwrap();
+    let mut not_g2 = Vec::new();
+    for name in ["s", "arc", "spiral", "wave"] {
+        let base: Vec<Point> = v["strokes"][name]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|q| p(q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+            .collect();
+        let tol = aesthetic_curves::sketch::default_tolerance(&base);
+        let mut counts = Vec::new();
+        for seed in 0..16u64 {
+            let mut st = 1000 + seed;
+            let mut r = || {
+                st = st
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                ((st >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+            };
+            let amp = if seed == 0 { 0.0 } else { 1e-11 };
+            let pts: Vec<Point> = base
+                .iter()
+                .map(|q| p(q.x + amp * r(), q.y + amp * r()))
+                .collect();
+            let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
+            assert!(sk.max_deviation <= tol, "{name} nudge {seed}: deviation");
+            assert_eq!(sk.g2, sk.fairing.converged, "{name} nudge {seed}: report");
+            if !sk.g2 {
+                not_g2.push(format!(
+                    "{name} nudge {seed}: jump {:.1e}",
+                    sk.max_curvature_jump
+                ));
+            }
+            counts.push(sk.pieces.len());
+        }
+        println!("{name}: pieces {counts:?}");
+    }
+    println!("not G2: {not_g2:?}");
+    assert!(not_g2.len() <= KNOWN_NOT_G2, "not G2: {not_g2:?}");
+}
