@@ -22,8 +22,10 @@
 //!    mismatches at the joints the equations; Newton's method with a finite-difference
 //!    Jacobian (tridiagonal: a joint's tangent moves its two pieces) and a backtracking line
 //!    search (its merit over the first build's largest curvature, held fixed), until the
-//!    largest jump is below [`SketchOptions::g2_tolerance`] of the largest curvature. Joints where both sides are inflection ends have zero curvature on both sides
-//!    by construction and keep their tangent;
+//!    largest jump is below [`SketchOptions::g2_tolerance`] of the largest curvature; if the
+//!    tangents alone cannot get there, the α of the LAC pieces next to the joints that still
+//!    jump join the unknowns (minimum-norm steps). Joints where both sides are inflection
+//!    ends have zero curvature on both sides by construction and keep their tangent;
 //! 6. each piece becomes one rational cubic ([`crate::approx`]): G2 to its LAC at both ends,
 //!    so G2 at every joint, with curvature monotonicity proven by the exact test;
 //! 7. the input points' true nearest-point distance to the delivered cubics is measured;
