@@ -1005,10 +1005,21 @@ fn free_alphas(
         return Ok(());
     }
     free.sort_unstable();
-    // α as built (an α outside its triangle's existence region was moved inside).
+    // α as built; an α that was outside its triangle's existence region and moved onto its
+    // edge (where an end curvature goes to 0 or infinity and no derivative helps) starts a
+    // tenth of the way from there to 0.5, which every triangle admits.
     let mut local: Vec<Slot> = slots.to_vec();
     for &i in &free {
-        local[i].alpha = Some(built[i].1);
+        let a = built[i].1;
+        let snapped = slots[i].alpha.is_some_and(|s| (s - a).abs() > 1e-9);
+        local[i].alpha = Some(if snapped { a + 0.1 * (0.5 - a) } else { a });
+    }
+    let mut d0 = d0;
+    if free.iter().any(|&i| local[i].alpha != Some(built[i].1)) {
+        if let Ok(b2) = build_all(&local, pts, dirs) {
+            *built = b2;
+            d0 = mismatches(built, active, scale);
+        }
     }
     let nx = na + free.len();
     let mut d = d0;
