@@ -5,6 +5,9 @@
 //! iteration, so the bracket always shrinks at least geometrically. It needs `f(lo)` and
 //! `f(hi)` of opposite signs, stops when the bracket is narrower than `x_tol`, and reports
 //! [`Error::NoConvergence`] instead of looping past `max_iter`.
+//!
+//! [`brent`]: Brent's method (inverse quadratic interpolation, secant and bisection steps)
+//! from a bracket narrowed by the caller's guesses, for callers that can guess.
 
 use crate::error::{Error, Result};
 
@@ -68,9 +71,146 @@ pub fn illinois(
     }
 }
 
+/// A root of `f` in the bracket `[a, b]` (values `fa`, `fb` of opposite signs) by Brent's
+/// method (Brent 1973, "Algorithms for minimization without derivatives", ch. 4: inverse
+/// quadratic interpolation and secant steps, bisection whenever they do not shrink the
+/// bracket fast enough), for a caller with good guesses: the points `guesses` (inside the
+/// bracket, with their values) narrow the bracket first, and the best of them starts the
+/// iteration. Stops when the bracket is narrower than `x_tol` (plus rounding) or
+/// `|f| <= f_tol` (the noise of `f`); [`Error::NoConvergence`] after `max_iter` evaluations.
+pub fn brent(
+    mut f: impl FnMut(f64) -> Result<f64>,
+    (a0, fa0): (f64, f64),
+    (b0, fb0): (f64, f64),
+    guesses: &[(f64, f64)],
+    x_tol: f64,
+    f_tol: f64,
+    max_iter: usize,
+) -> Result<f64> {
+    if (fa0 > 0.0) == (fb0 > 0.0) || fa0.is_nan() || fb0.is_nan() {
+        return Err(Error::NoConvergence(format!(
+            "root bracket [{a0}, {b0}] does not straddle a sign change ({fa0}, {fb0})"
+        )));
+    }
+    // The bracket [lo, hi] with f(lo) of the sign of fa0, narrowed by the guesses.
+    let (mut lo, mut flo, mut hi, mut fhi) = (a0, fa0, b0, fb0);
+    for &(x, fx) in guesses {
+        if fx.abs() <= f_tol {
+            return Ok(x);
+        }
+        let inside = (x - lo) * (x - hi) < 0.0;
+        if inside && !fx.is_nan() {
+            if (fx > 0.0) == (fa0 > 0.0) {
+                (lo, flo) = (x, fx);
+            } else {
+                (hi, fhi) = (x, fx);
+            }
+        }
+    }
+    // Brent: b the best estimate, a the previous one, c the contrapoint (f(b), f(c) of
+    // opposite signs).
+    let (mut a, mut fa, mut b, mut fb) = if flo.abs() < fhi.abs() {
+        (hi, fhi, lo, flo)
+    } else {
+        (lo, flo, hi, fhi)
+    };
+    let (mut c, mut fc) = (a, fa);
+    let mut d = b - a;
+    let mut e = d;
+    for _ in 0..max_iter {
+        if (fb > 0.0) == (fc > 0.0) {
+            (c, fc) = (a, fa);
+            d = b - a;
+            e = d;
+        }
+        if fc.abs() < fb.abs() {
+            (a, fa) = (b, fb);
+            (b, fb) = (c, fc);
+            (c, fc) = (a, fa);
+        }
+        let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * x_tol;
+        let xm = 0.5 * (c - b);
+        if xm.abs() <= tol1 || fb == 0.0 || fb.abs() <= f_tol {
+            return Ok(b);
+        }
+        if e.abs() >= tol1 && fa.abs() > fb.abs() {
+            let s = fb / fa;
+            let (mut p, mut q) = if a == c {
+                (2.0 * xm * s, 1.0 - s)
+            } else {
+                let (qa, r) = (fa / fc, fb / fc);
+                (
+                    s * (2.0 * xm * qa * (qa - r) - (b - a) * (r - 1.0)),
+                    (qa - 1.0) * (r - 1.0) * (s - 1.0),
+                )
+            };
+            if p > 0.0 {
+                q = -q;
+            }
+            p = p.abs();
+            let min1 = 3.0 * xm * q - (tol1 * q).abs();
+            let min2 = (e * q).abs();
+            if 2.0 * p < min1.min(min2) {
+                e = d;
+                d = p / q;
+            } else {
+                d = xm;
+                e = d;
+            }
+        } else {
+            d = xm;
+            e = d;
+        }
+        (a, fa) = (b, fb);
+        b += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
+        fb = f(b)?;
+    }
+    Err(Error::NoConvergence(format!(
+        "root not within {x_tol:e} after {max_iter} iterations (near {b})"
+    )))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn brent_from_guesses() {
+        // x^3 - 2 on [0, 2] from two guesses straddling the root: few evaluations.
+        let mut n = 0;
+        let f = |x: f64| {
+            n += 1;
+            Ok(x * x * x - 2.0)
+        };
+        let g = [(1.2, 1.2f64.powi(3) - 2.0), (1.3, 1.3f64.powi(3) - 2.0)];
+        let r = brent(f, (0.0, -2.0), (2.0, 6.0), &g, 1e-15, 0.0, 100).unwrap();
+        assert!((r - 2f64.cbrt()).abs() < 1e-15, "{r}");
+        assert!(n <= 8, "{n} evaluations");
+        // Bad guesses (outside the bracket, NaN) are ignored; a bad bracket is an error.
+        let g = [(5.0, 123.0), (1.0, f64::NAN)];
+        let r = brent(
+            |x| Ok(x.exp() - 3.0),
+            (0.0, -2.0),
+            (2.0, 4.389),
+            &g,
+            1e-14,
+            0.0,
+            100,
+        );
+        assert!((r.unwrap() - 3f64.ln()).abs() < 1e-13);
+        assert!(brent(Ok, (1.0, 1.0), (2.0, 2.0), &[], 1e-12, 0.0, 10).is_err());
+        // The evaluation budget is reported, not exceeded.
+        let r = brent(
+            |x| Ok(x.powi(3) - 0.3),
+            (0.0, -0.3),
+            (1.0, 0.7),
+            &[],
+            0.0,
+            0.0,
+            3,
+        );
+        assert!(matches!(r, Err(Error::NoConvergence(_))));
+    }
 
     #[test]
     fn finds_roots_and_reports_bad_brackets() {

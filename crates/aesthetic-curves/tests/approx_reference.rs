@@ -114,8 +114,12 @@ fn committed_exhaustive_optima_are_current() {
     assert_eq!(old.len(), rows.len());
     for ((c, b), (oc, ob)) in rows.iter().zip(&old) {
         assert_eq!(c, oc);
+        // The rms is relative to the arc length and computed from distances known to a
+        // few units of 1e-16 of the size: below 1e-15 absolute it is rounding, whatever
+        // its relative size (a Λ solved to the last bit by another root finder moves a
+        // 6e-8 optimum by 3e-9 of itself).
         assert!(
-            (b.0 == ob.0) || (b.0 - ob.0).abs() <= 1e-9 * ob.0,
+            (b.0 == ob.0) || (b.0 - ob.0).abs() <= 1e-9 * ob.0 + 1e-15,
             "{c:?}: {b:?} vs committed {ob:?}"
         );
     }
