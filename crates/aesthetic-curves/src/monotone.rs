@@ -628,6 +628,28 @@ fn bernstein_deriv(a: &[f64], out: &mut [f64]) {
     }
 }
 
+/// A degree-13 Bernstein polynomial at `t` in [0, 1]: `s^13 Σ C(13,i) c_i (t/s)^i`,
+/// `s = 1 - t`, by Horner in `t/s` (or in `s/t` from the other end when t > 1/2, so the
+/// ratio stays at most 1).
+fn bernstein_eval13(c: &[f64; 14], t: f64) -> f64 {
+    let s = 1.0 - t;
+    if t <= 0.5 {
+        let r = t / s;
+        let mut acc = 0.0;
+        for i in (0..14).rev() {
+            acc = acc * r + binomial(13, i) * c[i];
+        }
+        acc * s.powi(13)
+    } else {
+        let r = s / t;
+        let mut acc = 0.0;
+        for i in 0..14 {
+            acc = acc * r + binomial(13, i) * c[i];
+        }
+        acc * t.powi(13)
+    }
+}
+
 /// The fast verdict for a rational cubic: K (degree 13 before its exact reduction) from
 /// stack arrays, values only. All coefficients of one strict sign settle the curve as
 /// monotone whatever the rounding bounds (they only decide what counts as zero: see
@@ -699,15 +721,41 @@ fn rational_cubic_fast(curve: &RationalBezier) -> Option<Result<bool>> {
         *a -= 3.0 * b;
     }
     if !(k.iter().all(|v| *v > 0.0) || k.iter().all(|v| *v < 0.0)) {
-        // K(0) and K(1) (the end coefficients) of strictly opposite signs, each far above
-        // its rounding (1e-8 of the terms it is made of; the full test's bound is about
-        // 1e-13 of them): a sign change, not monotone.
-        let size0 = (e[0] * speed2[0]).abs() + 3.0 * (wg[0] * q[0]).abs();
-        let size1 = (e[5] * speed2[8]).abs() + 3.0 * (wg[6] * q[7]).abs();
-        if k[0] * k[13] < 0.0 && k[0].abs() > 1e-8 * size0 && k[13].abs() > 1e-8 * size1 {
-            let hodograph: [Vec2; 5] = std::array::from_fn(|i| Vec2::new(dx[i], dy[i]));
-            let scale = hodograph.iter().map(|h| h.hypot2()).fold(0.0, f64::max);
-            return Some(check_regular(&hodograph, scale).map(|()| false));
+        // K at 15 evenly spaced t (ends included): two values of strictly opposite signs,
+        // each far above its rounding, prove a sign change: not monotone. "Far above" is
+        // 1e-8 of the size of the terms K is made of at that t (the full test's bound is
+        // about 1e-13 of them), bounded by the Bernstein polynomial of the terms' absolute
+        // coefficients: |E S| + 3 |W G Q| <= (|e| x |s| + 3 |wg| x |q|)(t).
+        let abs = |v: &[f64], out: &mut [f64]| {
+            for (o, x) in out.iter_mut().zip(v) {
+                *o = x.abs();
+            }
+        };
+        let (mut ea, mut sa, mut wga, mut qa) =
+            ([0.0f64; 6], [0.0f64; 9], [0.0f64; 7], [0.0f64; 8]);
+        abs(&e, &mut ea);
+        abs(&speed2, &mut sa);
+        abs(&wg, &mut wga);
+        abs(&q, &mut qa);
+        let (mut size, mut t14) = ([0.0f64; 14], [0.0f64; 14]);
+        bernstein_mul(&ea, &sa, &mut size);
+        bernstein_mul(&wga, &qa, &mut t14);
+        for (a, b) in size.iter_mut().zip(&t14) {
+            *a += 3.0 * b;
+        }
+        let (mut pos, mut neg) = (false, false);
+        for j in 0..=14 {
+            let t = j as f64 / 14.0;
+            let (v, sz) = (bernstein_eval13(&k, t), bernstein_eval13(&size, t));
+            if v.abs() > 1e-8 * sz {
+                pos |= v > 0.0;
+                neg |= v < 0.0;
+            }
+            if pos && neg {
+                let hodograph: [Vec2; 5] = std::array::from_fn(|i| Vec2::new(dx[i], dy[i]));
+                let scale = hodograph.iter().map(|h| h.hypot2()).fold(0.0, f64::max);
+                return Some(check_regular(&hodograph, scale).map(|()| false));
+            }
         }
         return None;
     }
