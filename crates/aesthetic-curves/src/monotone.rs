@@ -636,15 +636,15 @@ fn bernstein_eval13(c: &[f64; 14], t: f64) -> f64 {
     if t <= 0.5 {
         let r = t / s;
         let mut acc = 0.0;
-        for i in (0..14).rev() {
-            acc = acc * r + binomial(13, i) * c[i];
+        for (i, ci) in c.iter().enumerate().rev() {
+            acc = acc * r + binomial(13, i) * ci;
         }
         acc * s.powi(13)
     } else {
         let r = s / t;
         let mut acc = 0.0;
-        for i in 0..14 {
-            acc = acc * r + binomial(13, i) * c[i];
+        for (i, ci) in c.iter().enumerate() {
+            acc = acc * r + binomial(13, i) * ci;
         }
         acc * t.powi(13)
     }
