@@ -666,14 +666,16 @@ fn single_values(mode: Mode, theta: f64) -> Result<(f64, f64)> {
 }
 
 /// Eq. 11 on the tables: Newton's method on the derivative of
-/// `lp J(a + turn) + li J(a)` from the bisector, kept within 0.6 of it; None when it does not
-/// settle (the caller then searches the window).
+/// `lp J(a + turn) + li J(a)` from the small-angle minimiser, kept within 0.6 of the bisector
+/// `guess`; None when it does not settle (the caller then searches that window).
 fn table_tangent(lp: f64, li: f64, turn: f64, guess: f64) -> Option<f64> {
     let t = crate::pseudo_table::tables();
-    let mut a = guess;
+    // Start from the minimiser of the small-angle energy lp (a + turn)² + li a² (J ~ θ²);
+    // `guess` (the bisector) stays the centre of the window.
+    let mut a = (-turn * lp / (lp + li)).clamp(guess - 0.5, guess + 0.5);
     for _ in 0..30 {
-        let (_, d1p, d2p) = t.single_derivs(a + turn);
-        let (_, d1, d2) = t.single_derivs(a);
+        let (d1p, d2p) = t.single_slope_curvature(a + turn);
+        let (d1, d2) = t.single_slope_curvature(a);
         let (g, h) = (lp * d1p + li * d1, lp * d2p + li * d2);
         if h <= 0.0 || !h.is_finite() {
             return None;
@@ -683,7 +685,9 @@ fn table_tangent(lp: f64, li: f64, turn: f64, guess: f64) -> Option<f64> {
         if (a - guess).abs() > 0.6 {
             return None;
         }
-        if step.abs() < 1e-12 {
+        // Newton converges quadratically here: a step below 1e-8 leaves an error of order
+        // its square.
+        if step.abs() < 1e-8 {
             return Some(a);
         }
     }
@@ -815,17 +819,18 @@ fn pseudo_elastic_unit(points: &[Point], closed: bool, mode: Mode) -> Result<Pse
     }
     let mut segments = Vec::with_capacity(spans);
     let (mut length, mut energy, mut s_sum) = (0.0, 0.0, 0.0);
+    // The span's end tangents are r l e^{i t} rotated by the chord's angle φ, t = dir - φ:
+    // r l e^{i dir}, one unit vector per point.
+    let unit: Vec<Vec2> = dir.iter().map(|d| Vec2::from_angle(*d)).collect();
     for i in 0..spans {
         let t0 = wrap(dir[i] - phi[i]);
         let t1 = wrap(dir[next(i)] - phi[i]);
         let (j, r0, r1, len, area) = segment_values(mode, t0, t1)?;
-        let rot = Vec2::from_angle(phi[i]) * l[i];
-        let rotate = |v: Vec2| Vec2::new(v.x * rot.x - v.y * rot.y, v.x * rot.y + v.y * rot.x);
         segments.push(HermiteSpan {
             p0: points[i],
             p1: points[next(i)],
-            d0: rotate(Vec2::from_angle(t0) * r0),
-            d1: rotate(Vec2::from_angle(t1) * r1),
+            d0: unit[i] * (r0 * l[i]),
+            d1: unit[next(i)] * (r1 * l[i]),
         });
         length += l[i] * len;
         energy += l[i] * j;

@@ -113,6 +113,12 @@ pub struct PseudoTables {
     /// One bit per cell (cell (i, k) spans nodes i..i+1, k..k+1; bit i n + k): set where the
     /// generator's check found the interpolation off (see [`PseudoTables::flagged`]).
     flags: Vec<u8>,
+    /// Derived on decoding: each node's best entry in f64 (NaN where the node has none).
+    first: Vec<[f64; 5]>,
+    /// Derived on decoding: per cell, whether its 4 x 4 stencil holds one valley throughout,
+    /// not too steep (the condition of the interpolation's fast path, which depends on the
+    /// cell alone).
+    single_cell: Vec<bool>,
 }
 
 /// Values of the optimal segment read from the table.
@@ -244,7 +250,7 @@ pub fn decode(bytes: &[u8]) -> Result<PseudoTables> {
     let single_dj = (0..m as isize)
         .map(|k| (at(k - 2) - 8.0 * at(k - 1) + 8.0 * at(k + 1) - at(k + 2)) / (12.0 * hm))
         .collect();
-    Ok(PseudoTables {
+    let mut t = PseudoTables {
         n,
         start,
         entries,
@@ -253,7 +259,19 @@ pub fn decode(bytes: &[u8]) -> Result<PseudoTables> {
         single_j,
         single_dj,
         flags,
-    })
+        first: Vec::new(),
+        single_cell: Vec::new(),
+    };
+    t.first = (0..n * n)
+        .map(|idx| {
+            let e = &t.entries[t.start[idx] as usize..t.start[idx + 1] as usize];
+            e.first().map_or([f64::NAN; 5], |f| f.map(|x| x as f64))
+        })
+        .collect();
+    t.single_cell = (0..n * n)
+        .map(|c| t.stencil_is_single((c / n) as isize, (c % n) as isize))
+        .collect();
+    Ok(t)
 }
 
 static TABLES: OnceLock<PseudoTables> = OnceLock::new();
@@ -265,6 +283,21 @@ pub fn tables() -> &'static PseudoTables {
 }
 
 /// Cubic Lagrange weights for nodes at -1, 0, 1, 2 and a point t in [0, 1].
+/// `i` modulo `n` (>= 1): the lookups ask for indices at most a few steps outside
+/// [0, n), where a comparison or two replace the integer division of `rem_euclid`.
+#[inline]
+fn wrap_index(i: isize, n: isize) -> isize {
+    if (0..n).contains(&i) {
+        i
+    } else if i < 0 && i >= -n {
+        i + n
+    } else if i >= n && i < 2 * n {
+        i - n
+    } else {
+        i.rem_euclid(n)
+    }
+}
+
 fn lagrange4(t: f64) -> [f64; 4] {
     let (a, b, c, d) = (t + 1.0, t, t - 1.0, t - 2.0);
     [
@@ -298,7 +331,7 @@ impl PseudoTables {
     /// ([`TableSegment::exact`]).
     pub fn flagged(&self, i: isize, k: isize) -> bool {
         let n = self.n as isize;
-        let c = (i.rem_euclid(n) * n + k.rem_euclid(n)) as usize;
+        let c = (wrap_index(i, n) * n + wrap_index(k, n)) as usize;
         self.flags[c / 8] & (1 << (c % 8)) != 0
     }
 
@@ -338,7 +371,7 @@ impl PseudoTables {
 
     fn node(&self, i: isize, k: isize) -> &[Entry] {
         let n = self.n as isize;
-        let idx = (i.rem_euclid(n) * n + k.rem_euclid(n)) as usize;
+        let idx = (wrap_index(i, n) * n + wrap_index(k, n)) as usize;
         &self.entries[self.start[idx] as usize..self.start[idx + 1] as usize]
     }
 
@@ -447,24 +480,45 @@ impl PseudoTables {
     /// The stencil's optimum interpolated when at every node of it the optimum lies in the
     /// valley of the cell's first corner.
     fn single_valley(&self, i: isize, k: isize, wx: &[f64; 4], wy: &[f64; 4]) -> Option<[f64; 5]> {
-        let at = *self.node(i, k).first()?;
+        let n = self.n as isize;
+        if !self.single_cell[(wrap_index(i, n) * n + wrap_index(k, n)) as usize] {
+            return None;
+        }
+        let rows: [isize; 4] = std::array::from_fn(|d| wrap_index(i + d as isize - 1, n) * n);
+        let cols: [isize; 4] = std::array::from_fn(|d| wrap_index(k + d as isize - 1, n));
         let mut acc = [0.0f64; 5];
-        let (mut lo, mut hi) = (f32::MAX, f32::MIN);
-        for (di, wxi) in wx.iter().enumerate() {
-            for (dk, wyk) in wy.iter().enumerate() {
-                let node = self.node(i + di as isize - 1, k + dk as isize - 1);
-                let first = node.first()?;
-                if valley_distance(&at, first) >= 1.0 {
-                    return None;
-                }
-                (lo, hi) = (lo.min(first[2]), hi.max(first[2]));
+        for (row, wxi) in rows.iter().zip(wx) {
+            for (col, wyk) in cols.iter().zip(wy) {
+                let first = &self.first[(row + col) as usize];
                 let w = wxi * wyk;
                 for (a, x) in acc.iter_mut().zip(first) {
-                    *a += w * *x as f64;
+                    *a += w * x;
                 }
             }
         }
-        (hi <= STEEP * lo).then_some(acc)
+        Some(acc)
+    }
+
+    /// Whether the stencil of cell (i, k) (nodes i-1..i+2, k-1..k+2) holds one valley: every
+    /// node's best entry within [`valley_distance`] 1 of the cell corner's, and J / q varying
+    /// by at most [`STEEP`] over them.
+    fn stencil_is_single(&self, i: isize, k: isize) -> bool {
+        let Some(at) = self.node(i, k).first() else {
+            return false;
+        };
+        let (mut lo, mut hi) = (f32::MAX, f32::MIN);
+        for di in -1..=2 {
+            for dk in -1..=2 {
+                let Some(first) = self.node(i + di, k + dk).first() else {
+                    return false;
+                };
+                if valley_distance(at, first) >= 1.0 {
+                    return false;
+                }
+                (lo, hi) = (lo.min(first[2]), hi.max(first[2]));
+            }
+        }
+        hi <= STEEP * lo
     }
 
     /// One valley interpolated at the query: cubic on the full stencil, else bilinear on
@@ -550,6 +604,34 @@ impl PseudoTables {
         Ok((self.single_derivs(a).0, wrap(t1)))
     }
 
+    /// dJ/dθ and d²J/dθ² of [`Self::single_derivs`] alone (the tangent solve's Newton steps).
+    pub fn single_slope_curvature(&self, theta: f64) -> (f64, f64) {
+        let a = if (-PI..=PI).contains(&theta) {
+            theta
+        } else {
+            wrap(theta)
+        };
+        let inv_h = self.m as f64 / (2.0 * PI);
+        let h = 2.0 * PI / self.m as f64;
+        let x = ((a + PI) * inv_h).max(0.0);
+        let i = x as usize;
+        let t = x - i as f64;
+        let i = if i >= self.m { i - self.m } else { i };
+        let j = if i + 1 == self.m { 0 } else { i + 1 };
+        let (p0, p1) = (self.single_j[i], self.single_j[j]);
+        let (m0, m1) = (self.single_dj[i] * h, self.single_dj[j] * h);
+        let t2 = t * t;
+        let d = (6.0 * t2 - 6.0 * t) * p0
+            + (3.0 * t2 - 4.0 * t + 1.0) * m0
+            + (-6.0 * t2 + 6.0 * t) * p1
+            + (3.0 * t2 - 2.0 * t) * m1;
+        let dd = (12.0 * t - 6.0) * p0
+            + (6.0 * t - 4.0) * m0
+            + (-12.0 * t + 6.0) * p1
+            + (6.0 * t - 2.0) * m1;
+        (d * inv_h, dd * (inv_h * inv_h))
+    }
+
     /// J(θ) of [`PseudoTables::single`] with its first and second derivatives: the cubic
     /// Hermite interpolant of the nodes' J and dJ/dθ (C1, even like J itself, so the
     /// minimiser of eq. 11 is exactly symmetric for symmetric data).
@@ -560,11 +642,11 @@ impl PseudoTables {
             wrap(theta)
         };
         let h = 2.0 * PI / self.m as f64;
-        let x = (a + PI) / h;
-        let i = x.floor();
-        let t = x - i;
-        let i = i as usize % self.m;
-        let j = (i + 1) % self.m;
+        let x = ((a + PI) / h).max(0.0); // a >= -π: truncation is the floor
+        let i = x as usize;
+        let t = x - i as f64;
+        let i = if i >= self.m { i - self.m } else { i };
+        let j = if i + 1 == self.m { 0 } else { i + 1 };
         let (p0, p1) = (self.single_j[i], self.single_j[j]);
         let (m0, m1) = (self.single_dj[i] * h, self.single_dj[j] * h);
         let (t2, t3) = (t * t, t * t * t);
