@@ -685,9 +685,9 @@ fn table_tangent(lp: f64, li: f64, turn: f64, guess: f64) -> Option<f64> {
         if (a - guess).abs() > 0.6 {
             return None;
         }
-        // Newton converges quadratically here: a step below 1e-8 leaves an error of order
-        // its square.
-        if step.abs() < 1e-8 {
+        // Newton converges quadratically here: a step below 1e-6 leaves an error of order
+        // its square (1e-12 rad), far below the accuracy of the tables themselves.
+        if step.abs() < 1e-6 {
             return Some(a);
         }
     }
@@ -825,7 +825,17 @@ fn pseudo_elastic_unit(points: &[Point], closed: bool, mode: Mode) -> Result<Pse
     for i in 0..spans {
         let t0 = wrap(dir[i] - phi[i]);
         let t1 = wrap(dir[next(i)] - phi[i]);
-        let (j, r0, r1, len, area) = segment_values(mode, t0, t1)?;
+        let (j, r0, r1, len, area) = match mode {
+            Mode::Table => {
+                // (cos t, sin t) from the unit vectors: the tangent's relative to the chord's.
+                let c = (points[next(i)] - points[i]) / l[i];
+                let rel = |u: Vec2| Vec2::new(u.dot(c), c.cross(u));
+                let q = crate::pseudo_table::q2_from_unit(rel(unit[i]), rel(unit[next(i)]));
+                let o = crate::pseudo_table::tables().segment_with_q(t0, t1, q)?;
+                (o.j, o.r0, o.r1, o.length, o.area)
+            }
+            Mode::Exact => segment_values(mode, t0, t1)?,
+        };
         segments.push(HermiteSpan {
             p0: points[i],
             p1: points[next(i)],

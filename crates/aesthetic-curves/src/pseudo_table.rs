@@ -156,12 +156,29 @@ impl TableSegment {
 
 /// The quadratic scale of J near the straight segment (see the module docs).
 pub fn q2(theta0: f64, theta1: f64) -> f64 {
-    2.0 * (1.0 - theta0.cos()) + 2.0 * (1.0 - theta1.cos()) + theta0.sin() * theta1.sin()
+    // 2 (1 - cos θ) = 4 sin²(θ/2): no cancellation for small angles.
+    let (h0, h1) = ((0.5 * theta0).sin(), (0.5 * theta1).sin());
+    4.0 * (h0 * h0 + h1 * h1) + theta0.sin() * theta1.sin()
+}
+
+/// [`q2`] from the unit vectors `e0 = (cos θ0, sin θ0)`, `e1 = (cos θ1, sin θ1)`, without
+/// trigonometric calls; `1 - cos θ` as `sin² θ / (1 + cos θ)` where cos θ > 0 (no
+/// cancellation for small angles).
+pub fn q2_from_unit(e0: kurbo::Vec2, e1: kurbo::Vec2) -> f64 {
+    let one_minus_cos = |e: kurbo::Vec2| {
+        if e.x > 0.0 {
+            e.y * e.y / (1.0 + e.x)
+        } else {
+            1.0 - e.x
+        }
+    };
+    2.0 * one_minus_cos(e0) + 2.0 * one_minus_cos(e1) + e0.y * e1.y
 }
 
 /// The scale of the single-angle J near θ = 0.
 pub fn q1(theta: f64) -> f64 {
-    2.0 * (1.0 - theta.cos())
+    let h = (0.5 * theta).sin();
+    4.0 * h * h
 }
 
 /// Encodes tables (used by the generator). `nodes[i * n + k]` holds the local minima at
@@ -391,6 +408,12 @@ impl PseudoTables {
     /// The optimal segment for end angles (θ0, θ1) (radians, any finite value) by table
     /// interpolation. Errors: non-finite angles.
     pub fn segment(&self, theta0: f64, theta1: f64) -> Result<TableSegment> {
+        self.segment_with_q(theta0, theta1, q2(theta0, theta1))
+    }
+
+    /// [`Self::segment`] with `q = q2(θ0, θ1)` given by the caller (who may know the angles'
+    /// cosines and sines already: [`q2_from_unit`]).
+    pub fn segment_with_q(&self, theta0: f64, theta1: f64, q: f64) -> Result<TableSegment> {
         if !(theta0.is_finite() && theta1.is_finite()) {
             return Err(Error::invalid("theta", "angles must be finite"));
         }
@@ -400,13 +423,12 @@ impl PseudoTables {
         // look up the member of the orbit whose first angle is the largest in size and
         // positive.
         let orbit = crate::pseudo_spline::Orbit::of(a, b);
-        let mut r = self.segment_canonical(orbit.a, orbit.b)?;
+        let mut r = self.segment_canonical(orbit.a, orbit.b, q)?;
         (r.r0, r.r1, r.area) = orbit.back(r.r0, r.r1, r.area);
         Ok(r)
     }
 
-    fn segment_canonical(&self, a: f64, b: f64) -> Result<TableSegment> {
-        let q = q2(a, b);
+    fn segment_canonical(&self, a: f64, b: f64, q: f64) -> Result<TableSegment> {
         if q == 0.0 {
             return Ok(TableSegment {
                 j: 0.0,
@@ -669,6 +691,42 @@ impl PseudoTables {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `q2_from_unit` is `q2` (to rounding) for angles of any size, and both keep their
+    /// relative accuracy for small ones, where `2 (1 - cos θ)` would cancel: checked against
+    /// the series
+    /// `θ0² + θ0 θ1 + θ1² - (θ0⁴ + θ1⁴)/12 - θ0 θ1 (θ0² + θ1²)/6`.
+    #[test]
+    fn q2_from_unit_vectors() {
+        let e = |t: f64| kurbo::Vec2::new(t.cos(), t.sin());
+        for i in 0..40 {
+            for k in 0..40 {
+                let (a, b) = (-3.1 + 0.155 * i as f64, -3.1 + 0.155 * k as f64);
+                let (q, u) = (q2(a, b), q2_from_unit(e(a), e(b)));
+                assert!((q - u).abs() <= 1e-14 * q.max(1e-3), "{a} {b}: {q} vs {u}");
+            }
+        }
+        for (a, b) in [
+            (1e-5f64, 3e-6f64),
+            (-2e-4, 5e-4),
+            (1e-7, 1e-7),
+            (3e-4, -1e-4),
+        ] {
+            let series = a * a + a * b + b * b
+                - (a.powi(4) + b.powi(4)) / 12.0
+                - a * b * (a * a + b * b) / 6.0;
+            let u = q2_from_unit(e(a), e(b));
+            assert!(
+                (u - series).abs() <= 1e-12 * series,
+                "{a} {b}: {u} vs {series}"
+            );
+            let q = q2(a, b);
+            assert!(
+                (q - series).abs() <= 1e-12 * series,
+                "{a} {b}: {q} vs {series}"
+            );
+        }
+    }
 
     #[test]
     fn encode_decode_round_trip_and_bad_files() {
