@@ -282,27 +282,76 @@ impl<'a> Problem<'a> {
     }
 
     /// The LAC point whose tangent has the direction of `v`, from the table: the node
-    /// interval is found by walking from `k` (the samples come in order along the curve),
+    /// interval is found by walking from `k` (the samples come in order along the curve;
+    /// `usize::MAX`: by bisection),
     /// the angle past the node from a short arctangent series, the point by cubic Hermite
     /// interpolation in τ. No atan2 and no logarithm per sample.
     fn lac_at_dir(&self, v: Vec2, k: &mut usize) -> Point {
         let t = &self.table;
         let m = t.len() - 1;
         let s = self.sign;
-        while *k + 1 < m && s * t[*k + 1].u.cross(v) > 0.0 {
-            *k += 1;
+        if *k == usize::MAX {
+            // The first sample: bisection on the node directions (they turn by less than π,
+            // so "before v" holds for a prefix of them), where the walk would cross the
+            // whole table.
+            let (mut lo, mut hi) = (0, m);
+            while hi - lo > 1 {
+                let mid = (lo + hi) / 2;
+                if s * t[mid].u.cross(v) > 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            *k = lo;
+        }
+        // Forward by galloping (the samples are some nodes apart), then bisection.
+        let before = |j: usize| s * t[j].u.cross(v) > 0.0;
+        if *k + 1 < m && before(*k + 1) {
+            let (mut lo, mut step) = (*k + 1, 1);
+            let mut hi = loop {
+                let next = lo + step;
+                if next >= m || !before(next) {
+                    break next.min(m);
+                }
+                lo = next;
+                step *= 2;
+            };
+            while hi - lo > 1 {
+                let mid = (lo + hi) / 2;
+                if before(mid) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            *k = lo;
         }
         while *k > 0 && s * t[*k].u.cross(v) < 0.0 {
             *k -= 1;
         }
         let (a, b) = (t[*k], t[*k + 1]);
         let z = s * a.u.cross(v) / a.u.dot(v);
-        let delta = if z.abs() <= 0.1 {
-            // atan z = z - z³/3 + z⁵/5 - ... to z¹⁷ (|z| <= 0.1: truncation below 1e-20).
+        let delta = if z.abs() <= 0.01 {
+            // atan z = z - z³/3 + z⁵/5 - z⁷/7 (|z| <= 0.01, the usual step between nodes:
+            // truncation below z⁹/9, 1.2e-17 of z).
+            let z2 = z * z;
+            z * (1.0 - z2 * (1.0 / 3.0 - z2 * (1.0 / 5.0 - z2 * (1.0 / 7.0))))
+        } else if z.abs() <= 0.1 {
+            // The same to z¹⁷ (|z| <= 0.1: truncation below 1e-20).
+            const INV: [f64; 7] = [
+                1.0 / 15.0,
+                1.0 / 13.0,
+                1.0 / 11.0,
+                1.0 / 9.0,
+                1.0 / 7.0,
+                1.0 / 5.0,
+                1.0 / 3.0,
+            ];
             let z2 = z * z;
             let mut acc = 1.0 / 17.0;
-            for c in [15.0, 13.0, 11.0, 9.0, 7.0, 5.0, 3.0] {
-                acc = 1.0 / c - z2 * acc;
+            for c in INV {
+                acc = c - z2 * acc;
             }
             z * (1.0 - z2 * acc)
         } else {
@@ -331,7 +380,7 @@ impl<'a> Problem<'a> {
         out.clear();
         let mut pts = Vec::new();
         let mut taus = Vec::new();
-        let mut k = 0;
+        let mut k = usize::MAX;
         for (&t, &sw) in ts.iter().zip(&smp.sw) {
             let u = 1.0 - t;
             let (c0, c1, c2, c3) = (u * u * u, 3.0 * t * u * u, 3.0 * t * t * u, t * t * t);
