@@ -424,7 +424,7 @@ impl LacStandard {
     /// `θ_k = t0 + (t1 - t0) k/(n-1)`: the polyline of a segment.
     ///
     /// Each sample is evaluated once (ρ, ρ', ρ'' in closed form from U = 1 + cθ, e^{iθ} by
-    /// rotation, recomputed every 16 samples) and consecutive samples are joined by the
+    /// rotation, recomputed every 32 samples) and consecutive samples are joined by the
     /// two-point Hermite rule with second derivatives,
     /// `∫_0^h f = h/2 (f0 + f1) + h²/10 (f0' - f1') + h³/120 (f0'' + f1'') - h⁷/100800 f⁽⁶⁾(ξ)`,
     /// whenever the bound of [`Self::integral_step`] (m = 6) puts that error below 2e-17 of
@@ -519,7 +519,7 @@ impl LacStandard {
         kappa[0] = 1.0 / rho;
         let mut acc = Vec2::ZERO;
         let mut th_prev = t0;
-        // Every 16th sample from scratch; between them e^{iθ} by rotation and ρ by the ratio
+        // Every 32nd sample from scratch; between them e^{iθ} by rotation and ρ by the ratio
         // (U_k/U_(k-1))^a = (1 + ε)^a, ε = c h / U_(k-1), as a binomial series of `terms`
         // terms while max(|a|, 1) |ε| <= `reach` (the remainder is below reach^(terms+1)
         // <= 1e-17); there U is far enough from 0 for its plain f64 value to do.
@@ -533,7 +533,7 @@ impl LacStandard {
             let th = theta(k);
             let h = th - th_prev;
             let eps = c * h * inv_prev;
-            let resync = k % 16 == 0 || k == n - 1;
+            let resync = k % 32 == 0 || k == n - 1;
             let uu;
             if !resync && eps.abs() * a_big <= reach {
                 rho *= binomial_pow(a, eps, terms);
