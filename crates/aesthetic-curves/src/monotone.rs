@@ -720,6 +720,12 @@ fn rational_cubic_fast(curve: &RationalBezier) -> Option<Result<bool>> {
     for (a, b) in k.iter_mut().zip(&t14) {
         *a -= 3.0 * b;
     }
+    // The regularity check of every verdict (x' must not vanish).
+    let regular = || {
+        let hodograph: [Vec2; 5] = std::array::from_fn(|i| Vec2::new(dx[i], dy[i]));
+        let scale = hodograph.iter().map(|h| h.hypot2()).fold(0.0, f64::max);
+        check_regular(&hodograph, scale)
+    };
     if !(k.iter().all(|v| *v > 0.0) || k.iter().all(|v| *v < 0.0)) {
         // K at 15 evenly spaced t (ends included): two values of strictly opposite signs,
         // each far above its rounding, prove a sign change: not monotone. "Far above" is
@@ -752,16 +758,12 @@ fn rational_cubic_fast(curve: &RationalBezier) -> Option<Result<bool>> {
                 neg |= v < 0.0;
             }
             if pos && neg {
-                let hodograph: [Vec2; 5] = std::array::from_fn(|i| Vec2::new(dx[i], dy[i]));
-                let scale = hodograph.iter().map(|h| h.hypot2()).fold(0.0, f64::max);
-                return Some(check_regular(&hodograph, scale).map(|()| false));
+                return Some(regular().map(|()| false));
             }
         }
         return None;
     }
-    let hodograph: [Vec2; 5] = std::array::from_fn(|i| Vec2::new(dx[i], dy[i]));
-    let scale = hodograph.iter().map(|h| h.hypot2()).fold(0.0, f64::max);
-    Some(check_regular(&hodograph, scale).map(|()| true))
+    Some(regular().map(|()| true))
 }
 
 fn abs_diff(p: Point, q: Point) -> (f64, f64) {

@@ -818,6 +818,25 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
+/// The fairing's line search: the first of `lam`, `lam/2`, ... (30 halvings) whose trial
+/// (its state and mismatches; `None` where the pieces cannot be built) lowers the sum of
+/// squared mismatches below `cur` (a joint that cannot match does not stop the others).
+fn backtrack<T>(
+    mut lam: f64,
+    cur: f64,
+    mut trial: impl FnMut(f64) -> Option<(T, Vec<f64>)>,
+) -> Option<(T, Vec<f64>)> {
+    for _ in 0..30 {
+        if let Some((state, d)) = trial(lam) {
+            if sum_sq(&d) < cur {
+                return Some((state, d));
+            }
+        }
+        lam *= 0.5;
+    }
+    None
+}
+
 /// Step 4: G2 fairing by Newton on the active joints' tangent angles.
 fn fair(
     slots: &[Slot],
@@ -919,26 +938,21 @@ fn fair(
             break;
         };
         let big = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let mut lam = if big > 0.3 { 0.3 / big } else { 1.0 };
-        let cur = sum_sq(&d);
-        let mut accepted = false;
-        for _ in 0..30 {
+        let lam = if big > 0.3 { 0.3 / big } else { 1.0 };
+        let found = backtrack(lam, sum_sq(&d), |lam| {
             let mut trial = dirs.to_vec();
             for (k, &j) in active.iter().enumerate() {
                 trial[j] = rotate(dirs[j], lam * step[k]);
             }
-            if let Ok(b2) = build_all(slots, pts, &trial) {
-                let d2 = mismatches(&b2, &active, scale);
-                // Sum of squares: a joint that cannot match does not stop the others.
-                if sum_sq(&d2) < cur {
-                    dirs.copy_from_slice(&trial);
-                    built = b2;
-                    d = d2;
-                    accepted = true;
-                    break;
-                }
-            }
-            lam *= 0.5;
+            let b2 = build_all(slots, pts, &trial).ok()?;
+            let d2 = mismatches(&b2, &active, scale);
+            Some(((trial, b2), d2))
+        });
+        let accepted = found.is_some();
+        if let Some(((trial, b2), d2)) = found {
+            dirs.copy_from_slice(&trial);
+            built = b2;
+            d = d2;
         }
         // Converged by the measure of the final report: over the build's own curvature.
         report.final_jump = max_abs(&mismatches(&built, &active, curvature_scale(&built)));
@@ -1088,12 +1102,10 @@ fn free_alphas(
         }
         let big_angle = (0..na).fold(0.0f64, |m, c| m.max(step[c].abs()));
         let big_alpha = (na..nx).fold(0.0f64, |m, c| m.max(step[c].abs()));
-        let mut lam = 1.0f64
+        let lam = 1.0f64
             .min(0.3 / big_angle.max(1e-300))
             .min(1.0 / big_alpha.max(1e-300));
-        let cur = sum_sq(&d);
-        let mut accepted = false;
-        for _ in 0..30 {
+        let found = backtrack(lam, sum_sq(&d), |lam| {
             let mut trial = dirs.to_vec();
             for (k, &j) in active.iter().enumerate() {
                 trial[j] = rotate(dirs[j], lam * step[k]);
@@ -1103,18 +1115,16 @@ fn free_alphas(
                 let a = tl[i].alpha.unwrap_or(1.0) + lam * step[na + k];
                 tl[i].alpha = Some(a.clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1));
             }
-            if let Ok(b2) = build_all(&tl, pts, &trial) {
-                let d2 = mismatches(&b2, active, scale);
-                if sum_sq(&d2) < cur {
-                    dirs.copy_from_slice(&trial);
-                    local = tl;
-                    *built = b2;
-                    d = d2;
-                    accepted = true;
-                    break;
-                }
-            }
-            lam *= 0.5;
+            let b2 = build_all(&tl, pts, &trial).ok()?;
+            let d2 = mismatches(&b2, active, scale);
+            Some(((trial, tl, b2), d2))
+        });
+        let accepted = found.is_some();
+        if let Some(((trial, tl, b2), d2)) = found {
+            dirs.copy_from_slice(&trial);
+            local = tl;
+            *built = b2;
+            d = d2;
         }
         report.final_jump = max_abs(&mismatches(built, active, curvature_scale(built)));
         report.converged = report.final_jump <= tol;

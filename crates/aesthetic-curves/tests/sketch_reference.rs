@@ -41,8 +41,11 @@ fn s_curve(n: usize) -> (Vec<Point>, f64) {
 }
 
 fn noisy(points: &[Point], amp: f64) -> Vec<Point> {
-    // Deterministic pseudo-random noise.
-    let mut s = 12345u64;
+    noisy_from(points, amp, 12345)
+}
+
+/// Deterministic pseudo-random noise from the generator state `s`.
+fn noisy_from(points: &[Point], amp: f64, mut s: u64) -> Vec<Point> {
     let mut r = || {
         s = s
             .wrapping_mul(6364136223846793005)
@@ -486,6 +489,15 @@ fn a_stroke_of_200_000_points_fits_in_seconds() {
     assert!(secs < 10.0, "{secs} s");
 }
 
+/// `points` moved by up to `amp` in x and y, pseudo-randomly from `seed`; seed 0 leaves them
+/// as they are.
+fn nudged(points: &[Point], seed: u64, amp: f64) -> Vec<Point> {
+    if seed == 0 {
+        return points.to_vec();
+    }
+    noisy_from(points, amp, 1000 + seed)
+}
+
 /// A measured line nudged by 1e-9 mm (far below any measuring or drawing precision) must
 /// give the same result: the same number of pieces, G2, and no hook. Before the fairing's
 /// merit kept a fixed curvature scale and the α fit capped end curvatures, one Prius line
@@ -499,18 +511,7 @@ fn prius_key_lines_are_stable_under_tiny_nudges() {
         let kref = ks.iter().map(|k| k.abs()).fold(0.0, f64::max);
         let mut counts = Vec::new();
         for seed in 0..6u64 {
-            let mut st = 1000 + seed;
-            let mut r = || {
-                st = st
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                ((st >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-            };
-            let amp = if seed == 0 { 0.0 } else { 1e-9 };
-            let pts: Vec<Point> = base
-                .iter()
-                .map(|q| p(q.x + amp * r(), q.y + amp * r()))
-                .collect();
+            let pts = nudged(&base, seed, 1e-9);
             let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
             let kmax = delivered(&sk).iter().map(|d| d.1.abs()).fold(0.0, f64::max);
             assert!(
@@ -551,18 +552,7 @@ fn editor_strokes_are_stable_under_tiny_nudges() {
         let tol = aesthetic_curves::sketch::default_tolerance(&base);
         let mut counts = Vec::new();
         for seed in 0..16u64 {
-            let mut st = 1000 + seed;
-            let mut r = || {
-                st = st
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                ((st >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-            };
-            let amp = if seed == 0 { 0.0 } else { 1e-11 };
-            let pts: Vec<Point> = base
-                .iter()
-                .map(|q| p(q.x + amp * r(), q.y + amp * r()))
-                .collect();
+            let pts = nudged(&base, seed, 1e-11);
             let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
             assert!(sk.max_deviation <= tol, "{name} nudge {seed}: deviation");
             assert_eq!(sk.g2, sk.fairing.converged, "{name} nudge {seed}: report");
