@@ -1,4 +1,4 @@
-//! Dev-only comparison: the same 1000 points through Spiro (Raph Levien's libspiro, Debian
+//! Dev-only comparison: the same points through Spiro (Raph Levien's libspiro, Debian
 //! package `libspiro-dev`) and through the pseudo-elastic spline in table mode. Spiro solves
 //! a different curve (piecewise Euler spirals, G2, a global Newton solve); both interpolate
 //! the points with a fair curve, which is the work compared.
@@ -39,16 +39,18 @@ fn spiro(cps: &[SpiroCp]) -> bool {
     }
 }
 
-fn bench(c: &mut Criterion) {
-    let pts = wavy_points(1000, 7);
+/// Spiro control points through `pts`: open curves start with '{' and end with '}',
+/// closed ones are all 'c' (G2 everywhere).
+fn control_points(pts: &[aesthetic_curves::Point], closed: bool) -> Vec<SpiroCp> {
     let n = pts.len();
-    let cps: Vec<SpiroCp> = pts
-        .iter()
+    pts.iter()
         .enumerate()
         .map(|(i, p)| SpiroCp {
             x: p.x,
             y: p.y,
-            ty: if i == 0 {
+            ty: if closed {
+                b'c'
+            } else if i == 0 {
                 b'{'
             } else if i == n - 1 {
                 b'}'
@@ -56,14 +58,40 @@ fn bench(c: &mut Criterion) {
                 b'c'
             } as c_char,
         })
+        .collect()
+}
+
+/// The point sets of issue 17's spline race (the same as `aecurve bench spline`): 15 and
+/// 1000 wavy points, 1000 points on a circle (closed), 100,000 wavy points; each through
+/// both, in one run.
+fn bench(c: &mut Criterion) {
+    let circle: Vec<aesthetic_curves::Point> = (0..1000)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / 1000.0;
+            aesthetic_curves::Point::new(a.cos(), a.sin())
+        })
         .collect();
-    assert!(spiro(&cps), "libspiro failed on the benchmark points");
+    let sets = [
+        ("open_15", wavy_points(15, 7), false),
+        ("open_1000", wavy_points(1000, 7), false),
+        ("circle_closed_1000", circle, true),
+        ("open_100000", wavy_points(100_000, 7), false),
+    ];
     tables();
     let mut g = c.benchmark_group("spline_vs_spiro");
-    g.bench_function("pseudo_elastic_table_open_1000", |b| {
-        b.iter(|| pseudo_elastic(black_box(&pts), false, Mode::Table).unwrap())
-    });
-    g.bench_function("libspiro_open_1000", |b| b.iter(|| spiro(black_box(&cps))));
+    for (name, pts, closed) in sets {
+        let cps = control_points(&pts, closed);
+        assert!(spiro(&cps), "libspiro failed on the {name} points");
+        if pts.len() > 10_000 {
+            g.sample_size(10);
+        }
+        g.bench_function(format!("pseudo_elastic_table_{name}"), |b| {
+            b.iter(|| pseudo_elastic(black_box(&pts), closed, Mode::Table).unwrap())
+        });
+        g.bench_function(format!("libspiro_{name}"), |b| {
+            b.iter(|| spiro(black_box(&cps)))
+        });
+    }
     g.finish();
 }
 
