@@ -356,16 +356,17 @@ fn within_one_percent_of_the_exhaustive_optimum_on_1000_segments() {
         rows.len(),
         failures.len()
     );
-    for f in failures.iter().take(20) {
+    for f in failures.iter().take(40) {
         println!("  {f}");
     }
     // Not there yet (issue 17): the optimiser misses the global optimum on KNOWN_MISSES of
-    // the 1000 segments (59 before the scan across the valley), by up to 2.5 times in rms.
-    // All are near-exact fits (rms 1e-10 to 1e-5 of the length) whose optimum lies in a
+    // the 1000 segments (59 before the scan across the valley), by 1.04 to 31 times in rms.
+    // 21 are near-exact fits (rms 1e-11 to 2.4e-5 of the length) whose optimum lies in a
     // second valley of the error surface, narrow and close to the one found; the scan
     // across the best valley (±0.06) finds the nearer twins, not the farther ones (±0.15
-    // finds 6 more at 30 % more time). Reported, not hidden; the bound stops a regression
-    // and is lowered as the optimiser improves.
+    // finds 6 more at 30 % more time). One is not near-exact (alpha -0.10, 112 degrees of
+    // turning: rms 2.1e-4 against 8.2e-6). Reported, not hidden; the bound stops a
+    // regression and is lowered as the optimiser improves.
     const KNOWN_MISSES: usize = 22;
     assert!(
         failures.len() <= KNOWN_MISSES,
