@@ -66,7 +66,7 @@ impl Default for ApproxOptions {
     fn default() -> Self {
         ApproxOptions {
             grid: 12,
-            grid_samples: 12,
+            grid_samples: 8,
             refine_samples: 32,
             report_samples: 201,
             starts: 2,
