@@ -404,13 +404,7 @@ impl LacStandard {
         ];
         for (xs, ws, k) in RULES {
             let m = 2 * xs.len();
-            // D = Σ_k C(m,k) |a (a-1) ... (a-k+1)| r^k bounds |f^(m)| / ρ_max.
-            let binom = &BINOM_ROWS[xs.len() - 3];
-            let (mut d, mut prod) = (1.0, 1.0);
-            for j in 0..m {
-                prod *= (a - j as f64).abs() * r;
-                d += binom[j + 1] * prod;
-            }
+            let d = leibniz_bound(a, r, m);
             // Relative to the step's own length |h| ρ_min: √2 k h^m D ρ_max/ρ_min <= 2e-17.
             if 1.5 * k * h.abs().powi(m as i32) * d * ratio <= 2e-17 {
                 let (v, rho) = self.gauss_step(t0, t1, a, c, xs, ws, cache);
@@ -490,12 +484,7 @@ impl LacStandard {
             if !(umin > 0.0 && spread <= 1.0) {
                 return false;
             }
-            let binom = &BINOM_ROWS[0];
-            let (mut d, mut prod) = (1.0, 1.0);
-            for j in 0..6 {
-                prod *= (a - j as f64).abs() * r;
-                d += binom[j + 1] * prod;
-            }
+            let d = leibniz_bound(a, r, 6);
             let h6 = (h * h) * (h * h) * (h * h);
             1.5 * h6 * d * (1.0 + 2.0 * spread) * (1.0 / 100_800.0) <= 2e-17
         };
@@ -774,6 +763,18 @@ fn binomial_pow(a: f64, eps: f64, terms: usize) -> f64 {
         acc = 1.0 + (a - j as f64) * INV_INT[j] * eps * acc;
     }
     acc
+}
+
+/// `D = Σ_k C(m,k) |a (a-1) ... (a-k+1)| r^k` (m = 6, 8 or 10): with ρ = U^a and
+/// r = |c| / U_min, `|f^(m)| <= ρ_max D` for f = ρ e^{iψ} (Leibniz).
+fn leibniz_bound(a: f64, r: f64, m: usize) -> f64 {
+    let binom = &BINOM_ROWS[m / 2 - 3];
+    let (mut d, mut prod) = (1.0, 1.0);
+    for j in 0..m {
+        prod *= (a - j as f64).abs() * r;
+        d += binom[j + 1] * prod;
+    }
+    d
 }
 
 /// Rows 6, 8 and 10 of Pascal's triangle.
