@@ -818,6 +818,24 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
+/// One Jacobian column by finite differences of the mismatches: central from the values at
+/// `+h` and `-h`, one-sided (against `d`, the values at 0) where one side cannot be built,
+/// `None` where neither can.
+fn difference_column(
+    plus: Option<Vec<f64>>,
+    minus: Option<Vec<f64>>,
+    d: &[f64],
+    h: f64,
+) -> Option<Vec<f64>> {
+    let n = d.len();
+    match (plus, minus) {
+        (Some(p), Some(m)) => Some((0..n).map(|r| (p[r] - m[r]) / (2.0 * h)).collect()),
+        (Some(p), None) => Some((0..n).map(|r| (p[r] - d[r]) / h).collect()),
+        (None, Some(m)) => Some((0..n).map(|r| (d[r] - m[r]) / h).collect()),
+        (None, None) => None,
+    }
+}
+
 /// The fairing's line search: the first of `lam`, `lam/2`, ... (30 halvings) whose trial
 /// (its state and mismatches; `None` where the pieces cannot be built) lowers the sum of
 /// squared mismatches below `cur` (a joint that cannot match does not stop the others).
@@ -897,16 +915,7 @@ fn fair(
                 Some(mismatches(&b2, &active, scale))
             };
             let h = 1e-6;
-            match (at(h), at(-h)) {
-                (Some(p), Some(m)) => Some(
-                    (0..na)
-                        .map(|r| (p[r] - m[r]) / (2.0 * h))
-                        .collect::<Vec<f64>>(),
-                ),
-                (Some(p), None) => Some((0..na).map(|r| (p[r] - d[r]) / h).collect()),
-                (None, Some(m)) => Some((0..na).map(|r| (d[r] - m[r]) / h).collect()),
-                (None, None) => None,
-            }
+            difference_column(at(h), at(-h), &d, h)
         };
         let columns: Vec<Option<Vec<f64>>> = if na >= 4 {
             active.par_iter().map(|&j| column(j)).collect()
@@ -1043,7 +1052,7 @@ fn free_alphas(
         iterations += 1;
         report.iterations += 1;
         // Columns: the active joints' tangent angles, then the free pieces' α.
-        let column = |c: usize| -> Option<Vec<f64>> {
+        let column = |c: usize| -> Vec<f64> {
             let at = |h: f64| -> Option<Vec<f64>> {
                 let mut b2 = built.clone();
                 if c < na {
@@ -1071,17 +1080,12 @@ fn free_alphas(
                 Some(mismatches(&b2, active, scale))
             };
             let h = if c < na { 1e-6 } else { 1e-5 };
-            match (at(h), at(-h)) {
-                (Some(p), Some(m)) => Some((0..na).map(|r| (p[r] - m[r]) / (2.0 * h)).collect()),
-                (Some(p), None) => Some((0..na).map(|r| (p[r] - d[r]) / h).collect()),
-                (None, Some(m)) => Some((0..na).map(|r| (d[r] - m[r]) / h).collect()),
-                (None, None) => Some(vec![0.0; na]),
-            }
+            // An unknown that can move neither way does not move.
+            difference_column(at(h), at(-h), &d, h).unwrap_or_else(|| vec![0.0; na])
         };
-        let columns: Vec<Option<Vec<f64>>> = (0..nx).into_par_iter().map(column).collect();
+        let columns: Vec<Vec<f64>> = (0..nx).into_par_iter().map(column).collect();
         let mut jac = DMatrix::<f64>::zeros(na, nx);
         for (c, col) in columns.into_iter().enumerate() {
-            let Some(col) = col else { return Ok(()) };
             let w = if c < na { 1.0 } else { ALPHA_WEIGHT.sqrt() };
             for (r, v) in col.into_iter().enumerate() {
                 jac[(r, c)] = v * w;
