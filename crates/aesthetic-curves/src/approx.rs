@@ -16,27 +16,35 @@
 //! **Optimisation** ([`fit_rational_cubic`]): the error surface over (f0, f1) has several
 //! local minima (S3), so a local optimiser from a fixed start jumps between them as the
 //! input moves. Here:
-//! 1. the LAC is tabulated against turning angle once (positions and exact derivatives,
-//!    cubic Hermite interpolation: relative error about 1e-10), so an objective evaluation
-//!    costs a few nanoseconds per sample;
-//! 2. a grid over (0, 1)² finds every basin the grid resolves; its local minima (up to
-//!    [`ApproxOptions::starts`]) start Levenberg–Marquardt on the residual vector;
-//! 3. near-exact fits have narrow valleys, sometimes two side by side a few hundredths
-//!    apart: the profile across the best valley (every 5e-4 over ±0.06, in the direction
-//!    where the error rises fastest) is scanned and its other dips refined too;
-//! 4. the candidates are ranked by error and checked by the exact monotonicity test
-//!    ([`crate::monotone`]); when the unconstrained minima are not curvature-monotone, the
-//!    search restarts from the best monotone grid points with steps into the non-monotone
-//!    region refused;
-//! 5. the winner's error is measured on the exact LAC (no table), and it is returned only if
-//!    the exact test proves its curvature monotone; otherwise [`Error::NoSegment`].
+//! 1. the LAC is tabulated against turning angle once (positions and exact first and second
+//!    derivatives, quintic Hermite interpolation: error below 1e-14 of the length on most
+//!    shapes, 1e-11 within 0.1 % of θ_lim), so an objective evaluation costs a few
+//!    nanoseconds per sample;
+//! 2. the starting points come from the shipped table of local optima
+//!    ([`crate::approx_table`]): every minimum at the eight grid nodes around the segment's
+//!    shape (α, θ_d, base angle), each valley followed through the cell and interpolated;
+//!    Levenberg–Marquardt refines each (16 Gauss–Legendre samples; a start within 0.01 of
+//!    a lower minimum already found is skipped, a run still 100 times above the best after
+//!    5 iterations is abandoned);
+//! 3. only when the best of those is not curvature-monotone, or the table has no start
+//!    (`ApproxOptions::table` off), the search of the whole square runs: a grid finds every
+//!    basin it resolves, the minima along every grid row and column find narrow valleys,
+//!    Levenberg–Marquardt refines the best, the profile across the best valley (every 5e-4
+//!    over ±0.06) finds a narrow twin beside it, and when the unconstrained minima are not
+//!    curvature-monotone the search restarts from the best monotone grid points with steps
+//!    into the non-monotone region refused;
+//! 4. the winner is refined on a finer measure (48 Gauss nodes), near-exact fits (rms below
+//!    1e-12) on the exact LAC; its error is measured on the exact LAC (no table), and it is
+//!    returned only if the exact test proves its curvature monotone; otherwise
+//!    [`Error::NoSegment`].
 //!
-//! The result is the global optimum of the family up to the grid's resolution of basins,
+//! The result is the global optimum of the family up to the table's resolution of valleys,
 //! so it moves continuously with the input except where the global optimum itself jumps
-//! to another basin. Measured against an independent exhaustive search on 1000 random
-//! segments (`tests/approx_sweep.rs`): within 1 % on 978; the other 22 miss by 1.04 to 31
-//! times in rms: 21 near-exact fits whose optimum lies in a narrow valley farther than the
-//! scan reaches, and one that is not near-exact (rms 2.1e-4 against 8.2e-6).
+//! to another valley. Measured against an independent exhaustive search on 1000 random
+//! segments (`tests/approx_sweep.rs`): within 1 % on 996 (978 with the grid search
+//! alone); the other 4 miss by 1.3 to 14 times in rms, all near-exact fits next to the
+//! circle (rms 2.7e-12 to 3.4e-8 of the length) whose optimum lies in a second narrow
+//! valley a few hundredths from the one found.
 
 use crate::bezier::PlanarCurve;
 use crate::bezier::RationalBezier;
@@ -48,18 +56,23 @@ use kurbo::{Point, Vec2};
 /// Tuning of [`fit_rational_cubic`].
 #[derive(Clone, Debug)]
 pub struct ApproxOptions {
-    /// Grid points per axis of the global search over (f0, f1).
+    /// Grid points per axis of the search of the whole square (step 3 of the module
+    /// documentation: when the table's best minimum is not monotone, or without the table).
     pub grid: usize,
-    /// Samples of the error during the grid search.
+    /// Samples of the error during that grid search.
     pub grid_samples: usize,
-    /// Samples of the error during local refinement.
+    /// Gauss–Legendre samples of the error during local refinement (16).
     pub refine_samples: usize,
     /// Samples (uniform t, both ends included) of the reported error; at least 200.
     pub report_samples: usize,
-    /// Local minima of the grid refined (the best ones).
+    /// Local minima of that grid refined (the best ones).
     pub starts: usize,
     /// Iteration limit of each local refinement.
     pub max_iter: usize,
+    /// Start from the shipped table of optima ([`crate::approx_table`]); the grid search
+    /// runs only when the table's best minimum is not curvature-monotone. False: always the
+    /// grid search (slower; kept for comparison).
+    pub table: bool,
 }
 
 impl Default for ApproxOptions {
@@ -67,10 +80,11 @@ impl Default for ApproxOptions {
         ApproxOptions {
             grid: 12,
             grid_samples: 8,
-            refine_samples: 32,
+            refine_samples: 16,
             report_samples: 201,
             starts: 2,
             max_iter: 60,
+            table: true,
         }
     }
 }
@@ -121,11 +135,21 @@ pub fn approximation_error(
     let sign = turn_sign(seg);
     let mut pts = Vec::with_capacity(n);
     let mut taus = Vec::with_capacity(n);
+    let cubic: Option<[(f64, f64, f64); 4]> = (curve.degree() == 3).then(|| {
+        let (b, w) = (curve.points(), curve.weights());
+        std::array::from_fn(|i| (b[i].x * w[i], b[i].y * w[i], w[i]))
+    });
     for i in 0..n {
         let t = i as f64 / (n - 1) as f64;
-        let d = crate::bezier::PlanarCurve::derivs(curve, t);
-        pts.push(d.p);
-        taus.push(turning(d0, d.d1, sign));
+        let (p, d1) = match &cubic {
+            Some(h) => cubic_point_tangent(h, t),
+            None => {
+                let d = crate::bezier::PlanarCurve::derivs(curve, t);
+                (d.p, d.d1)
+            }
+        };
+        pts.push(p);
+        taus.push(turning(d0, d1, sign));
     }
     let (lac, _) = seg.eval_turning(&taus)?;
     let mut sum = 0.0;
@@ -136,6 +160,26 @@ pub fn approximation_error(
         max = max.max(e);
     }
     Ok(((sum / n as f64).sqrt(), max))
+}
+
+/// A rational cubic's point and a positive multiple of its tangent at `t`, from the
+/// homogeneous control points `h` = (w x, w y, w): x' ∝ H'_xy w - H_xy w' (the factor 3/w²
+/// does not change the direction).
+#[inline]
+fn cubic_point_tangent(h: &[(f64, f64, f64); 4], t: f64) -> (Point, Vec2) {
+    let u = 1.0 - t;
+    let (c0, c1, c2, c3) = (u * u * u, 3.0 * t * u * u, 3.0 * t * t * u, t * t * t);
+    let hx = c0 * h[0].0 + c1 * h[1].0 + c2 * h[2].0 + c3 * h[3].0;
+    let hy = c0 * h[0].1 + c1 * h[1].1 + c2 * h[2].1 + c3 * h[3].1;
+    let hw = c0 * h[0].2 + c1 * h[1].2 + c2 * h[2].2 + c3 * h[3].2;
+    let (e0, e1, e2) = (u * u, 2.0 * t * u, t * t);
+    let dx = e0 * (h[1].0 - h[0].0) + e1 * (h[2].0 - h[1].0) + e2 * (h[3].0 - h[2].0);
+    let dy = e0 * (h[1].1 - h[0].1) + e1 * (h[2].1 - h[1].1) + e2 * (h[3].1 - h[2].1);
+    let dw = e0 * (h[1].2 - h[0].2) + e1 * (h[2].2 - h[1].2) + e2 * (h[3].2 - h[2].2);
+    (
+        Point::new(hx / hw, hy / hw),
+        Vec2::new(dx * hw - hx * dw, dy * hw - hy * dw),
+    )
 }
 
 /// The turning angle of direction `d` from `d0`, in the segment's turning sense.
@@ -164,12 +208,13 @@ struct Problem<'a> {
     table: Vec<Node>,
 }
 
-/// One node of the LAC table: turning angle, point, dP/dτ and the unit tangent.
+/// One node of the LAC table: turning angle, point, dP/dτ, d²P/dτ² and the unit tangent.
 #[derive(Clone, Copy)]
 struct Node {
     tau: f64,
     p: Point,
     d: Vec2,
+    dd: Vec2,
     u: Vec2,
 }
 
@@ -236,14 +281,31 @@ impl<'a> Problem<'a> {
             taus[0] = 0.0;
             taus[m] = theta_d;
             let (pts, der) = seg.eval_turning(&taus)?;
+            // d²P/dτ² = ρ' T + ρ dT/dτ, with dT/dτ = ±N (the tangent turns by dτ) and, from
+            // ρ_std = U^(1/(α-1)) (e^{Λθ} for α = 1) and θ = θ_start + dir τ,
+            // ρ'/ρ = dir Λ / U: the same similarity scales ρ and ρ'.
+            let lambda = seg.standard.lambda();
+            let (theta_start, dir) = if seg.reversed {
+                (seg.interval.1, -1.0)
+            } else {
+                (seg.interval.0, 1.0)
+            };
+            let sign = turn_sign(seg);
             taus.iter()
                 .zip(pts)
                 .zip(der)
-                .map(|((tau, p), d)| Node {
-                    tau: *tau,
-                    p,
-                    d,
-                    u: d / d.hypot(),
+                .map(|((tau, p), d)| {
+                    let rho = d.hypot();
+                    let u = d / rho;
+                    let big_u = 1.0 + c * (theta_start + dir * tau);
+                    let drho = rho * dir * lambda / big_u;
+                    Node {
+                        tau: *tau,
+                        p,
+                        d,
+                        dd: u * drho + Vec2::new(-u.y, u.x) * (sign * rho),
+                        u,
+                    }
                 })
                 .collect()
         } else {
@@ -363,13 +425,26 @@ impl<'a> Problem<'a> {
             if *k == 0 { 0.0 } else { -0.5 },
             if *k + 1 == m { 1.0 } else { 1.5 },
         );
+        // Quintic Hermite interpolation (values, first and second derivatives at both
+        // nodes): error O(h⁶).
         let x2 = x * x;
         let x3 = x2 * x;
-        let h00 = 2.0 * x3 - 3.0 * x2 + 1.0;
-        let h10 = x3 - 2.0 * x2 + x;
-        let h01 = -2.0 * x3 + 3.0 * x2;
-        let h11 = x3 - x2;
-        (a.p.to_vec2() * h00 + a.d * (h10 * h) + b.p.to_vec2() * h01 + b.d * (h11 * h)).to_point()
+        let x4 = x3 * x;
+        let x5 = x4 * x;
+        let h0 = 1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5;
+        let h1 = x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5;
+        let h2 = 0.5 * (x2 - 3.0 * x3 + 3.0 * x4 - x5);
+        let h3 = 0.5 * (x3 - 2.0 * x4 + x5);
+        let h4 = -4.0 * x3 + 7.0 * x4 - 3.0 * x5;
+        let h5 = 10.0 * x3 - 15.0 * x4 + 6.0 * x5;
+        let hh = h * h;
+        (a.p.to_vec2() * h0
+            + a.d * (h1 * h)
+            + a.dd * (h2 * hh)
+            + b.dd * (h3 * hh)
+            + b.d * (h4 * h)
+            + b.p.to_vec2() * h5)
+            .to_point()
     }
 
     /// Residuals (x(t) - LAC(τ(t))) / length at `ts`, appended to `out`; None for an
@@ -383,18 +458,7 @@ impl<'a> Problem<'a> {
         let mut taus = Vec::new();
         let mut k = usize::MAX;
         for (&t, &sw) in ts.iter().zip(&smp.sw) {
-            let u = 1.0 - t;
-            let (c0, c1, c2, c3) = (u * u * u, 3.0 * t * u * u, 3.0 * t * t * u, t * t * t);
-            let hx = c0 * h[0].0 + c1 * h[1].0 + c2 * h[2].0 + c3 * h[3].0;
-            let hy = c0 * h[0].1 + c1 * h[1].1 + c2 * h[2].1 + c3 * h[3].1;
-            let hw = c0 * h[0].2 + c1 * h[1].2 + c2 * h[2].2 + c3 * h[3].2;
-            let (e0, e1, e2) = (u * u, 2.0 * t * u, t * t);
-            let dx = e0 * (h[1].0 - h[0].0) + e1 * (h[2].0 - h[1].0) + e2 * (h[3].0 - h[2].0);
-            let dy = e0 * (h[1].1 - h[0].1) + e1 * (h[2].1 - h[1].1) + e2 * (h[3].1 - h[2].1);
-            let dw = e0 * (h[1].2 - h[0].2) + e1 * (h[2].2 - h[1].2) + e2 * (h[3].2 - h[2].2);
-            // x' ∝ H'_xy w - H_xy w' (the positive factor 3/w² does not change the angle).
-            let tangent = Vec2::new(dx * hw - hx * dw, dy * hw - hy * dw);
-            let p = Point::new(hx / hw, hy / hw);
+            let (p, tangent) = cubic_point_tangent(&h, t);
             if self.exact {
                 pts.push(p);
                 taus.push(turning(self.d0, tangent, self.sign));
@@ -566,6 +630,31 @@ impl Samples {
     }
 }
 
+/// When a Levenberg–Marquardt run stops besides its iteration limit.
+#[derive(Clone, Copy, Debug)]
+struct LmStop {
+    /// Abandon a run still above `abandon_above` (sum of squares) after this many
+    /// iterations: it is crawling along a valley towards a minimum far worse than one
+    /// already found.
+    abandon_after: usize,
+    abandon_above: f64,
+    /// Converged when an accepted step gains no more than this fraction of the cost (or
+    /// moves less than 1e-9).
+    rel_progress: f64,
+    /// The initial damping (relative to the diagonal of JᵀJ).
+    mu0: f64,
+}
+
+impl LmStop {
+    /// To convergence at 1e-12 relative progress, never abandoned.
+    const FULL: LmStop = LmStop {
+        abandon_after: usize::MAX,
+        abandon_above: f64::INFINITY,
+        rel_progress: 1e-12,
+        mu0: 1e-3,
+    };
+}
+
 /// Levenberg–Marquardt on the residual vector from `start`; steps where `feasible` is false
 /// are refused. A run still above `abandon_above` (mean square) after 8 iterations is
 /// abandoned: it is crawling along a valley towards a minimum far worse than one already
@@ -578,6 +667,25 @@ fn refine(
     feasible: &dyn Fn(f64, f64) -> bool,
     abandon_above: f64,
 ) -> ((f64, f64), f64, usize) {
+    let stop = LmStop {
+        abandon_after: 8,
+        abandon_above,
+        ..LmStop::FULL
+    };
+    let (x, c, e, _) = refine_with(prob, start, ts, max_iter, feasible, stop);
+    (x, c, e)
+}
+
+/// [`refine`] with explicit stopping rules; also says whether it converged (stopped for
+/// lack of progress, not at the iteration limit or abandoned).
+fn refine_with(
+    prob: &Problem,
+    start: (f64, f64),
+    ts: &Samples,
+    max_iter: usize,
+    feasible: &dyn Fn(f64, f64) -> bool,
+    stop: LmStop,
+) -> ((f64, f64), f64, usize, bool) {
     let residuals = |x: (f64, f64), out: &mut Vec<f64>| prob.residuals(x.0, x.1, ts, out);
     let in_box = |x: (f64, f64)| x.0 > 0.0 && x.0 < 1.0 && x.1 > 0.0 && x.1 < 1.0;
     levenberg_marquardt(
@@ -586,7 +694,7 @@ fn refine(
         &|x| in_box(x) && feasible(x.0, x.1),
         start,
         max_iter,
-        abandon_above,
+        stop,
     )
 }
 
@@ -596,31 +704,32 @@ type Residuals<'a> = &'a dyn Fn((f64, f64), &mut Vec<f64>) -> Option<()>;
 /// Levenberg–Marquardt over two parameters on a residual vector (`residuals` fills its
 /// argument, None for an invalid point) from `start`; steps where `feasible` is false are
 /// refused. The forward-difference Jacobian steps by 1e-7, backwards where the forward
-/// point is outside `domain`. A run still above `abandon_above` (sum of squares) after 8
-/// iterations is abandoned. Returns the point, its sum of squares and the evaluations.
+/// point is outside `domain`; `stop` says when a run ends besides `max_iter`. Returns the
+/// point, its sum of squares, the evaluations and whether it converged.
 fn levenberg_marquardt(
     residuals: Residuals,
     domain: &dyn Fn((f64, f64)) -> bool,
     feasible: &dyn Fn((f64, f64)) -> bool,
     start: (f64, f64),
     max_iter: usize,
-    abandon_above: f64,
-) -> ((f64, f64), f64, usize) {
+    stop: LmStop,
+) -> ((f64, f64), f64, usize, bool) {
     let mut evals = 0;
     let mut r = Vec::new();
     let mut rp = Vec::new();
     let (mut f0, mut f1) = start;
     if residuals(start, &mut r).is_none() {
-        return (start, f64::INFINITY, 1);
+        return (start, f64::INFINITY, 1, false);
     }
     evals += 1;
     let mut cost: f64 = r.iter().map(|v| v * v).sum();
-    let mut mu = 1e-3;
+    let mut mu = stop.mu0;
     let step = 1e-7;
     let mut j0 = Vec::new();
     let mut j1 = Vec::new();
+    let mut converged = false;
     for iter in 0..max_iter {
-        if iter >= 8 && cost > abandon_above {
+        if iter >= stop.abandon_after && cost > stop.abandon_above {
             break;
         }
         // Forward-difference Jacobian, stepping inward from the bounds.
@@ -666,7 +775,8 @@ fn levenberg_marquardt(
             if new_cost < cost {
                 // Converged: a step below 1e-9 in f (the error changes to second order), or
                 // no more than 1e-12 of relative progress.
-                let small = (d0.abs() + d1.abs()) < 1e-9 || cost - new_cost <= 1e-12 * cost;
+                let small =
+                    (d0.abs() + d1.abs()) < 1e-9 || cost - new_cost <= stop.rel_progress * cost;
                 f0 = n0;
                 f1 = n1;
                 cost = new_cost;
@@ -678,10 +788,11 @@ fn levenberg_marquardt(
             mu *= 10.0;
         }
         if !improved {
+            converged = true;
             break;
         }
     }
-    ((f0, f1), cost, evals)
+    ((f0, f1), cost, evals, converged)
 }
 
 /// Dips of the error across a valley through `x`: the direction in which the error rises
@@ -742,29 +853,247 @@ fn across_valley(
     dips.into_iter().map(|d| d.1).collect()
 }
 
-/// The best curvature-monotone rational cubic of the §4 family for `seg` (see the module
-/// documentation). Errors: [`Error::NoSegment`] when no candidate is curvature-monotone.
-pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<RationalCubicFit> {
-    if opts.grid < 3 || opts.grid > 1000 || opts.grid_samples < 4 || opts.refine_samples < 4 {
-        return Err(Error::invalid(
-            "options",
-            "grid must be 3 to 1000 and the sample counts at least 4",
-        ));
+/// A local minimum of a segment's error surface over (f0, f1) ([`error_minima`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorMinimum {
+    /// `|b1 - b0| / |P1 - P0|`.
+    pub f0: f64,
+    /// `|b2 - b3| / |P1 - P2|`.
+    pub f1: f64,
+    /// The mean square error (distances over the arc length, 32 Gauss–Legendre nodes in t).
+    pub mean_square: f64,
+}
+
+/// Every local minimum of the error surface of `seg` that a thorough search finds, best
+/// first, within a factor 1000 of the best (curvature monotonicity not imposed): the cost
+/// on a `grid` x `grid` grid (16 Gauss nodes), the minima of the cost along every grid row
+/// and column (narrow valleys cross the grid lines) and the grid's own local minima, each
+/// refined by Levenberg–Marquardt; minima closer than 2e-3 to a better one are dropped.
+/// Milliseconds per segment: the generator of [`crate::approx_table`] and a diagnostic, not
+/// the fit.
+pub fn error_minima(seg: &LacSegment, grid: usize) -> Result<Vec<ErrorMinimum>> {
+    if !(8..=1000).contains(&grid) {
+        return Err(Error::invalid("grid", "must be 8 to 1000"));
     }
     let prob = Problem::new(seg, 256)?;
+    let n = grid;
+    let tg = Samples::gauss(16);
+    let tr = Samples::gauss(32);
+    let mut buf = Vec::new();
+    let at = |i: usize| (i as f64 + 0.5) / n as f64;
+    let mut cost = vec![f64::INFINITY; n * n];
+    for i in 0..n {
+        for j in 0..n {
+            cost[i * n + j] = prob.cost(at(i), at(j), &tg, &mut buf);
+        }
+    }
+    let c = |i: isize, j: isize| {
+        if i < 0 || j < 0 || i >= n as isize || j >= n as isize {
+            f64::INFINITY
+        } else {
+            cost[i as usize * n + j as usize]
+        }
+    };
+    let mut starts: Vec<(f64, (f64, f64))> = Vec::new();
+    for i in 0..n as isize {
+        for j in 0..n as isize {
+            let v = c(i, j);
+            if !v.is_finite() {
+                continue;
+            }
+            // Minima along the row (f0 fixed) and the column (f1 fixed), refined on the line.
+            if v <= c(i, j - 1) && v <= c(i, j + 1) {
+                let (x, cx, _) = line_min(
+                    &prob,
+                    0,
+                    at(i as usize),
+                    at(j as usize),
+                    1.0 / n as f64,
+                    &tg,
+                    &mut buf,
+                );
+                starts.push((cx, (at(i as usize), x)));
+            }
+            if v <= c(i - 1, j) && v <= c(i + 1, j) {
+                let (x, cx, _) = line_min(
+                    &prob,
+                    1,
+                    at(j as usize),
+                    at(i as usize),
+                    1.0 / n as f64,
+                    &tg,
+                    &mut buf,
+                );
+                starts.push((cx, (x, at(j as usize))));
+            }
+        }
+    }
+    starts.retain(|s| s.0.is_finite());
+    starts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut found: Vec<ErrorMinimum> = Vec::new();
+    let mut best = f64::INFINITY;
+    let mut tried: Vec<(f64, f64)> = Vec::new();
+    for &(_, s) in &starts {
+        // Starts on one valley floor a grid step apart lead to the same minimum.
+        if tried
+            .iter()
+            .any(|t| (t.0 - s.0).abs().max((t.1 - s.1).abs()) < 0.25 / n as f64)
+        {
+            continue;
+        }
+        tried.push(s);
+        let (x, cx, _) = refine(&prob, s, &tr, 200, &|_, _| true, 1e4 * best);
+        if !cx.is_finite() {
+            continue;
+        }
+        best = best.min(cx);
+        found.push(ErrorMinimum {
+            f0: x.0,
+            f1: x.1,
+            mean_square: cx,
+        });
+    }
+    found.sort_by(|a, b| a.mean_square.total_cmp(&b.mean_square));
+    // Levenberg–Marquardt can stop on the nearly flat floor of a long valley short of its
+    // minimum: a point with no barrier on the straight path to a better one (the cost never
+    // rises above the worse end's by more than 1 %) lies in the same valley and is dropped.
+    let same_valley = |a: &ErrorMinimum, b: &ErrorMinimum, buf: &mut Vec<f64>| {
+        let top = 1.01 * a.mean_square.max(b.mean_square);
+        (1..16).all(|k| {
+            let t = k as f64 / 16.0;
+            let c = prob.cost(a.f0 + t * (b.f0 - a.f0), a.f1 + t * (b.f1 - a.f1), &tr, buf);
+            c <= top
+        })
+    };
+    let mut out: Vec<ErrorMinimum> = Vec::new();
+    for m in found {
+        if m.mean_square > 1e3 * best + 1e-300 {
+            break;
+        }
+        let distinct = out.iter().all(|o| {
+            let d = (o.f0 - m.f0).abs().max((o.f1 - m.f1).abs());
+            d > 2e-3 && (d > 0.5 || !same_valley(o, &m, &mut buf))
+        });
+        if distinct {
+            out.push(m);
+        }
+    }
+    Ok(out)
+}
+
+/// The local minimum of the error surface of `seg` that Levenberg–Marquardt reaches from
+/// (f0, f1) (the measure of [`error_minima`]); [`Error::NoConvergence`] when the start is
+/// not a valid cubic.
+pub fn refine_minimum(seg: &LacSegment, f0: f64, f1: f64) -> Result<ErrorMinimum> {
+    let prob = Problem::new(seg, 256)?;
+    let (x, c, _) = refine(
+        &prob,
+        (f0, f1),
+        &Samples::gauss(32),
+        200,
+        &|_, _| true,
+        f64::INFINITY,
+    );
+    if !c.is_finite() {
+        return Err(Error::NoConvergence(format!(
+            "({f0}, {f1}) is not a valid cubic of the segment"
+        )));
+    }
+    Ok(ErrorMinimum {
+        f0: x.0,
+        f1: x.1,
+        mean_square: c,
+    })
+}
+
+/// The table's starting points for `seg` ([`crate::approx_table`]), each refined by
+/// Levenberg–Marquardt (starts within 1e-3 of one already refined, or of its result, are
+/// skipped), best first.
+fn table_candidates(
+    prob: &Problem,
+    seg: &LacSegment,
+    opts: &ApproxOptions,
+    tr: &Samples,
+    buf: &mut Vec<f64>,
+    evals: &mut usize,
+) -> Vec<((f64, f64), f64)> {
+    let alpha = seg.standard.alpha();
+    let theta_d = seg.theta_d;
+    let [p0, p1, p2] = seg.control;
+    let angle = |a: Vec2, b: Vec2| a.cross(b).abs().atan2(a.dot(b));
+    let phi = if seg.reversed {
+        angle(p1 - p2, p0 - p2)
+    } else {
+        angle(p1 - p0, p2 - p0)
+    };
+    let half = 0.5 * theta_d;
+    let u = match LacSegment::theta_lim(alpha, theta_d) {
+        Ok(lim) if lim > half => ((phi - half) / (lim - half)).clamp(0.0, 1.0),
+        _ => 0.0,
+    };
+    let mut raw = Vec::new();
+    crate::approx_table::table().candidates(alpha, theta_d, u, &mut raw);
+    let mut starts: Vec<(f64, (f64, f64))> = Vec::with_capacity(raw.len());
+    for [hi, lo] in raw {
+        let x = if seg.reversed { (lo, hi) } else { (hi, lo) };
+        if starts
+            .iter()
+            .all(|s| (s.1 .0 - x.0).abs().max((s.1 .1 - x.1).abs()) > 1e-3)
+        {
+            starts.push((prob.cost(x.0, x.1, tr, buf), x));
+            *evals += 1;
+        }
+    }
+    starts.retain(|s| s.0.is_finite());
+    starts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut out: Vec<((f64, f64), f64)> = Vec::new();
+    let mut best = f64::INFINITY;
+    // Each start runs to 1e-6 relative progress (the finish refines the winner), lightly
+    // damped (the starts lie near their valleys' floors), and is abandoned when after 5
+    // iterations it is still above 100 times the best minimum so far.
+    let stop = |best: f64| LmStop {
+        abandon_after: 5,
+        abandon_above: 100.0 * best,
+        rel_progress: 1e-6,
+        mu0: 1e-8,
+    };
+    for (c0, x) in starts {
+        // A start within 0.01 of a minimum already found that is at least as low lies in
+        // that minimum's valley: skipped.
+        let near = |p: (f64, f64)| (p.0 - x.0).abs().max((p.1 - x.1).abs()) <= 1e-2;
+        if out.iter().any(|r| near(r.0) && r.1 <= c0) {
+            continue;
+        }
+        let (y, c, e, _) = refine_with(prob, x, tr, opts.max_iter, &|_, _| true, stop(best));
+        *evals += e;
+        best = best.min(c);
+        out.push((y, c));
+    }
+    out.sort_by(|a, b| a.1.total_cmp(&b.1));
+    out
+}
+
+/// The search without the table (or when the table's best minimum is not curvature
+/// monotone): the grid, valley floors, Levenberg–Marquardt, the scan across the best
+/// valley, and the constrained search of the monotone region (module documentation).
+/// `candidates`: minima already found (the table's).
+fn grid_search(
+    prob: &Problem,
+    opts: &ApproxOptions,
+    tr: &Samples,
+    report_ts: &Samples,
+    buf: &mut Vec<f64>,
+    evals: &mut usize,
+    mut candidates: Vec<((f64, f64), f64)>,
+) -> Option<((f64, f64), f64)> {
     let n = opts.grid;
     let tg = Samples::gauss(opts.grid_samples);
-    let tr = Samples::gauss(opts.refine_samples);
-    let nr = opts.report_samples.max(200);
-    let report_ts = Samples::uniform(nr);
-    let mut buf = Vec::new();
-    let mut evals = 0;
     let at = |i: usize| (i as f64 + 0.5) / n as f64;
     let mut grid = vec![f64::INFINITY; n * n];
     for i in 0..n {
         for j in 0..n {
-            grid[i * n + j] = prob.cost(at(i), at(j), &tg, &mut buf);
-            evals += 1;
+            grid[i * n + j] = prob.cost(at(i), at(j), &tg, buf);
+            *evals += 1;
         }
     }
     // Valleys narrower than a grid cell (near-exact fits form a curve of them, S3's error
@@ -787,8 +1116,8 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             else {
                 continue;
             };
-            let (x, c, e) = line_min(&prob, axis, at(i), at(j), 1.0 / n as f64, &tg, &mut buf);
-            evals += e;
+            let (x, c, e) = line_min(prob, axis, at(i), at(j), 1.0 / n as f64, &tg, buf);
+            *evals += e;
             let pt = if axis == 0 { (at(i), x) } else { (x, at(i)) };
             points.push((c, pt));
             fam.push((c, at(i), x));
@@ -806,8 +1135,8 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
         };
         let width = 1.0 / n as f64;
         let mut g = |sv: f64, guess: f64| {
-            let (x, c, e) = line_min(&prob, axis, sv, guess, width, &tg, &mut buf);
-            evals += e;
+            let (x, c, e) = line_min(prob, axis, sv, guess, width, &tg, buf);
+            *evals += e;
             (c, x)
         };
         let (mut lo, mut hi) = ((s0 - width).max(1e-6), (s0 + width).min(1.0 - 1e-6));
@@ -845,18 +1174,17 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             minima.push(pt);
         }
     }
-    let mut candidates: Vec<((f64, f64), f64)> = Vec::new();
     let mut best_cost = f64::INFINITY;
     for &start in &minima {
         let (x, c, e) = refine(
-            &prob,
+            prob,
             start,
-            &tr,
+            tr,
             opts.max_iter,
             &|_, _| true,
             100.0 * best_cost,
         );
-        evals += e;
+        *evals += e;
         best_cost = best_cost.min(c);
         candidates.push((x, c));
     }
@@ -867,10 +1195,10 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
     if let Some(&(x, c)) = candidates.first() {
         if c.is_finite() {
             let scan = Samples::gauss(6);
-            let twins = across_valley(&prob, x, &scan, &mut buf, &mut evals);
+            let twins = across_valley(prob, x, &scan, buf, evals);
             for start in twins {
-                let (y, cy, e) = refine(&prob, start, &tr, opts.max_iter, &|_, _| true, 100.0 * c);
-                evals += e;
+                let (y, cy, e) = refine(prob, start, tr, opts.max_iter, &|_, _| true, 100.0 * c);
+                *evals += e;
                 candidates.push((y, cy));
             }
             candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
@@ -902,13 +1230,13 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             let mut cells: Vec<(f64, (f64, f64))> = Vec::with_capacity(m * m);
             for i in 0..m {
                 for j in 0..m {
-                    let c = prob.cost(atm(i), atm(j), &tg, &mut buf);
+                    let c = prob.cost(atm(i), atm(j), &tg, buf);
                     if c.is_finite() {
                         cells.push((c, (atm(i), atm(j))));
                     }
                 }
             }
-            evals += m * m;
+            *evals += m * m;
             cells.sort_by(|a, b| a.0.total_cmp(&b.0));
             for (_, pt) in cells {
                 if starts.len() >= want {
@@ -925,19 +1253,48 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
         }
         let feasible = |a: f64, b: f64| prob.is_monotone(a, b);
         for s in starts {
-            let (x, _, e) = refine(&prob, s, &tr, opts.max_iter, &feasible, f64::INFINITY);
-            evals += e;
+            let (x, _, e) = refine(prob, s, tr, opts.max_iter, &feasible, f64::INFINITY);
+            *evals += e;
             // The constrained optimum usually lies on the region's boundary, where refused
             // steps stall Levenberg–Marquardt: finish with a compass search. There the
             // gradient does not vanish, so the optimum moves to first order with the error
             // measure: use the reported one (uniform t, both ends).
-            let (x, c, e) = compass_search(&prob, x, &report_ts, &feasible, 0.5 / n as f64);
-            evals += e;
+            let (x, c, e) = compass_search(prob, x, report_ts, &feasible, 0.5 / n as f64);
+            *evals += e;
             if best.is_none_or(|b| c < b.1) {
                 best = Some((x, c));
             }
         }
     }
+    best
+}
+
+/// The best curvature-monotone rational cubic of the §4 family for `seg` (see the module
+/// documentation). Errors: [`Error::NoSegment`] when no candidate is curvature-monotone.
+pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<RationalCubicFit> {
+    if opts.grid < 3 || opts.grid > 1000 || opts.grid_samples < 4 || opts.refine_samples < 4 {
+        return Err(Error::invalid(
+            "options",
+            "grid must be 3 to 1000 and the sample counts at least 4",
+        ));
+    }
+    let prob = Problem::new(seg, 256)?;
+    let tr = Samples::gauss(opts.refine_samples);
+    let nr = opts.report_samples.max(200);
+    let report_ts = Samples::uniform(nr);
+    let mut buf = Vec::new();
+    let mut evals = 0;
+    let from_table = if opts.table {
+        table_candidates(&prob, seg, opts, &tr, &mut buf, &mut evals)
+    } else {
+        Vec::new()
+    };
+    let best = match from_table.first() {
+        Some(&(x, c)) if c.is_finite() && prob.is_monotone(x.0, x.1) => Some((x, c)),
+        _ => grid_search(
+            &prob, opts, &tr, &report_ts, &mut buf, &mut evals, from_table,
+        ),
+    };
     let Some(((mut f0, mut f1), _)) = best else {
         return Err(Error::NoSegment(format!(
             "no curvature-monotone rational cubic of the §4 family approximates this segment \
@@ -956,7 +1313,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
     if pc.is_finite() {
         (f0, f1) = (p0, p1);
     }
-    if pc < 1e-14 {
+    if pc < 1e-24 {
         // A near-exact fit (a circle): the table's interpolation error (about 1e-13 of the
         // size) would stay in the result; polish on the exact LAC.
         let exact = Problem {
@@ -1460,13 +1817,13 @@ pub(crate) fn fit_inflection_cubic_from(
         let mut h = match (warm, search) {
             (Some(_), false) => 0.0,
             _ => {
-                let (y, _, e) = levenberg_marquardt(
+                let (y, _, e, _) = levenberg_marquardt(
                     &residuals,
                     &domain,
                     &feasible,
                     s,
                     opts.max_iter,
-                    f64::INFINITY,
+                    LmStop::FULL,
                 );
                 evals += e;
                 x = y;

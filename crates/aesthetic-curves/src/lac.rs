@@ -436,8 +436,40 @@ impl LacStandard {
                 t0 + (t1 - t0) * (k as f64 / last)
             }
         };
+        self.walk(n, theta, (t1 - t0).abs() / last, true)
+    }
+
+    /// [`Self::uniform_walk`] at any monotone sequence of angles (at least 2): e^{iθ} is
+    /// computed at every sample instead of by rotation; the same error bound per step.
+    pub(crate) fn walk_monotone(&self, thetas: &[f64]) -> Result<(Vec<Vec2>, Vec<f64>)> {
+        let n = thetas.len();
+        if n < 2 {
+            return Err(Error::invalid("samples", "need at least 2"));
+        }
+        let up = thetas[n - 1] >= thetas[0];
+        let mut hmax = 0.0f64;
+        for w in thetas.windows(2) {
+            if (w[1] >= w[0]) != up && w[1] != w[0] {
+                return Err(Error::invalid("theta", "the angles must be monotone"));
+            }
+            hmax = hmax.max((w[1] - w[0]).abs());
+        }
+        self.walk(n, |k| thetas[k], hmax, false)
+    }
+
+    /// The walk of [`Self::uniform_walk`] over `theta(0..n)` (monotone), whose steps are at
+    /// most `hmax`; `uniform`: the steps are all equal (e^{iθ} by rotation).
+    fn walk(
+        &self,
+        n: usize,
+        theta: impl Fn(usize) -> f64,
+        hmax: f64,
+        uniform: bool,
+    ) -> Result<(Vec<Vec2>, Vec<f64>)> {
+        let (t0, t1) = (theta(0), theta(n - 1));
+        let last = (n - 1) as f64;
         let fallback = || -> Result<(Vec<Vec2>, Vec<f64>)> {
-            let th: Vec<f64> = (0..n).map(theta).collect();
+            let th: Vec<f64> = (0..n).map(&theta).collect();
             let (p, k) = self.eval_many_impl(&th, true)?;
             let p0 = p[0].to_vec2();
             Ok((p.iter().map(|q| q.to_vec2() - p0).collect(), k))
@@ -448,7 +480,10 @@ impl LacStandard {
             return fallback();
         }
         if self.alpha == 1.0 {
-            return self.spiral_walk(t0, t1, n, theta).or_else(|_| fallback());
+            if uniform {
+                return self.spiral_walk(t0, t1, n, &theta).or_else(|_| fallback());
+            }
+            return self.spiral_at(n, &theta).or_else(|_| fallback());
         }
         let c = self.c();
         let a = 1.0 / (self.alpha - 1.0);
@@ -491,7 +526,7 @@ impl LacStandard {
         // U is linear in θ: its minimum over the walk is at an end. When the widest step
         // passes at that minimum, every step does.
         let u_ends = (1.0 + c * t0).min(1.0 + c * t1) * (1.0 - 1e-12);
-        let all_fine = hermite_ok((t1 - t0).abs() / last * (1.0 + 1e-9), u_ends);
+        let all_fine = hermite_ok(hmax * (1.0 + 1e-9), u_ends);
         let turn = Vec2::from_angle((t1 - t0) / last);
         let mut pts = vec![Vec2::ZERO; n];
         let mut kappa = vec![0.0; n];
@@ -513,8 +548,7 @@ impl LacStandard {
         // terms while max(|a|, 1) |ε| <= `reach` (the remainder is below reach^(terms+1)
         // <= 1e-17); there U is far enough from 0 for its plain f64 value to do.
         let a_big = a.abs().max(1.0);
-        let reach = (c.abs() * (t1 - t0).abs() / last * a_big / u_ends.max(1e-300))
-            .clamp(1e-8, BINOMIAL_POW_REACH);
+        let reach = (c.abs() * hmax * a_big / u_ends.max(1e-300)).clamp(1e-8, BINOMIAL_POW_REACH);
         let terms = ((-17.0 / reach.log10()).ceil() as usize)
             .saturating_sub(1)
             .clamp(2, 8);
@@ -526,7 +560,11 @@ impl LacStandard {
             let uu;
             if !resync && eps.abs() * a_big <= reach {
                 rho *= binomial_pow(a, eps, terms);
-                e = cmul(e, turn);
+                e = if uniform {
+                    cmul(e, turn)
+                } else {
+                    Vec2::from_angle(th)
+                };
                 uu = 1.0 + c * th;
             } else {
                 let (u, ue) = u_of(th);
@@ -602,6 +640,30 @@ impl LacStandard {
                 "the curve at these theta is too large for f64",
             ));
         }
+        Ok((pts, kappa))
+    }
+
+    /// The logarithmic spiral's walk at any angles, each in closed form.
+    fn spiral_at(&self, n: usize, theta: &dyn Fn(usize) -> f64) -> Result<(Vec<Vec2>, Vec<f64>)> {
+        let l = self.lambda;
+        let exact = |th: f64| Vec2::from_angle(th) * (l * th).exp();
+        let inv = Vec2::new(l, -1.0) / (l * l + 1.0); // 1/(Λ + i)
+        let z0 = exact(theta(0));
+        let mut pts = vec![Vec2::ZERO; n];
+        let mut kappa = vec![0.0; n];
+        for (k, (p_out, k_out)) in pts.iter_mut().zip(kappa.iter_mut()).enumerate() {
+            let z = exact(theta(k));
+            *p_out = cmul(z - z0, inv);
+            *k_out = 1.0 / z.hypot();
+        }
+        if pts.iter().any(|p| !p.is_finite()) || kappa.iter().any(|k| !(k.is_finite() && *k > 0.0))
+        {
+            return Err(Error::invalid(
+                "theta",
+                "the curve at these theta is too large for f64",
+            ));
+        }
+        pts[0] = Vec2::ZERO;
         Ok((pts, kappa))
     }
 
@@ -1506,9 +1568,29 @@ impl LacSegment {
         self.eval_thetas(&th)
     }
 
+    /// Standard-form points and curvatures at `th`: a monotone sequence (the usual case:
+    /// sorted turning angles) by one walk ([`LacStandard::walk_monotone`]) from the first
+    /// point, anything else by [`LacStandard::eval_many_with_kappa`].
+    fn standard_points(&self, th: &[f64]) -> Result<(Vec<Point>, Vec<f64>)> {
+        let n = th.len();
+        let monotone =
+            n >= 8 && (th.windows(2).all(|w| w[1] >= w[0]) || th.windows(2).all(|w| w[1] <= w[0]));
+        if monotone && th[n - 1] != th[0] {
+            if let Ok((rel, kappa)) = self.standard.walk_monotone(th) {
+                let start = if th[0] == 0.0 {
+                    Vec2::ZERO
+                } else {
+                    self.standard.eval(th[0])?.to_vec2()
+                };
+                return Ok((rel.iter().map(|v| (start + *v).to_point()).collect(), kappa));
+            }
+        }
+        self.standard.eval_many_with_kappa(th)
+    }
+
     /// Points and dP/dτ at standard-form angles (no clamping).
     fn eval_thetas(&self, th: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
-        let (pts, kappa) = self.standard.eval_many_with_kappa(th)?;
+        let (pts, kappa) = self.standard_points(th)?;
         let dir = if self.reversed { -1.0 } else { 1.0 };
         let o = self.map.apply(Vec2::ZERO);
         let points = pts.iter().map(|p| self.map.apply(p.to_vec2())).collect();

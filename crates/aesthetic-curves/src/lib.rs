@@ -105,6 +105,7 @@
 #![warn(missing_docs)]
 
 pub mod approx;
+pub mod approx_table;
 pub mod bernstein;
 pub mod bezier;
 pub mod bspline;

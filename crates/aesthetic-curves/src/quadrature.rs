@@ -211,8 +211,18 @@ mod tests {
 }
 
 /// Nodes and weights of the `n`-point Gauss–Legendre rule on [0, 1] (weights sum to 1),
-/// by Newton's method on the Legendre polynomial from the usual Chebyshev-like guesses.
+/// by Newton's method on the Legendre polynomial from the usual Chebyshev-like guesses;
+/// rules of up to 64 points are computed once and copied afterwards.
 pub fn gauss_legendre_01(n: usize) -> (Vec<f64>, Vec<f64>) {
+    static CACHE: [std::sync::OnceLock<(Vec<f64>, Vec<f64>)>; 65] =
+        [const { std::sync::OnceLock::new() }; 65];
+    match CACHE.get(n) {
+        Some(cell) => cell.get_or_init(|| gauss_legendre_rule(n)).clone(),
+        None => gauss_legendre_rule(n),
+    }
+}
+
+fn gauss_legendre_rule(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut x = vec![0.0; n];
     let mut w = vec![0.0; n];
     for i in 0..n.div_ceil(2) {
