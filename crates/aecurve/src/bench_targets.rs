@@ -129,6 +129,42 @@ fn works(group: Group) -> Vec<Work> {
                     });
                 }
             }
+            // Random shapes as in the library's sweep test: alpha in [-5, 5], turning 5 to
+            // 120 degrees, the base angle anywhere between the circle and 0.98 of theta_lim.
+            let mut rng = aesthetic_curves::samples::SplitMix64::new(17);
+            let mut segs = Vec::new();
+            while segs.len() < 200 {
+                let alpha = rng.range(-5.0, 5.0);
+                let td = rng.range(5f64.to_radians(), 120f64.to_radians());
+                let Ok(lim) = LacSegment::theta_lim(alpha, td) else {
+                    continue;
+                };
+                let phi = 0.5 * td + rng.range(0.0, 1.0) * (0.98 * lim - 0.5 * td).max(0.0);
+                if let Ok(seg) = LacSegment::new(alpha, triangle(td, phi)) {
+                    segs.push(seg);
+                }
+            }
+            let segs = std::rc::Rc::new(segs);
+            for (table, target) in [(true, Some(100_000.0)), (false, None)] {
+                let segs = segs.clone();
+                let opts = ApproxOptions {
+                    table,
+                    ..ApproxOptions::default()
+                };
+                out.push(Work {
+                    name: format!(
+                        "fit_rational_cubic, 200 random segments (per segment){}",
+                        if table { "" } else { ", grid search only" }
+                    ),
+                    target_ns: target,
+                    per_run: segs.len(),
+                    run: Box::new(move || {
+                        segs.iter()
+                            .filter(|s| fit_rational_cubic(black_box(s), &opts).is_ok())
+                            .count()
+                    }),
+                });
+            }
             let curves = random_rational_curves(3, 256, 42);
             out.push(Work {
                 name: "exact monotone verdict, random rational cubic (per curve)".into(),

@@ -1,5 +1,6 @@
 //! Criterion benchmarks of the rational cubic approximation of a LAC segment (issue target:
-//! one segment under 1 ms median), of a segment with an inflection end (one cubic, and the
+//! one segment under 0.1 ms median; also 50 random shapes, with and without the table of
+//! optima), of a segment with an inflection end (one cubic, and the
 //! G2 spline within 1e-7 of the size that CAD exports use), and of the spline of a long
 //! segment.
 
@@ -24,6 +25,45 @@ fn bench_approx(c: &mut Criterion) {
         let seg = LacSegment::new(alpha, tri).unwrap();
         g.bench_with_input(BenchmarkId::new("fit", alpha), &seg, |b, s| {
             b.iter(|| fit_rational_cubic(black_box(s), &opts).unwrap())
+        });
+    }
+    g.finish();
+    // 50 random shapes as in tests/approx_sweep.rs (alpha in [-5, 5], turning 5 to 120
+    // degrees, base angle from the circle to 0.98 of theta_lim): the table's starts against
+    // the search of the whole square.
+    let mut rng = aesthetic_curves::samples::SplitMix64::new(17);
+    let mut segs = Vec::new();
+    while segs.len() < 50 {
+        let alpha = rng.range(-5.0, 5.0);
+        let td = rng.range(5f64.to_radians(), 120f64.to_radians());
+        let Ok(lim) = LacSegment::theta_lim(alpha, td) else {
+            continue;
+        };
+        let phi = 0.5 * td + rng.range(0.0, 1.0) * (0.98 * lim - 0.5 * td).max(0.0);
+        let d = phi.sin() / (td - phi).sin();
+        let tri = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0 + d * td.cos(), d * td.sin()),
+        ];
+        if let Ok(seg) = LacSegment::new(alpha, tri) {
+            segs.push(seg);
+        }
+    }
+    let mut g = c.benchmark_group("approx/random50");
+    g.sample_size(20);
+    for table in [true, false] {
+        let o = ApproxOptions {
+            table,
+            ..ApproxOptions::default()
+        };
+        let name = if table { "table" } else { "grid_search" };
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                segs.iter()
+                    .filter(|s| fit_rational_cubic(black_box(s), &o).is_ok())
+                    .count()
+            })
         });
     }
     g.finish();
