@@ -13,7 +13,7 @@
 //! (defaults 288 and 2048: 1.25° and 0.18° steps). About 8 minutes on two cores.
 //! `... -- --check-only` redoes only the check of the shipped table.
 
-use aesthetic_curves::pseudo_spline::{
+use aesthetic_curves::pseudo_segment::{
     local_minimum, segment_minima, single_angle, SegmentOptimum,
 };
 use aesthetic_curves::pseudo_table::{

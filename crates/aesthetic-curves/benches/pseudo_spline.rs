@@ -1,7 +1,8 @@
 //! The pseudo-elastic spline (issue target: a 1000-point open curve in table mode under
 //! 1 ms median), one table lookup, and one exact segment minimisation for scale.
 
-use aesthetic_curves::pseudo_spline::{optimal_segment, pseudo_elastic, Mode};
+use aesthetic_curves::pseudo_segment::optimal_segment;
+use aesthetic_curves::pseudo_spline::{pseudo_elastic, Mode};
 use aesthetic_curves::pseudo_table::tables;
 use aesthetic_curves::samples::wavy_points;
 use criterion::{criterion_group, criterion_main, Criterion};

@@ -70,6 +70,8 @@
 //!
 //! - [`approx`]: one rational cubic per LAC segment (G2 ends, proven monotone curvature,
 //!   global optimum), and rational cubic B-splines for longer segments.
+//! - [`approx_table`]: the shipped table of the rational-cubic error surface's local optima
+//!   that starts [`approx`]'s fit.
 //! - [`bernstein`]: polynomials in Bernstein form (products, subdivision, degree elevation,
 //!   sign analysis with rounding bounds, root isolation).
 //! - [`bezier`]: polynomial and rational Bézier curves of degree 1 to 20: evaluation,
@@ -86,6 +88,8 @@
 //! - [`monotone`]: the exact curvature-monotonicity test (Bernstein form of dkappa/ds plus
 //!   subdivision) and the sampling test.
 //! - [`nurbs`]: rational B-splines, the exchange form of CAD systems.
+//! - [`pseudo_segment`]: one pseudo-elastic Hermite segment on the unit chord (its energy,
+//!   every local minimum of J = E L², the single-angle function).
 //! - [`pseudo_spline`]: the pseudo-elastic spline (interpolation by Hermite cubics of
 //!   least pseudo-energy), open or closed, with length, area and energy.
 //! - [`pseudo_table`]: the shipped tables of the pseudo-elastic segment behind its fast mode.
@@ -116,6 +120,7 @@ pub mod lac_fit;
 pub mod lcg;
 pub mod monotone;
 pub mod nurbs;
+pub mod pseudo_segment;
 pub mod pseudo_spline;
 pub mod pseudo_table;
 pub mod quadrature;

@@ -14,7 +14,7 @@
 //! The bounds below are what the 288 x 288 table reaches (measured, with margin); the
 //! quantiles say how often it does better than 1e-4.
 
-use aesthetic_curves::pseudo_spline::{segment_energy, segment_minima, wrap};
+use aesthetic_curves::pseudo_segment::{segment_energy, segment_minima, wrap};
 use aesthetic_curves::pseudo_table::tables;
 use aesthetic_curves::samples::SplitMix64;
 use std::f64::consts::PI;
