@@ -1,0 +1,302 @@
+//! The command line of `aecurve` (`clap` types and argument parsers).
+
+use aecurve::batch;
+use anyhow::Result;
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(
+    name = "aecurve",
+    version,
+    about = "Aesthetic curves: checks, batch protocol, benchmarks, plots",
+    after_help = "Papers cited as S0-S4 and the sections cited as docs/math.md §N are in the \
+                  repository's docs/ folder (bibliography.md, math.md); the JSON protocol is \
+                  docs/protocol.md."
+)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) cmd: Cmd,
+    /// Also write the curve's curvature against arc length (.svg or .png), for the commands
+    /// that produce a curve (monotone, lac, spline, sketch).
+    #[arg(long, global = true)]
+    pub(crate) curvature_plot: Option<PathBuf>,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum Cmd {
+    /// JSON Lines requests on stdin, one response line per request on stdout.
+    Batch {
+        /// Largest accepted request line in bytes (1 to 1 GiB).
+        #[arg(long, default_value_t = batch::DEFAULT_MAX_LINE, value_parser = count::<1, 1_073_741_824>)]
+        max_line_bytes: usize,
+    },
+    /// Is the curvature of one Bézier curve monotone?
+    Monotone {
+        /// Control points: "x,y x,y ..." (2 to 21 points).
+        #[arg(long, allow_hyphen_values = true)]
+        points: String,
+        /// Weights (rational curve): "w w w ...", one per point.
+        #[arg(long)]
+        weights: Option<String>,
+        /// Which test.
+        #[arg(long, value_enum, default_value_t = Method::Exact)]
+        method: Method,
+        /// Divisions of the sampling test (1 to 10,000,000).
+        #[arg(long, default_value_t = 100, value_parser = count::<1, 10_000_000>)]
+        samples: usize,
+        /// Print the protocol's JSON result instead of text.
+        #[arg(long)]
+        json: bool,
+        /// Write the curve: .svg (the curve as cubic Béziers within 1e-6 of its size, in its
+        /// own coordinates, with its comb), .png (picture with the comb), .dxf/.step/.iges/
+        /// .json exact; repeatable.
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+    },
+    /// A log-aesthetic segment in a control triangle: summary, and the curve with its
+    /// curvature comb (SVG) with -o.
+    Lac {
+        /// Shape parameter alpha (not with --inflection, where the triangle fixes it).
+        #[arg(
+            long,
+            allow_hyphen_values = true,
+            required_unless_present = "inflection"
+        )]
+        alpha: Option<f64>,
+        /// A segment with an inflection point at the first control point (docs/math.md §3.2):
+        /// alpha < 0 comes from the triangle.
+        #[arg(long, conflicts_with = "alpha")]
+        inflection: bool,
+        /// Control triangle: "x,y x,y x,y" (start, tangent intersection, end).
+        #[arg(long, allow_hyphen_values = true)]
+        control: String,
+        /// Samples along the curve (2 to 1,000,000).
+        #[arg(long, default_value_t = 65, value_parser = count::<2, 1_000_000>)]
+        samples: usize,
+        /// Print the protocol's JSON result.
+        #[arg(long)]
+        json: bool,
+        /// Write the segment: .png (picture with its comb); .svg (as cubic Béziers, with its
+        /// comb), .dxf/.step/.iges/.json as rational cubics within 1e-7 of its size (G2,
+        /// distance reported; also for an inflection end); repeatable.
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+    },
+    /// The logarithmic curvature graph and alpha: of a point sequence (--points or
+    /// --input), of a LAC segment (--alpha and --control) or of a Bézier curve (--bezier).
+    Lcg {
+        /// Ordered points "x,y x,y ..." (at least 8).
+        #[arg(long, allow_hyphen_values = true, group = "source")]
+        points: Option<String>,
+        /// File of ordered points: CSV / whitespace rows "x,y", or a JSON array of pairs.
+        #[arg(long, group = "source")]
+        input: Option<PathBuf>,
+        /// Control points of a Bézier curve "x,y x,y ...".
+        #[arg(long, allow_hyphen_values = true, group = "source")]
+        bezier: Option<String>,
+        /// Weights of the Bézier curve (rational).
+        #[arg(long, requires = "bezier")]
+        weights: Option<String>,
+        /// Control triangle of a LAC segment (with --alpha).
+        #[arg(long, allow_hyphen_values = true, group = "source", requires = "alpha")]
+        control: Option<String>,
+        /// Alpha of the LAC segment.
+        #[arg(long, allow_hyphen_values = true, requires = "control")]
+        alpha: Option<f64>,
+        /// Print the protocol's JSON result.
+        #[arg(long)]
+        json: bool,
+        /// Write the graph with its fitted line (.svg or .png; repeatable).
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+    },
+    /// One rational cubic (or, with --tolerance, a rational cubic B-spline) for a LAC
+    /// segment: G2 ends, curvature proven monotone, globally optimal in its family.
+    Approx {
+        /// Shape parameter alpha.
+        #[arg(long, allow_hyphen_values = true)]
+        alpha: f64,
+        /// Control triangle: "x,y x,y x,y".
+        #[arg(long, allow_hyphen_values = true)]
+        control: String,
+        /// Largest distance to the LAC (input units): as many G2-joined pieces as needed.
+        #[arg(long, allow_hyphen_values = true, value_parser = positive)]
+        tolerance: Option<f64>,
+        /// Print the protocol's JSON result.
+        #[arg(long)]
+        json: bool,
+        /// Write the curve (repeatable; by extension): .dxf, .step/.stp, .iges/.igs, .json
+        /// (exact rational geometry), .svg (cubic Béziers within 1e-6 of the size, with the
+        /// curvature comb), .png (picture).
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+        /// Write the error map over (f0, f1) with the monotone region (S3 Fig. 3 and 5).
+        #[arg(long)]
+        map: Option<PathBuf>,
+        /// Cells per axis of the error map (2 to 2,000).
+        #[arg(long, default_value_t = 100, value_parser = count::<2, 2000>)]
+        map_cells: usize,
+    },
+    /// The pseudo-elastic spline (S2) through points from a file (CSV rows "x,y" or a JSON
+    /// array of pairs): tangents, length, area, energy; -o writes the curve with its comb.
+    Spline {
+        /// The points file.
+        input: PathBuf,
+        /// Closed curve through all points.
+        #[arg(long)]
+        closed: bool,
+        /// Segment values from the shipped tables (fast) or by direct minimisation.
+        #[arg(long, default_value = "table", value_parser = ["table", "exact"])]
+        mode: String,
+        /// Print the protocol's JSON result.
+        #[arg(long)]
+        json: bool,
+        /// Write the curve: .svg (its cubics with the comb), .png (with the points), .dxf,
+        /// .step, .iges, .json (exact); repeatable.
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+    },
+    /// Pen input to a G2 aesthetic curve (S4 §3): B-spline, pieces at inflections and
+    /// curvature maxima, one LAC segment per piece, G2 fairing, one rational cubic per
+    /// piece. Points from a file: CSV rows "x,y", a JSON array of pairs, or an SVG path
+    /// (path data, or an SVG document whose first path is read).
+    Sketch {
+        /// The points file.
+        input: PathBuf,
+        /// Largest distance from an input point to the result (default 0.5% of the bounding
+        /// box diagonal).
+        #[arg(long, allow_hyphen_values = true, value_parser = positive)]
+        tolerance: Option<f64>,
+        /// Print the protocol's JSON result.
+        #[arg(long)]
+        json: bool,
+        /// Write the curve: .svg (cubic Béziers within 1e-6 of its size, with its comb), .png
+        /// (input, result, joints and comb), .dxf, .step, .iges, .json (exact rational
+        /// geometry); repeatable.
+        #[arg(short, long)]
+        output: Vec<PathBuf>,
+    },
+    /// Benchmarks.
+    Bench {
+        #[command(subcommand)]
+        what: BenchCmd,
+    },
+    /// Write the gallery of examples (HTML + SVG) to a folder.
+    Demo {
+        /// Output folder.
+        #[arg(long, default_value = "demo-out")]
+        out: PathBuf,
+        /// Smaller benchmark (for CI smoke runs).
+        #[arg(long)]
+        quick: bool,
+    },
+    /// The interactive editor in the browser: a local server on 127.0.0.1 only (LAC
+    /// segments, inflection segments, pseudo-elastic splines, sketches, Bézier curves).
+    Editor {
+        /// Port (0: any free port); the URL is printed.
+        #[arg(long, default_value_t = 8731)]
+        port: u16,
+        /// Do not open the page in the system's browser.
+        #[arg(long)]
+        no_open: bool,
+        /// Wall-clock limit of one request, in seconds (0.1 to 600); a request past it gets
+        /// a `timeout` error.
+        #[arg(long, default_value_t = 5.0, value_parser = parse_timeout)]
+        timeout: f64,
+    },
+}
+
+/// A count within `LO..=HI` (a size option: refused with its range rather than tried).
+pub(crate) fn count<const LO: usize, const HI: usize>(s: &str) -> Result<usize, String> {
+    let v: usize = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is not a whole number"))?;
+    if (LO..=HI).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} is outside {LO} to {HI}"))
+    }
+}
+
+/// Milliseconds, 1 to 60,000.
+pub(crate) fn millis(s: &str) -> Result<u64, String> {
+    count::<1, 60_000>(s).map(|v| v as u64)
+}
+
+/// A positive finite number (a tolerance).
+pub(crate) fn positive(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?} is not a number"))?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("{v} is not a positive length"))
+    }
+}
+
+/// A request time limit in seconds, 0.1 to 600.
+pub(crate) fn parse_timeout(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .parse()
+        .map_err(|_| format!("{s:?} is not a number of seconds"))?;
+    if (0.1..=600.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} s is outside 0.1 to 600 s"))
+    }
+}
+
+#[derive(Subcommand)]
+pub(crate) enum BenchCmd {
+    /// Exact test against the sampling test (S1's comparison), degrees 3, 4, 5.
+    Monotone {
+        /// Random curves per degree (1 to 1,000,000).
+        #[arg(long, default_value_t = 2000, value_parser = count::<1, 1_000_000>)]
+        curves: usize,
+        /// Seed of the random curve set.
+        #[arg(long, default_value_t = 2024)]
+        seed: u64,
+        /// Minimum milliseconds per timing round (7 interleaved rounds, median reported; 1 to
+        /// 60,000).
+        #[arg(long, default_value_t = 40, value_parser = millis)]
+        round_ms: u64,
+        /// Print JSON instead of the table.
+        #[arg(long)]
+        json: bool,
+        /// Write the chart (.svg or .png).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+    /// The LAC segment solve (typical and near theta_lim) and the 1000-sample polyline,
+    /// against their targets.
+    Lac(TargetArgs),
+    /// The rational cubic fits and the rational monotone test, against their targets.
+    Approx(TargetArgs),
+    /// The pseudo-elastic spline in table mode on the issue's point sets, against a tenth of
+    /// libspiro's times (the ratio itself: `cargo bench --features spiro-bench --bench
+    /// spiro_compare` in crates/aesthetic-curves, with libspiro installed).
+    Spline(TargetArgs),
+}
+
+#[derive(clap::Args)]
+pub(crate) struct TargetArgs {
+    /// Timing rounds (interleaved; the median is reported; 1 to 101).
+    #[arg(long, default_value_t = 7, value_parser = count::<1, 101>)]
+    pub(crate) rounds: usize,
+    /// Minimum milliseconds per round and work (1 to 60,000).
+    #[arg(long, default_value_t = 40, value_parser = millis)]
+    pub(crate) round_ms: u64,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq)]
+pub(crate) enum Method {
+    Exact,
+    Sampling,
+}

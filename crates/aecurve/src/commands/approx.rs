@@ -1,0 +1,118 @@
+//! `aecurve approx`: one rational cubic (or a G2 rational spline within a tolerance) per
+//! LAC segment, with the S3 error map.
+
+use aecurve::{parse_points, plot};
+use anyhow::{Context, Result};
+use std::path::PathBuf;
+
+pub(crate) fn approx(
+    alpha: f64,
+    control: &str,
+    tolerance: Option<f64>,
+    json: bool,
+    output: &[PathBuf],
+    map: Option<&std::path::Path>,
+    map_cells: usize,
+) -> Result<()> {
+    use aesthetic_curves::approx;
+    let pts = parse_points(control).context("--control")?;
+    anyhow::ensure!(
+        pts.len() == 3,
+        "--control needs exactly 3 points, got {}",
+        pts.len()
+    );
+    anyhow::ensure!(
+        (2..=1000).contains(&map_cells),
+        "--map-cells must be 2 to 1000"
+    );
+    // Library errors keep the protocol's kind in the message (`no_segment: ...`).
+    let kinded = |e: aesthetic_curves::Error| anyhow::anyhow!("{}: {e}", e.kind());
+    let seg =
+        aesthetic_curves::lac::LacSegment::new(alpha, [pts[0], pts[1], pts[2]]).map_err(kinded)?;
+    let opts = approx::ApproxOptions::default();
+    let fit = approx::fit_rational_cubic(&seg, &opts).map_err(kinded)?;
+    let spline = tolerance
+        .map(|t| approx::fit_rational_spline(&seg, t, 64, &opts))
+        .transpose()
+        .map_err(kinded)?;
+    let r = &aecurve::protocol::rational_approx_json(&seg, &fit, spline.as_ref())?;
+    if json {
+        println!("{r}");
+    } else {
+        let len = seg.arc_length()?;
+        println!("rational cubic for the LAC segment alpha = {alpha}");
+        println!("  turning angle   {:.6} deg", seg.theta_d.to_degrees());
+        println!("  f0, f1          {:.9}, {:.9}", fit.f0, fit.f1);
+        for (i, (p, w)) in fit
+            .curve
+            .points()
+            .iter()
+            .zip(fit.curve.weights())
+            .enumerate()
+        {
+            println!("  b{i} = ({:.12}, {:.12})  w{i} = {w:.12}", p.x, p.y);
+        }
+        println!(
+            "  error           rms {:.3e}, max {:.3e} of the arc length ({:.3e}, {:.3e} in input units)",
+            fit.rms,
+            fit.max_error,
+            fit.rms * len,
+            fit.max_error * len
+        );
+        println!("  curvature       monotone (exact test), G2 at both ends");
+        if let Some(sp) = r.get("spline") {
+            println!(
+                "  spline          {} piece(s) within {:e}: max error {:.3e}",
+                sp["pieces"],
+                tolerance.unwrap_or(0.0),
+                sp["max_error"].as_f64().unwrap_or(f64::NAN)
+            );
+        }
+    }
+    let nurbs = match &spline {
+        Some(sp) => aesthetic_curves::nurbs::Nurbs::from_spline(sp),
+        None => aesthetic_curves::nurbs::Nurbs::from_bezier(&fit.curve),
+    };
+    let n = 200;
+    let comb: Vec<plot::CombSample> = (0..=n)
+        .map(|i| {
+            let u = i as f64 / n as f64;
+            let spans = nurbs.bezier_spans().expect("spline spans");
+            let k = ((u * spans.len() as f64) as usize).min(spans.len() - 1);
+            let t = u * spans.len() as f64 - k as f64;
+            let d = aesthetic_curves::PlanarCurve::derivs(&spans[k], t);
+            (d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa())
+        })
+        .collect();
+    let caption = format!(
+        "rational cubic for LAC alpha = {alpha}: rms {:.2e}, max {:.2e}",
+        fit.rms, fit.max_error
+    );
+    for path in output {
+        let ext = aecurve::export::extension(path).unwrap_or_default();
+        match ext.as_str() {
+            "svg" => {
+                let tol = 1e-6 * nurbs.size();
+                let doc = aecurve::export::svg_document(&nurbs, tol, &comb, &caption)
+                    .context("the spline has no Bézier spans")?;
+                std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
+            }
+            "png" => plot::write_picture(
+                path,
+                &plot::comb_svg(&comb, &nurbs.control_points, &[], &caption),
+            )?,
+            _ => aecurve::export::write_curve(path, &nurbs, "lac_rational")?,
+        }
+        eprintln!("wrote {}", path.display());
+    }
+    if let Some(path) = map {
+        let m = approx::error_map(&seg, map_cells, 32)?;
+        let caption = format!(
+            "error over (f0, f1), alpha = {alpha}, turning {:.1} deg",
+            seg.theta_d.to_degrees()
+        );
+        plot::write_picture(path, &plot::error_map_svg(&m, (fit.f0, fit.f1), &caption))?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}

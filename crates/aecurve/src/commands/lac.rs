@@ -1,0 +1,179 @@
+//! `aecurve lac` and `aecurve lac --inflection`: a log-aesthetic segment (or one with an
+//! inflection end) from its control triangle, with plots and exports.
+
+use crate::commands::write_curvature_plot;
+use aecurve::{parse_points, plot};
+use anyhow::{Context, Result};
+use std::path::PathBuf;
+
+pub(crate) fn lac(
+    alpha: f64,
+    control: &str,
+    samples: usize,
+    json: bool,
+    output: &[PathBuf],
+) -> Result<()> {
+    let pts = parse_points(control).context("--control")?;
+    anyhow::ensure!(
+        pts.len() == 3,
+        "--control needs exactly 3 points, got {}",
+        pts.len()
+    );
+    let seg = aesthetic_curves::lac::LacSegment::new(alpha, [pts[0], pts[1], pts[2]])?;
+    let (points, kappa) = seg.sample(samples.max(2))?;
+    let (k0, k1) = seg.end_curvatures()?;
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({"lambda": seg.lambda(), "theta_d": seg.theta_d,
+                "arc_length": seg.arc_length()?, "curvature_start": k0, "curvature_end": k1,
+                "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                "curvature": kappa})
+        );
+    } else {
+        println!("log-aesthetic segment, alpha = {alpha}");
+        println!("  turning angle  {:.6} deg", seg.theta_d.to_degrees());
+        println!("  lambda         {:.12}", seg.lambda());
+        println!("  arc length     {:.9}", seg.arc_length()?);
+        println!("  curvature      {k0:.9} at the start, {k1:.9} at the end");
+        println!(
+            "  high-curvature end at {}",
+            if seg.reversed {
+                "the end point"
+            } else {
+                "the start point"
+            }
+        );
+    }
+    let caption = format!("LAC alpha = {alpha}, lambda = {:.6}", seg.lambda());
+    let samples = plot::polyline_samples(&points, &kappa);
+    // CAD formats get the segment as rational cubics within 1e-7 of its size (a LAC segment
+    // has no exact rational form): the exact rational geometry of that approximation.
+    let cad = || -> Result<aesthetic_curves::nurbs::Nurbs> {
+        let size = pts
+            .iter()
+            .map(|p| (*p - pts[0]).hypot())
+            .fold(0.0, f64::max);
+        let sp = aesthetic_curves::approx::fit_rational_spline(
+            &seg,
+            1e-7 * size,
+            64,
+            &aesthetic_curves::approx::ApproxOptions::default(),
+        )?;
+        eprintln!(
+            "as {} rational cubic(s), max distance {:.2e} from the segment",
+            sp.pieces.len(),
+            sp.max_error
+        );
+        Ok(aesthetic_curves::nurbs::Nurbs::new(
+            sp.degree,
+            sp.knots,
+            sp.control_points,
+            sp.weights,
+        )?)
+    };
+    write_segment_outputs(output, &samples, &pts, &caption, &cad)
+}
+
+/// `-o` for a LAC segment command: pictures (.svg, .png) of the segment with its comb; CAD
+/// formats and .json through `cad` (built once, only when asked for).
+pub(crate) fn write_segment_outputs(
+    output: &[PathBuf],
+    samples: &[plot::CombSample],
+    control: &[aesthetic_curves::Point],
+    caption: &str,
+    cad: &dyn Fn() -> Result<aesthetic_curves::nurbs::Nurbs>,
+) -> Result<()> {
+    write_curvature_plot(samples, caption)?;
+    let mut curve = None;
+    for path in output {
+        let ext = aecurve::export::extension(path).unwrap_or_default();
+        if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+            if curve.is_none() {
+                curve = Some(cad()?);
+            }
+            let c = curve.as_ref().expect("built above");
+            aecurve::export::write_curve(path, c, "log_aesthetic_segment")?;
+        } else if ext == "svg" {
+            // The segment's rational cubics as cubic Béziers within 1e-6 of its size, in its
+            // own coordinates, with the segment's comb.
+            if curve.is_none() {
+                curve = Some(cad()?);
+            }
+            let c = curve.as_ref().expect("built above");
+            let doc = aecurve::export::svg_document(c, 1e-6 * c.size(), samples, caption)
+                .context("the curve has no spans")?;
+            std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
+        } else {
+            plot::write_picture(path, &plot::comb_svg(samples, control, &[], caption))?;
+        }
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+pub(crate) fn lac_inflection(
+    control: &str,
+    samples: usize,
+    json: bool,
+    output: &[PathBuf],
+) -> Result<()> {
+    let pts = parse_points(control).context("--control")?;
+    anyhow::ensure!(
+        pts.len() == 3,
+        "--control needs exactly 3 points, got {}",
+        pts.len()
+    );
+    let seg = aesthetic_curves::lac::LacInflectionSegment::new([pts[0], pts[1], pts[2]])?;
+    let (points, kappa) = seg.sample(samples.max(2))?;
+    let k1 = kappa[kappa.len() - 1];
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({"alpha": seg.alpha, "theta_d": seg.theta_d,
+                "arc_length": seg.arc_length(), "curvature_end": k1,
+                "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                "curvature": kappa})
+        );
+    } else {
+        println!("log-aesthetic segment with an inflection at the start point");
+        println!("  alpha          {:.10}", seg.alpha);
+        println!("  turning angle  {:.6} deg", seg.theta_d.to_degrees());
+        println!("  arc length     {:.9}", seg.arc_length());
+        println!("  curvature      0 at the start, {k1:.9} at the end");
+    }
+    let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha);
+    let samples = plot::polyline_samples(&points, &kappa);
+    // CAD formats: rational cubics within 1e-7 of the size, as for a LAC segment: next to the
+    // inflection one cubic with zero curvature there, then the rest (an ordinary LAC
+    // segment); G2 at the joints, every piece's curvature proven monotone.
+    let cad = || -> Result<aesthetic_curves::nurbs::Nurbs> {
+        let size = pts
+            .iter()
+            .map(|p| (*p - pts[0]).hypot())
+            .fold(0.0, f64::max);
+        let sp = aesthetic_curves::approx::fit_inflection_spline(
+            &seg,
+            1e-7 * size,
+            64,
+            &aesthetic_curves::approx::ApproxOptions::default(),
+        )?;
+        eprintln!(
+            "as {} rational cubic(s), max distance {:.2e} from the segment, curvature {}",
+            sp.pieces.len(),
+            sp.max_error,
+            if sp.pieces.iter().all(|p| p.monotone) {
+                "monotone in every piece (proven)"
+            } else {
+                "NOT monotone in every piece"
+            }
+        );
+        Ok(aesthetic_curves::nurbs::Nurbs::new(
+            sp.degree,
+            sp.knots,
+            sp.control_points,
+            sp.weights,
+        )?)
+    };
+    write_segment_outputs(output, &samples, &pts, &caption, &cad)
+}

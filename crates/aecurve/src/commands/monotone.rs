@@ -1,0 +1,155 @@
+//! `aecurve monotone`: the exact curvature-monotonicity test of a Bézier curve (and the
+//! sampling test beside it), with plots and exports.
+
+use crate::cli::Method;
+use crate::commands::write_curvature_plot;
+use aecurve::protocol::AnyBezier;
+use aecurve::{parse_numbers, parse_points, plot};
+use anyhow::{Context, Result};
+use std::io::Write;
+use std::path::PathBuf;
+
+pub(crate) fn monotone(
+    points: &str,
+    weights: Option<&str>,
+    method: Method,
+    samples: usize,
+    json: bool,
+    output: &[PathBuf],
+) -> Result<()> {
+    let pts = parse_points(points).context("--points")?;
+    let w = weights
+        .map(parse_numbers)
+        .transpose()
+        .context("--weights")?;
+    let curve = AnyBezier::new(pts.clone(), w.clone())?;
+    let c = curve.as_monotone();
+    let kind = if w.is_some() {
+        "rational"
+    } else {
+        "polynomial"
+    };
+    let degree = pts.len() - 1;
+    let mut out = std::io::stdout().lock();
+    match method {
+        Method::Exact => {
+            let r = c.curvature_monotone()?;
+            if json {
+                writeln!(
+                    out,
+                    "{}",
+                    serde_json::json!({"monotone": r.monotone, "extrema": r.extrema,
+                        "test_degree": r.test_degree, "trend": r.trend.map(|t| t.as_str())})
+                )?;
+            } else {
+                writeln!(out, "{kind} Bézier curve of degree {degree}")?;
+                writeln!(
+                    out,
+                    "curvature at the ends: {:.6} (t = 0), {:.6} (t = 1)",
+                    curve.kappa(0.0),
+                    curve.kappa(1.0)
+                )?;
+                if r.monotone {
+                    let how = r.trend.map(|t| t.as_str()).unwrap_or("constant");
+                    writeln!(out, "curvature is MONOTONE ({how})")?;
+                } else {
+                    writeln!(
+                        out,
+                        "curvature is NOT monotone: {} extrema",
+                        r.extrema.len()
+                    )?;
+                    for t in &r.extrema {
+                        let p = curve.eval(*t);
+                        writeln!(
+                            out,
+                            "  extremum at t = {t:.9}: point ({:.6}, {:.6}), curvature {:.6}",
+                            p.x,
+                            p.y,
+                            curve.kappa(*t)
+                        )?;
+                    }
+                }
+                writeln!(
+                    out,
+                    "proof: sign of dkappa/ds from a Bernstein polynomial of degree {} \
+                     (convex hull + subdivision)",
+                    r.test_degree
+                )?;
+            }
+        }
+        Method::Sampling => {
+            let r = c.curvature_monotone_sampled(samples)?;
+            if json {
+                writeln!(
+                    out,
+                    "{}",
+                    serde_json::json!({"monotone": r.monotone, "samples": r.samples,
+                        "trend": r.trend.map(|t| t.as_str())})
+                )?;
+            } else {
+                writeln!(
+                    out,
+                    "sampling test, {} divisions: curvature {} (not a proof: extrema between \
+                     samples go unseen)",
+                    r.samples,
+                    if r.monotone {
+                        "looks monotone"
+                    } else {
+                        "is NOT monotone"
+                    }
+                )?;
+            }
+        }
+    }
+    let comb: Vec<plot::CombSample> = (0..=200)
+        .map(|i| {
+            let d = curve.as_monotone().derivs(i as f64 / 200.0);
+            let k = d.kappa();
+            let speed = d.d1.hypot();
+            let nrm = if speed > 0.0 {
+                d.d1.turn_90() / speed
+            } else {
+                aesthetic_curves::Vec2::ZERO
+            };
+            (d.p, nrm, if k.is_finite() { k } else { 0.0 })
+        })
+        .collect();
+    write_curvature_plot(&comb, "curvature of the Bézier curve")?;
+    for path in output {
+        let ext = aecurve::export::extension(path).unwrap_or_default();
+        if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+            let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
+            let rb = aesthetic_curves::RationalBezier::new(pts.clone(), weights)?;
+            aecurve::export::write_curve(
+                path,
+                &aesthetic_curves::nurbs::Nurbs::from_bezier(&rb),
+                "bezier",
+            )?;
+            eprintln!("wrote {}", path.display());
+            continue;
+        }
+        let caption = format!("{kind} degree {degree}: curvature comb");
+        if ext == "svg" {
+            // The curve itself (cubic Béziers within 1e-6 of its size, in its own
+            // coordinates) with its comb.
+            let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
+            let rb = aesthetic_curves::RationalBezier::new(pts.clone(), weights)?;
+            let nurbs = aesthetic_curves::nurbs::Nurbs::from_bezier(&rb);
+            let doc = aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &comb, &caption)
+                .context("the curve has no spans")?;
+            std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
+            eprintln!("wrote {}", path.display());
+            continue;
+        }
+        let extrema = match method {
+            Method::Exact => c.curvature_monotone()?.extrema,
+            Method::Sampling => Vec::new(),
+        };
+        plot::write_picture(
+            path,
+            &plot::curve_with_comb(&curve, &pts, &extrema, &caption),
+        )?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,97 @@
+//! `aecurve sketch`: pen input (CSV or SVG path) to a G2 curve of LAC pieces.
+
+use crate::commands::write_curvature_plot;
+use aecurve::plot;
+use anyhow::{Context, Result};
+use std::path::PathBuf;
+
+pub(crate) fn sketch(
+    input: &std::path::Path,
+    tolerance: Option<f64>,
+    json: bool,
+    output: &[PathBuf],
+) -> Result<()> {
+    use aesthetic_curves::sketch::{fit_sketch, SketchOptions};
+    let pts = aecurve::read_points_file(input)?;
+    let tol = match tolerance {
+        Some(t) => {
+            anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance must be positive");
+            t
+        }
+        None => aesthetic_curves::sketch::default_tolerance(&pts),
+    };
+    let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol))?;
+    if json {
+        println!("{}", aecurve::protocol::sketch_json(&sk, tol));
+    } else {
+        println!(
+            "sketch of {} points: {} pieces, deviation {:.4e} (tolerance {:.4e}), curvature jump {:.2e} ({}), {}",
+            pts.len(),
+            sk.pieces.len(),
+            sk.max_deviation,
+            tol,
+            sk.max_curvature_jump,
+            if sk.g2 { "G2" } else { "not G2" },
+            if sk.all_monotone {
+                "every piece curvature-monotone (exact test)"
+            } else {
+                "NOT every piece curvature-monotone"
+            }
+        );
+        println!(
+            "  {} inflections, {} curvature extrema; fairing: {} Newton iterations, jump {:.2e} -> {:.2e}",
+            sk.inflections,
+            sk.curvature_extrema,
+            sk.fairing.iterations,
+            sk.fairing.initial_jump,
+            sk.fairing.final_jump
+        );
+        for (i, p) in sk.pieces.iter().enumerate() {
+            println!(
+                "  piece {i}: {:<14} alpha {:>8.4}{}  curvature {:+.4e} -> {:+.4e}  {}",
+                p.kind.as_str(),
+                p.alpha,
+                if p.alpha_at_bound { " (bound)" } else { "" },
+                p.end_curvatures.0,
+                p.end_curvatures.1,
+                if p.monotone {
+                    "monotone"
+                } else {
+                    "not monotone"
+                }
+            );
+        }
+    }
+    let curves: Vec<aesthetic_curves::RationalBezier> =
+        sk.pieces.iter().map(|p| p.rational.clone()).collect();
+    let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&curves)?;
+    let mut comb: Vec<plot::CombSample> = Vec::new();
+    for p in &sk.pieces {
+        for k in 0..=60 {
+            let d = aesthetic_curves::PlanarCurve::derivs(&p.rational, k as f64 / 60.0);
+            comb.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
+        }
+    }
+    write_curvature_plot(&comb, "curvature of the G2 curve (rational cubic pieces)")?;
+    let caption = format!(
+        "sketch: {} LAC pieces (rational cubics), deviation {:.3e}, jump {:.1e}",
+        sk.pieces.len(),
+        sk.max_deviation,
+        sk.max_curvature_jump
+    );
+    for path in output {
+        let ext = aecurve::export::extension(path).unwrap_or_default();
+        if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+            aecurve::export::write_curve(path, &nurbs, "sketch")?;
+        } else if ext == "svg" {
+            // The curve itself as cubic Béziers (within 1e-6 of its size), with its comb.
+            let doc = aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &comb, &caption)
+                .context("the curve has no Bézier spans")?;
+            std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
+        } else {
+            plot::write_picture(path, &plot::comb_svg(&comb, &pts, &sk.joints(), &caption))?;
+        }
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}

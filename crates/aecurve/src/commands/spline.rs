@@ -1,0 +1,100 @@
+//! `aecurve spline`: the pseudo-elastic spline through points (S2).
+
+use crate::commands::{write_curvature_plot, CURVATURE_PLOT};
+use aecurve::plot;
+use anyhow::{Context, Result};
+use std::path::PathBuf;
+
+pub(crate) fn spline(
+    input: &std::path::Path,
+    closed: bool,
+    mode: &str,
+    json: bool,
+    output: &[PathBuf],
+) -> Result<()> {
+    let pts = aecurve::read_points_file(input)?;
+    // The command line writes files, not a JSON answer in memory: table mode takes up to a
+    // million points here (the protocol's request limit is lower).
+    let max = if mode == "exact" {
+        aecurve::protocol::MAX_EXACT_SPLINE_POINTS
+    } else {
+        1_000_000
+    };
+    anyhow::ensure!(
+        pts.len() <= max,
+        "at most {max} points in {mode} mode, got {}",
+        pts.len()
+    );
+    let s = aesthetic_curves::pseudo_spline::pseudo_elastic(
+        &pts,
+        closed,
+        aecurve::protocol::spline_mode(mode),
+    )?;
+    let r = &aecurve::protocol::spline_json(&s, mode);
+    if json {
+        println!("{r}");
+    } else {
+        println!(
+            "pseudo-elastic spline through {} points ({}), {mode} mode",
+            pts.len(),
+            if closed { "closed" } else { "open" }
+        );
+        println!("  length   {:.9}", r["length"].as_f64().unwrap_or(f64::NAN));
+        println!(
+            "  area     {:.9} ({})",
+            r["area"].as_f64().unwrap_or(f64::NAN),
+            if closed {
+                "enclosed"
+            } else {
+                "between the curve and the chord of its ends"
+            }
+        );
+        println!(
+            "  energy   {:.9} (sum of l_i J_i)",
+            r["energy"].as_f64().unwrap_or(f64::NAN)
+        );
+    }
+    if !output.is_empty() || CURVATURE_PLOT.get().is_some() {
+        let mut samples: Vec<plot::CombSample> = Vec::new();
+        for g in &s.segments {
+            let c = aesthetic_curves::Bezier::new(vec![
+                g.p0,
+                g.p0 + g.d0 / 3.0,
+                g.p1 - g.d1 / 3.0,
+                g.p1,
+            ])?;
+            for k in 0..=40 {
+                let d = aesthetic_curves::PlanarCurve::derivs(&c, k as f64 / 40.0);
+                samples.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
+            }
+        }
+        let caption = format!("pseudo-elastic spline: length {:.6}", s.length);
+        write_curvature_plot(&samples, "curvature of the pseudo-elastic spline")?;
+        let mut polygon = pts.clone();
+        if closed {
+            polygon.push(pts[0]);
+        }
+        let cubics: Vec<aesthetic_curves::RationalBezier> = s
+            .segments
+            .iter()
+            .map(|g| g.to_bezier().map(|b| b.to_rational()))
+            .collect::<Result<_, _>>()?;
+        let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&cubics)?;
+        for path in output {
+            let ext = aecurve::export::extension(path).unwrap_or_default();
+            if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+                aecurve::export::write_curve(path, &nurbs, "pseudo_elastic_spline")?;
+            } else if ext == "svg" {
+                // The curve itself (its cubics, exact) with its comb.
+                let doc =
+                    aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &samples, &caption)
+                        .context("the spline has no Bézier spans")?;
+                std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
+            } else {
+                plot::write_picture(path, &plot::comb_svg(&samples, &polygon, &[], &caption))?;
+            }
+            eprintln!("wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
