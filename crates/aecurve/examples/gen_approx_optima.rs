@@ -9,55 +9,21 @@
 //! `cargo run --release -p aecurve --example gen_approx_optima` (minutes on two cores, with a
 //! progress bar).
 
+#[path = "common/parallel.rs"]
+mod parallel;
+use parallel::parallel;
+
 use aesthetic_curves::approx::{error_minima, refine_minimum, ErrorMinimum};
 use aesthetic_curves::approx_table::{
     encode, node_count, node_index, node_shape, shape_triangle, ALPHA_AXIS, MAX_PER_NODE, S_AXIS,
     THETA_AXIS,
 };
 use aesthetic_curves::lac::LacSegment;
-use indicatif::{ProgressBar, ProgressStyle};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 
 /// The segment of node `idx` (None where it does not exist).
 fn segment(idx: usize) -> Option<LacSegment> {
     let (alpha, theta_d, u) = node_shape(idx);
     LacSegment::new(alpha, shape_triangle(alpha, theta_d, u).ok()?).ok()
-}
-
-fn parallel<T: Send + Clone>(
-    count: usize,
-    label: &str,
-    f: impl Fn(usize) -> T + Sync,
-    init: T,
-) -> Vec<T> {
-    let out = Mutex::new(vec![init; count]);
-    let next = AtomicUsize::new(0);
-    let bar = ProgressBar::new(count as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos}/{len} ({eta})")
-            .expect("template")
-            .progress_chars("=> "),
-    );
-    bar.set_message(label.to_string());
-    let threads = std::thread::available_parallelism()
-        .map(|n| n.get())
-        .unwrap_or(2);
-    std::thread::scope(|s| {
-        for _ in 0..threads {
-            s.spawn(|| loop {
-                let idx = next.fetch_add(1, Ordering::Relaxed);
-                if idx >= count {
-                    break;
-                }
-                let v = f(idx);
-                out.lock().expect("lock")[idx] = v;
-                bar.inc(1);
-            });
-        }
-    });
-    bar.finish();
-    out.into_inner().expect("lock")
 }
 
 fn neighbours(idx: usize) -> Vec<usize> {
@@ -92,50 +58,40 @@ fn main() {
         "/../aesthetic-curves/data/approx_optima.bin"
     );
     let count = node_count();
-    let first = parallel(
-        count,
-        "search",
-        |idx| {
-            segment(idx)
-                .and_then(|s| error_minima(&s, 48).ok())
-                .unwrap_or_default()
-        },
-        Vec::<ErrorMinimum>::new(),
-    );
-    let followed = parallel(
-        count,
-        "follow",
-        |idx| {
-            let Some(seg) = segment(idx) else {
-                return Vec::new();
-            };
-            let mut mine = first[idx].clone();
-            for nb in neighbours(idx) {
-                for o in &first[nb] {
+    let first = parallel(count, Vec::<ErrorMinimum>::new(), "search", |idx| {
+        segment(idx)
+            .and_then(|s| error_minima(&s, 48).ok())
+            .unwrap_or_default()
+    });
+    let followed = parallel(count, Vec::new(), "follow", |idx| {
+        let Some(seg) = segment(idx) else {
+            return Vec::new();
+        };
+        let mut mine = first[idx].clone();
+        for nb in neighbours(idx) {
+            for o in &first[nb] {
+                if mine
+                    .iter()
+                    .any(|m| (m.f0 - o.f0).abs().max((m.f1 - o.f1).abs()) < 2e-3)
+                {
+                    continue;
+                }
+                if let Ok(m) = refine_minimum(&seg, o.f0, o.f1) {
                     if mine
                         .iter()
-                        .any(|m| (m.f0 - o.f0).abs().max((m.f1 - o.f1).abs()) < 2e-3)
+                        .all(|x| (x.f0 - m.f0).abs().max((x.f1 - m.f1).abs()) > 2e-3)
                     {
-                        continue;
-                    }
-                    if let Ok(m) = refine_minimum(&seg, o.f0, o.f1) {
-                        if mine
-                            .iter()
-                            .all(|x| (x.f0 - m.f0).abs().max((x.f1 - m.f1).abs()) > 2e-3)
-                        {
-                            mine.push(m);
-                        }
+                        mine.push(m);
                     }
                 }
             }
-            mine.sort_by(|a, b| a.mean_square.total_cmp(&b.mean_square));
-            let best = mine.first().map_or(f64::INFINITY, |m| m.mean_square);
-            mine.retain(|m| m.mean_square <= 1e3 * best + 1e-300);
-            mine.truncate(MAX_PER_NODE);
-            mine
-        },
-        Vec::new(),
-    );
+        }
+        mine.sort_by(|a, b| a.mean_square.total_cmp(&b.mean_square));
+        let best = mine.first().map_or(f64::INFINITY, |m| m.mean_square);
+        mine.retain(|m| m.mean_square <= 1e3 * best + 1e-300);
+        mine.truncate(MAX_PER_NODE);
+        mine
+    });
     let nodes: Vec<Vec<(f64, f64)>> = followed
         .iter()
         .map(|v| v.iter().map(|m| (m.f0, m.f1)).collect())

@@ -13,16 +13,17 @@
 //! (defaults 288 and 2048: 1.25° and 0.18° steps). About 8 minutes on two cores.
 //! `... -- --check-only` redoes only the check of the shipped table.
 
+#[path = "common/parallel.rs"]
+mod parallel;
+use parallel::parallel;
+
 use aesthetic_curves::pseudo_segment::{
     local_minimum, segment_minima, single_angle, SegmentOptimum,
 };
 use aesthetic_curves::pseudo_table::{
     decode, encode, q1, q2, Entry, PseudoTables, CHECK_TOLERANCE, TRACK,
 };
-use indicatif::{ProgressBar, ProgressStyle};
 use std::f64::consts::PI;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 
 /// The node's angles: at the origin J / q is a limit, taken just beside (r0, r1 are
 /// undefined there).
@@ -95,41 +96,6 @@ fn continue_valleys(
     mine.retain(|m| m.j <= 2.0 * best);
     mine.truncate(4);
     mine
-}
-
-fn parallel<T: Send + Clone>(
-    count: usize,
-    init: T,
-    label: &str,
-    f: impl Fn(usize) -> T + Sync,
-) -> Vec<T> {
-    let out = Mutex::new(vec![init; count]);
-    let next = AtomicUsize::new(0);
-    let bar = ProgressBar::new(count as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{msg:>12} [{bar:40}] {pos}/{len} ({eta})")
-            .expect("template")
-            .progress_chars("=> "),
-    );
-    bar.set_message(label.to_string());
-    let threads = std::thread::available_parallelism()
-        .map(|n| n.get())
-        .unwrap_or(2);
-    std::thread::scope(|s| {
-        for _ in 0..threads {
-            s.spawn(|| loop {
-                let idx = next.fetch_add(1, Ordering::Relaxed);
-                if idx >= count {
-                    break;
-                }
-                let v = f(idx);
-                out.lock().expect("lock")[idx] = v;
-                bar.inc(1);
-            });
-        }
-    });
-    bar.finish();
-    out.into_inner().expect("lock")
 }
 
 /// Check every cell of the canonical wedge against the exact mode; returns the flags (module
