@@ -1,6 +1,7 @@
 //! `aecurve approx`: one rational cubic (or a G2 rational spline within a tolerance) per
 //! LAC segment, with the S3 error map.
 
+use crate::commands::write_curve_outputs;
 use aecurve::{parse_points, plot};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
@@ -88,23 +89,14 @@ pub(crate) fn approx(
         "rational cubic for LAC alpha = {alpha}: rms {:.2e}, max {:.2e}",
         fit.rms, fit.max_error
     );
-    for path in output {
-        let ext = aecurve::export::extension(path).unwrap_or_default();
-        match ext.as_str() {
-            "svg" => {
-                let tol = 1e-6 * nurbs.size();
-                let doc = aecurve::export::svg_document(&nurbs, tol, &comb, &caption)
-                    .context("the spline has no Bézier spans")?;
-                std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
-            }
-            "png" => plot::write_picture(
-                path,
-                &plot::comb_svg(&comb, &nurbs.control_points, &[], &caption),
-            )?,
-            _ => aecurve::export::write_curve(path, &nurbs, "lac_rational")?,
-        }
-        eprintln!("wrote {}", path.display());
-    }
+    write_curve_outputs(
+        output,
+        "lac_rational",
+        &mut || Ok(nurbs.clone()),
+        &comb,
+        &caption,
+        &mut || Ok(plot::comb_svg(&comb, &nurbs.control_points, &[], &caption)),
+    )?;
     if let Some(path) = map {
         let m = approx::error_map(&seg, map_cells, 32)?;
         let caption = format!(

@@ -1,7 +1,7 @@
 //! `aecurve lac` and `aecurve lac --inflection`: a log-aesthetic segment (or one with an
 //! inflection end) from its control triangle, with plots and exports.
 
-use crate::commands::write_curvature_plot;
+use crate::commands::{write_curvature_plot, write_curve_outputs};
 use aecurve::{parse_points, plot};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
@@ -85,31 +85,14 @@ pub(crate) fn write_segment_outputs(
     cad: &dyn Fn() -> Result<aesthetic_curves::nurbs::Nurbs>,
 ) -> Result<()> {
     write_curvature_plot(samples, caption)?;
-    let mut curve = None;
-    for path in output {
-        let ext = aecurve::export::extension(path).unwrap_or_default();
-        if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
-            if curve.is_none() {
-                curve = Some(cad()?);
-            }
-            let c = curve.as_ref().expect("built above");
-            aecurve::export::write_curve(path, c, "log_aesthetic_segment")?;
-        } else if ext == "svg" {
-            // The segment's rational cubics as cubic Béziers within 1e-6 of its size, in its
-            // own coordinates, with the segment's comb.
-            if curve.is_none() {
-                curve = Some(cad()?);
-            }
-            let c = curve.as_ref().expect("built above");
-            let doc = aecurve::export::svg_document(c, 1e-6 * c.size(), samples, caption)
-                .context("the curve has no spans")?;
-            std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
-        } else {
-            plot::write_picture(path, &plot::comb_svg(samples, control, &[], caption))?;
-        }
-        eprintln!("wrote {}", path.display());
-    }
-    Ok(())
+    write_curve_outputs(
+        output,
+        "log_aesthetic_segment",
+        &mut || cad(),
+        samples,
+        caption,
+        &mut || Ok(plot::comb_svg(samples, control, &[], caption)),
+    )
 }
 
 pub(crate) fn lac_inflection(

@@ -45,3 +45,40 @@ pub(crate) fn write_curvature_plot(samples: &[plot::CombSample], title: &str) ->
     eprintln!("wrote {}", path.display());
     Ok(())
 }
+
+/// Every `-o` of a command that makes a curve, by its extension: the CAD formats
+/// ([`aecurve::export::CURVE_FORMATS`]) get the curve as the entity `entity`; SVG gets the
+/// curve itself (cubic Béziers within 1e-6 of its size, in its own coordinates) with its
+/// curvature comb; any other picture (PNG) gets `picture()`, an SVG drawing. The curve is
+/// built once, on first need (some commands approximate it for CAD).
+pub(crate) fn write_curve_outputs(
+    output: &[PathBuf],
+    entity: &str,
+    curve: &mut dyn FnMut() -> Result<aesthetic_curves::nurbs::Nurbs>,
+    comb: &[plot::CombSample],
+    caption: &str,
+    picture: &mut dyn FnMut() -> Result<String>,
+) -> Result<()> {
+    use anyhow::Context;
+    let mut built = None;
+    for path in output {
+        let ext = aecurve::export::extension(path).unwrap_or_default();
+        if ext == "svg" || aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+            if built.is_none() {
+                built = Some(curve()?);
+            }
+            let c = built.as_ref().expect("built above");
+            if ext == "svg" {
+                let doc = aecurve::export::svg_document(c, 1e-6 * c.size(), comb, caption)
+                    .context("the curve has no Bézier spans")?;
+                std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
+            } else {
+                aecurve::export::write_curve(path, c, entity)?;
+            }
+        } else {
+            plot::write_picture(path, &picture()?)?;
+        }
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}

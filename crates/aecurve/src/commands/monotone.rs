@@ -2,7 +2,7 @@
 //! sampling test beside it), with plots and exports.
 
 use crate::cli::Method;
-use crate::commands::write_curvature_plot;
+use crate::commands::{write_curvature_plot, write_curve_outputs};
 use aecurve::protocol::AnyBezier;
 use aecurve::{parse_numbers, parse_points, plot};
 use anyhow::{Context, Result};
@@ -115,41 +115,24 @@ pub(crate) fn monotone(
         })
         .collect();
     write_curvature_plot(&comb, "curvature of the Bézier curve")?;
-    for path in output {
-        let ext = aecurve::export::extension(path).unwrap_or_default();
-        if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
-            let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
-            let rb = aesthetic_curves::RationalBezier::new(pts.clone(), weights)?;
-            aecurve::export::write_curve(
-                path,
-                &aesthetic_curves::nurbs::Nurbs::from_bezier(&rb),
-                "bezier",
-            )?;
-            eprintln!("wrote {}", path.display());
-            continue;
-        }
-        let caption = format!("{kind} degree {degree}: curvature comb");
-        if ext == "svg" {
-            // The curve itself (cubic Béziers within 1e-6 of its size, in its own
-            // coordinates) with its comb.
-            let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
-            let rb = aesthetic_curves::RationalBezier::new(pts.clone(), weights)?;
-            let nurbs = aesthetic_curves::nurbs::Nurbs::from_bezier(&rb);
-            let doc = aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &comb, &caption)
-                .context("the curve has no spans")?;
-            std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
-            eprintln!("wrote {}", path.display());
-            continue;
-        }
-        let extrema = match method {
-            Method::Exact => c.curvature_monotone()?.extrema,
-            Method::Sampling => Vec::new(),
-        };
-        plot::write_picture(
-            path,
-            &plot::curve_with_comb(&curve, &pts, &extrema, &caption),
-        )?;
-        eprintln!("wrote {}", path.display());
-    }
+    let caption = format!("{kind} degree {degree}: curvature comb");
+    let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
+    write_curve_outputs(
+        output,
+        "bezier",
+        &mut || {
+            let rb = aesthetic_curves::RationalBezier::new(pts.clone(), weights.clone())?;
+            Ok(aesthetic_curves::nurbs::Nurbs::from_bezier(&rb))
+        },
+        &comb,
+        &caption,
+        &mut || {
+            let extrema = match method {
+                Method::Exact => c.curvature_monotone()?.extrema,
+                Method::Sampling => Vec::new(),
+            };
+            Ok(plot::curve_with_comb(&curve, &pts, &extrema, &caption))
+        },
+    )?;
     Ok(())
 }

@@ -1,8 +1,8 @@
 //! `aecurve sketch`: pen input (CSV or SVG path) to a G2 curve of LAC pieces.
 
-use crate::commands::write_curvature_plot;
+use crate::commands::{write_curvature_plot, write_curve_outputs};
 use aecurve::plot;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::path::PathBuf;
 
 pub(crate) fn sketch(
@@ -79,19 +79,13 @@ pub(crate) fn sketch(
         sk.max_deviation,
         sk.max_curvature_jump
     );
-    for path in output {
-        let ext = aecurve::export::extension(path).unwrap_or_default();
-        if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
-            aecurve::export::write_curve(path, &nurbs, "sketch")?;
-        } else if ext == "svg" {
-            // The curve itself as cubic Béziers (within 1e-6 of its size), with its comb.
-            let doc = aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &comb, &caption)
-                .context("the curve has no Bézier spans")?;
-            std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
-        } else {
-            plot::write_picture(path, &plot::comb_svg(&comb, &pts, &sk.joints(), &caption))?;
-        }
-        eprintln!("wrote {}", path.display());
-    }
+    write_curve_outputs(
+        output,
+        "sketch",
+        &mut || Ok(nurbs.clone()),
+        &comb,
+        &caption,
+        &mut || Ok(plot::comb_svg(&comb, &pts, &sk.joints(), &caption)),
+    )?;
     Ok(())
 }

@@ -1,8 +1,8 @@
 //! `aecurve spline`: the pseudo-elastic spline through points (S2).
 
-use crate::commands::{write_curvature_plot, CURVATURE_PLOT};
+use crate::commands::{write_curvature_plot, write_curve_outputs, CURVATURE_PLOT};
 use aecurve::plot;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::path::PathBuf;
 
 pub(crate) fn spline(
@@ -80,21 +80,14 @@ pub(crate) fn spline(
             .map(|g| g.to_bezier().map(|b| b.to_rational()))
             .collect::<Result<_, _>>()?;
         let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&cubics)?;
-        for path in output {
-            let ext = aecurve::export::extension(path).unwrap_or_default();
-            if aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
-                aecurve::export::write_curve(path, &nurbs, "pseudo_elastic_spline")?;
-            } else if ext == "svg" {
-                // The curve itself (its cubics, exact) with its comb.
-                let doc =
-                    aecurve::export::svg_document(&nurbs, 1e-6 * nurbs.size(), &samples, &caption)
-                        .context("the spline has no Bézier spans")?;
-                std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
-            } else {
-                plot::write_picture(path, &plot::comb_svg(&samples, &polygon, &[], &caption))?;
-            }
-            eprintln!("wrote {}", path.display());
-        }
+        write_curve_outputs(
+            output,
+            "pseudo_elastic_spline",
+            &mut || Ok(nurbs.clone()),
+            &samples,
+            &caption,
+            &mut || Ok(plot::comb_svg(&samples, &polygon, &[], &caption)),
+        )?;
     }
     Ok(())
 }
