@@ -17,10 +17,6 @@ use std::path::PathBuf;
 pub(crate) struct Cli {
     #[command(subcommand)]
     pub(crate) cmd: Cmd,
-    /// Also write the curve's curvature against arc length (.svg or .png), for the commands
-    /// that produce a curve (monotone, lac, spline, sketch).
-    #[arg(long, global = true)]
-    pub(crate) curvature_plot: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -53,6 +49,9 @@ pub(crate) enum Cmd {
         /// .json exact; repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
+        /// Also write the curve's curvature against arc length (.svg or .png).
+        #[arg(long)]
+        curvature_plot: Option<PathBuf>,
     },
     /// A log-aesthetic segment in a control triangle: summary, and the curve with its
     /// curvature comb (SVG) with -o.
@@ -82,6 +81,9 @@ pub(crate) enum Cmd {
         /// distance reported; also for an inflection end); repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
+        /// Also write the curve's curvature against arc length (.svg or .png).
+        #[arg(long)]
+        curvature_plot: Option<PathBuf>,
     },
     /// The logarithmic curvature graph and alpha: of a point sequence (--points or
     /// --input), of a LAC segment (--alpha and --control) or of a Bézier curve (--bezier).
@@ -156,6 +158,9 @@ pub(crate) enum Cmd {
         /// .step, .iges, .json (exact); repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
+        /// Also write the curve's curvature against arc length (.svg or .png).
+        #[arg(long)]
+        curvature_plot: Option<PathBuf>,
     },
     /// Pen input to a G2 aesthetic curve (S4 §3): B-spline, pieces at inflections and
     /// curvature maxima, one LAC segment per piece, G2 fairing, one rational cubic per
@@ -176,6 +181,9 @@ pub(crate) enum Cmd {
         /// geometry); repeatable.
         #[arg(short, long)]
         output: Vec<PathBuf>,
+        /// Also write the curve's curvature against arc length (.svg or .png).
+        #[arg(long)]
+        curvature_plot: Option<PathBuf>,
     },
     /// Benchmarks.
     Bench {

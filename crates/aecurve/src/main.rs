@@ -18,7 +18,6 @@ use commands::lcg::{lcg, LcgSource};
 use commands::monotone::monotone;
 use commands::sketch::sketch;
 use commands::spline::spline;
-use commands::CURVATURE_PLOT;
 
 fn main() {
     // A closed stdout (`aecurve ... | head`) ends the program quietly, as for other Unix
@@ -50,13 +49,32 @@ fn main() {
 
 /// Every file path a command will write (its `-o`, `--map`, `--curvature-plot`).
 fn output_paths(cli: &Cli) -> Vec<&std::path::Path> {
-    let mut out: Vec<&std::path::Path> = cli.curvature_plot.iter().map(|p| p.as_path()).collect();
+    let mut out: Vec<&std::path::Path> = Vec::new();
     match &cli.cmd {
-        Cmd::Monotone { output, .. }
-        | Cmd::Lac { output, .. }
-        | Cmd::Lcg { output, .. }
-        | Cmd::Spline { output, .. }
-        | Cmd::Sketch { output, .. } => out.extend(output.iter().map(|p| p.as_path())),
+        Cmd::Monotone {
+            output,
+            curvature_plot,
+            ..
+        }
+        | Cmd::Lac {
+            output,
+            curvature_plot,
+            ..
+        }
+        | Cmd::Spline {
+            output,
+            curvature_plot,
+            ..
+        }
+        | Cmd::Sketch {
+            output,
+            curvature_plot,
+            ..
+        } => {
+            out.extend(output.iter().map(|p| p.as_path()));
+            out.extend(curvature_plot.iter().map(|p| p.as_path()));
+        }
+        Cmd::Lcg { output, .. } => out.extend(output.iter().map(|p| p.as_path())),
         Cmd::Approx { output, map, .. } => {
             out.extend(output.iter().map(|p| p.as_path()));
             out.extend(map.iter().map(|p| p.as_path()));
@@ -85,9 +103,12 @@ fn bench_targets(group: aecurve::bench_targets::Group, args: &TargetArgs) {
 
 fn run() -> Result<()> {
     let cli = Cli::parse();
-    if let Some(p) = &cli.curvature_plot {
-        plot::check_picture_paths(std::slice::from_ref(p))?;
-        let _ = CURVATURE_PLOT.set(p.clone());
+    if let Cmd::Monotone { curvature_plot, .. }
+    | Cmd::Lac { curvature_plot, .. }
+    | Cmd::Spline { curvature_plot, .. }
+    | Cmd::Sketch { curvature_plot, .. } = &cli.cmd
+    {
+        plot::check_picture_paths(curvature_plot.as_slice())?;
     }
     match &cli.cmd {
         Cmd::Lcg { output, .. } => plot::check_picture_paths(output)?,
@@ -137,7 +158,16 @@ fn run() -> Result<()> {
             samples,
             json,
             output,
-        } => monotone(&points, weights.as_deref(), method, samples, json, &output)?,
+            curvature_plot,
+        } => monotone(
+            &points,
+            weights.as_deref(),
+            method,
+            samples,
+            json,
+            &output,
+            curvature_plot.as_deref(),
+        )?,
         Cmd::Bench {
             what:
                 BenchCmd::Monotone {
@@ -194,9 +224,17 @@ fn run() -> Result<()> {
             samples,
             json,
             output,
+            curvature_plot,
         } => match (alpha, inflection) {
-            (Some(a), false) => lac(a, &control, samples, json, &output)?,
-            _ => lac_inflection(&control, samples, json, &output)?,
+            (Some(a), false) => lac(
+                a,
+                &control,
+                samples,
+                json,
+                &output,
+                curvature_plot.as_deref(),
+            )?,
+            _ => lac_inflection(&control, samples, json, &output, curvature_plot.as_deref())?,
         },
         Cmd::Spline {
             input,
@@ -204,13 +242,22 @@ fn run() -> Result<()> {
             mode,
             json,
             output,
-        } => spline(&input, closed, &mode, json, &output)?,
+            curvature_plot,
+        } => spline(
+            &input,
+            closed,
+            &mode,
+            json,
+            &output,
+            curvature_plot.as_deref(),
+        )?,
         Cmd::Sketch {
             input,
             tolerance,
             json,
             output,
-        } => sketch(&input, tolerance, json, &output)?,
+            curvature_plot,
+        } => sketch(&input, tolerance, json, &output, curvature_plot.as_deref())?,
         Cmd::Approx {
             alpha,
             control,

@@ -12,6 +12,7 @@ pub(crate) fn lac(
     samples: usize,
     json: bool,
     output: &[PathBuf],
+    curvature_plot: Option<&std::path::Path>,
 ) -> Result<()> {
     let pts = parse_points(control).context("--control")?;
     anyhow::ensure!(
@@ -72,19 +73,20 @@ pub(crate) fn lac(
             sp.weights,
         )?)
     };
-    write_segment_outputs(output, &samples, &pts, &caption, &cad)
+    write_segment_outputs(output, curvature_plot, &samples, &pts, &caption, &cad)
 }
 
 /// `-o` for a LAC segment command: pictures (.svg, .png) of the segment with its comb; CAD
 /// formats and .json through `cad` (built once, only when asked for).
 pub(crate) fn write_segment_outputs(
     output: &[PathBuf],
+    curvature_plot: Option<&std::path::Path>,
     samples: &[plot::CombSample],
     control: &[aesthetic_curves::Point],
     caption: &str,
     cad: &dyn Fn() -> Result<aesthetic_curves::nurbs::Nurbs>,
 ) -> Result<()> {
-    write_curvature_plot(samples, caption)?;
+    write_curvature_plot(curvature_plot, samples, caption)?;
     write_curve_outputs(
         output,
         "log_aesthetic_segment",
@@ -100,6 +102,7 @@ pub(crate) fn lac_inflection(
     samples: usize,
     json: bool,
     output: &[PathBuf],
+    curvature_plot: Option<&std::path::Path>,
 ) -> Result<()> {
     let pts = parse_points(control).context("--control")?;
     anyhow::ensure!(
@@ -158,5 +161,5 @@ pub(crate) fn lac_inflection(
             sp.weights,
         )?)
     };
-    write_segment_outputs(output, &samples, &pts, &caption, &cad)
+    write_segment_outputs(output, curvature_plot, &samples, &pts, &caption, &cad)
 }

@@ -13,12 +13,14 @@ use aecurve::plot;
 use anyhow::Result;
 use std::path::PathBuf;
 
-/// Where `--curvature-plot` writes, if given.
-pub(crate) static CURVATURE_PLOT: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
-
-/// `--curvature-plot`: curvature against arc length (chord sums of the samples) of a curve.
-pub(crate) fn write_curvature_plot(samples: &[plot::CombSample], title: &str) -> Result<()> {
-    let Some(path) = CURVATURE_PLOT.get() else {
+/// `--curvature-plot`: curvature against arc length (chord sums of the samples) of a curve,
+/// written to `path` if given.
+pub(crate) fn write_curvature_plot(
+    path: Option<&std::path::Path>,
+    samples: &[plot::CombSample],
+    title: &str,
+) -> Result<()> {
+    let Some(path) = path else {
         return Ok(());
     };
     let mut s = 0.0;

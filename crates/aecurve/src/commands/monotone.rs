@@ -16,6 +16,7 @@ pub(crate) fn monotone(
     samples: usize,
     json: bool,
     output: &[PathBuf],
+    curvature_plot: Option<&std::path::Path>,
 ) -> Result<()> {
     let pts = parse_points(points).context("--points")?;
     let w = weights
@@ -114,7 +115,7 @@ pub(crate) fn monotone(
             (d.p, nrm, if k.is_finite() { k } else { 0.0 })
         })
         .collect();
-    write_curvature_plot(&comb, "curvature of the Bézier curve")?;
+    write_curvature_plot(curvature_plot, &comb, "curvature of the Bézier curve")?;
     let caption = format!("{kind} degree {degree}: curvature comb");
     let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
     write_curve_outputs(

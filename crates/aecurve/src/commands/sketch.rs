@@ -10,6 +10,7 @@ pub(crate) fn sketch(
     tolerance: Option<f64>,
     json: bool,
     output: &[PathBuf],
+    curvature_plot: Option<&std::path::Path>,
 ) -> Result<()> {
     use aesthetic_curves::sketch::{fit_sketch, SketchOptions};
     let pts = aecurve::read_points_file(input)?;
@@ -72,7 +73,11 @@ pub(crate) fn sketch(
             comb.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
         }
     }
-    write_curvature_plot(&comb, "curvature of the G2 curve (rational cubic pieces)")?;
+    write_curvature_plot(
+        curvature_plot,
+        &comb,
+        "curvature of the G2 curve (rational cubic pieces)",
+    )?;
     let caption = format!(
         "sketch: {} LAC pieces (rational cubics), deviation {:.3e}, jump {:.1e}",
         sk.pieces.len(),

@@ -1,6 +1,6 @@
 //! `aecurve spline`: the pseudo-elastic spline through points (S2).
 
-use crate::commands::{write_curvature_plot, write_curve_outputs, CURVATURE_PLOT};
+use crate::commands::{write_curvature_plot, write_curve_outputs};
 use aecurve::plot;
 use anyhow::Result;
 use std::path::PathBuf;
@@ -11,6 +11,7 @@ pub(crate) fn spline(
     mode: &str,
     json: bool,
     output: &[PathBuf],
+    curvature_plot: Option<&std::path::Path>,
 ) -> Result<()> {
     let pts = aecurve::read_points_file(input)?;
     // The command line writes files, not a JSON answer in memory: table mode takes up to a
@@ -54,7 +55,7 @@ pub(crate) fn spline(
             r["energy"].as_f64().unwrap_or(f64::NAN)
         );
     }
-    if !output.is_empty() || CURVATURE_PLOT.get().is_some() {
+    if !output.is_empty() || curvature_plot.is_some() {
         let mut samples: Vec<plot::CombSample> = Vec::new();
         for g in &s.segments {
             let c = aesthetic_curves::Bezier::new(vec![
@@ -69,7 +70,11 @@ pub(crate) fn spline(
             }
         }
         let caption = format!("pseudo-elastic spline: length {:.6}", s.length);
-        write_curvature_plot(&samples, "curvature of the pseudo-elastic spline")?;
+        write_curvature_plot(
+            curvature_plot,
+            &samples,
+            "curvature of the pseudo-elastic spline",
+        )?;
         let mut polygon = pts.clone();
         if closed {
             polygon.push(pts[0]);
