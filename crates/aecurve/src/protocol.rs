@@ -312,22 +312,30 @@ fn curvature_monotone(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
                 "only applies to method \"sampling\"",
             ));
         }
-        let r = c.curvature_monotone()?;
-        Ok(json!({
-            "monotone": r.monotone,
-            "extrema": r.extrema,
-            "test_degree": r.test_degree,
-            "trend": r.trend.map(|t| t.as_str()),
-        }))
+        Ok(monotone_json(&c.curvature_monotone()?))
     } else {
         let n = count_param(obj, "samples", 100, MAX_SAMPLES)?;
-        let r = c.curvature_monotone_sampled(n as usize)?;
-        Ok(json!({
-            "monotone": r.monotone,
-            "samples": r.samples,
-            "trend": r.trend.map(|t| t.as_str()),
-        }))
+        Ok(sampled_json(&c.curvature_monotone_sampled(n as usize)?))
     }
+}
+
+/// The result of `bezier.curvature_monotone` (exact test), also `aecurve monotone --json`.
+pub fn monotone_json(r: &aesthetic_curves::MonotoneReport) -> Value {
+    json!({
+        "monotone": r.monotone,
+        "extrema": r.extrema,
+        "test_degree": r.test_degree,
+        "trend": r.trend.map(|t| t.as_str()),
+    })
+}
+
+/// The result of `bezier.curvature_monotone` with `"method": "sampling"`.
+pub fn sampled_json(r: &aesthetic_curves::SampledReport) -> Value {
+    json!({
+        "monotone": r.monotone,
+        "samples": r.samples,
+        "trend": r.trend.map(|t| t.as_str()),
+    })
 }
 
 /// Largest number of parameters in one request.
@@ -388,7 +396,16 @@ fn lac_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         return Err(ProtoError::invalid("samples", "must be at least 2"));
     }
     let seg = aesthetic_curves::lac::LacSegment::new(alpha, [control[0], control[1], control[2]])?;
-    let (points, curvature) = seg.sample(samples as usize)?;
+    Ok(lac_segment_json(&seg, samples as usize)?)
+}
+
+/// The result of `lac.segment` (also `aecurve lac --json`): the segment's numbers and
+/// `samples >= 2` points with their curvature.
+pub fn lac_segment_json(
+    seg: &aesthetic_curves::lac::LacSegment,
+    samples: usize,
+) -> Result<Value, aesthetic_curves::Error> {
+    let (points, curvature) = seg.sample(samples)?;
     let (k0, k1) = seg.end_curvatures()?;
     Ok(json!({
         "lambda": seg.lambda(),
@@ -396,6 +413,22 @@ fn lac_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "arc_length": seg.arc_length()?,
         "curvature_start": k0,
         "curvature_end": k1,
+        "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+        "curvature": curvature,
+    }))
+}
+
+/// The base result of `lac.inflection_segment` (also `aecurve lac --inflection --json`).
+pub fn lac_inflection_json(
+    seg: &aesthetic_curves::lac::LacInflectionSegment,
+    samples: usize,
+) -> Result<Value, aesthetic_curves::Error> {
+    let (points, curvature) = seg.sample(samples)?;
+    Ok(json!({
+        "alpha": seg.alpha,
+        "theta_d": seg.theta_d,
+        "arc_length": seg.arc_length(),
+        "curvature_end": curvature[curvature.len() - 1],
         "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
         "curvature": curvature,
     }))
@@ -415,15 +448,7 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
     }
     let seg =
         aesthetic_curves::lac::LacInflectionSegment::new([control[0], control[1], control[2]])?;
-    let (points, curvature) = seg.sample(samples as usize)?;
-    let mut out = json!({
-        "alpha": seg.alpha,
-        "theta_d": seg.theta_d,
-        "arc_length": seg.arc_length(),
-        "curvature_end": curvature[curvature.len() - 1],
-        "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
-        "curvature": curvature,
-    });
+    let mut out = lac_inflection_json(&seg, samples as usize)?;
     // Optional: the segment's rational cubic (κ = 0 at its start, G2 at its end, curvature
     // proven monotone), as `lac.rational_approx` gives for a LAC segment.
     if obj.get("rational") == Some(&Value::Bool(true)) {

@@ -26,10 +26,7 @@ pub(crate) fn lac(
     if json {
         println!(
             "{}",
-            serde_json::json!({"lambda": seg.lambda(), "theta_d": seg.theta_d,
-                "arc_length": seg.arc_length()?, "curvature_start": k0, "curvature_end": k1,
-                "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
-                "curvature": kappa})
+            aecurve::protocol::lac_segment_json(&seg, samples.max(2))?
         );
     } else {
         println!("log-aesthetic segment, alpha = {alpha}");
@@ -116,10 +113,7 @@ pub(crate) fn lac_inflection(
     if json {
         println!(
             "{}",
-            serde_json::json!({"alpha": seg.alpha, "theta_d": seg.theta_d,
-                "arc_length": seg.arc_length(), "curvature_end": k1,
-                "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
-                "curvature": kappa})
+            aecurve::protocol::lac_inflection_json(&seg, samples.max(2))?
         );
     } else {
         println!("log-aesthetic segment with an inflection at the start point");

@@ -36,12 +36,7 @@ pub(crate) fn monotone(
         Method::Exact => {
             let r = c.curvature_monotone()?;
             if json {
-                writeln!(
-                    out,
-                    "{}",
-                    serde_json::json!({"monotone": r.monotone, "extrema": r.extrema,
-                        "test_degree": r.test_degree, "trend": r.trend.map(|t| t.as_str())})
-                )?;
+                writeln!(out, "{}", aecurve::protocol::monotone_json(&r))?;
             } else {
                 writeln!(out, "{kind} Bézier curve of degree {degree}")?;
                 writeln!(
@@ -81,12 +76,7 @@ pub(crate) fn monotone(
         Method::Sampling => {
             let r = c.curvature_monotone_sampled(samples)?;
             if json {
-                writeln!(
-                    out,
-                    "{}",
-                    serde_json::json!({"monotone": r.monotone, "samples": r.samples,
-                        "trend": r.trend.map(|t| t.as_str())})
-                )?;
+                writeln!(out, "{}", aecurve::protocol::sampled_json(&r))?;
             } else {
                 writeln!(
                     out,
