@@ -465,6 +465,127 @@ fn end_curvature(p: &[Point], w: &[f64]) -> f64 {
     ((n as f64 - 1.0) / n as f64) * (w[0] * w[2] / (w[1] * w[1])) * d0.cross(d1) / (l * l * l)
 }
 
+// kurbo interop. kurbo's curves are polynomial Béziers of degree 1 to 3 in the same
+// coordinates; its `ParamCurveCurvature::curvature` has the opposite sign of this
+// library's (here positive where the curve turns counter-clockwise), which the tests check.
+
+impl TryFrom<kurbo::Line> for Bezier {
+    type Error = Error;
+    /// Fails only for non-finite points.
+    fn try_from(l: kurbo::Line) -> Result<Self> {
+        Bezier::new(vec![l.p0, l.p1])
+    }
+}
+
+impl TryFrom<kurbo::QuadBez> for Bezier {
+    type Error = Error;
+    /// Fails only for non-finite points.
+    fn try_from(q: kurbo::QuadBez) -> Result<Self> {
+        Bezier::new(vec![q.p0, q.p1, q.p2])
+    }
+}
+
+impl TryFrom<kurbo::CubicBez> for Bezier {
+    type Error = Error;
+    /// Fails only for non-finite points.
+    fn try_from(c: kurbo::CubicBez) -> Result<Self> {
+        Bezier::new(vec![c.p0, c.p1, c.p2, c.p3])
+    }
+}
+
+impl TryFrom<kurbo::PathSeg> for Bezier {
+    type Error = Error;
+    /// Fails only for non-finite points.
+    fn try_from(s: kurbo::PathSeg) -> Result<Self> {
+        match s {
+            kurbo::PathSeg::Line(l) => l.try_into(),
+            kurbo::PathSeg::Quad(q) => q.try_into(),
+            kurbo::PathSeg::Cubic(c) => c.try_into(),
+        }
+    }
+}
+
+impl TryFrom<&Bezier> for kurbo::PathSeg {
+    type Error = Error;
+    /// Degree 1 to 3 exactly; higher degrees have no kurbo form ([`Error::InvalidInput`]).
+    fn try_from(b: &Bezier) -> Result<Self> {
+        let p = &b.points;
+        match p.len() {
+            2 => Ok(kurbo::PathSeg::Line(kurbo::Line::new(p[0], p[1]))),
+            3 => Ok(kurbo::PathSeg::Quad(kurbo::QuadBez::new(p[0], p[1], p[2]))),
+            4 => Ok(kurbo::PathSeg::Cubic(kurbo::CubicBez::new(
+                p[0], p[1], p[2], p[3],
+            ))),
+            n => Err(Error::invalid(
+                "degree",
+                format!(
+                    "kurbo holds Béziers of degree 1 to 3, this one has degree {}",
+                    n - 1
+                ),
+            )),
+        }
+    }
+}
+
+impl Bezier {
+    /// The segments of a kurbo path, in order (a closed subpath's closing line included).
+    pub fn from_bezpath(path: &kurbo::BezPath) -> Result<Vec<Bezier>> {
+        path.segments().map(Bezier::try_from).collect()
+    }
+
+    /// Curves of degree 1 to 3 as one kurbo path: a new subpath starts wherever a curve
+    /// does not begin at the previous one's end.
+    pub fn to_bezpath(curves: &[Bezier]) -> Result<kurbo::BezPath> {
+        let mut path = kurbo::BezPath::new();
+        let mut end: Option<Point> = None;
+        for c in curves {
+            let seg = kurbo::PathSeg::try_from(c)?;
+            let start = c.points[0];
+            if end != Some(start) {
+                path.move_to(start);
+            }
+            match seg {
+                kurbo::PathSeg::Line(l) => path.line_to(l.p1),
+                kurbo::PathSeg::Quad(q) => path.quad_to(q.p1, q.p2),
+                kurbo::PathSeg::Cubic(k) => path.curve_to(k.p1, k.p2, k.p3),
+            }
+            end = c.points.last().copied();
+        }
+        Ok(path)
+    }
+
+    /// The image under an affine map (exact: Bézier curves are affinely invariant).
+    /// Fails only if the map sends a point to infinity or NaN.
+    pub fn transform(&self, map: kurbo::Affine) -> Result<Bezier> {
+        Bezier::new(self.points.iter().map(|p| map * *p).collect())
+    }
+
+    /// The bounding box of the control points, which contains the curve.
+    pub fn control_box(&self) -> kurbo::Rect {
+        control_box(&self.points)
+    }
+}
+
+impl RationalBezier {
+    /// The image under an affine map (exact: the weights are unchanged).
+    pub fn transform(&self, map: kurbo::Affine) -> Result<RationalBezier> {
+        RationalBezier::new(
+            self.points.iter().map(|p| map * *p).collect(),
+            self.weights.clone(),
+        )
+    }
+
+    /// The bounding box of the control points, which contains the curve (positive weights).
+    pub fn control_box(&self) -> kurbo::Rect {
+        control_box(&self.points)
+    }
+}
+
+fn control_box(points: &[Point]) -> kurbo::Rect {
+    let first = kurbo::Rect::from_points(points[0], points[0]);
+    points.iter().fold(first, |r, p| r.union_pt(*p))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -541,5 +662,65 @@ mod tests {
         assert!(Bezier::new(vec![Point::ZERO; 22]).is_err());
         assert!(RationalBezier::new(pts(&[(0.0, 0.0), (1.0, 0.0)]), vec![1.0, 0.0]).is_err());
         assert!(RationalBezier::new(pts(&[(0.0, 0.0), (1.0, 0.0)]), vec![1.0]).is_err());
+    }
+
+    #[test]
+    fn kurbo_round_trip_and_curvature_sign() {
+        use kurbo::{ParamCurve, ParamCurveCurvature};
+        let c = kurbo::CubicBez::new((0.0, 0.0), (1.0, 2.0), (3.0, 2.5), (4.0, 0.5));
+        let b = Bezier::try_from(c).unwrap();
+        for i in 0..=10 {
+            let t = i as f64 / 10.0;
+            let d = b.derivs(t);
+            assert!((d.p - c.eval(t)).hypot() < 1e-14);
+            // kurbo's curvature has the opposite sign.
+            let k = c.curvature(t);
+            assert!(
+                (d.kappa() + k).abs() <= 1e-12 * k.abs().max(1e-300),
+                "{t}: {} vs {k}",
+                d.kappa()
+            );
+        }
+        let q = kurbo::QuadBez::new((0.0, 0.0), (1.0, 1.0), (2.0, 0.0));
+        let bq = Bezier::try_from(q).unwrap();
+        assert!(bq.derivs(0.5).kappa() < 0.0 && q.curvature(0.5) > 0.0);
+        // A path with a closing line, and back.
+        let mut path = kurbo::BezPath::new();
+        path.move_to((0.0, 0.0));
+        path.curve_to((1.0, 2.0), (3.0, 2.5), (4.0, 0.5));
+        path.quad_to((2.0, -1.0), (0.5, -0.5));
+        path.close_path();
+        let segs = Bezier::from_bezpath(&path).unwrap();
+        assert_eq!(
+            segs.iter().map(|s| s.degree()).collect::<Vec<_>>(),
+            vec![3, 2, 1]
+        );
+        let back = Bezier::to_bezpath(&segs).unwrap();
+        assert_eq!(back.segments().count(), 3);
+        assert!(back.segments().zip(path.segments()).all(|(a, b)| a == b));
+        // Degree 4 has no kurbo form; NaN points are refused.
+        let quartic = b.elevate().unwrap();
+        assert!(Bezier::to_bezpath(&[quartic]).is_err());
+        let bad = kurbo::Line::new((0.0, 0.0), (f64::NAN, 1.0));
+        assert!(Bezier::try_from(bad).is_err());
+        // Affine maps act on the control points; a rotation keeps the curvature, a
+        // reflection flips its sign, a uniform scale by s divides it by s.
+        let rot = kurbo::Affine::rotate(0.7);
+        let flip = kurbo::Affine::FLIP_Y;
+        let grow = kurbo::Affine::scale(2.0);
+        let k0 = b.derivs(0.3).kappa();
+        assert!((b.transform(rot).unwrap().derivs(0.3).kappa() - k0).abs() < 1e-12);
+        assert!((b.transform(flip).unwrap().derivs(0.3).kappa() + k0).abs() < 1e-12);
+        assert!((b.transform(grow).unwrap().derivs(0.3).kappa() - 0.5 * k0).abs() < 1e-12);
+        let r = b.to_rational().transform(rot).unwrap();
+        assert!((r.derivs(0.3).kappa() - k0).abs() < 1e-12);
+        // The control box holds the curve.
+        let bx = b.control_box();
+        assert_eq!((bx.x0, bx.y0, bx.x1, bx.y1), (0.0, 0.0, 4.0, 2.5));
+        // (kurbo's `Rect::contains` is half-open: the closed box is checked here.)
+        assert!((0..=20).all(|i| {
+            let p = b.derivs(i as f64 / 20.0).p;
+            p.x >= bx.x0 && p.x <= bx.x1 && p.y >= bx.y0 && p.y <= bx.y1
+        }));
     }
 }

@@ -104,7 +104,8 @@
 //!
 //! Points and vectors are [`kurbo::Point`] and [`kurbo::Vec2`]; angles are radians; signed
 //! curvature is positive where the curve turns counter-clockwise (kurbo's curvature has
-//! the opposite sign).
+//! the opposite sign). [`Bezier`] converts from and to kurbo's `Line`, `QuadBez`,
+//! `CubicBez`, `PathSeg` and `BezPath`, and Bézier curves take kurbo's `Affine` maps.
 
 #![warn(missing_docs)]
 
