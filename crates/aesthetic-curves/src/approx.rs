@@ -1021,12 +1021,9 @@ fn table_candidates(
 ) -> Vec<((f64, f64), f64)> {
     let alpha = seg.standard.alpha();
     let theta_d = seg.theta_d;
-    let [p0, p1, p2] = seg.control;
-    let angle = |a: Vec2, b: Vec2| a.cross(b).abs().atan2(a.dot(b));
-    let phi = if seg.reversed {
-        angle(p1 - p2, p0 - p2)
-    } else {
-        angle(p1 - p0, p2 - p0)
+    // The base angle at the high-curvature end (the larger one).
+    let Ok((_, phi)) = LacSegment::triangle_angles(seg.control) else {
+        return Vec::new();
     };
     let half = 0.5 * theta_d;
     let u = match LacSegment::theta_lim(alpha, theta_d) {

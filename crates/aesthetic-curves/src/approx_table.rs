@@ -181,7 +181,7 @@ pub fn table() -> &'static OptimaTable {
     TABLE.get_or_init(|| decode(TABLE_BYTES).expect("the shipped optima table is valid"))
 }
 
-/// The cell of `x` on `axis`: the lower node's index and the clamped position.
+/// The cell of `x` on `axis`: the index of its lower node, clamped into the grid.
 fn cell(axis: (f64, f64, usize), x: f64) -> usize {
     let t = ((x - axis.0) / axis.1).floor();
     if t.is_nan() || t < 0.0 {

@@ -1573,6 +1573,7 @@ impl LacSegment {
     /// point, anything else by [`LacStandard::eval_many_with_kappa`].
     fn standard_points(&self, th: &[f64]) -> Result<(Vec<Point>, Vec<f64>)> {
         let n = th.len();
+        // A handful of points costs as little by quadrature; the walk pays from about 8.
         let monotone =
             n >= 8 && (th.windows(2).all(|w| w[1] >= w[0]) || th.windows(2).all(|w| w[1] <= w[0]));
         if monotone && th[n - 1] != th[0] {
