@@ -1,6 +1,7 @@
 //! The library's modules form no cycle (docs/architecture.md): no module uses, directly or
-//! through others, a module that uses it back. The graph is read from the sources: every
-//! `crate::name` outside comments and outside the inline `#[cfg(test)]` module.
+//! through others, a module that uses it back. The graph is read from the sources (a module
+//! is `src/name.rs` or the files of `src/name/`): every `crate::name` outside comments and
+//! outside the inline `#[cfg(test)]` module.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -8,17 +9,25 @@ fn graph() -> BTreeMap<String, BTreeSet<String>> {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src");
     let mut names = BTreeSet::new();
     let mut texts = Vec::new();
+    // A module is `src/name.rs` or a folder `src/name/` (all its files count as it).
     for entry in std::fs::read_dir(dir).expect("src") {
         let path = entry.expect("entry").path();
-        if path.extension().is_some_and(|e| e == "rs") {
-            let name = path.file_stem().unwrap().to_string_lossy().to_string();
-            if name != "lib" {
-                names.insert(name.clone());
-                texts.push((name, std::fs::read_to_string(&path).expect("read")));
+        let name = path.file_stem().unwrap().to_string_lossy().to_string();
+        if path.is_dir() {
+            names.insert(name.clone());
+            for f in std::fs::read_dir(&path).expect("module folder") {
+                let f = f.expect("entry").path();
+                if f.extension().is_some_and(|e| e == "rs") {
+                    texts.push((name.clone(), std::fs::read_to_string(&f).expect("read")));
+                }
             }
+        } else if path.extension().is_some_and(|e| e == "rs") && name != "lib" {
+            names.insert(name.clone());
+            texts.push((name, std::fs::read_to_string(&path).expect("read")));
         }
     }
-    let mut out = BTreeMap::new();
+    let mut out: BTreeMap<String, BTreeSet<String>> =
+        names.iter().map(|n| (n.clone(), BTreeSet::new())).collect();
     for (name, text) in texts {
         let body = match text.find("#[cfg(test)]\nmod tests") {
             Some(i) => &text[..i],
@@ -42,7 +51,7 @@ fn graph() -> BTreeMap<String, BTreeSet<String>> {
                 }
             }
         }
-        out.insert(name, uses);
+        out.get_mut(&name).expect("named above").extend(uses);
     }
     out
 }
@@ -96,4 +105,6 @@ fn the_reader_sees_real_edges() {
     let g = graph();
     assert!(g["pseudo_spline"].contains("pseudo_table"));
     assert!(g["approx"].contains("approx_table"));
+    // A module in a folder (lac/) is read too.
+    assert!(g["approx"].contains("lac") && g["lac"].contains("quadrature"));
 }

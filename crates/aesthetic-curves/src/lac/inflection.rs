@@ -1,0 +1,263 @@
+//! A log-aesthetic segment with an inflection point at its start.
+
+use super::{triangle_angles, LacSegment, Similarity, TriangleAngles};
+use crate::error::{Error, Result};
+use crate::roots::illinois;
+use kurbo::{Point, Vec2};
+
+/// A log-aesthetic segment with an inflection point at its start (docs/math.md §3.2; S4 §2.2):
+/// `C(s) = ∫_0^s e^{i t^q} dt`, `q = (α-1)/α > 1` (α < 0), tangent angle `θ = s^q`,
+/// curvature `q s^(q-1)`, zero at s = 0. Given the triangle, α follows from the base angle at
+/// the inflection end, which runs from 0 (α → 0-) to θ_d/2 (α → -∞, a circle).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LacInflectionSegment {
+    /// The shape parameter (< 0).
+    pub alpha: f64,
+    /// Turning angle θ_d in (0, π).
+    pub theta_d: f64,
+    /// Control triangle; `control[0]` is the inflection end.
+    pub control: [Point; 3],
+    /// From the standard form to the input.
+    map: Similarity,
+}
+
+/// `∫_0^θ u^(r-1) e^{iu} du` for `r` in (0, 1] and θ in [0, 3.5], by its power series
+/// `θ^r Σ_k (iθ)^k / (k! (k + r))` (term by term from e^{iu} = Σ (iu)^k/k!). The terms
+/// peak near k = θ below e^θ/√(2πθ) < 10 times the sum's leading term and fall as
+/// θ^k/k! after it: 40 terms reach rounding, with a few units of 1e-16 of cancellation.
+fn inflection_primitive(r: f64, theta: f64) -> Vec2 {
+    if theta <= 0.0 {
+        return Vec2::ZERO;
+    }
+    let (mut re, mut im) = (0.0f64, 0.0f64);
+    // c = θ^k / k!, the sign pattern of i^k: 1, i, -1, -i.
+    let mut c = 1.0f64;
+    for k in 0..60 {
+        let term = c / (k as f64 + r);
+        match k % 4 {
+            0 => re += term,
+            1 => im += term,
+            2 => re -= term,
+            _ => im -= term,
+        }
+        c *= theta / (k as f64 + 1.0);
+        if c < 1e-18 * (re.abs() + im.abs()) {
+            break;
+        }
+    }
+    Vec2::new(re, im) * theta.powf(r)
+}
+
+/// `∫_{θ0}^{θ1} u^(r-1) e^{iu} du` with `r = 1/q` in (0, 1] and 0 <= θ0 <= θ1 <= 3.5:
+/// the difference of [`inflection_primitive`] (absolute error a few units of 1e-16 of
+/// θ1^r/r, the accuracy the adaptive quadrature it replaced was asked for).
+pub(super) fn inflection_integral(r: f64, th0: f64, th1: f64) -> Result<Vec2> {
+    let v = inflection_primitive(r, th1) - inflection_primitive(r, th0);
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::invalid(
+            "alpha",
+            "the inflection-end integral overflows f64",
+        ))
+    }
+}
+
+impl LacInflectionSegment {
+    /// Base angle at the inflection end for `r = 1/q = α/(α-1)` in (0, 1).
+    fn base_angle_r(r: f64, theta_d: f64) -> Result<f64> {
+        let c = inflection_integral(r, 0.0, theta_d)?;
+        Ok(c.y.atan2(c.x))
+    }
+
+    /// Base angle at the inflection end of the segment of shape `alpha` (< 0) turning `theta_d`.
+    pub fn base_angle(alpha: f64, theta_d: f64) -> Result<f64> {
+        if !(alpha < 0.0 && alpha.is_finite()) {
+            return Err(Error::invalid(
+                "alpha",
+                "inflection-end segments need alpha < 0",
+            ));
+        }
+        Self::base_angle_r(alpha / (alpha - 1.0), theta_d)
+    }
+
+    /// Whether an inflection-end segment exists in the triangle `control` (`control[0]` =
+    /// inflection end): the base angle there must lie in (0, θ_d/2). No integral; agrees
+    /// with [`LacInflectionSegment::new`] succeeding. Degenerate triangles are errors.
+    pub fn exists(control: [Point; 3]) -> Result<bool> {
+        let TriangleAngles {
+            theta_d,
+            theta_e: phi,
+            ..
+        } = triangle_angles(&control)?;
+        Ok(phi > 0.0 && phi < 0.5 * theta_d)
+    }
+
+    /// The segment in the triangle `control` (`control[0]` = inflection end).
+    pub fn new(control: [Point; 3]) -> Result<Self> {
+        let TriangleAngles {
+            theta_d,
+            theta_e: phi,
+            ..
+        } = triangle_angles(&control)?;
+        let half = 0.5 * theta_d;
+        if !(phi > 0.0 && phi < half) {
+            return Err(Error::NoSegment(format!(
+                "the base angle at the inflection end is {:.6} deg; with turning angle {:.6} deg \
+                 it must lie in (0, {:.6}) deg",
+                phi.to_degrees(),
+                theta_d.to_degrees(),
+                half.to_degrees()
+            )));
+        }
+        // r = 1/q in (0, 1): f(0+) = -phi, f(1) = θ_d/2 - phi.
+        let r = illinois(
+            |x| Ok(Self::base_angle_r(x, theta_d)? - phi),
+            (0.0, -phi),
+            (1.0, half - phi),
+            1e-16,
+            400,
+        )?;
+        let alpha = r / (r - 1.0);
+        let (b, t) = Self::standard_end_and_corner(r, theta_d)?;
+        let map = Similarity::fit([Vec2::ZERO, b, t], [control[0], control[2], control[1]])?;
+        Ok(LacInflectionSegment {
+            alpha,
+            theta_d,
+            control,
+            map,
+        })
+    }
+
+    fn r(&self) -> f64 {
+        self.alpha / (self.alpha - 1.0)
+    }
+
+    /// Standard end point C(s1) and tangent intersection (start tangent is +x).
+    fn standard_end_and_corner(r: f64, theta_d: f64) -> Result<(Vec2, Vec2)> {
+        let b = inflection_integral(r, 0.0, theta_d)? * r;
+        let db = Vec2::from_angle(theta_d);
+        // Intersection of the x-axis with the line through b along db.
+        let t = Vec2::new(b.x - b.y * db.x / db.y, 0.0);
+        Ok((b, t))
+    }
+
+    /// Scale from the standard form to the input.
+    pub fn scale(&self) -> f64 {
+        self.map.scale()
+    }
+
+    /// The mapped tangent intersection (equals `control[1]` up to the accuracy of α).
+    pub fn tangent_intersection(&self) -> Result<Point> {
+        Ok(self
+            .map
+            .apply(Self::standard_end_and_corner(self.r(), self.theta_d)?.1))
+    }
+
+    /// Arc length `s1 = θ_d^(1/q)` in input units.
+    pub fn arc_length(&self) -> f64 {
+        self.theta_d.powf(self.r()) * self.scale()
+    }
+
+    /// Split at turning angle `tau` (0 < τ < θ_d, from the inflection end): the part
+    /// [0, τ], an inflection-end segment of the same curve (no new solve), and the part
+    /// [τ, θ_d], an ordinary LAC segment of the same α (its curvature never vanishes),
+    /// solved from its own triangle: the same curve to the solver's accuracy (about 1e-13
+    /// of its size; tested).
+    pub fn split(&self, tau: f64) -> Result<(LacInflectionSegment, LacSegment)> {
+        if !(tau.is_finite() && tau > 0.0 && tau < self.theta_d) {
+            return Err(Error::invalid(
+                "turning",
+                format!("need 0 < tau < theta_d = {}, got {tau}", self.theta_d),
+            ));
+        }
+        let (pts, tangents) = self.eval_turning(&[tau])?;
+        let (p, t) = (pts[0], tangents[0]);
+        let c = self.control;
+        let meet = |a: Point, da: Vec2, b: Point, db: Vec2| -> Result<Point> {
+            let x = a + da * ((b - a).cross(db) / da.cross(db));
+            if x.is_finite() {
+                Ok(x)
+            } else {
+                Err(Error::Degenerate(
+                    "the split point's tangent is parallel to an end tangent".into(),
+                ))
+            }
+        };
+        let x0 = meet(c[0], c[1] - c[0], p, t)?;
+        let x1 = meet(p, t, c[2], c[2] - c[1])?;
+        let head = LacInflectionSegment {
+            alpha: self.alpha,
+            theta_d: tau,
+            control: [c[0], x0, p],
+            map: self.map,
+        };
+        let tail = LacSegment::new(self.alpha, [p, x1, c[2]])?;
+        Ok((head, tail))
+    }
+
+    /// +1 when the segment turns counter-clockwise from `control[0]` to `control[2]`.
+    fn turn_sign(&self) -> f64 {
+        let c = self.control;
+        (c[1] - c[0]).cross(c[2] - c[1]).signum()
+    }
+
+    /// Signed curvature at `control[2]` (the curvature at the inflection end `control[0]` is 0):
+    /// `q θ_d^(1-1/q)` over the scale.
+    pub fn end_curvature(&self) -> f64 {
+        let r = self.r();
+        self.turn_sign() * self.theta_d.powf(1.0 - r) / (r * self.scale())
+    }
+
+    /// Points at turning angles τ from the inflection end (τ = 0) to `control[2]` (τ = θ_d),
+    /// and the unit tangents there; τ outside [0, θ_d] is clamped. Ascending τ are
+    /// integrated incrementally.
+    pub fn eval_turning(&self, taus: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+        if let Some(i) = taus.iter().position(|t| !t.is_finite()) {
+            return Err(Error::invalid(format!("tau[{i}]"), "must be finite"));
+        }
+        let r = self.r();
+        let o = self.map.apply(Vec2::ZERO);
+        let mut pts = Vec::with_capacity(taus.len());
+        let mut tangents = Vec::with_capacity(taus.len());
+        for t in taus {
+            let th = t.clamp(0.0, self.theta_d);
+            let acc = inflection_integral(r, 0.0, th)? * r;
+            pts.push(if th == self.theta_d {
+                self.control[2]
+            } else if th == 0.0 {
+                self.control[0]
+            } else {
+                self.map.apply(acc)
+            });
+            let d = self.map.apply(Vec2::from_angle(th)) - o;
+            tangents.push(d / d.hypot());
+        }
+        Ok((pts, tangents))
+    }
+
+    /// `n >= 2` points from the inflection end to `control[2]`, evenly spaced in tangent angle,
+    /// and their signed curvature (0 at the start).
+    pub fn sample(&self, n: usize) -> Result<(Vec<Point>, Vec<f64>)> {
+        if n < 2 {
+            return Err(Error::invalid("samples", "need at least 2"));
+        }
+        let r = self.r();
+        let q = 1.0 / r;
+        let sign = (self.control[1] - self.control[0])
+            .cross(self.control[2] - self.control[1])
+            .signum();
+        let mut pts = Vec::with_capacity(n);
+        let mut k = Vec::with_capacity(n);
+        for i in 0..n {
+            let th = self.theta_d * (i as f64 / (n - 1) as f64);
+            let acc = inflection_integral(r, 0.0, th)? * r;
+            pts.push(self.map.apply(acc));
+            // kappa(s) = q s^(q-1) with s = θ^(1/q): q θ^(1 - 1/q).
+            k.push(sign * q * th.powf(1.0 - r) / self.scale());
+        }
+        pts[0] = self.control[0];
+        pts[n - 1] = self.control[2];
+        Ok((pts, k))
+    }
+}

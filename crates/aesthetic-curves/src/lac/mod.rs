@@ -1,0 +1,589 @@
+//! Log-aesthetic curves (LAC) in standard form (docs/math.md §3; seeds S0 §3, S4 §2).
+//!
+//! Tangent angle θ is the parameter; the radius of curvature is
+//! `ρ(ψ) = ((α-1) Λ ψ + 1)^(1/(α-1))` (α ≠ 1) or `e^(Λψ)` (α = 1) and
+//! `P(θ) = ∫_0^θ ρ(ψ) e^{iψ} dψ`, so `P(0) = 0`, the tangent at 0 is +x and curvature at 0 is 1.
+//!
+//! ## Evaluation
+//!
+//! - α = 1 (logarithmic spiral) and Λ = 0 (unit circle): closed forms.
+//! - Otherwise the integral is taken in `w = ln u`, `u = (α-1) Λ ψ + 1`:
+//!   `P(θ) = (1/c) ∫_0^{ln(1 + cθ)} e^{(p+1) w} e^{i expm1(w)/c} dw`, `c = (α-1) Λ`,
+//!   `p + 1 = α/(α-1)`. The power singularity of ρ at the end of the domain (u → 0) becomes an
+//!   exponential decay over a long but smooth interval, so adaptive Gauss–Kronrod converges
+//!   right up to the singular end; `ln1p`/`expm1` keep full relative accuracy as Λ → 0 or
+//!   α → 1. Requested accuracy: 1e-15 of the arc length.
+//! - Arc length and curvature have closed forms for every α.
+//!
+//! The domain is `(α-1) Λ θ + 1 > 0`; outside it there is no curve: [`Error::InvalidInput`].
+
+//! ## Rooms
+//!
+//! - `standard`: [`LacStandard`], the curve in standard form;
+//! - `segment`: [`LacSegment`], a segment in a control triangle;
+//! - `inflection`: [`LacInflectionSegment`], a segment with an inflection end;
+//! - here: the complex arithmetic, the similarity and the triangle measure they share.
+
+mod inflection;
+mod segment;
+mod standard;
+
+pub use inflection::LacInflectionSegment;
+pub use segment::LacSegment;
+pub use standard::{LacStandard, MAX_ABS_ALPHA, MAX_QUARTER_TURNS};
+
+use crate::error::{Error, Result};
+use kurbo::{Point, Vec2};
+
+fn cmul(a: Vec2, b: Vec2) -> Vec2 {
+    Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
+}
+fn cdiv(a: Vec2, b: Vec2) -> Vec2 {
+    let d = b.hypot2();
+    Vec2::new((a.x * b.x + a.y * b.y) / d, (a.y * b.x - a.x * b.y) / d)
+}
+fn conj(a: Vec2) -> Vec2 {
+    Vec2::new(a.x, -a.y)
+}
+
+/// A similarity of the plane (possibly with a reflection): `z -> offset + factor z` in complex
+/// numbers, after complex conjugation when `mirrored`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Similarity {
+    offset: Vec2,
+    factor: Vec2,
+    mirrored: bool,
+}
+
+impl Similarity {
+    /// The similarity taking `from[0] -> to[0]` and `from[1] -> to[1]`, with or without a
+    /// reflection, whichever takes the corner `from[2]` closer to `to[2]`.
+    fn fit(from: [Vec2; 3], to: [Point; 3]) -> Result<Similarity> {
+        let (x, y, target) = (to[0].to_vec2(), to[1].to_vec2(), to[2]);
+        let candidate = |mirrored: bool| {
+            let [a, b, _] = if mirrored { from.map(conj) } else { from };
+            let factor = cdiv(y - x, b - a);
+            let map = Similarity {
+                offset: x - cmul(a, factor),
+                factor,
+                mirrored,
+            };
+            ((map.apply(from[2]) - target).hypot(), map)
+        };
+        let (plain, mirror) = (candidate(false), candidate(true));
+        let map = if mirror.0 < plain.0 {
+            mirror.1
+        } else {
+            plain.1
+        };
+        if !(map.factor.is_finite() && map.scale() > 0.0) {
+            return Err(Error::NoConvergence(
+                "the segment for this triangle spans a range of sizes beyond f64".into(),
+            ));
+        }
+        Ok(map)
+    }
+
+    fn apply(&self, z: Vec2) -> Point {
+        let z = if self.mirrored { conj(z) } else { z };
+        (self.offset + cmul(z, self.factor)).to_point()
+    }
+
+    fn scale(&self) -> f64 {
+        self.factor.hypot()
+    }
+}
+
+/// The angles of a control triangle [start, tangent intersection, end].
+struct TriangleAngles {
+    /// Turning angle between the end tangents, in (0, π).
+    theta_d: f64,
+    /// Base angle at the start.
+    theta_e: f64,
+    /// Base angle at the end.
+    theta_f: f64,
+}
+
+/// Validate a control triangle (finite, no coincident points, not collinear) and measure it.
+fn triangle_angles(control: &[Point; 3]) -> Result<TriangleAngles> {
+    if control.iter().any(|p| !p.is_finite()) {
+        return Err(Error::invalid("control", "control points must be finite"));
+    }
+    let (p0, p1, p2) = (control[0], control[1], control[2]);
+    let (u, v, w) = (p1 - p0, p2 - p1, p2 - p0);
+    let size = u.hypot().max(v.hypot());
+    if !(size.is_finite() && w.hypot().is_finite()) {
+        return Err(Error::invalid(
+            "control",
+            "the coordinates are too large: the triangle's sides overflow f64",
+        ));
+    }
+    if size == 0.0 || u.hypot() <= 1e-12 * size || v.hypot() <= 1e-12 * size {
+        return Err(Error::Degenerate(
+            "coincident control points: the end tangents are undefined".into(),
+        ));
+    }
+    let theta_d = angle_between(u, v);
+    if theta_d <= 1e-9 || theta_d >= std::f64::consts::PI - 1e-9 {
+        return Err(Error::Degenerate(format!(
+            "collinear control points (turning angle {theta_d:.3e} rad): no segment turns \
+             between these tangents"
+        )));
+    }
+    Ok(TriangleAngles {
+        theta_d,
+        theta_e: angle_between(u, w),
+        theta_f: angle_between(w, v),
+    })
+}
+
+/// Angle between two vectors in [0, π].
+fn angle_between(a: Vec2, b: Vec2) -> f64 {
+    a.cross(b).abs().atan2(a.dot(b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::inflection::inflection_integral;
+    use super::*;
+    use crate::quadrature::{integrate, QuadOptions};
+    use std::f64::consts::FRAC_PI_2;
+
+    fn rel(a: Point, re: f64, im: f64) -> f64 {
+        ((a.x - re).powi(2) + (a.y - im).powi(2)).sqrt() / (re * re + im * im).sqrt()
+    }
+
+    #[test]
+    fn inflection_series_matches_quadrature() {
+        // The power series of the inflection-end integral against adaptive Gauss–Kronrod
+        // quadrature in v = ln u (the singularity at 0 becomes exponential decay).
+        let quad = |r: f64, th0: f64, th1: f64| {
+            let f = |v: f64| {
+                let (u, m) = (v.exp(), (r * v).exp());
+                Vec2::new(m * u.cos(), m * u.sin())
+            };
+            let v0 = if th0 > 0.0 {
+                th0.ln()
+            } else {
+                th1.ln().min(0.0) + (1e-18 * r).ln() / r
+            };
+            let opts = QuadOptions {
+                accuracy: 1e-17 * th1.powf(r) / r,
+                max_panels: 20000,
+            };
+            integrate(f, v0, th1.ln(), opts).unwrap()
+        };
+        let mut worst: f64 = 0.0;
+        for &r in &[0.005, 0.05, 0.2, 0.5, 0.8, 0.999, 1.0] {
+            for &th1 in &[
+                1e-6,
+                0.01,
+                0.3,
+                1.0,
+                2.0,
+                2.8,
+                3.1,
+                std::f64::consts::PI - 1e-3,
+            ] {
+                for &frac in &[0.0, 0.25, 0.9] {
+                    let th0 = frac * th1;
+                    let a = inflection_integral(r, th0, th1).unwrap();
+                    let b = quad(r, th0, th1);
+                    let scale = th1.powf(r) / r;
+                    let e = (a - b).hypot() / scale;
+                    worst = worst.max(e);
+                    assert!(e < 2e-14, "r {r} [{th0}, {th1}]: {a:?} vs {b:?} ({e:e})");
+                }
+            }
+        }
+        println!("worst error / (theta^r / r): {worst:e}");
+    }
+
+    #[test]
+    fn math_md_values() {
+        let p = LacStandard::new(-1.0, 0.2)
+            .unwrap()
+            .eval(FRAC_PI_2)
+            .unwrap();
+        assert!(rel(p, 1.15706838800915, 1.32155123083178) < 1e-13, "{p:?}");
+        let p = LacStandard::new(2.0, 0.5).unwrap().eval(FRAC_PI_2).unwrap();
+        assert!(
+            rel(p, std::f64::consts::FRAC_PI_4 + 0.5, 1.5) < 1e-14,
+            "{p:?}"
+        );
+        let p = LacStandard::new(1.0, 0.5).unwrap().eval(FRAC_PI_2).unwrap();
+        assert!(rel(p, 1.35462404059041, 1.67731202029521) < 1e-13, "{p:?}");
+    }
+
+    #[test]
+    fn continuity_in_alpha_and_lambda() {
+        let t = 1.3;
+        let one = LacStandard::new(1.0, 0.7).unwrap().eval(t).unwrap();
+        for a in [1.0 - 1e-9, 1.0 + 1e-9] {
+            let q = LacStandard::new(a, 0.7).unwrap().eval(t).unwrap();
+            assert!((q - one).hypot() < 1e-8, "{a}: {q:?} vs {one:?}");
+        }
+        let circle = LacStandard::new(-1.0, 0.0).unwrap().eval(t).unwrap();
+        let near = LacStandard::new(-1.0, 1e-12).unwrap().eval(t).unwrap();
+        assert!((circle - near).hypot() < 1e-11);
+    }
+
+    #[test]
+    fn arc_length_matches_the_speed() {
+        for (a, l) in [(-1.0, 0.3), (0.0, 0.4), (0.5, 0.2), (2.0, 0.5), (3.5, 0.1)] {
+            let c = LacStandard::new(a, l).unwrap();
+            let s = c.arc_length(1.0).unwrap();
+            let q = integrate(
+                |t| Vec2::new(c.rho(t).unwrap(), 0.0),
+                0.0,
+                1.0,
+                QuadOptions::default(),
+            )
+            .unwrap();
+            assert!((s - q.x).abs() < 1e-13 * s, "{a} {l}: {s} vs {}", q.x);
+        }
+    }
+
+    #[test]
+    fn math_md_segment_values() {
+        let d = FRAC_PI_2;
+        let lim = LacSegment::theta_lim(-1.0, d).unwrap().to_degrees();
+        assert!((lim - 60.6663).abs() < 1e-4, "{lim}");
+        let lim = LacSegment::theta_lim(2.0, d).unwrap().to_degrees();
+        assert!((lim - 60.2824).abs() < 1e-4, "{lim}");
+        let phi = 50f64.to_radians();
+        let l = LacSegment::solve_lambda(-1.0, d, phi).unwrap();
+        assert!((l - 0.233593243048).abs() < 1e-11, "{l}");
+        let l = LacSegment::solve_lambda(1.0, d, phi).unwrap();
+        assert!((l - 0.409925293631).abs() < 1e-11, "{l}");
+    }
+
+    #[test]
+    fn segment_fits_its_triangle_and_refuses_outside() {
+        let pts = [
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 0.0),
+            Point::new(16.0, 9.0),
+        ];
+        for alpha in [-1.0, 0.0, 0.5, 1.0, 2.0] {
+            let seg = LacSegment::new(alpha, pts).unwrap();
+            let (p, k) = seg.sample(65).unwrap();
+            assert_eq!(p[0], pts[0]);
+            assert_eq!(p[64], pts[2]);
+            // The mapped end (before snapping) matches: check the next-to-last sample is close.
+            assert!((p[63] - pts[2]).hypot() < 1.0);
+            assert!(k.iter().all(|v| *v > 0.0), "counter-clockwise: {k:?}");
+            let t = seg.tangent_intersection().unwrap();
+            assert!((t - pts[1]).hypot() < 1e-10 * 16.0, "alpha {alpha}: {t:?}");
+            // Mirrored triangle: same curve mirrored, negative curvature.
+            let m = pts.map(|p| Point::new(p.x, -p.y));
+            let sm = LacSegment::new(alpha, m).unwrap();
+            let (pm, km) = sm.sample(65).unwrap();
+            for i in 0..65 {
+                assert!((pm[i] - Point::new(p[i].x, -p[i].y)).hypot() < 1e-10 * 16.0);
+                assert!((km[i] + k[i]).abs() < 1e-10 * k[i].abs());
+            }
+            // Reversed triangle: same points in reverse order.
+            let r = [pts[2], pts[1], pts[0]];
+            let (pr, kr) = LacSegment::new(alpha, r).unwrap().sample(65).unwrap();
+            for i in 0..65 {
+                assert!((pr[i] - p[64 - i]).hypot() < 1e-10 * 16.0);
+                assert!((kr[i] + k[64 - i]).abs() < 1e-10 * k[64 - i].abs());
+            }
+            // Tangent at the start points at P1.
+            let d = p[1] - p[0];
+            assert!(d.cross(pts[1] - pts[0]).abs() / (d.hypot() * 10.0) < 0.05);
+        }
+        // Base angle too large for alpha = -1 (theta_lim ~ 60.67 deg at 90 deg turning).
+        let bad = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 0.3),
+        ];
+        assert!(matches!(
+            LacSegment::new(-1.0, bad),
+            Err(Error::NoSegment(_))
+        ));
+        let line = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(2.0, 0.0),
+        ];
+        assert!(matches!(
+            LacSegment::new(-1.0, line),
+            Err(Error::Degenerate(_))
+        ));
+    }
+
+    #[test]
+    fn inflection_split_gives_the_same_curve() {
+        let seg = LacInflectionSegment::new([
+            Point::new(0.0, 0.0),
+            Point::new(1.5, 0.0),
+            Point::new(2.1, 1.3),
+        ])
+        .unwrap();
+        let size = seg.arc_length();
+        for frac in [1e-4, 0.05, 0.3, 0.9] {
+            let tau = frac * seg.theta_d;
+            let (head, tail) = seg.split(tau).unwrap();
+            assert!((head.alpha - seg.alpha).abs() < 1e-15);
+            // The head is the curve from 0 to τ; the tail from τ to θ_d.
+            let taus: Vec<f64> = (0..=20).map(|k| tau * k as f64 / 20.0).collect();
+            let (a, _) = head.eval_turning(&taus).unwrap();
+            let (b, _) = seg.eval_turning(&taus).unwrap();
+            for (x, y) in a.iter().zip(&b) {
+                assert!((*x - *y).hypot() < 1e-13 * size, "head at {frac}");
+            }
+            let rest: Vec<f64> = (0..=20)
+                .map(|k| (seg.theta_d - tau) * k as f64 / 20.0)
+                .collect();
+            let (c, _) = tail.eval_turning(&rest).unwrap();
+            let (d, _) = seg
+                .eval_turning(&rest.iter().map(|r| tau + r).collect::<Vec<_>>())
+                .unwrap();
+            let worst = c
+                .iter()
+                .zip(&d)
+                .map(|(x, y)| (*x - *y).hypot())
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-12 * size, "tail at {frac}: {worst:e}");
+            // Curvature continuity at the split: head's end = tail's start.
+            let (k0, _) = tail.end_curvatures().unwrap();
+            let kh = head.end_curvature();
+            assert!((k0 - kh).abs() < 1e-10 * kh.abs(), "{k0} {kh}");
+        }
+        assert!(seg.split(0.0).is_err());
+        assert!(seg.split(seg.theta_d).is_err());
+        assert!(seg.split(f64::NAN).is_err());
+    }
+
+    #[test]
+    fn exists_agrees_with_new_on_a_grid_of_third_points() {
+        // Third control points on a grid around P0 = (0, 0), P1 = (1, 0): `exists` must agree
+        // with `new` succeeding (the region the editor shades), for every kind of alpha.
+        let (p0, p1) = (Point::new(0.0, 0.0), Point::new(1.0, 0.0));
+        for alpha in [-2.0, -1.0, -0.3, 0.0, 0.5, 1.0, 1.5, 3.0] {
+            let (mut inside, mut outside) = (0, 0);
+            for i in 0..23 {
+                for k in 0..23 {
+                    let p2 = Point::new(-0.9 + 0.13 * k as f64, -1.4 + 0.127 * i as f64);
+                    let c = [p0, p1, p2];
+                    match LacSegment::new(alpha, c) {
+                        Err(Error::Degenerate(_)) => {
+                            assert!(matches!(
+                                LacSegment::exists(alpha, c),
+                                Err(Error::Degenerate(_))
+                            ))
+                        }
+                        r => {
+                            let e = LacSegment::exists(alpha, c).unwrap();
+                            // Too extreme for f64 (Λ at Λ_max to rounding) still exists.
+                            let built = r.is_ok() || matches!(r, Err(Error::NoConvergence(_)));
+                            assert_eq!(e, built, "alpha {alpha}, p2 {p2:?}: {r:?}");
+                            if e {
+                                inside += 1
+                            } else {
+                                outside += 1
+                            }
+                        }
+                    }
+                    let ri = LacInflectionSegment::new(c);
+                    match LacInflectionSegment::exists(c) {
+                        Ok(e) => assert_eq!(e, ri.is_ok(), "inflection, p2 {p2:?}: {ri:?}"),
+                        Err(_) => assert!(matches!(ri, Err(Error::Degenerate(_)))),
+                    }
+                }
+            }
+            assert!(inside > 50, "alpha {alpha}: {inside} inside");
+            if !(0.0..=1.0).contains(&alpha) {
+                assert!(outside > 20, "alpha {alpha}: only {outside} outside");
+            }
+        }
+        assert!(LacSegment::exists(f64::NAN, [p0, p1, Point::new(2.0, 1.0)]).is_err());
+    }
+
+    #[test]
+    fn inflection_segment_values_and_identity() {
+        let d = FRAC_PI_2;
+        // docs/math.md §3.2: 90 deg turning, 30 deg at the inflection end: alpha = -1.066636984.
+        // Build a triangle with base angles 30 (at P0) and 60 deg: P2 on the ray at 30 deg
+        // from P0 and on the ray at 90 deg from P1.
+        let p2 = Point::new(1.0, 30f64.to_radians().tan());
+        let seg = LacInflectionSegment::new([Point::ZERO, Point::new(1.0, 0.0), p2]).unwrap();
+        assert!((seg.alpha + 1.066636984).abs() < 1e-8, "{}", seg.alpha);
+        let t = seg.tangent_intersection().unwrap();
+        assert!((t - Point::new(1.0, 0.0)).hypot() < 1e-10, "{t:?}");
+        let (p, k) = seg.sample(33).unwrap();
+        assert_eq!(k[0], 0.0);
+        assert!(k.windows(2).all(|w| w[1] > w[0]));
+        assert!((p[16].y) > 0.0);
+        // theta_lim(alpha) + inflection angle(alpha) = theta_d.
+        for alpha in [-0.3, -1.0, -4.0] {
+            let lim = LacSegment::theta_lim(alpha, d).unwrap();
+            let inf = LacInflectionSegment::base_angle(alpha, d).unwrap();
+            assert!((lim + inf - d).abs() < 1e-10, "{alpha}: {lim} + {inf}");
+        }
+        // Outside: base angle at the inflection end must be below theta_d / 2.
+        let bad = [Point::ZERO, Point::new(1.0, 0.0), Point::new(1.0, 2.0)];
+        assert!(matches!(
+            LacInflectionSegment::new(bad),
+            Err(Error::NoSegment(_))
+        ));
+    }
+
+    #[test]
+    fn extreme_triangles_give_finite_curves_or_a_clear_error() {
+        for alpha in [-1.0, 0.5, 1.0, 3.0] {
+            for turn in [0.012f64, 0.5, 3.0] {
+                for split in [0.6f64, 0.99, 0.999999] {
+                    let te = split * turn;
+                    let t = te.sin() / (turn - te).sin();
+                    let tri = [
+                        Point::ZERO,
+                        Point::new(1.0, 0.0),
+                        Point::new(1.0 + t * turn.cos(), t * turn.sin()),
+                    ];
+                    match LacSegment::new(alpha, tri).and_then(|s| s.sample(33)) {
+                        Ok((p, k)) => {
+                            assert!(p.iter().all(|q| q.is_finite()));
+                            assert!(k.iter().all(|v| v.is_finite() && *v != 0.0));
+                        }
+                        Err(Error::NoSegment(_)) | Err(Error::NoConvergence(_)) => {}
+                        Err(e) => panic!("{alpha} {turn} {split}: {e}"),
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn eval_many_with_kappa_matches_kappa() {
+        for &(alpha, lambda) in &[(-1.0, 0.3), (0.5, 0.4), (2.0, 0.5), (1.0, 0.5), (5.0, 0.1)] {
+            let c = LacStandard::new(alpha, lambda).unwrap();
+            let (lo, hi) = c.domain();
+            let (lo, hi) = (lo.max(-3.0) * 0.99, hi.min(3.0) * 0.99);
+            let th: Vec<f64> = (0..500)
+                .map(|i| lo + (hi - lo) * i as f64 / 499.0)
+                .collect();
+            let (p, k) = c.eval_many_with_kappa(&th).unwrap();
+            assert_eq!(p, c.eval_many(&th).unwrap());
+            for (t, kv) in th.iter().zip(&k) {
+                let want = c.kappa(*t).unwrap();
+                assert!(
+                    (kv - want).abs() <= 1e-14 * want,
+                    "{alpha} {t}: {kv} vs {want}"
+                );
+            }
+        }
+    }
+
+    /// The polyline walk (Hermite steps) against adaptive quadrature from the walk's start
+    /// to each sample, and the closed-form curvature: fine and coarse sampling, both signs
+    /// of α - 1, and an interval that runs up to 1e-6 of the singular end (where the walk
+    /// must switch to its fallback steps).
+    #[test]
+    fn uniform_walk_matches_quadrature() {
+        let cases = [
+            (-1.0, 0.3),
+            (0.5, 0.4),
+            (2.0, 0.5),
+            (5.0, 0.1),
+            (-8.0, 2.0),
+            (1.0, 0.5),
+            (1.0, 4.0),
+            (0.5, 0.0),
+            (1.0, 0.0),
+        ];
+        for &(alpha, lambda) in &cases {
+            let c = LacStandard::new(alpha, lambda).unwrap();
+            let (lo, hi) = c.domain();
+            // Up to 1e-6 of the domain's finite end, or ±2.5.
+            let (lo, hi) = ((lo + 1e-6).max(-2.5), (hi - 1e-6).min(2.5));
+            let spans = [
+                (0.0, hi * 0.9),
+                (lo * 0.9, 0.0),
+                (lo, hi),
+                (0.5 * lo, hi),
+                (lo, 0.5 * hi),
+            ];
+            for (t0, t1) in spans {
+                for n in [2, 3, 17, 129, 1000, 4000] {
+                    let (p, k) = c.uniform_walk(t0, t1, n).unwrap();
+                    let len = (c.arc_length(t1).unwrap() - c.arc_length(t0).unwrap()).abs();
+                    let mut worst: f64 = 0.0;
+                    for (i, (pi, ki)) in p.iter().zip(&k).enumerate() {
+                        let t = if i == n - 1 {
+                            t1
+                        } else {
+                            t0 + (t1 - t0) * (i as f64 / (n - 1) as f64)
+                        };
+                        let want = c.integral(t0, t).unwrap();
+                        worst = worst.max((*pi - want).hypot() / len);
+                        let kw = c.kappa(t).unwrap();
+                        assert!((ki - kw).abs() <= 1e-14 * kw, "{alpha} {t}: {ki} vs {kw}");
+                    }
+                    assert!(
+                        worst < 2e-14,
+                        "alpha {alpha} [{t0}, {t1}] n {n}: {worst:.2e}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn eval_many_matches_eval_and_domain_is_checked() {
+        let c = LacStandard::new(-2.0, 0.3).unwrap();
+        let th = [0.5, -0.4, 1.0, 0.0, 0.7];
+        let many = c.eval_many(&th).unwrap();
+        for (t, p) in th.iter().zip(&many) {
+            assert!((c.eval(*t).unwrap() - *p).hypot() < 1e-14);
+        }
+        // (α-1) Λ θ + 1 > 0: θ < 1/0.9 for α = -2, Λ = 0.3.
+        assert!(c.eval(1.2).is_err());
+        assert!(LacStandard::new(f64::NAN, 0.1).is_err());
+    }
+
+    /// Extending a segment and cutting the extension off again gives the segment back; the
+    /// extension lies on the same curve (its sub-segment is the original), and the feet of
+    /// perpendiculars land where the points were taken.
+    #[test]
+    fn extension_and_projection_stay_on_the_curve() {
+        let tri = [
+            Point::new(0.0, 0.0),
+            Point::new(5.0, 0.5),
+            Point::new(9.0, 4.0),
+        ];
+        for alpha in [-1.5, 0.0, 0.5, 2.0] {
+            let seg = LacSegment::new(alpha, tri).unwrap();
+            let td = seg.theta_d;
+            let ext = seg.extended(-0.1 * td, 1.1 * td).unwrap();
+            assert!((ext.theta_d - 1.2 * td).abs() < 1e-12);
+            let back = ext.sub_segment(0.1 * td, 1.1 * td).unwrap();
+            for (a, b) in back.control.iter().zip(&tri) {
+                assert!((*a - *b).hypot() < 1e-9, "{alpha}: {a:?} vs {b:?}");
+            }
+            // A point of the extension, moved off the curve along its normal, projects back.
+            let (p, d) = ext.eval_turning(&[0.03 * td]).unwrap();
+            let n = Vec2::new(-d[0].y, d[0].x).normalize();
+            let q = p[0] + n * 0.2;
+            let tau = seg.project_turning(q, 0.0).unwrap();
+            assert!(
+                (tau - (-0.07 * td)).abs() < 1e-9,
+                "{alpha}: {tau} vs {}",
+                -0.07 * td
+            );
+            // Trimming works the same way.
+            let t = seg.extended(0.2 * td, 0.7 * td).unwrap();
+            let s = seg.sub_segment(0.2 * td, 0.7 * td).unwrap();
+            for (a, b) in t.control.iter().zip(&s.control) {
+                assert!((*a - *b).hypot() < 1e-12);
+            }
+        }
+        // An alpha > 0 curve ends where its radius of curvature reaches 0.
+        let seg = LacSegment::new(2.0, tri).unwrap();
+        assert!(seg.extended(-3.0, 0.5).is_err() || seg.extended(0.0, 3.0).is_err());
+        assert!(seg.extended(0.5, 0.2).is_err());
+    }
+}

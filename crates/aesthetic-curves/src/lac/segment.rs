@@ -1,0 +1,598 @@
+//! A log-aesthetic segment in a control triangle: the Λ solve, evaluation by turning angle,
+//! sub-segments, projection.
+
+use super::{cdiv, cmul, triangle_angles, Similarity, TriangleAngles};
+use super::{LacStandard, MAX_ABS_ALPHA};
+use crate::error::{Error, Result};
+use crate::roots::brent;
+use kurbo::{Point, Vec2};
+
+/// A log-aesthetic segment fitted into a control triangle (docs/math.md §3.1; Yoshida & Saito
+/// 2006): start, tangent intersection, end.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LacSegment {
+    /// The standard-form curve (Λ >= 0).
+    pub standard: LacStandard,
+    /// Turning angle θ_d in (0, π).
+    pub theta_d: f64,
+    /// The standard-form θ interval: [0, θ_d] for α <= 1, [-θ_d, 0] for α > 1 (a
+    /// [`LacSegment::sub_segment`] keeps the parent's curve and takes a part of this).
+    pub interval: (f64, f64),
+    /// The three control points as given.
+    pub control: [Point; 3],
+    /// True when the standard start (high-curvature end) maps to `control[2]`.
+    pub reversed: bool,
+    /// From the standard form to the input.
+    map: Similarity,
+}
+
+impl LacSegment {
+    /// The standard interval and the chord's base angle at its start (the high-curvature
+    /// end) for Λ; `at_limit` evaluates the limiting curve Λ = Λ_max (α < 0 or α > 1).
+    fn base_angle(alpha: f64, lambda: f64, theta_d: f64, at_limit: bool) -> Result<f64> {
+        let c = LacStandard::new(alpha, lambda)?;
+        let (ta, tb) = if alpha <= 1.0 {
+            (0.0, theta_d)
+        } else {
+            (-theta_d, 0.0)
+        };
+        let chord = if !at_limit {
+            // Probes of the Λ solve often lie past the domain: refused here without the
+            // formatted message of `integral`'s check (a fifth of a sketch fit's time).
+            if !(c.in_domain(ta) && c.in_domain(tb)) {
+                return Err(Error::NoConvergence(
+                    "the interval leaves the curve's domain".into(),
+                ));
+            }
+            c.integral(ta, tb)?
+        } else if alpha <= 1.0 {
+            // θ* = θ_d: from 0 to the end of the domain.
+            c.integral_to_domain_end(ta)?
+        } else {
+            // θ* = -θ_d: the start is the singular end; integrate end -> start and negate.
+            -c.integral_to_domain_end(tb)?
+        };
+        Ok(chord.y.atan2(chord.x) - ta)
+    }
+
+    /// `Λ_max = 1/(|α-1| θ_d)` (infinite for α = 1).
+    pub fn lambda_max(alpha: f64, theta_d: f64) -> f64 {
+        if alpha == 1.0 {
+            f64::INFINITY
+        } else {
+            1.0 / ((alpha - 1.0).abs() * theta_d)
+        }
+    }
+
+    /// θ_lim(α, θ_d): the supremum of the high-curvature end's base angle.
+    pub fn theta_lim(alpha: f64, theta_d: f64) -> Result<f64> {
+        if (0.0..=1.0).contains(&alpha) {
+            return Ok(theta_d);
+        }
+        Self::base_angle(alpha, Self::lambda_max(alpha, theta_d), theta_d, true)
+    }
+
+    /// Solve Λ with base angle `phi` at the high-curvature end, `θ_d/2 <= phi < θ_lim`
+    /// (φ increases strictly with Λ). Two starts: the second-order Taylor expansion of φ in
+    /// Λ at the circle (ρ ≈ 1 + Λψ + (2-α)Λ²ψ²/2, good for small Λ) and the straight line
+    /// between the ends of the bracket (good near the limit); then Brent's method
+    /// ([`crate::roots::brent`]) to the resolution of Λ or until the residual is at the
+    /// noise of the base angle (4 ulp). About 4 to 8 integrals instead of 10 to 18.
+    pub fn solve_lambda(alpha: f64, theta_d: f64, phi: f64) -> Result<f64> {
+        let half = 0.5 * theta_d;
+        if (phi - half).abs() <= 1e-15 * theta_d {
+            return Ok(0.0);
+        }
+        let lim = Self::theta_lim(alpha, theta_d)?;
+        if !(phi > half && phi < lim) {
+            return Err(Error::NoSegment(format!(
+                "the base angle at the high-curvature end is {:.9} rad ({:.6} deg); for alpha = \
+                 {alpha} and turning angle {:.6} deg it must lie in [{:.9}, {:.9}) rad \
+                 ([{:.6}, {:.6}) deg)",
+                phi,
+                phi.to_degrees(),
+                theta_d.to_degrees(),
+                half,
+                lim,
+                half.to_degrees(),
+                lim.to_degrees()
+            )));
+        }
+        // A Λ whose curve overflows f64 lies beyond the solution (φ increases with Λ and
+        // overflow comes with large Λ): such probes count as "above", with the limit as value
+        // (no error message is built for them: probes fail often on extreme triangles). A
+        // valid triangle whose curve overflows f64 is a limit of this library, not bad input.
+        let f_at = |l: f64| -> Result<f64> {
+            match Self::base_angle(alpha, l, theta_d, false) {
+                Ok(v) => Ok(v - phi),
+                Err(_) if l > 0.0 => Ok(lim - phi),
+                Err(e) => Err(Error::NoConvergence(format!(
+                    "the segment for this triangle is too extreme to evaluate (lambda = {l:.3e}): {e}"
+                ))),
+            }
+        };
+        let lmax = Self::lambda_max(alpha, theta_d);
+        let p1 = alpha / (alpha - 1.0);
+        // The base angle is computed to a few units of 1e-16 of itself: a residual below
+        // this is noise, and the root is as good as the evaluation allows.
+        let f_tol = 4.0 * f64::EPSILON * phi;
+        // First-order guess: ρ ≈ 1 + Λψ near Λ = 0 gives φ ≈ θ_d/2 + Λ Im(C1/C0), C0 and C1
+        // the moments ∫ e^{iψ} and ∫ ψ e^{iψ} over [0, θ_d].
+        let guess = {
+            let (s, c) = theta_d.sin_cos();
+            let e = Vec2::new(c, s);
+            let i = Vec2::new(0.0, 1.0);
+            let c0 = Vec2::new(s, 1.0 - c);
+            let c1 = cmul(i, c0 - e * theta_d);
+            let c2 = cmul(i, c1 * 2.0 - e * (theta_d * theta_d));
+            let r1 = cdiv(c1, c0);
+            let s1 = r1.y;
+            // α > 1 runs over [-θ_d, 0]: the mirror image, with the Λ² term's sign flipped.
+            let side = if alpha <= 1.0 { 1.0 } else { -1.0 };
+            let s2 = side * (cdiv(c2, c0) * (0.5 * (2.0 - alpha)) - cmul(r1, r1) * 0.5).y;
+            let d = phi - half;
+            // s2 Λ² + s1 Λ - d = 0, the root near d/s1.
+            let disc = s1 * s1 + 4.0 * s2 * d;
+            if disc > 0.0 {
+                2.0 * d / (s1 + disc.sqrt())
+            } else {
+                d / s1
+            }
+        };
+        if lmax.is_finite() && p1 > 0.0 {
+            // α < 0 or α > 1: near Λ_max the base angle behaves like θ_lim - K δ^p1,
+            // δ = 1 - Λ/Λ_max. Solve in z = δ^p1 ∈ [0, 1] (z = 1: Λ = 0, the circular arc;
+            // z = 0: the limit), where it is close to linear, and carry z near 0 at full
+            // relative precision.
+            let lambda_of = |z: f64| lmax * -(z.ln() / p1).exp_m1();
+            let mut f = |z: f64| {
+                if z <= 0.0 {
+                    return Ok(lim - phi);
+                }
+                f_at(lambda_of(z))
+            };
+            // Two starts: the Taylor guess (good for small Λ) and the straight line between
+            // the ends in z (good near the limit), then the secant method between them.
+            let z_taylor = if guess > 0.0 && guess < lmax {
+                (1.0 - guess / lmax).powf(p1)
+            } else {
+                0.5
+            };
+            let z_line = ((lim - phi) / (lim - half)).clamp(1e-300, 1.0 - 1e-16);
+            let (za, zb) = if (z_taylor - z_line).abs() > 1e-12 {
+                (z_taylor, z_line)
+            } else {
+                (z_taylor, z_taylor * (1.0 - 1e-6))
+            };
+            let (fa, fb) = (f(za)?, f(zb)?);
+            // z to the resolution of Λ: a step of z that moves Λ by less than a unit in the
+            // last place changes nothing (near the limit dΛ/dz is small); estimated at the
+            // better guess, so never coarser than 1e-12.
+            let z_best = if fa.abs() < fb.abs() { za } else { zb };
+            let dl_dz = lmax * (z_best.ln() * (1.0 / p1 - 1.0)).exp() / p1;
+            let z_tol = (2.0 * f64::EPSILON * lambda_of(z_best) / dl_dz).clamp(1e-16, 1e-12);
+            let z = brent(
+                &mut f,
+                (0.0, lim - phi),
+                (1.0, half - phi),
+                &[(za, fa), (zb, fb)],
+                z_tol,
+                f_tol,
+                100,
+            )?;
+            return Ok(lambda_of(z));
+        }
+        let mut hi = lmax;
+        if !hi.is_finite() {
+            hi = 1.0;
+            while f_at(hi)? < 0.0 {
+                hi *= 2.0;
+                if hi > 1e6 {
+                    return Err(Error::NoConvergence(
+                        "lambda bracket for alpha = 1 exceeded 1e6".into(),
+                    ));
+                }
+            }
+        }
+        // f(0) = θ_d/2 - phi < 0; at a finite Λ_max, f is the limit θ_lim - phi > 0 (the
+        // curve itself is not evaluated there).
+        let fhi = if hi == Self::lambda_max(alpha, theta_d) {
+            lim - phi
+        } else {
+            f_at(hi)?
+        };
+        // The Taylor guess and the straight line between the ends, then the secant method.
+        let flo = half - phi;
+        let x_line = hi * flo / (flo - fhi);
+        let x_taylor = if guess > 0.0 && guess < hi {
+            guess
+        } else {
+            x_line
+        };
+        let (xa, xb) = if (x_taylor - x_line).abs() > 1e-12 * hi {
+            (x_taylor, x_line)
+        } else {
+            (x_taylor, x_taylor * (1.0 - 1e-6))
+        };
+        let (fa, fb) = (f_at(xa)?, f_at(xb)?);
+        brent(
+            f_at,
+            (0.0, flo),
+            (hi, fhi),
+            &[(xa, fa), (xb, fb)],
+            1e-15 * hi,
+            f_tol,
+            100,
+        )
+    }
+
+    /// The turning angle θ_d and the larger base angle φ (the one at the high-curvature end)
+    /// of a control triangle [start, tangent intersection, end]: a segment of shape α exists
+    /// in it iff θ_d/2 <= φ < [`LacSegment::theta_lim`]`(α, θ_d)`. Errors for degenerate
+    /// triangles, as in `new`.
+    pub fn triangle_angles(control: [Point; 3]) -> Result<(f64, f64)> {
+        let t = triangle_angles(&control)?;
+        Ok((t.theta_d, t.theta_e.max(t.theta_f)))
+    }
+
+    /// Whether a segment of shape `alpha` exists in the triangle `control` = [start, tangent
+    /// intersection, end], without building it: the base angle at the high-curvature end
+    /// must be below θ_lim(α, θ_d) (always true for 0 <= α <= 1). One integral for α < 0 or
+    /// α > 1, none otherwise; agrees with [`LacSegment::new`] succeeding, except that a
+    /// triangle whose segment is too extreme to evaluate in f64 counts as existing here.
+    /// Degenerate triangles and a bad `alpha` are errors, as in `new`.
+    pub fn exists(alpha: f64, control: [Point; 3]) -> Result<bool> {
+        if !alpha.is_finite() || alpha.abs() > MAX_ABS_ALPHA {
+            return Err(Error::invalid("alpha", "must be a finite number"));
+        }
+        let (theta_d, phi) = Self::triangle_angles(control)?;
+        Self::exists_for_angles(alpha, theta_d, phi)
+    }
+
+    /// [`LacSegment::exists`] for a triangle given by its turning angle θ_d and larger base
+    /// angle φ ([`LacSegment::triangle_angles`]); `alpha` must be valid.
+    pub fn exists_for_angles(alpha: f64, theta_d: f64, phi: f64) -> Result<bool> {
+        if (0.0..=1.0).contains(&alpha) || (phi - 0.5 * theta_d).abs() <= 1e-15 * theta_d {
+            return Ok(true);
+        }
+        Ok(phi < Self::theta_lim(alpha, theta_d)?)
+    }
+
+    /// The segment of shape `alpha` in the triangle `control` = [start, tangent
+    /// intersection, end].
+    pub fn new(alpha: f64, control: [Point; 3]) -> Result<Self> {
+        if !alpha.is_finite() || alpha.abs() > MAX_ABS_ALPHA {
+            return Err(Error::invalid("alpha", "must be a finite number"));
+        }
+        let TriangleAngles {
+            theta_d,
+            theta_e,
+            theta_f,
+        } = triangle_angles(&control)?;
+        let (p0, p1, p2) = (control[0], control[1], control[2]);
+        let reversed = theta_f > theta_e;
+        let phi = theta_e.max(theta_f);
+        let lambda = Self::solve_lambda(alpha, theta_d, phi)?;
+        let standard = LacStandard::new(alpha, lambda)?;
+        let interval = if alpha <= 1.0 {
+            (0.0, theta_d)
+        } else {
+            (-theta_d, 0.0)
+        };
+        let extreme = |e: Error| {
+            Error::NoConvergence(format!(
+                "the segment for this triangle is too extreme to evaluate in f64 \
+                 (lambda = {lambda:.3e}): {e}"
+            ))
+        };
+        // One integral: the interval is [0, θ_d] or [-θ_d, 0], and P(0) = 0.
+        let (a, b) = if interval.0 == 0.0 {
+            let b = standard.integral(0.0, interval.1).map_err(extreme)?;
+            (Vec2::ZERO, b)
+        } else {
+            let a = standard.integral(0.0, interval.0).map_err(extreme)?;
+            (a, Vec2::ZERO)
+        };
+        // Tangent intersection of the standard segment.
+        let da = Vec2::from_angle(interval.0);
+        let db = Vec2::from_angle(interval.1);
+        let t_std = a + da * ((b - a).cross(db) / da.cross(db));
+        let (x, y) = if reversed { (p2, p0) } else { (p0, p2) };
+        let map = Similarity::fit([a, b, t_std], [x, y, p1])?;
+        Ok(LacSegment {
+            standard,
+            theta_d,
+            interval,
+            control,
+            reversed,
+            map,
+        })
+    }
+
+    /// The tangent intersection of the fitted curve, mapped to the input: equals
+    /// `control[1]` up to the accuracy of Λ (a check, not a copy).
+    pub fn tangent_intersection(&self) -> Result<Point> {
+        let (ta, tb) = self.interval;
+        let a = self.standard.eval(ta)?.to_vec2();
+        let b = a + self.standard.integral(ta, tb)?;
+        let (da, db) = (Vec2::from_angle(ta), Vec2::from_angle(tb));
+        Ok(self.map.apply(a + da * ((b - a).cross(db) / da.cross(db))))
+    }
+
+    /// Λ of the standard form.
+    pub fn lambda(&self) -> f64 {
+        self.standard.lambda()
+    }
+
+    /// Scale factor from the standard form to the input.
+    pub fn scale(&self) -> f64 {
+        self.map.scale()
+    }
+
+    /// +1 when the segment turns counter-clockwise from `control[0]` to `control[2]`.
+    fn turn_sign(&self) -> f64 {
+        let c = self.control;
+        (c[1] - c[0]).cross(c[2] - c[1]).signum()
+    }
+
+    /// Arc length in input units.
+    pub fn arc_length(&self) -> Result<f64> {
+        let (a, b) = self.interval;
+        Ok((self.standard.arc_length(b)? - self.standard.arc_length(a)?).abs() * self.scale())
+    }
+
+    /// Standard-form parameters of `n >= 2` samples from `control[0]` to `control[2]`, evenly
+    /// spaced in tangent angle.
+    fn sample_thetas(&self, n: usize) -> Vec<f64> {
+        let (a, b) = if self.reversed {
+            (self.interval.1, self.interval.0)
+        } else {
+            self.interval
+        };
+        (0..n)
+            .map(|i| a + (b - a) * (i as f64 / (n - 1) as f64))
+            .collect()
+    }
+
+    /// `n >= 2` points from `control[0]` to `control[2]` (ends exact) and their signed curvature.
+    pub fn sample(&self, n: usize) -> Result<(Vec<Point>, Vec<f64>)> {
+        if n < 2 {
+            return Err(Error::invalid("samples", "need at least 2"));
+        }
+        // Walk the standard form upward over the interval, then orient.
+        let (lo, hi) = self.interval;
+        let start = if lo == 0.0 {
+            Vec2::ZERO
+        } else {
+            self.standard.eval(lo)?.to_vec2()
+        };
+        let (rel, mut k) = self.standard.uniform_walk(lo, hi, n)?;
+        let mut finite = true;
+        // (In place: the same allocation.)
+        let mut out: Vec<Point> = rel
+            .into_iter()
+            .map(|v| {
+                let p = self.map.apply(start + v);
+                finite &= p.is_finite();
+                p
+            })
+            .collect();
+        let f = self.turn_sign() / self.scale();
+        for v in &mut k {
+            *v *= f;
+            finite &= v.is_finite();
+        }
+        if self.reversed {
+            out.reverse();
+            k.reverse();
+        }
+        out[0] = self.control[0];
+        out[n - 1] = self.control[2];
+        if !finite {
+            return Err(Error::NoConvergence(
+                "the segment's samples overflow f64 (triangle too extreme)".into(),
+            ));
+        }
+        Ok((out, k))
+    }
+
+    /// The logarithmic curvature graph at the `n >= 2` sample points of [`Self::sample`],
+    /// in this segment's units, from the closed form `log(rho ds/drho) = alpha log rho -
+    /// log Lambda` of the standard form. A circular arc (Λ = 0) has none: [`Error::Degenerate`].
+    pub fn lcg(&self, n: usize) -> Result<Vec<crate::lcg::LcgPoint>> {
+        if n < 2 {
+            return Err(Error::invalid("samples", "need at least 2"));
+        }
+        let lambda = self.lambda();
+        if lambda <= 0.0 {
+            return Err(Error::Degenerate(
+                "a circular arc (isosceles triangle) has constant curvature: no LCG".into(),
+            ));
+        }
+        let lc = self.scale().ln();
+        let (a, ll) = (self.standard.alpha(), lambda.ln());
+        self.sample_thetas(n)
+            .iter()
+            .map(|t| {
+                let lr = self.standard.log_rho(*t)?;
+                Ok(crate::lcg::LcgPoint {
+                    log_rho: lr + lc,
+                    log_rho_ds_drho: a * lr - ll + lc,
+                })
+            })
+            .collect()
+    }
+
+    /// Standard-form θ at turning angle `tau` from `control[0]`.
+    fn theta_at_turning(&self, tau: f64) -> f64 {
+        if self.reversed {
+            self.interval.1 - tau
+        } else {
+            self.interval.0 + tau
+        }
+    }
+
+    /// Points and derivatives dP/dτ (length = radius of curvature, direction = tangent) at
+    /// turning angles τ measured from `control[0]` (τ = 0) to `control[2]` (τ = θ_d); τ outside
+    /// [0, θ_d] is clamped.
+    pub fn eval_turning(&self, taus: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+        if let Some(i) = taus.iter().position(|t| !t.is_finite()) {
+            return Err(Error::invalid(format!("tau[{i}]"), "must be finite"));
+        }
+        let th: Vec<f64> = taus
+            .iter()
+            .map(|t| self.theta_at_turning(t.clamp(0.0, self.theta_d)))
+            .collect();
+        self.eval_thetas(&th)
+    }
+
+    /// Standard-form points and curvatures at `th`: a monotone sequence (the usual case:
+    /// sorted turning angles) by one walk ([`LacStandard::walk_monotone`]) from the first
+    /// point, anything else by [`LacStandard::eval_many_with_kappa`].
+    fn standard_points(&self, th: &[f64]) -> Result<(Vec<Point>, Vec<f64>)> {
+        let n = th.len();
+        // A handful of points costs as little by quadrature; the walk pays from about 8.
+        let monotone =
+            n >= 8 && (th.windows(2).all(|w| w[1] >= w[0]) || th.windows(2).all(|w| w[1] <= w[0]));
+        if monotone && th[n - 1] != th[0] {
+            if let Ok((rel, kappa)) = self.standard.walk_monotone(th) {
+                let start = if th[0] == 0.0 {
+                    Vec2::ZERO
+                } else {
+                    self.standard.eval(th[0])?.to_vec2()
+                };
+                return Ok((rel.iter().map(|v| (start + *v).to_point()).collect(), kappa));
+            }
+        }
+        self.standard.eval_many_with_kappa(th)
+    }
+
+    /// Points and dP/dτ at standard-form angles (no clamping).
+    fn eval_thetas(&self, th: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+        let (pts, kappa) = self.standard_points(th)?;
+        let dir = if self.reversed { -1.0 } else { 1.0 };
+        let o = self.map.apply(Vec2::ZERO);
+        let points = pts.iter().map(|p| self.map.apply(p.to_vec2())).collect();
+        let derivs = th
+            .iter()
+            .zip(&kappa)
+            .map(|(t, k)| self.map.apply(Vec2::from_angle(*t) * (dir / k)) - o)
+            .collect();
+        Ok((points, derivs))
+    }
+
+    /// The turning angle (from `control[0]`, possibly outside `[0, θ_d]`: on the curve's
+    /// extension) of the foot of the perpendicular from `q`, by Newton's method from `tau0`;
+    /// `None` if it leaves the curve's domain or does not converge.
+    pub fn project_turning(&self, q: Point, tau0: f64) -> Option<f64> {
+        let (lo, hi) = self.standard.domain();
+        let mut tau = tau0;
+        for _ in 0..50 {
+            let th = self.theta_at_turning(tau);
+            if !(lo < th && th < hi) {
+                return None;
+            }
+            let (p, d) = self.eval_thetas(&[th]).ok()?;
+            let rho = d[0].hypot();
+            let (u, n) = (d[0] / rho, Vec2::new(-d[0].y, d[0].x) / rho);
+            // g(τ) = (q - P)·u, g'(τ) = -ρ + (q - P)·u' with u' = ±n (the tangent turns by
+            // dτ towards the side the curve bends to).
+            let sign = self.turn_sign();
+            let r = q - p[0];
+            let g = r.dot(u);
+            let dg = -rho + sign * r.dot(n);
+            if dg.is_nan() || dg >= 0.0 {
+                return None;
+            }
+            let step = g / dg;
+            let step = step.clamp(-0.5, 0.5);
+            tau -= step;
+            if step.abs() <= 1e-13 * (1.0 + tau.abs()) {
+                return Some(tau);
+            }
+        }
+        None
+    }
+
+    /// The part of this segment between turning angles `ta < tb` (from `control[0]`): the same
+    /// curve (no new solve), with its own control triangle.
+    pub fn sub_segment(&self, ta: f64, tb: f64) -> Result<LacSegment> {
+        if !(ta.is_finite() && tb.is_finite() && 0.0 <= ta && ta < tb && tb <= self.theta_d) {
+            return Err(Error::invalid(
+                "turning",
+                format!(
+                    "need 0 <= ta < tb <= theta_d = {}, got {ta}, {tb}",
+                    self.theta_d
+                ),
+            ));
+        }
+        self.between(ta, tb)
+    }
+
+    /// The same curve between turning angles `ta < tb` measured from `control[0]`, which may
+    /// lie outside `[0, θ_d]`: the segment trimmed or extended along its own curve (no new
+    /// solve). The extension must stay inside the curve's domain (α > 0 curves end where the
+    /// radius of curvature reaches 0, α < 0 curves where it becomes infinite) and turn by
+    /// less than π in all.
+    pub fn extended(&self, ta: f64, tb: f64) -> Result<LacSegment> {
+        if !(ta.is_finite() && tb.is_finite() && ta < tb && tb - ta < std::f64::consts::PI) {
+            return Err(Error::invalid(
+                "turning",
+                format!("need ta < tb < ta + pi, got {ta}, {tb}"),
+            ));
+        }
+        let (a, b) = (self.theta_at_turning(ta), self.theta_at_turning(tb));
+        let (lo, hi) = self.standard.domain();
+        if !(lo < a.min(b) && a.max(b) < hi) {
+            return Err(Error::NoSegment(format!(
+                "the curve ends inside the requested extension (turning {ta:.4}..{tb:.4} \
+                 leaves its domain)"
+            )));
+        }
+        self.between(ta, tb)
+    }
+
+    fn between(&self, ta: f64, tb: f64) -> Result<LacSegment> {
+        let (a, b) = (self.theta_at_turning(ta), self.theta_at_turning(tb));
+        let (pts, der) = self.eval_thetas(&[a, b])?;
+        // The segment's own ends stay exact.
+        let p0 = if ta == 0.0 { self.control[0] } else { pts[0] };
+        let p2 = if tb == self.theta_d {
+            self.control[2]
+        } else {
+            pts[1]
+        };
+        let denom = der[0].cross(der[1]);
+        let x = p0 + der[0] * ((p2 - p0).cross(der[1]) / denom);
+        let seg = LacSegment {
+            standard: self.standard,
+            theta_d: tb - ta,
+            interval: (a.min(b), a.max(b)),
+            control: [p0, x, p2],
+            reversed: self.reversed,
+            map: self.map,
+        };
+        if !x.is_finite() {
+            return Err(Error::Degenerate(
+                "the sub-segment's end tangents are parallel".into(),
+            ));
+        }
+        Ok(seg)
+    }
+
+    /// Signed curvature at `control[0]` and `control[2]`.
+    pub fn end_curvatures(&self) -> Result<(f64, f64)> {
+        let th = self.sample_thetas(2);
+        let s = self.turn_sign() / self.scale();
+        let (a, b) = (
+            s * self.standard.kappa(th[0])?,
+            s * self.standard.kappa(th[1])?,
+        );
+        if !(a.is_finite() && b.is_finite()) {
+            return Err(Error::NoConvergence(
+                "the segment's end curvature overflows f64 (triangle too extreme)".into(),
+            ));
+        }
+        Ok((a, b))
+    }
+}
