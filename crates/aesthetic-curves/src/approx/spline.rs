@@ -1,0 +1,217 @@
+//! Rational cubic B-splines of G2 pieces for a LAC segment (or one with an inflection end)
+//! within a tolerance.
+
+use super::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions, RationalCubicFit};
+use crate::error::{Error, Result};
+use crate::lac::{LacInflectionSegment, LacSegment};
+use kurbo::Point;
+
+/// A LAC segment as rational cubic pieces joined with G2 continuity, as one rational
+/// B-spline (degree 3, every interior knot of multiplicity 3: the pieces meet with the
+/// LAC's point, tangent and curvature, so the spline is G2 although only C0 in its
+/// parameter).
+#[derive(Clone, Debug)]
+pub struct RationalSpline {
+    /// Always 3.
+    pub degree: usize,
+    /// Knot vector: 0,0,0,0, u1,u1,u1, ..., 1,1,1,1 (interior knots at the pieces' joints,
+    /// proportional to arc length).
+    pub knots: Vec<f64>,
+    /// Control points (3 k + 1 for k pieces).
+    pub control_points: Vec<Point>,
+    /// Weights, one per control point, all > 0 (each piece scaled to share its first weight
+    /// with the previous piece's last).
+    pub weights: Vec<f64>,
+    /// The pieces, in order, each with its own fit report.
+    pub pieces: Vec<RationalCubicFit>,
+    /// Largest distance to the LAC over all pieces, in input units.
+    pub max_error: f64,
+}
+
+impl RationalSpline {
+    /// The point at knot parameter `u` in [0, 1], by de Boor's algorithm on homogeneous
+    /// coordinates (independent of the pieces: a check of the assembled spline).
+    pub fn eval(&self, u: f64) -> Point {
+        crate::bspline::de_boor(
+            self.degree,
+            &self.knots,
+            &self.control_points,
+            Some(&self.weights),
+            u,
+        )
+    }
+}
+
+/// The fewest rational cubic pieces (greedy from the start: each piece as long as it can be
+/// while its maximum error stays within `tolerance`, input units) approximating `seg`, as
+/// one [`RationalSpline`]. Errors: [`Error::NoSegment`] when `max_pieces` are not enough.
+pub fn fit_rational_spline(
+    seg: &LacSegment,
+    tolerance: f64,
+    max_pieces: usize,
+    opts: &ApproxOptions,
+) -> Result<RationalSpline> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(Error::invalid("tolerance", "must be a positive number"));
+    }
+    if max_pieces == 0 || max_pieces > 1000 {
+        return Err(Error::invalid("max_pieces", "must be 1 to 1000"));
+    }
+    let td = seg.theta_d;
+    // A piece [a, b] of turning angle: its fit, when it exists and is within tolerance.
+    let try_piece = |a: f64, b: f64| -> Option<RationalCubicFit> {
+        let sub = seg.sub_segment(a, b).ok()?;
+        let fit = fit_rational_cubic(&sub, opts).ok()?;
+        let len = sub.arc_length().ok()?;
+        (fit.max_error * len <= tolerance).then_some(fit)
+    };
+    let mut pieces: Vec<(f64, RationalCubicFit)> = Vec::new();
+    let mut a = 0.0;
+    while a < td {
+        if pieces.len() >= max_pieces {
+            return Err(Error::NoSegment(format!(
+                "{max_pieces} rational cubic pieces are not enough for tolerance {tolerance:e}"
+            )));
+        }
+        if let Some(f) = try_piece(a, td) {
+            pieces.push((td, f));
+            break;
+        }
+        // Longest feasible end by bisection on the turning angle (feasibility shrinks with
+        // length), down to 1e-3 of the remaining turn.
+        let (mut lo, mut hi) = (a, td);
+        let mut best: Option<(f64, RationalCubicFit)> = None;
+        while hi - lo > 1e-3 * (td - a) {
+            let mid = 0.5 * (lo + hi);
+            match try_piece(a, mid) {
+                Some(f) => {
+                    lo = mid;
+                    best = Some((mid, f));
+                }
+                None => hi = mid,
+            }
+        }
+        let Some((b, f)) = best else {
+            return Err(Error::NoSegment(format!(
+                "no rational cubic piece from turning angle {a:.6} meets tolerance {tolerance:e}"
+            )));
+        };
+        pieces.push((b, f));
+        a = b;
+    }
+    let mut with_lengths = Vec::with_capacity(pieces.len());
+    let mut start = 0.0;
+    for (end, fit) in pieces {
+        with_lengths.push((fit, seg.sub_segment(start, end)?.arc_length()?));
+        start = end;
+    }
+    Ok(assemble(with_lengths))
+}
+
+/// G2 rational cubic pieces, each with its arc length (input units), as one
+/// [`RationalSpline`]: shared joint points, each piece's weights scaled to meet the previous
+/// piece's last weight, interior knots of multiplicity 3 at the arc-length fractions.
+fn assemble(pieces: Vec<(RationalCubicFit, f64)>) -> RationalSpline {
+    let mut control_points = Vec::new();
+    let mut weights: Vec<f64> = Vec::new();
+    for (k, (fit, _)) in pieces.iter().enumerate() {
+        let (b, w) = (fit.curve.points(), fit.curve.weights());
+        let scale = if k == 0 {
+            1.0
+        } else {
+            weights[weights.len() - 1] / w[0]
+        };
+        let first = if k == 0 { 0 } else { 1 };
+        for i in first..4 {
+            control_points.push(b[i]);
+            weights.push(w[i] * scale);
+        }
+    }
+    let total: f64 = pieces.iter().map(|(_, l)| l).sum();
+    let mut knots = vec![0.0; 4];
+    let mut acc = 0.0;
+    for (_, l) in &pieces[..pieces.len() - 1] {
+        acc += l / total;
+        knots.extend([acc; 3]);
+    }
+    knots.extend([1.0; 4]);
+    let max_error = pieces
+        .iter()
+        .map(|(f, l)| f.max_error * l)
+        .fold(0.0, f64::max);
+    RationalSpline {
+        degree: 3,
+        knots,
+        control_points,
+        weights,
+        pieces: pieces.into_iter().map(|(f, _)| f).collect(),
+        max_error,
+    }
+}
+
+/// An inflection-end segment as rational cubic pieces within `tolerance` (input units), as
+/// one [`RationalSpline`]: the head [0, τ] next to the inflection is one proven-monotone
+/// cubic of [`fit_inflection_cubic`] (zero curvature at the inflection), with τ the largest
+/// (to a factor 1.25) that keeps it within the tolerance; the rest, an ordinary LAC segment
+/// of the same α ([`LacInflectionSegment::split`]), is [`fit_rational_spline`]. Each joint
+/// matches point, tangent and curvature of the segment, so the spline is G2. Errors:
+/// [`Error::NoSegment`] when `max_pieces` are not enough or no head cubic meets the
+/// tolerance down to τ = 1e-9 θ_d.
+pub fn fit_inflection_spline(
+    seg: &LacInflectionSegment,
+    tolerance: f64,
+    max_pieces: usize,
+    opts: &ApproxOptions,
+) -> Result<RationalSpline> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(Error::invalid("tolerance", "must be a positive number"));
+    }
+    if !(2..=1000).contains(&max_pieces) {
+        return Err(Error::invalid("max_pieces", "must be 2 to 1000"));
+    }
+    let whole = fit_inflection_cubic(seg, opts)?;
+    let len = seg.arc_length();
+    if whole.max_error * len <= tolerance {
+        return Ok(assemble(vec![(whole, len)]));
+    }
+    // The head's error falls fast with its turning: search τ geometrically.
+    let try_head = |tau: f64| -> Option<(LacInflectionSegment, LacSegment, RationalCubicFit)> {
+        let (head, tail) = seg.split(tau).ok()?;
+        let fit = fit_inflection_cubic(&head, opts).ok()?;
+        (fit.max_error * head.arc_length() <= tolerance).then_some((head, tail, fit))
+    };
+    // The whole turn fails; descend by factors of 8, then bisect in ln τ between the last
+    // failure and the first success.
+    let mut hi = seg.theta_d;
+    let (mut lo, mut best) = loop {
+        let tau = hi / 8.0;
+        if tau < 1e-9 * seg.theta_d {
+            return Err(Error::NoSegment(format!(
+                "no rational cubic next to the inflection meets tolerance {tolerance:e}"
+            )));
+        }
+        if let Some(f) = try_head(tau) {
+            break (tau, f);
+        }
+        hi = tau;
+    };
+    while hi / lo > 1.25 {
+        let mid = (lo * hi).sqrt();
+        match try_head(mid) {
+            Some(f) => {
+                lo = mid;
+                best = f;
+            }
+            None => hi = mid,
+        }
+    }
+    let (head, tail, head_fit) = best;
+    let rest = fit_rational_spline(&tail, tolerance, max_pieces - 1, opts)?;
+    // The tail's pieces with their lengths (its knots are arc-length fractions).
+    let lt = tail.arc_length()?;
+    let mut pieces = vec![(head_fit, head.arc_length())];
+    for (i, f) in rest.pieces.into_iter().enumerate() {
+        pieces.push((f, (rest.knots[4 + 3 * i] - rest.knots[3 + 3 * i]) * lt));
+    }
+    Ok(assemble(pieces))
+}
