@@ -1,6 +1,11 @@
 //! One rational cubic Bézier per log-aesthetic segment (docs/math.md §4; S0 §5–6, S3), and
 //! rational cubic B-splines for segments that need several pieces.
 //!
+//! Rooms: this file (the cubic of a LAC segment and its search), `spline.rs` (G2 rational
+//! splines within a tolerance), `inflection.rs` (the cubic of a segment with an inflection
+//! end), `error_map.rs` (S3's error over the (f0, f1) square); the table of optima that
+//! starts the search is [`crate::approx_table`].
+//!
 //! **Construction** ([`construct`]): for a segment with control triangle P0, P1, P2,
 //! `b0 = P0`, `b3 = P2`, `b1 = P0 + f0 (P1 - P0)`, `b2 = P2 + f1 (P1 - P2)`,
 //! `w1 = w2 = (2 cos(θ_d/2) + 1)/3` (the degree-elevated circular arc), and `w0`, `w3` from
