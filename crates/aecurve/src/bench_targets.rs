@@ -129,21 +129,8 @@ fn works(group: Group) -> Vec<Work> {
                     });
                 }
             }
-            // Random shapes as in the library's sweep test: alpha in [-5, 5], turning 5 to
-            // 120 degrees, the base angle anywhere between the circle and 0.98 of theta_lim.
-            let mut rng = aesthetic_curves::samples::SplitMix64::new(17);
-            let mut segs = Vec::new();
-            while segs.len() < 200 {
-                let alpha = rng.range(-5.0, 5.0);
-                let td = rng.range(5f64.to_radians(), 120f64.to_radians());
-                let Ok(lim) = LacSegment::theta_lim(alpha, td) else {
-                    continue;
-                };
-                let phi = 0.5 * td + rng.range(0.0, 1.0) * (0.98 * lim - 0.5 * td).max(0.0);
-                if let Ok(seg) = LacSegment::new(alpha, triangle(td, phi)) {
-                    segs.push(seg);
-                }
-            }
+            // Random shapes as in the library's sweep test.
+            let segs = aesthetic_curves::samples::random_lac_segments(200, 17);
             let segs = std::rc::Rc::new(segs);
             for (table, target) in [(true, Some(100_000.0)), (false, None)] {
                 let segs = segs.clone();

@@ -31,25 +31,7 @@ fn bench_approx(c: &mut Criterion) {
     // 50 random shapes as in tests/approx_sweep.rs (alpha in [-5, 5], turning 5 to 120
     // degrees, base angle from the circle to 0.98 of theta_lim): the table's starts against
     // the search of the whole square.
-    let mut rng = aesthetic_curves::samples::SplitMix64::new(17);
-    let mut segs = Vec::new();
-    while segs.len() < 50 {
-        let alpha = rng.range(-5.0, 5.0);
-        let td = rng.range(5f64.to_radians(), 120f64.to_radians());
-        let Ok(lim) = LacSegment::theta_lim(alpha, td) else {
-            continue;
-        };
-        let phi = 0.5 * td + rng.range(0.0, 1.0) * (0.98 * lim - 0.5 * td).max(0.0);
-        let d = phi.sin() / (td - phi).sin();
-        let tri = [
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 0.0),
-            Point::new(1.0 + d * td.cos(), d * td.sin()),
-        ];
-        if let Ok(seg) = LacSegment::new(alpha, tri) {
-            segs.push(seg);
-        }
-    }
+    let segs = aesthetic_curves::samples::random_lac_segments(50, 17);
     let mut g = c.benchmark_group("approx/random50");
     g.sample_size(20);
     for table in [true, false] {

@@ -88,3 +88,31 @@ pub fn wavy_points(n: usize, seed: u64) -> Vec<Point> {
         })
         .collect()
 }
+
+/// `count` LAC segments of random shape, the distribution of the rational-cubic sweep
+/// (`tests/approx_sweep.rs`): α uniform in [-5, 5], turning uniform in 5° to 120°, the base
+/// angle at the high-curvature end uniform between the circle's and 0.98 of θ_lim; start
+/// (0, 0), tangent intersection (1, 0). Same seed, same segments.
+pub fn random_lac_segments(count: usize, seed: u64) -> Vec<crate::lac::LacSegment> {
+    use crate::lac::LacSegment;
+    let mut rng = SplitMix64::new(seed);
+    let mut out = Vec::with_capacity(count);
+    while out.len() < count {
+        let alpha = rng.range(-5.0, 5.0);
+        let td = rng.range(5f64.to_radians(), 120f64.to_radians());
+        let Ok(lim) = LacSegment::theta_lim(alpha, td) else {
+            continue;
+        };
+        let phi = 0.5 * td + rng.range(0.0, 1.0) * (0.98 * lim - 0.5 * td).max(0.0);
+        let d = phi.sin() / (td - phi).sin();
+        let tri = [
+            Point::ZERO,
+            Point::new(1.0, 0.0),
+            Point::new(1.0 + d * td.cos(), d * td.sin()),
+        ];
+        if let Ok(seg) = LacSegment::new(alpha, tri) {
+            out.push(seg);
+        }
+    }
+    out
+}
