@@ -23,10 +23,11 @@
 //! input moves. Here:
 //! 1. the LAC is tabulated against turning angle once (positions and exact first and second
 //!    derivatives, quintic Hermite interpolation: error below 1e-14 of the length on most
-//!    shapes, 1e-11 within 0.1 % of θ_lim; for α in [0, 1) near θ_lim the low-curvature
-//!    end is nearly straight over most of the length, where a point found by its tangent
-//!    direction is ill-conditioned in the table and in the exact measure alike), so an
-//!    objective evaluation costs a few nanoseconds per sample;
+//!    shapes, 1e-11 within 0.1 % of θ_lim; two exceptions: α = 1, whose table is uniform
+//!    in the turning angle, up to 3e-6 within 1 % of θ_lim, and α in [0, 1) near θ_lim,
+//!    whose low-curvature end is nearly straight over most of the length, where a point
+//!    found by its tangent direction is ill-conditioned in the table and in the exact
+//!    measure alike), so an objective evaluation costs a few nanoseconds per sample;
 //! 2. the starting points come from the shipped table of local optima
 //!    ([`crate::approx_table`]): every minimum at the eight grid nodes around the segment's
 //!    shape (α, θ_d, base angle), each valley followed through the cell and interpolated;
