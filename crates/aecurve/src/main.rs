@@ -297,13 +297,9 @@ fn run() -> Result<()> {
                     LcgSource::Bezier(AnyBezier::new(parse_points(&b).context("--bezier")?, w)?)
                 }
                 (_, _, _, Some(c)) => {
-                    let pts = parse_points(&c).context("--control")?;
-                    anyhow::ensure!(pts.len() == 3, "--control needs exactly 3 points");
+                    let pts = commands::control_triangle(&c)?;
                     let a = alpha.context("--alpha is needed with --control")?;
-                    LcgSource::Lac(aesthetic_curves::lac::LacSegment::new(
-                        a,
-                        [pts[0], pts[1], pts[2]],
-                    )?)
+                    LcgSource::Lac(aesthetic_curves::lac::LacSegment::new(a, pts)?)
                 }
                 _ => anyhow::bail!("give --points, --input, --bezier or --alpha with --control"),
             };

@@ -1,9 +1,9 @@
 //! `aecurve approx`: one rational cubic (or a G2 rational spline within a tolerance) per
 //! LAC segment, with the S3 error map.
 
-use crate::commands::write_curve_outputs;
-use aecurve::{parse_points, plot};
-use anyhow::{Context, Result};
+use crate::commands::{control_triangle, write_curve_outputs};
+use aecurve::plot;
+use anyhow::Result;
 use std::path::PathBuf;
 
 pub(crate) fn approx(
@@ -16,12 +16,7 @@ pub(crate) fn approx(
     map_cells: usize,
 ) -> Result<()> {
     use aesthetic_curves::approx;
-    let pts = parse_points(control).context("--control")?;
-    anyhow::ensure!(
-        pts.len() == 3,
-        "--control needs exactly 3 points, got {}",
-        pts.len()
-    );
+    let pts = control_triangle(control)?;
     anyhow::ensure!(
         (2..=1000).contains(&map_cells),
         "--map-cells must be 2 to 1000"

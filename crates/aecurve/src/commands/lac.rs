@@ -1,9 +1,9 @@
 //! `aecurve lac` and `aecurve lac --inflection`: a log-aesthetic segment (or one with an
 //! inflection end) from its control triangle, with plots and exports.
 
-use crate::commands::{write_curvature_plot, write_curve_outputs};
-use aecurve::{parse_points, plot};
-use anyhow::{Context, Result};
+use crate::commands::{control_triangle, write_curvature_plot, write_curve_outputs};
+use aecurve::plot;
+use anyhow::Result;
 use std::path::PathBuf;
 
 pub(crate) fn lac(
@@ -14,13 +14,8 @@ pub(crate) fn lac(
     output: &[PathBuf],
     curvature_plot: Option<&std::path::Path>,
 ) -> Result<()> {
-    let pts = parse_points(control).context("--control")?;
-    anyhow::ensure!(
-        pts.len() == 3,
-        "--control needs exactly 3 points, got {}",
-        pts.len()
-    );
-    let seg = aesthetic_curves::lac::LacSegment::new(alpha, [pts[0], pts[1], pts[2]])?;
+    let pts = control_triangle(control)?;
+    let seg = aesthetic_curves::lac::LacSegment::new(alpha, pts)?;
     let (points, kappa) = seg.sample(samples.max(2))?;
     let (k0, k1) = seg.end_curvatures()?;
     if json {
@@ -47,30 +42,45 @@ pub(crate) fn lac(
     let samples = plot::polyline_samples(&points, &kappa);
     // CAD formats get the segment as rational cubics within 1e-7 of its size (a LAC segment
     // has no exact rational form): the exact rational geometry of that approximation.
-    let cad = || -> Result<aesthetic_curves::nurbs::Nurbs> {
-        let size = pts
-            .iter()
-            .map(|p| (*p - pts[0]).hypot())
-            .fold(0.0, f64::max);
-        let sp = aesthetic_curves::approx::fit_rational_spline(
+    let cad = || {
+        cad_nurbs(aesthetic_curves::approx::fit_rational_spline(
             &seg,
-            1e-7 * size,
+            cad_tolerance(&pts),
             64,
             &aesthetic_curves::approx::ApproxOptions::default(),
-        )?;
-        eprintln!(
-            "as {} rational cubic(s), max distance {:.2e} from the segment",
-            sp.pieces.len(),
-            sp.max_error
-        );
-        Ok(aesthetic_curves::nurbs::Nurbs::new(
-            sp.degree,
-            sp.knots,
-            sp.control_points,
-            sp.weights,
         )?)
     };
     write_segment_outputs(output, curvature_plot, &samples, &pts, &caption, &cad)
+}
+
+/// The CAD tolerance of a segment: 1e-7 of its triangle's size.
+fn cad_tolerance(pts: &[aesthetic_curves::Point; 3]) -> f64 {
+    1e-7 * pts
+        .iter()
+        .map(|p| (*p - pts[0]).hypot())
+        .fold(0.0, f64::max)
+}
+
+/// A segment's rational cubics as one NURBS for the CAD formats, reported on stderr.
+fn cad_nurbs(
+    sp: aesthetic_curves::approx::RationalSpline,
+) -> Result<aesthetic_curves::nurbs::Nurbs> {
+    eprintln!(
+        "as {} rational cubic(s), max distance {:.2e} from the segment, curvature {}",
+        sp.pieces.len(),
+        sp.max_error,
+        if sp.pieces.iter().all(|p| p.monotone) {
+            "monotone in every piece (proven)"
+        } else {
+            "NOT monotone in every piece"
+        }
+    );
+    Ok(aesthetic_curves::nurbs::Nurbs::new(
+        sp.degree,
+        sp.knots,
+        sp.control_points,
+        sp.weights,
+    )?)
 }
 
 /// `-o` for a LAC segment command: pictures (.svg, .png) of the segment with its comb; CAD
@@ -101,13 +111,8 @@ pub(crate) fn lac_inflection(
     output: &[PathBuf],
     curvature_plot: Option<&std::path::Path>,
 ) -> Result<()> {
-    let pts = parse_points(control).context("--control")?;
-    anyhow::ensure!(
-        pts.len() == 3,
-        "--control needs exactly 3 points, got {}",
-        pts.len()
-    );
-    let seg = aesthetic_curves::lac::LacInflectionSegment::new([pts[0], pts[1], pts[2]])?;
+    let pts = control_triangle(control)?;
+    let seg = aesthetic_curves::lac::LacInflectionSegment::new(pts)?;
     let (points, kappa) = seg.sample(samples.max(2))?;
     let k1 = kappa[kappa.len() - 1];
     if json {
@@ -127,32 +132,12 @@ pub(crate) fn lac_inflection(
     // CAD formats: rational cubics within 1e-7 of the size, as for a LAC segment: next to the
     // inflection one cubic with zero curvature there, then the rest (an ordinary LAC
     // segment); G2 at the joints, every piece's curvature proven monotone.
-    let cad = || -> Result<aesthetic_curves::nurbs::Nurbs> {
-        let size = pts
-            .iter()
-            .map(|p| (*p - pts[0]).hypot())
-            .fold(0.0, f64::max);
-        let sp = aesthetic_curves::approx::fit_inflection_spline(
+    let cad = || {
+        cad_nurbs(aesthetic_curves::approx::fit_inflection_spline(
             &seg,
-            1e-7 * size,
+            cad_tolerance(&pts),
             64,
             &aesthetic_curves::approx::ApproxOptions::default(),
-        )?;
-        eprintln!(
-            "as {} rational cubic(s), max distance {:.2e} from the segment, curvature {}",
-            sp.pieces.len(),
-            sp.max_error,
-            if sp.pieces.iter().all(|p| p.monotone) {
-                "monotone in every piece (proven)"
-            } else {
-                "NOT monotone in every piece"
-            }
-        );
-        Ok(aesthetic_curves::nurbs::Nurbs::new(
-            sp.degree,
-            sp.knots,
-            sp.control_points,
-            sp.weights,
         )?)
     };
     write_segment_outputs(output, curvature_plot, &samples, &pts, &caption, &cad)

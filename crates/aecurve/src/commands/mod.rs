@@ -13,6 +13,18 @@ use aecurve::plot;
 use anyhow::Result;
 use std::path::PathBuf;
 
+/// `--control`: the three points of a control triangle, "x,y x,y x,y".
+pub(crate) fn control_triangle(control: &str) -> Result<[aesthetic_curves::Point; 3]> {
+    use anyhow::Context;
+    let pts = aecurve::parse_points(control).context("--control")?;
+    anyhow::ensure!(
+        pts.len() == 3,
+        "--control needs exactly 3 points, got {}",
+        pts.len()
+    );
+    Ok([pts[0], pts[1], pts[2]])
+}
+
 /// `--curvature-plot`: curvature against arc length (chord sums of the samples) of a curve,
 /// written to `path` if given.
 pub(crate) fn write_curvature_plot(
