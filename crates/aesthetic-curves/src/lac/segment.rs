@@ -26,6 +26,41 @@ pub struct LacSegment {
     map: Similarity,
 }
 
+/// The second-order Taylor guess of Λ for base angle `phi`: ρ ≈ 1 + Λψ + (2-α)Λ²ψ²/2 near the
+/// circle, with the moments ∫ ψ^k e^{iψ} over [0, θ_d].
+/// Where [`LacSegment::newton_lambda`] starts: a guess of Λ, or the fraction
+/// `(θ_lim - φ)/(θ_lim - θ_d/2)` of the way from the limit back to the circle.
+#[derive(Clone, Copy, Debug)]
+enum NewtonStart {
+    Lambda(f64),
+    Line(f64),
+}
+
+fn taylor_guess(alpha: f64, theta_d: f64, phi: f64) -> f64 {
+    let half = 0.5 * theta_d;
+    // To first order φ ≈ θ_d/2 + Λ Im(C1/C0), C0 and C1 the moments ∫ e^{iψ} and
+    // ∫ ψ e^{iψ} over [0, θ_d].
+    let (s, c) = theta_d.sin_cos();
+    let e = Vec2::new(c, s);
+    let i = Vec2::new(0.0, 1.0);
+    let c0 = Vec2::new(s, 1.0 - c);
+    let c1 = cmul(i, c0 - e * theta_d);
+    let c2 = cmul(i, c1 * 2.0 - e * (theta_d * theta_d));
+    let r1 = cdiv(c1, c0);
+    let s1 = r1.y;
+    // α > 1 runs over [-θ_d, 0]: the mirror image, with the Λ² term's sign flipped.
+    let side = if alpha <= 1.0 { 1.0 } else { -1.0 };
+    let s2 = side * (cdiv(c2, c0) * (0.5 * (2.0 - alpha)) - cmul(r1, r1) * 0.5).y;
+    let d = phi - half;
+    // s2 Λ² + s1 Λ - d = 0, the root near d/s1.
+    let disc = s1 * s1 + 4.0 * s2 * d;
+    if disc > 0.0 {
+        2.0 * d / (s1 + disc.sqrt())
+    } else {
+        d / s1
+    }
+}
+
 impl LacSegment {
     /// The standard interval and the chord's base angle at its start (the high-curvature
     /// end) for Λ; `at_limit` evaluates the limiting curve Λ = Λ_max (α < 0 or α > 1).
@@ -73,15 +108,35 @@ impl LacSegment {
     }
 
     /// Solve Λ with base angle `phi` at the high-curvature end, `θ_d/2 <= phi < θ_lim`
-    /// (φ increases strictly with Λ). Two starts: the second-order Taylor expansion of φ in
-    /// Λ at the circle (ρ ≈ 1 + Λψ + (2-α)Λ²ψ²/2, good for small Λ) and the straight line
-    /// between the ends of the bracket (good near the limit); then Brent's method
-    /// ([`crate::roots::brent`]) to the resolution of Λ or until the residual is at the
-    /// noise of the base angle (4 ulp). About 4 to 8 integrals instead of 10 to 18.
+    /// (φ increases strictly with Λ), to the resolution of Λ or until the residual is at the
+    /// noise of the base angle (4 ulp).
+    ///
+    /// 1. Far from the limit (the second-order Taylor guess below 0.7 Λ_max): Newton's
+    ///    method from that guess, the derivative riding on the chord's quadrature; no θ_lim
+    ///    needed. Typically 3 chords.
+    /// 2. Otherwise, for α < 0 or α > 1: θ_lim (one integral, and the existence check), then
+    ///    Newton from the straight line between the circle and the limit in a variable in
+    ///    which φ is nearly linear there. 2 to 5 chords.
+    /// 3. If Newton does not converge in its budget (α in [0, 1) near θ_d, extreme shapes):
+    ///    Brent's method ([`crate::roots::brent`]) from the Taylor guess and the line.
     pub fn solve_lambda(alpha: f64, theta_d: f64, phi: f64) -> Result<f64> {
+        Ok(Self::solve_lambda_chord(alpha, theta_d, phi)?.0)
+    }
+
+    /// [`Self::solve_lambda`], with the standard chord over the segment's interval at the
+    /// solution when the solve produced it (the Newton path).
+    fn solve_lambda_chord(alpha: f64, theta_d: f64, phi: f64) -> Result<(f64, Option<Vec2>)> {
         let half = 0.5 * theta_d;
         if (phi - half).abs() <= 1e-15 * theta_d {
-            return Ok(0.0);
+            return Ok((0.0, None));
+        }
+        let guess = taylor_guess(alpha, theta_d, phi);
+        let lmax = Self::lambda_max(alpha, theta_d);
+        let newton = |start| Self::newton_lambda(alpha, theta_d, phi, start, 6);
+        if phi > half && alpha != 1.0 && guess > 0.0 && guess < 0.7 * lmax {
+            if let Some((l, chord, _)) = newton(NewtonStart::Lambda(guess)) {
+                return Ok((l, Some(chord)));
+            }
         }
         let lim = Self::theta_lim(alpha, theta_d)?;
         if !(phi > half && phi < lim) {
@@ -111,34 +166,15 @@ impl LacSegment {
                 ))),
             }
         };
-        let lmax = Self::lambda_max(alpha, theta_d);
         let p1 = alpha / (alpha - 1.0);
+        if lmax.is_finite() && p1 > 0.0 {
+            if let Some((l, chord, _)) = newton(NewtonStart::Line((lim - phi) / (lim - half))) {
+                return Ok((l, Some(chord)));
+            }
+        }
         // The base angle is computed to a few units of 1e-16 of itself: a residual below
         // this is noise, and the root is as good as the evaluation allows.
         let f_tol = 4.0 * f64::EPSILON * phi;
-        // First-order guess: ρ ≈ 1 + Λψ near Λ = 0 gives φ ≈ θ_d/2 + Λ Im(C1/C0), C0 and C1
-        // the moments ∫ e^{iψ} and ∫ ψ e^{iψ} over [0, θ_d].
-        let guess = {
-            let (s, c) = theta_d.sin_cos();
-            let e = Vec2::new(c, s);
-            let i = Vec2::new(0.0, 1.0);
-            let c0 = Vec2::new(s, 1.0 - c);
-            let c1 = cmul(i, c0 - e * theta_d);
-            let c2 = cmul(i, c1 * 2.0 - e * (theta_d * theta_d));
-            let r1 = cdiv(c1, c0);
-            let s1 = r1.y;
-            // α > 1 runs over [-θ_d, 0]: the mirror image, with the Λ² term's sign flipped.
-            let side = if alpha <= 1.0 { 1.0 } else { -1.0 };
-            let s2 = side * (cdiv(c2, c0) * (0.5 * (2.0 - alpha)) - cmul(r1, r1) * 0.5).y;
-            let d = phi - half;
-            // s2 Λ² + s1 Λ - d = 0, the root near d/s1.
-            let disc = s1 * s1 + 4.0 * s2 * d;
-            if disc > 0.0 {
-                2.0 * d / (s1 + disc.sqrt())
-            } else {
-                d / s1
-            }
-        };
         if lmax.is_finite() && p1 > 0.0 {
             // α < 0 or α > 1: near Λ_max the base angle behaves like θ_lim - K δ^p1,
             // δ = 1 - Λ/Λ_max. Solve in z = δ^p1 ∈ [0, 1] (z = 1: Λ = 0, the circular arc;
@@ -180,7 +216,7 @@ impl LacSegment {
                 f_tol,
                 100,
             )?;
-            return Ok(lambda_of(z));
+            return Ok((lambda_of(z), None));
         }
         let mut hi = lmax;
         if !hi.is_finite() {
@@ -215,7 +251,7 @@ impl LacSegment {
             (x_taylor, x_taylor * (1.0 - 1e-6))
         };
         let (fa, fb) = (f_at(xa)?, f_at(xb)?);
-        brent(
+        let l = brent(
             f_at,
             (0.0, flo),
             (hi, fhi),
@@ -223,7 +259,90 @@ impl LacSegment {
             1e-15 * hi,
             f_tol,
             100,
+        )?;
+        Ok((l, None))
+    }
+
+    /// The fast path of the Λ solve: Newton's method ([`crate::roots::newton`]) on the base
+    /// angle, its Λ derivative riding on the chord's quadrature
+    /// ([`LacStandard::integral_dlambda`]), from the Taylor guess, in z = (1 - Λ/Λ_max)^p1
+    /// for α < 0 or α > 1 (where φ is nearly linear up to the limit) and in Λ for
+    /// 0 <= α < 1; θ_lim is not needed, since a root below Λ_max proves the segment exists.
+    /// Typically 2 or 3 chords instead of 6 plus θ_lim's. `None` when it does not converge
+    /// within 8 chords or a chord fails (the caller's bracketed solve then decides);
+    /// otherwise Λ and the chord at Λ (extrapolated along the derivative over the last
+    /// step, below 1e-7 relative).
+    fn newton_lambda(
+        alpha: f64,
+        theta_d: f64,
+        phi: f64,
+        start: NewtonStart,
+        max_evals: usize,
+    ) -> Option<(f64, Vec2, usize)> {
+        let lmax = Self::lambda_max(alpha, theta_d);
+        if !lmax.is_finite() {
+            return None;
+        }
+        let (ta, tb) = if alpha <= 1.0 {
+            (0.0, theta_d)
+        } else {
+            (-theta_d, 0.0)
+        };
+        let p1 = alpha / (alpha - 1.0);
+        // The Newton variable: z = δ^q, δ = 1 - Λ/Λ_max, q = min(p1, 1) for α < 0 or α > 1
+        // (θ_lim - φ ~ δ^q near the limit); Λ itself for 0 <= α < 1.
+        let q = p1.min(1.0);
+        let in_z = p1 > 0.0;
+        let lambda_of = |x: f64| -> (f64, f64) {
+            if in_z {
+                let e = x.ln() / q;
+                (lmax * -e.exp_m1(), -lmax * (e - x.ln()).exp() / q)
+            } else {
+                (x, 1.0)
+            }
+        };
+        let x0 = match start {
+            NewtonStart::Lambda(g) if in_z => (1.0 - g / lmax).max(0.0).powf(q),
+            NewtonStart::Lambda(g) => g.min(lmax),
+            NewtonStart::Line(s) if in_z => s,
+            NewtonStart::Line(s) => lmax * (1.0 - s),
+        };
+        if !(x0 > 0.0) {
+            return None;
+        }
+        let (lo, hi) = if in_z { (0.0, 1.0) } else { (0.0, lmax) };
+        let x_tol = if in_z {
+            let (l0, dl) = lambda_of(x0);
+            (2.0 * f64::EPSILON * l0 / dl.abs()).clamp(1e-16, 1e-12)
+        } else {
+            1e-15 * lmax
+        };
+        let f = |x: f64| -> Result<(f64, f64, (f64, Vec2, Vec2))> {
+            let (l, dl) = lambda_of(x);
+            let c = LacStandard::new(alpha, l)?;
+            if !(c.in_domain(ta) && c.in_domain(tb)) {
+                return Err(Error::NoConvergence("outside the domain".into()));
+            }
+            let (chord, d) = c.integral_dlambda(ta, tb)?;
+            let slope = chord.cross(d) / chord.hypot2();
+            Ok((chord.y.atan2(chord.x) - ta - phi, slope * dl, (l, chord, d)))
+        };
+        let root = crate::roots::newton(
+            f,
+            x0,
+            (lo, hi),
+            !in_z,
+            x_tol,
+            4.0 * f64::EPSILON * phi,
+            max_evals,
         )
+        .ok()?;
+        if !root.converged {
+            return None;
+        }
+        let (l_at, chord, d) = root.payload;
+        let l = lambda_of(root.x).0;
+        (l > 0.0 && l < lmax).then(|| (l, chord + d * (l - l_at), root.evaluations))
     }
 
     /// The turning angle θ_d and the larger base angle φ (the one at the high-curvature end)
@@ -272,7 +391,7 @@ impl LacSegment {
         let (p0, p1, p2) = (control[0], control[1], control[2]);
         let reversed = theta_f > theta_e;
         let phi = theta_e.max(theta_f);
-        let lambda = Self::solve_lambda(alpha, theta_d, phi)?;
+        let (lambda, chord) = Self::solve_lambda_chord(alpha, theta_d, phi)?;
         let standard = LacStandard::new(alpha, lambda)?;
         let interval = if alpha <= 1.0 {
             (0.0, theta_d)
@@ -286,12 +405,14 @@ impl LacSegment {
             ))
         };
         // One integral: the interval is [0, θ_d] or [-θ_d, 0], and P(0) = 0.
+        let chord = match chord {
+            Some(c) => c,
+            None => standard.integral(interval.0, interval.1).map_err(extreme)?,
+        };
         let (a, b) = if interval.0 == 0.0 {
-            let b = standard.integral(0.0, interval.1).map_err(extreme)?;
-            (Vec2::ZERO, b)
+            (Vec2::ZERO, chord)
         } else {
-            let a = standard.integral(0.0, interval.0).map_err(extreme)?;
-            (a, Vec2::ZERO)
+            (-chord, Vec2::ZERO)
         };
         // Tangent intersection of the standard segment.
         let da = Vec2::from_angle(interval.0);
