@@ -307,7 +307,7 @@ impl LacSegment {
             NewtonStart::Line(s) if in_z => s,
             NewtonStart::Line(s) => lmax * (1.0 - s),
         };
-        if !(x0 > 0.0) {
+        if x0.is_nan() || x0 <= 0.0 {
             return None;
         }
         let (lo, hi) = if in_z { (0.0, 1.0) } else { (0.0, lmax) };
