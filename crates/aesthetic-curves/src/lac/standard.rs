@@ -972,8 +972,8 @@ fn w_integral_riding(p1: f64, c: f64, wa: f64, wb: f64, opts: QuadOptions) -> Re
     let mut v = Riding::ZERO;
     if lo < edge {
         let top = hi.min(edge);
-        let value = w_series(p1, c, lo, top);
-        let rider = value - w_series(p1 - 1.0, c, lo, top);
+        let (value, lower) = w_series_pair(p1, c, lo, top, true);
+        let rider = value - lower;
         v = v + Riding { value, rider };
     }
     if hi > edge {
@@ -996,25 +996,53 @@ fn w_integral_riding(p1: f64, c: f64, wa: f64, wb: f64, opts: QuadOptions) -> Re
 /// p1 > 0), in closed form: `e^{-i/c} Σ_k (i/c)^k/k! ∫ e^{(p1+k) w} dw`. Successive terms
 /// shrink by e^w/|c| <= 1/2 over k, so 60 terms reach rounding.
 fn w_series(p1: f64, c: f64, lo: f64, hi: f64) -> Vec2 {
+    w_series_pair(p1, c, lo, hi, false).0
+}
+
+/// [`w_series`] for `p1` and, when `both`, for `p1 - 1` too (the Λ derivative's second
+/// series), from the same coefficients. The exponentials of the k-th term come from those
+/// of the previous one (one multiplication each; `1 - e^{-xδ}` directly when e^{-xδ} < 1/2,
+/// else by `expm1`, so there is no cancellation).
+fn w_series_pair(p1: f64, c: f64, lo: f64, hi: f64, both: bool) -> (Vec2, Vec2) {
     let delta = hi - lo;
-    let mut sum = Vec2::ZERO;
+    let (e_hi, s) = (hi.exp(), (-delta).exp());
+    // ∫_{lo}^{hi} e^{x w} dw = e^{x hi} (1 - e^{-x δ}) / x, x = p + k, for p = p1 and p1 - 1;
+    // mag = e^{x hi} and f = e^{-x δ} carried along k.
+    let term = |x: f64, mag: f64, f: f64| -> f64 {
+        if x == 0.0 {
+            delta
+        } else if f < 0.5 {
+            mag * (1.0 - f) / x
+        } else {
+            mag * -(-x * delta).exp_m1() / x
+        }
+    };
+    let mut mag = [(p1 * hi).exp(), ((p1 - 1.0) * hi).exp()];
+    let mut f = [(-p1 * delta).exp(), (-(p1 - 1.0) * delta).exp()];
+    let (mut sum, mut sum2) = (Vec2::ZERO, Vec2::ZERO);
     let mut coef = Vec2::new(1.0, 0.0); // (i/c)^k / k!
     for k in 0..80 {
         let x = p1 + k as f64;
-        let ek = if x == 0.0 {
-            delta
-        } else {
-            (x * hi).exp() * -(-x * delta).exp_m1() / x
-        };
-        let term = coef * ek;
-        sum += term;
-        if x > 0.0 && term.hypot() <= 1e-18 * sum.hypot() {
+        let t = coef * term(x, mag[0], f[0]);
+        sum += t;
+        let mut small = x > 0.0 && t.hypot() <= 1e-18 * sum.hypot();
+        if both {
+            let t2 = coef * term(x - 1.0, mag[1], f[1]);
+            sum2 += t2;
+            small &= x > 1.0 && t2.hypot() <= 1e-18 * sum2.hypot();
+        }
+        if small {
             break;
         }
         coef = cmul(coef, Vec2::new(0.0, 1.0 / c)) / (k as f64 + 1.0);
+        for j in 0..2 {
+            mag[j] *= e_hi;
+            f[j] *= s;
+        }
     }
     let (sn, cs) = (-1.0 / c).sin_cos();
-    cmul(Vec2::new(cs, sn), sum)
+    let rot = Vec2::new(cs, sn);
+    (cmul(rot, sum), cmul(rot, sum2))
 }
 
 /// The integrand in `w = ln u`: `e^{(p+1) w} e^{i expm1(w)/c}` (the integral is then divided
