@@ -526,6 +526,7 @@ impl LacStandard {
         kappa[0] = 1.0 / rho;
         let mut acc = Vec2::ZERO;
         let mut th_prev = t0;
+        let mut bad = false;
         // Every 32nd sample from scratch; between them e^{iθ} by rotation and ρ by the ratio
         // (U_k/U_(k-1))^a = (1 + ε)^a, ε = c h / U_(k-1), as a binomial series of `terms`
         // terms while max(|a|, 1) |ε| <= `reach` (the remainder is below reach^(terms+1)
@@ -535,6 +536,7 @@ impl LacStandard {
         let terms = ((-17.0 / reach.log10()).ceil() as usize)
             .saturating_sub(1)
             .clamp(2, 8);
+        let ratios = binomial_ratios(a);
         for (k, (p_out, k_out)) in pts.iter_mut().zip(kappa.iter_mut()).enumerate().skip(1) {
             let th = theta(k);
             let h = th - th_prev;
@@ -542,7 +544,7 @@ impl LacStandard {
             let resync = k % 32 == 0 || k == n - 1;
             let uu;
             if !resync && eps.abs() * a_big <= reach {
-                rho *= binomial_pow(a, eps, terms);
+                rho *= binomial_pow(&ratios, eps, terms);
                 e = if uniform {
                     cmul(e, turn)
                 } else {
@@ -556,17 +558,17 @@ impl LacStandard {
                 uu = u + ue;
             }
             let kk = 1.0 / rho;
-            if !(rho.is_finite() && rho > 0.0 && kk.is_finite() && uu > 0.0) {
-                return fallback();
-            }
+            // Checked once after the loop (no branch per sample): a bad value only spoils
+            // what the fallback recomputes anyway.
+            bad |= !(rho.is_finite() && rho > 0.0 && kk.is_finite() && uu > 0.0);
             let inv_u = 1.0 / uu;
             let cur = node(rho, inv_u, e);
-            if all_fine || hermite_ok(h, u_prev.min(uu)) {
+            if all_fine || (!bad && hermite_ok(h, u_prev.min(uu))) {
                 let h2 = h * h;
                 acc += (prev[0] + cur[0]) * (0.5 * h)
                     + (prev[1] - cur[1]) * (h2 * 0.1)
                     + (prev[2] + cur[2]) * (h2 * h * (1.0 / 120.0));
-            } else {
+            } else if !bad {
                 acc += self.integral_step(th_prev, th, &mut cache)?.0;
             }
             *p_out = acc;
@@ -575,6 +577,9 @@ impl LacStandard {
             u_prev = uu;
             inv_prev = inv_u;
             th_prev = th;
+        }
+        if bad {
+            return fallback();
         }
         if pts.iter().any(|p| !p.is_finite()) {
             return Err(Error::invalid(
@@ -840,15 +845,21 @@ fn binomial_pair(a: f64, eps: f64) -> (f64, f64) {
 const BINOMIAL_POW_REACH: f64 = 0.005;
 
 /// `(1 + ε)^a` by the terms up to ε^`terms` (at most 8) of its binomial series, in Horner
-/// form. For `max(|a|, 1) |ε| <=` [`BINOMIAL_POW_REACH`] successive terms shrink by at least
-/// 200x, so with 8 terms the rest is below 0.005^9 < 2e-21. No data-dependent branches:
-/// consecutive samples pipeline.
-fn binomial_pow(a: f64, eps: f64, terms: usize) -> f64 {
+/// form, from the ratios `coefs[j] = (a - j)/(j + 1)` of successive coefficients
+/// ([`binomial_ratios`]). For `max(|a|, 1) |ε| <=` [`BINOMIAL_POW_REACH`] successive terms
+/// shrink by at least 200x, so with 8 terms the rest is below 0.005^9 < 2e-21. No
+/// data-dependent branches: consecutive samples pipeline.
+fn binomial_pow(coefs: &[f64; 8], eps: f64, terms: usize) -> f64 {
     let mut acc = 1.0;
-    for j in (0..terms.min(8)).rev() {
-        acc = 1.0 + (a - j as f64) * INV_INT[j] * eps * acc;
+    for &b in coefs[..terms.min(8)].iter().rev() {
+        acc = 1.0 + b * eps * acc;
     }
     acc
+}
+
+/// The ratios `(a - j)/(j + 1)`, j < 8, of [`binomial_pow`].
+fn binomial_ratios(a: f64) -> [f64; 8] {
+    std::array::from_fn(|j| (a - j as f64) * INV_INT[j])
 }
 
 /// `D = Σ_k C(m,k) |a (a-1) ... (a-k+1)| r^k` (m = 6, 8 or 10): with ρ = U^a and
