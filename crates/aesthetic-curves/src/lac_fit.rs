@@ -18,6 +18,7 @@
 use crate::bspline::{fit, FitOptions};
 use crate::error::{Error, Result};
 use crate::lac::LacSegment;
+use crate::solve::least_squares::{levenberg_marquardt, LeastSquares, LmOptions};
 use kurbo::Point;
 
 /// What [`fit_lac`] minimises.
@@ -539,14 +540,21 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     if let Some(rms) = start_rms.filter(|v| *v > 0.0) {
         band_scale.set(rms.max(1e-9 * size));
     }
-    let x_start: Vec<f64> = tri0.iter().flat_map(|p| [p.x / size, p.y / size]).collect();
+    let x_start: [f64; 6] = std::array::from_fn(|i| {
+        let p = tri0[i / 2];
+        if i % 2 == 0 {
+            p.x / size
+        } else {
+            p.y / size
+        }
+    });
     // For each alpha of the scan (or the fixed one), fit the triangle with alpha fixed; the
     // best such fit's max deviation sets the hook cap; then again under the cap.
-    let scan = |out: &mut Option<(f64, Vec<f64>, f64, bool)>| {
+    let scan = |out: &mut Option<(f64, [f64; 6], f64, bool)>| {
         for &a in &starts {
-            let (x, c, conv) = levenberg_marquardt(&x_start, &|x, o| eval(a, triangle(x, size), o));
-            if c.is_finite() && out.as_ref().is_none_or(|b| c < b.2) {
-                *out = Some((a, x, c, conv));
+            let fit = least_squares(x_start, |x, o| eval(a, triangle(x, size), o), 60);
+            if fit.cost.is_finite() && out.as_ref().is_none_or(|b| fit.cost < b.2) {
+                *out = Some((a, fit.x, fit.cost, fit.converged()));
             }
         }
     };
@@ -583,35 +591,42 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     let (alpha, tri, converged) = if opts.alpha.is_some() {
         (a_best, triangle(&x_tri, size), conv_tri)
     } else {
-        let mut x0 = vec![a_best];
-        x0.extend(&x_tri);
+        let x0: [f64; 7] = std::array::from_fn(|i| if i == 0 { a_best } else { x_tri[i - 1] });
         // The paper keeps alpha within ±10 % of its guess; the free fit within [-5, 5] (past
         // those the curvature graph is so steep that the shape hardly changes with alpha).
         let (lo, hi) = match guess {
             Some(g) => (g - 0.1 * g.abs(), g + 0.1 * g.abs()),
             None => ALPHA_RANGE,
         };
-        let (x, _, conv) = levenberg_marquardt(&x0, &|x, out| {
-            if x[0] < lo || x[0] > hi {
-                return None;
-            }
-            eval(x[0], triangle(&x[1..], size), out)
-        });
-        (x[0], triangle(&x[1..], size), conv)
+        let fit = least_squares(
+            x0,
+            |x, out| {
+                if x[0] < lo || x[0] > hi {
+                    return None;
+                }
+                eval(x[0], triangle(&x[1..], size), out)
+            },
+            60,
+        );
+        let x = fit.x;
+        (x[0], triangle(&x[1..], size), fit.converged())
     };
     // Polish on every point (a subsampled fit), alpha free as before.
     let (alpha, tri, converged) = if subsampled {
         on_all.set(true);
-        let mut x0 = vec![alpha];
-        x0.extend(tri.iter().flat_map(|p| [p.x / size, p.y / size]));
+        let x0: [f64; 7] = std::array::from_fn(|i| match i {
+            0 => alpha,
+            _ if i % 2 == 1 => tri[(i - 1) / 2].x / size,
+            _ => tri[(i - 1) / 2].y / size,
+        });
         let (lo, hi) = match (opts.alpha, guess) {
             (Some(a), _) => (a, a),
             (None, Some(g)) => (g - 0.1 * g.abs(), g + 0.1 * g.abs()),
             (None, None) => ALPHA_RANGE,
         };
-        let (x, _, conv) = levenberg_marquardt_n(
-            &x0,
-            &|x, out| {
+        let fit = least_squares(
+            x0,
+            |x, out| {
                 if x[0] < lo || x[0] > hi {
                     return None;
                 }
@@ -619,7 +634,8 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
             },
             POLISH_ITERATIONS,
         );
-        (x[0], triangle(&x[1..], size), conv && converged)
+        let x = fit.x;
+        (x[0], triangle(&x[1..], size), fit.converged() && converged)
     } else {
         (alpha, tri, converged)
     };
@@ -677,94 +693,26 @@ fn triangle(c: &[f64], size: f64) -> [Point; 3] {
 }
 
 /// Residuals of a parameter vector (None where the segment does not exist).
-type ResidualFn<'a> = dyn Fn(&[f64], &mut Vec<f64>) -> Option<()> + 'a;
-
-/// Levenberg–Marquardt with a forward-difference Jacobian; steps where `eval` fails (no
-/// segment) are refused. Returns the point and its cost.
-/// Levenberg–Marquardt from `x0`: the point, its cost, and whether it converged (stopped
-/// because no step gains any more, not at the iteration limit or on a residual that could
-/// not be evaluated).
-fn levenberg_marquardt(x0: &[f64], eval: &ResidualFn) -> (Vec<f64>, f64, bool) {
-    levenberg_marquardt_n(x0, eval, 60)
+/// Levenberg–Marquardt ([`crate::solve::least_squares`], its defaults: 60 iterations to
+/// 1e-12 relative progress, stopped by the thread's deadline) over the triangle's
+/// coordinates (and alpha); points where `eval` fails (no segment) are refused.
+fn least_squares<const N: usize>(
+    x0: [f64; N],
+    eval: impl Fn(&[f64], &mut Vec<f64>) -> Option<()>,
+    max_iterations: usize,
+) -> LeastSquares<N> {
+    let opts = LmOptions {
+        max_iterations,
+        ..LmOptions::default()
+    };
+    levenberg_marquardt(
+        &mut |x: &[f64; N], out: &mut Vec<f64>| eval(x, out),
+        &|_| true,
+        x0,
+        &opts,
+    )
 }
 
-/// [`levenberg_marquardt`] with at most `iterations` steps.
-fn levenberg_marquardt_n(
-    x0: &[f64],
-    eval: &ResidualFn,
-    iterations: usize,
-) -> (Vec<f64>, f64, bool) {
-    let mut x = x0.to_vec();
-    let mut r = Vec::new();
-    if eval(&x, &mut r).is_none() {
-        return (x, f64::INFINITY, false);
-    }
-    let mut converged = false;
-    let mut c = cost(&r);
-    let k = x.len();
-    let mut mu = 1e-3;
-    let mut rp = Vec::new();
-    let mut jac: Vec<Vec<f64>> = vec![Vec::new(); k];
-    for _ in 0..iterations {
-        if crate::deadline::expired() {
-            break;
-        }
-        let mut ok = true;
-        for (i, col) in jac.iter_mut().enumerate() {
-            let h = 1e-7 * x[i].abs().max(1.0);
-            let mut xp = x.clone();
-            xp[i] += h;
-            if eval(&xp, &mut rp).is_none() {
-                xp[i] = x[i] - h;
-                if eval(&xp, &mut rp).is_none() {
-                    ok = false;
-                    break;
-                }
-                *col = rp.iter().zip(&r).map(|(a, b)| (b - a) / h).collect();
-            } else {
-                *col = rp.iter().zip(&r).map(|(a, b)| (a - b) / h).collect();
-            }
-        }
-        if !ok {
-            break;
-        }
-        let mut jtj = nalgebra::DMatrix::<f64>::zeros(k, k);
-        let mut g = nalgebra::DVector::<f64>::zeros(k);
-        for i in 0..k {
-            for j in 0..k {
-                jtj[(i, j)] = jac[i].iter().zip(&jac[j]).map(|(a, b)| a * b).sum();
-            }
-            g[i] = jac[i].iter().zip(&r).map(|(a, b)| a * b).sum();
-        }
-        let mut improved = false;
-        for _ in 0..10 {
-            let mut m = jtj.clone();
-            for i in 0..k {
-                m[(i, i)] += mu * (jtj[(i, i)] + 1e-12);
-            }
-            let Some(step) = m.cholesky().map(|ch| ch.solve(&(-&g))) else {
-                mu *= 10.0;
-                continue;
-            };
-            let xn: Vec<f64> = x.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
-            if eval(&xn, &mut rp).is_some() && cost(&rp) < c {
-                let gain = c - cost(&rp);
-                x = xn;
-                c = cost(&rp);
-                std::mem::swap(&mut r, &mut rp);
-                mu = (mu * 0.3).max(1e-12);
-                improved = gain > 1e-12 * c;
-                break;
-            }
-            mu *= 10.0;
-        }
-        if !improved {
-            converged = true;
-            break;
-        }
-    }
-    (x, c, converged)
-}
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,4 +1,7 @@
-//! Derivative-free minimisation with a report: the solver layer's first member.
+//! The solver layer: minimisers with options and a report of how they ended.
+//!
+//! [`least_squares`]: Levenberg–Marquardt for small nonlinear least-squares problems (the
+//! rational-cubic fit and the single-LAC fit), with a [`least_squares::Stop`] reason.
 //!
 //! [`brent`] minimises a function of one variable on an interval; [`along_boundary`]
 //! follows the boundary of a feasible set in two variables when the minimum lies on it.
@@ -9,6 +12,8 @@
 //! extent below `x_tol`, or after `max_evaluations`; the returned [`Minimum`] says which.
 //! Infeasible points are the caller's to map to a large value (`f64::INFINITY` works: such
 //! vertices are always replaced first).
+
+pub mod least_squares;
 
 /// Stopping rules of [`nelder_mead`].
 #[derive(Clone, Copy, Debug)]

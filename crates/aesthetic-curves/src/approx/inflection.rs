@@ -1,11 +1,12 @@
 //! One rational cubic for a segment with an inflection end: zero curvature at the
 //! inflection, G2 at the other end, proven monotone curvature.
 
-use super::{levenberg_marquardt, turning, ApproxOptions, LmStop, RationalCubicFit, Samples};
+use super::{levenberg_marquardt, turning, ApproxOptions, RationalCubicFit, Samples, LM_FULL};
 use crate::bezier::{PlanarCurve, RationalBezier};
 use crate::error::{Error, Result};
 use crate::lac::LacInflectionSegment;
 use crate::monotone::CurvatureMonotone;
+use crate::solve::least_squares::LmOptions;
 use kurbo::{Point, Vec2};
 
 /// The rational cubics of the inflection-end family for a [`LacInflectionSegment`] with
@@ -240,8 +241,10 @@ pub(crate) fn fit_inflection_cubic_from(
                     &domain,
                     &feasible,
                     s,
-                    opts.max_iter,
-                    LmStop::FULL,
+                    LmOptions {
+                        max_iterations: opts.max_iter,
+                        ..LM_FULL
+                    },
                 );
                 evals += e;
                 x = y;

@@ -58,6 +58,7 @@ use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
 use crate::lac::LacSegment;
 use crate::monotone::CurvatureMonotone;
+use crate::solve::least_squares::LmOptions;
 use kurbo::{Point, Vec2};
 
 mod error_map;
@@ -646,30 +647,20 @@ impl Samples {
     }
 }
 
-/// When a Levenberg–Marquardt run stops besides its iteration limit.
-#[derive(Clone, Copy, Debug)]
-struct LmStop {
-    /// Abandon a run still above `abandon_above` (sum of squares) after this many
-    /// iterations: it is crawling along a valley towards a minimum far worse than one
-    /// already found.
-    abandon_after: usize,
-    abandon_above: f64,
-    /// Converged when an accepted step gains no more than this fraction of the cost (or
-    /// moves less than 1e-9).
-    rel_progress: f64,
-    /// The initial damping (relative to the diagonal of JᵀJ).
-    mu0: f64,
-}
-
-impl LmStop {
-    /// To convergence at 1e-12 relative progress, never abandoned.
-    const FULL: LmStop = LmStop {
-        abandon_after: usize::MAX,
-        abandon_above: f64::INFINITY,
-        rel_progress: 1e-12,
-        mu0: 1e-3,
-    };
-}
+/// The Levenberg–Marquardt rules of this module ([`crate::solve::least_squares`]): to
+/// convergence at 1e-12 relative progress or a step under 1e-9, never abandoned, up to 12
+/// damping retries, no damping floor; `max_iterations` is set by each caller.
+const LM_FULL: LmOptions = LmOptions {
+    max_iterations: 0,
+    mu0: 1e-3,
+    rel_progress: 1e-12,
+    min_step: 1e-9,
+    max_damping_tries: 12,
+    damping_floor: 0.0,
+    fd_step: 1e-7,
+    abandon_after: usize::MAX,
+    abandon_above: f64::INFINITY,
+};
 
 /// Levenberg–Marquardt on the residual vector from `start`; steps where `feasible` is false
 /// are refused. A run still above `abandon_above` (mean square) after 8 iterations is
@@ -683,24 +674,24 @@ fn refine(
     feasible: &dyn Fn(f64, f64) -> bool,
     abandon_above: f64,
 ) -> ((f64, f64), f64, usize) {
-    let stop = LmStop {
+    let opts = LmOptions {
         abandon_after: 8,
         abandon_above,
-        ..LmStop::FULL
+        ..LM_FULL
     };
-    let (x, c, e, _) = refine_with(prob, start, ts, max_iter, feasible, stop);
+    let (x, c, e, _) = refine_with(prob, start, ts, max_iter, feasible, opts);
     (x, c, e)
 }
 
-/// [`refine`] with explicit stopping rules; also says whether it converged (stopped for
-/// lack of progress, not at the iteration limit or abandoned).
+/// [`refine`] with explicit stopping rules (`max_iter` overrides theirs); also says whether
+/// it converged (stopped for lack of progress, not at the iteration limit or abandoned).
 fn refine_with(
     prob: &Problem,
     start: (f64, f64),
     ts: &Samples,
     max_iter: usize,
     feasible: &dyn Fn(f64, f64) -> bool,
-    stop: LmStop,
+    opts: LmOptions,
 ) -> ((f64, f64), f64, usize, bool) {
     let residuals = |x: (f64, f64), out: &mut Vec<f64>| prob.residuals(x.0, x.1, ts, out);
     let in_box = |x: (f64, f64)| x.0 > 0.0 && x.0 < 1.0 && x.1 > 0.0 && x.1 < 1.0;
@@ -709,106 +700,46 @@ fn refine_with(
         &|x| x.0 < 1.0 && x.1 < 1.0,
         &|x| in_box(x) && feasible(x.0, x.1),
         start,
-        max_iter,
-        stop,
+        LmOptions {
+            max_iterations: max_iter,
+            ..opts
+        },
     )
 }
 
 /// Residuals at a point of two parameters, written into the vector (None: invalid point).
 type Residuals<'a> = &'a dyn Fn((f64, f64), &mut Vec<f64>) -> Option<()>;
 
-/// Levenberg–Marquardt over two parameters on a residual vector (`residuals` fills its
-/// argument, None for an invalid point) from `start`; steps where `feasible` is false are
-/// refused. The forward-difference Jacobian steps by 1e-7, backwards where the forward
-/// point is outside `domain`; `stop` says when a run ends besides `max_iter`. Returns the
-/// point, its sum of squares, the evaluations and whether it converged.
+/// [`crate::solve::least_squares::levenberg_marquardt`] over two parameters given as a
+/// pair: the forward-difference Jacobian steps backwards where the forward point is outside
+/// `domain`; steps where `feasible` is false are refused. Returns the point, its sum of
+/// squares, the evaluations and whether it converged.
 fn levenberg_marquardt(
     residuals: Residuals,
     domain: &dyn Fn((f64, f64)) -> bool,
     feasible: &dyn Fn((f64, f64)) -> bool,
     start: (f64, f64),
-    max_iter: usize,
-    stop: LmStop,
+    opts: LmOptions,
 ) -> ((f64, f64), f64, usize, bool) {
-    let mut evals = 0;
-    let mut r = Vec::new();
-    let mut rp = Vec::new();
-    let (mut f0, mut f1) = start;
-    if residuals(start, &mut r).is_none() {
-        return (start, f64::INFINITY, 1, false);
-    }
-    evals += 1;
-    let mut cost: f64 = r.iter().map(|v| v * v).sum();
-    let mut mu = stop.mu0;
-    let step = 1e-7;
-    let mut j0 = Vec::new();
-    let mut j1 = Vec::new();
-    let mut converged = false;
-    for iter in 0..max_iter {
-        if iter >= stop.abandon_after && cost > stop.abandon_above {
-            break;
-        }
-        // Forward-difference Jacobian, stepping inward from the bounds.
-        let s0 = if domain((f0 + step, f1)) { step } else { -step };
-        let s1 = if domain((f0, f1 + step)) { step } else { -step };
-        if residuals((f0 + s0, f1), &mut rp).is_none() {
-            break;
-        }
-        j0.clear();
-        j0.extend(rp.iter().zip(&r).map(|(a, b)| (a - b) / s0));
-        if residuals((f0, f1 + s1), &mut rp).is_none() {
-            break;
-        }
-        j1.clear();
-        j1.extend(rp.iter().zip(&r).map(|(a, b)| (a - b) / s1));
-        evals += 2;
-        let (mut a00, mut a01, mut a11, mut g0, mut g1) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for k in 0..r.len() {
-            a00 += j0[k] * j0[k];
-            a01 += j0[k] * j1[k];
-            a11 += j1[k] * j1[k];
-            g0 += j0[k] * r[k];
-            g1 += j1[k] * r[k];
-        }
-        let mut improved = false;
-        for _ in 0..12 {
-            let (m00, m11) = (a00 * (1.0 + mu), a11 * (1.0 + mu));
-            let det = m00 * m11 - a01 * a01;
-            if det.is_nan() || det <= 0.0 {
-                mu *= 10.0;
-                continue;
-            }
-            let d0 = -(m11 * g0 - a01 * g1) / det;
-            let d1 = -(m00 * g1 - a01 * g0) / det;
-            let (n0, n1) = (f0 + d0, f1 + d1);
-            let ok = feasible((n0, n1));
-            let new_cost = if ok && residuals((n0, n1), &mut rp).is_some() {
-                evals += 1;
-                rp.iter().map(|v| v * v).sum()
+    let fit = crate::solve::least_squares::levenberg_marquardt(
+        &mut |x: &[f64; 2], out: &mut Vec<f64>| {
+            let x = (x[0], x[1]);
+            if domain(x) {
+                residuals(x, out)
             } else {
-                f64::INFINITY
-            };
-            if new_cost < cost {
-                // Converged: a step below 1e-9 in f (the error changes to second order), or
-                // no more than 1e-12 of relative progress.
-                let small =
-                    (d0.abs() + d1.abs()) < 1e-9 || cost - new_cost <= stop.rel_progress * cost;
-                f0 = n0;
-                f1 = n1;
-                cost = new_cost;
-                std::mem::swap(&mut r, &mut rp);
-                mu = (mu * 0.3).max(1e-12);
-                improved = !small;
-                break;
+                None
             }
-            mu *= 10.0;
-        }
-        if !improved {
-            converged = true;
-            break;
-        }
-    }
-    ((f0, f1), cost, evals, converged)
+        },
+        &|x| feasible((x[0], x[1])),
+        [start.0, start.1],
+        &opts,
+    );
+    (
+        (fit.x[0], fit.x[1]),
+        fit.cost,
+        fit.evaluations,
+        fit.converged(),
+    )
 }
 
 /// Dips of the error across a valley through `x`: the direction in which the error rises
@@ -1064,11 +995,12 @@ fn table_candidates(
     // Each start runs to 1e-6 relative progress (the finish refines the winner), lightly
     // damped (the starts lie near their valleys' floors), and is abandoned when after 5
     // iterations it is still above 100 times the best minimum so far.
-    let stop = |best: f64| LmStop {
+    let stop = |best: f64| LmOptions {
         abandon_after: 5,
         abandon_above: 100.0 * best,
         rel_progress: 1e-6,
         mu0: 1e-8,
+        ..LM_FULL
     };
     for (c0, x) in starts {
         // A start within 0.01 of a minimum already found that is at least as low lies in

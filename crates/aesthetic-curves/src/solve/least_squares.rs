@@ -1,0 +1,282 @@
+//! Levenberg–Marquardt for small nonlinear least-squares problems (N parameters fixed at
+//! compile time, any number of residuals): the one implementation behind the rational-cubic
+//! fit of a LAC segment and the single-LAC fit of a point sequence.
+//!
+//! **Algorithm.** At the current point x with residual vector r and forward-difference
+//! Jacobian J (step `fd_step · max(|x_i|, 1)`, backwards when the forward point cannot be
+//! evaluated), the damped normal equations `(JᵀJ + μ (diag JᵀJ + damping_floor)) d = -Jᵀr`
+//! are solved by Cholesky; a step that lowers the sum of squares (and that `feasible`
+//! accepts) is taken and μ shrinks by 0.3, otherwise μ grows by 10 and the step is retried
+//! (at most `max_damping_tries` times).
+//!
+//! **Contract.** The returned [`LeastSquares`] says why the run ended ([`Stop`]): converged
+//! (an accepted step gained at most `rel_progress` of the cost or moved less than `min_step`
+//! in the 1-norm, or no damping found a better point), the iteration limit, abandoned (still
+//! above `abandon_above` after `abandon_after` iterations), a Jacobian point that could not
+//! be evaluated, the thread's deadline ([`crate::deadline`]), or a start that could not be
+//! evaluated. It never loops past its limits and never panics on NaN residuals (a point with
+//! a non-finite cost is refused like an invalid one).
+
+use nalgebra::{SMatrix, SVector};
+
+/// Stopping rules and damping of [`levenberg_marquardt`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LmOptions {
+    /// Most iterations (Jacobian evaluations).
+    pub max_iterations: usize,
+    /// The initial damping μ, relative to the diagonal of JᵀJ.
+    pub mu0: f64,
+    /// Converged when an accepted step gains no more than this fraction of the cost.
+    pub rel_progress: f64,
+    /// ... or moves less than this (1-norm).
+    pub min_step: f64,
+    /// Damping retries per iteration before the run counts as converged.
+    pub max_damping_tries: usize,
+    /// Added to the diagonal before it is scaled by μ (keeps a zero column solvable).
+    pub damping_floor: f64,
+    /// Relative step of the forward differences.
+    pub fd_step: f64,
+    /// Abandon a run still above `abandon_above` (sum of squares) after this many
+    /// iterations: it is crawling along a valley towards a minimum worse than one known.
+    pub abandon_after: usize,
+    /// See `abandon_after`.
+    pub abandon_above: f64,
+}
+
+impl Default for LmOptions {
+    /// To convergence at 1e-12 relative progress, 60 iterations, never abandoned.
+    fn default() -> Self {
+        LmOptions {
+            max_iterations: 60,
+            mu0: 1e-3,
+            rel_progress: 1e-12,
+            min_step: 0.0,
+            max_damping_tries: 10,
+            damping_floor: 1e-12,
+            fd_step: 1e-7,
+            abandon_after: usize::MAX,
+            abandon_above: f64::INFINITY,
+        }
+    }
+}
+
+/// Why [`levenberg_marquardt`] stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop {
+    /// The stopping test was met: the point is a local minimum to the stated progress.
+    Converged,
+    /// `max_iterations` ran out first.
+    IterationLimit,
+    /// Still above `abandon_above` after `abandon_after` iterations.
+    Abandoned,
+    /// A point of the finite-difference Jacobian could not be evaluated either way.
+    Unevaluable,
+    /// The thread's deadline passed.
+    Deadline,
+    /// The start could not be evaluated (the cost is infinite).
+    InvalidStart,
+}
+
+/// The result of [`levenberg_marquardt`]: the best point found and how the run ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LeastSquares<const N: usize> {
+    /// The best point found.
+    pub x: [f64; N],
+    /// Its sum of squared residuals (infinite for [`Stop::InvalidStart`]).
+    pub cost: f64,
+    /// Residual evaluations spent (the Jacobian's included).
+    pub evaluations: usize,
+    /// Iterations done.
+    pub iterations: usize,
+    /// Why the run ended.
+    pub stop: Stop,
+}
+
+impl<const N: usize> LeastSquares<N> {
+    /// Whether the run met its stopping test.
+    pub fn converged(&self) -> bool {
+        self.stop == Stop::Converged
+    }
+}
+
+/// Minimise the sum of squares of `residuals(x)` (it fills its vector; `None` for a point
+/// where the problem is not defined) from `x0`; a step is only taken where `feasible` holds.
+/// See the module documentation for the algorithm and the stopping rules.
+pub fn levenberg_marquardt<const N: usize>(
+    residuals: &mut dyn FnMut(&[f64; N], &mut Vec<f64>) -> Option<()>,
+    feasible: &dyn Fn(&[f64; N]) -> bool,
+    x0: [f64; N],
+    opts: &LmOptions,
+) -> LeastSquares<N> {
+    let sum_sq = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>();
+    let mut x = x0;
+    let mut r = Vec::new();
+    let mut rp = Vec::new();
+    let mut out = LeastSquares {
+        x,
+        cost: f64::INFINITY,
+        evaluations: 1,
+        iterations: 0,
+        stop: Stop::InvalidStart,
+    };
+    if residuals(&x, &mut r).is_none() {
+        return out;
+    }
+    let mut cost = sum_sq(&r);
+    if !cost.is_finite() {
+        return out;
+    }
+    out.cost = cost;
+    let mut mu = opts.mu0;
+    let mut jac: [Vec<f64>; N] = std::array::from_fn(|_| Vec::new());
+    out.stop = Stop::IterationLimit;
+    for iter in 0..opts.max_iterations {
+        if iter >= opts.abandon_after && cost > opts.abandon_above {
+            out.stop = Stop::Abandoned;
+            break;
+        }
+        if crate::deadline::expired() {
+            out.stop = Stop::Deadline;
+            break;
+        }
+        out.iterations = iter + 1;
+        // Forward differences, backwards where the forward point cannot be evaluated.
+        let mut evaluable = true;
+        for (i, col) in jac.iter_mut().enumerate() {
+            let h = opts.fd_step * x[i].abs().max(1.0);
+            let mut xp = x;
+            xp[i] = x[i] + h;
+            out.evaluations += 1;
+            let s = if residuals(&xp, &mut rp).is_some() {
+                h
+            } else {
+                xp[i] = x[i] - h;
+                out.evaluations += 1;
+                if residuals(&xp, &mut rp).is_none() {
+                    evaluable = false;
+                    break;
+                }
+                -h
+            };
+            col.clear();
+            col.extend(rp.iter().zip(&r).map(|(a, b)| (a - b) / s));
+        }
+        if !evaluable {
+            out.stop = Stop::Unevaluable;
+            break;
+        }
+        let mut jtj = SMatrix::<f64, N, N>::zeros();
+        let mut g = SVector::<f64, N>::zeros();
+        for i in 0..N {
+            for j in i..N {
+                let v: f64 = jac[i].iter().zip(&jac[j]).map(|(a, b)| a * b).sum();
+                jtj[(i, j)] = v;
+                jtj[(j, i)] = v;
+            }
+            g[i] = jac[i].iter().zip(&r).map(|(a, b)| a * b).sum();
+        }
+        let mut improved = false;
+        for _ in 0..opts.max_damping_tries {
+            let mut m = jtj;
+            for i in 0..N {
+                m[(i, i)] += mu * (jtj[(i, i)] + opts.damping_floor);
+            }
+            let Some(step) = m.cholesky().map(|ch| ch.solve(&(-g))) else {
+                mu *= 10.0;
+                continue;
+            };
+            let xn: [f64; N] = std::array::from_fn(|i| x[i] + step[i]);
+            let new_cost = if feasible(&xn) && residuals(&xn, &mut rp).is_some() {
+                out.evaluations += 1;
+                sum_sq(&rp)
+            } else {
+                f64::INFINITY
+            };
+            if new_cost < cost {
+                let small = step.iter().map(|d| d.abs()).sum::<f64>() < opts.min_step
+                    || cost - new_cost <= opts.rel_progress * cost;
+                x = xn;
+                cost = new_cost;
+                std::mem::swap(&mut r, &mut rp);
+                mu = (mu * 0.3).max(1e-12);
+                improved = !small;
+                break;
+            }
+            mu *= 10.0;
+        }
+        if !improved {
+            out.stop = Stop::Converged;
+            break;
+        }
+    }
+    out.x = x;
+    out.cost = cost;
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fits_an_exponential_and_reports_why_it_stopped() {
+        // y = 2 e^{-1.5 t} sampled exactly: the parameters come back, converged.
+        let ts: Vec<f64> = (0..20).map(|i| i as f64 * 0.1).collect();
+        let mut res = |x: &[f64; 2], out: &mut Vec<f64>| {
+            out.clear();
+            out.extend(
+                ts.iter()
+                    .map(|&t| x[0] * (-x[1] * t).exp() - 2.0 * (-1.5 * t).exp()),
+            );
+            Some(())
+        };
+        let fit = levenberg_marquardt(&mut res, &|_| true, [1.0, 1.0], &LmOptions::default());
+        assert!(fit.converged(), "{fit:?}");
+        assert!(
+            (fit.x[0] - 2.0).abs() < 1e-7 && (fit.x[1] - 1.5).abs() < 1e-7,
+            "{fit:?}"
+        );
+        assert!(fit.cost < 1e-20);
+        // Out of iterations: said so, with the best point so far.
+        let opts = LmOptions {
+            max_iterations: 1,
+            ..LmOptions::default()
+        };
+        let fit = levenberg_marquardt(&mut res, &|_| true, [1.0, 1.0], &opts);
+        assert_eq!(fit.stop, Stop::IterationLimit);
+        assert_eq!(fit.iterations, 1);
+        // Abandoned above a bound.
+        let opts = LmOptions {
+            abandon_after: 0,
+            abandon_above: 1e-30,
+            ..LmOptions::default()
+        };
+        let fit = levenberg_marquardt(&mut res, &|_| true, [1.0, 1.0], &opts);
+        assert_eq!(fit.stop, Stop::Abandoned);
+    }
+
+    #[test]
+    fn invalid_points_are_refused_not_followed() {
+        // The minimum of (x - 3)² lies outside the feasible x <= 2: the run stops at the
+        // boundary's side, never evaluates past it, and a bad start is reported.
+        let mut res = |x: &[f64; 1], out: &mut Vec<f64>| {
+            assert!(x[0] <= 2.0 + 1e-6, "evaluated at {}", x[0]);
+            out.clear();
+            out.push(x[0] - 3.0);
+            Some(())
+        };
+        let fit = levenberg_marquardt(&mut res, &|x| x[0] <= 2.0, [0.0], &LmOptions::default());
+        assert!(fit.x[0] <= 2.0 && fit.x[0] > 1.9, "{fit:?}");
+        let mut nan = |_: &[f64; 1], out: &mut Vec<f64>| {
+            out.clear();
+            out.push(f64::NAN);
+            Some(())
+        };
+        let fit = levenberg_marquardt(&mut nan, &|_| true, [0.0], &LmOptions::default());
+        assert_eq!(fit.stop, Stop::InvalidStart);
+        let mut none = |_: &[f64; 1], _: &mut Vec<f64>| None;
+        let fit = levenberg_marquardt(&mut none, &|_| true, [0.0], &LmOptions::default());
+        assert_eq!(fit.stop, Stop::InvalidStart);
+        assert!(fit.cost.is_infinite());
+    }
+}
