@@ -560,7 +560,7 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
     };
     let mut best = None;
     scan(&mut best);
-    let Some((a_free, x_free, _, _)) = best.clone() else {
+    let Some((a_free, x_free, _, _)) = best else {
         return Err(Error::NoConvergence(
             "no start of the least-squares fit could be evaluated".into(),
         ));

@@ -99,11 +99,14 @@ impl<const N: usize> LeastSquares<N> {
     }
 }
 
+/// The residuals of a point: fills the vector, `None` where the problem is not defined.
+pub type ResidualFn<'a, const N: usize> = dyn FnMut(&[f64; N], &mut Vec<f64>) -> Option<()> + 'a;
+
 /// Minimise the sum of squares of `residuals(x)` (it fills its vector; `None` for a point
 /// where the problem is not defined) from `x0`; a step is only taken where `feasible` holds.
 /// See the module documentation for the algorithm and the stopping rules.
 pub fn levenberg_marquardt<const N: usize>(
-    residuals: &mut dyn FnMut(&[f64; N], &mut Vec<f64>) -> Option<()>,
+    residuals: &mut ResidualFn<N>,
     feasible: &dyn Fn(&[f64; N]) -> bool,
     x0: [f64; N],
     opts: &LmOptions,
