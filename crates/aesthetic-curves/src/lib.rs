@@ -72,6 +72,8 @@
 //!   global optimum), and rational cubic B-splines for longer segments.
 //! - [`approx_table`]: the shipped table of the rational-cubic error surface's local optima
 //!   that starts [`approx`]'s fit.
+//! - [`bezpath`]: cubic Bézier paths (kurbo's `BezPath`) within an accuracy of the curves
+//!   that are not polynomial: LAC segments, inflection-end segments, rational Béziers.
 //! - [`bernstein`]: polynomials in Bernstein form (products, subdivision, degree elevation,
 //!   sign analysis with rounding bounds, root isolation).
 //! - [`bezier`]: polynomial and rational Bézier curves of degree 1 to 20: evaluation,
@@ -113,6 +115,7 @@ pub mod approx;
 pub mod approx_table;
 pub mod bernstein;
 pub mod bezier;
+pub mod bezpath;
 pub mod bspline;
 pub mod deadline;
 pub mod error;
