@@ -300,16 +300,8 @@ pub fn curve_with_comb(
     extrema: &[f64],
     caption: &str,
 ) -> String {
-    let n = 200;
-    let samples: Vec<CombSample> = (0..=n)
-        .map(|i| {
-            let t = i as f64 / n as f64;
-            let d = curve.as_monotone().derivs(t);
-            let k = d.kappa();
-            let nrm = d.d1.turn_90() / d.d1.hypot();
-            (d.p, nrm, if k.is_finite() { k } else { 0.0 })
-        })
-        .collect();
+    // A curve that does not move has no comb (curve_samples refuses it): drawn without.
+    let samples = curve_samples(curve.as_curve(), 201).unwrap_or_default();
     let marks: Vec<aesthetic_curves::Point> = extrema.iter().map(|t| curve.eval(*t)).collect();
     comb_svg(&samples, control, &marks, caption)
 }
@@ -317,22 +309,17 @@ pub fn curve_with_comb(
 /// A sample of a curve for the comb: point, unit left normal, signed curvature.
 pub type CombSample = (aesthetic_curves::Point, aesthetic_curves::Vec2, f64);
 
-/// Comb samples of a polyline with known curvature at its points (normals from neighbours).
-pub fn polyline_samples(points: &[aesthetic_curves::Point], kappa: &[f64]) -> Vec<CombSample> {
-    let n = points.len();
-    (0..n)
-        .map(|i| {
-            let (a, b) = (points[i.saturating_sub(1)], points[(i + 1).min(n - 1)]);
-            let d = b - a;
-            let l = d.hypot();
-            let nrm = if l > 0.0 {
-                d.turn_90() / l
-            } else {
-                aesthetic_curves::Vec2::ZERO
-            };
-            (points[i], nrm, kappa[i])
-        })
-        .collect()
+/// Comb samples of any curve of the library ([`aesthetic_curves::Curve`]): `n` points per
+/// piece with the exact tangent and curvature.
+pub fn curve_samples(
+    curve: &dyn aesthetic_curves::Curve,
+    n: usize,
+) -> aesthetic_curves::Result<Vec<CombSample>> {
+    Ok(curve
+        .curve_points(n)?
+        .into_iter()
+        .map(|q| (q.p, q.normal(), q.kappa))
+        .collect())
 }
 
 /// The curve (as comb samples), its control polygon, its curvature comb and circled marks.

@@ -280,6 +280,13 @@ impl AnyBezier {
             AnyBezier::Rational(r) => r,
         }
     }
+    /// The curve as the library's curve trait object.
+    pub fn as_curve(&self) -> &dyn aesthetic_curves::Curve {
+        match self {
+            AnyBezier::Poly(b) => b,
+            AnyBezier::Rational(r) => r,
+        }
+    }
     /// Signed curvature at t.
     pub fn kappa(&self, t: f64) -> f64 {
         self.as_monotone().kappa(t)

@@ -81,6 +81,17 @@ fn fit(eval: impl Fn(f64) -> Result<(Point, Vec2)>, accuracy: f64) -> Result<Bez
     Ok(path)
 }
 
+/// Cubic Béziers within `accuracy` of a curve with [`PlanarCurve`] derivatives on [0, 1].
+pub(crate) fn fit_planar(c: &impl PlanarCurve, accuracy: f64) -> Result<BezPath> {
+    fit(
+        |t| {
+            let d = c.derivs(t);
+            Ok((d.p, d.d1))
+        },
+        accuracy,
+    )
+}
+
 impl LacSegment {
     /// Cubic Béziers within `accuracy` of this segment, from `control[0]` to `control[2]`
     /// (module documentation: [`crate::bezpath`]).
@@ -119,13 +130,7 @@ impl RationalBezier {
     /// Cubic Béziers within `accuracy` of this curve (module documentation:
     /// [`crate::bezpath`]).
     pub fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
-        fit(
-            |t| {
-                let d = self.derivs(t);
-                Ok((d.p, d.d1))
-            },
-            accuracy,
-        )
+        fit_planar(self, accuracy)
     }
 }
 

@@ -72,6 +72,8 @@
 //!   global optimum), and rational cubic B-splines for longer segments.
 //! - [`approx_table`]: the shipped table of the rational-cubic error surface's local optima
 //!   that starts [`approx`]'s fit.
+//! - [`curve`]: the one interface of every curve type ([`curve::Curve`]: ends, end
+//!   curvatures, arc length, points with tangent and curvature, cubic Bézier paths).
 //! - [`bezpath`]: cubic Bézier paths (kurbo's `BezPath`) within an accuracy of the curves
 //!   that are not polynomial: LAC segments, inflection-end segments, rational Béziers.
 //! - [`bernstein`]: polynomials in Bernstein form (products, subdivision, degree elevation,
@@ -117,6 +119,7 @@ pub mod bernstein;
 pub mod bezier;
 pub mod bezpath;
 pub mod bspline;
+pub mod curve;
 pub mod deadline;
 pub mod error;
 pub mod lac;
@@ -135,6 +138,7 @@ pub mod sketch;
 pub mod solve;
 
 pub use bezier::{Bezier, PlanarCurve, RationalBezier};
+pub use curve::{Curve, CurvePoint, Pieces};
 pub use error::{Error, Result};
 pub use kurbo::{Point, Vec2};
 pub use lac::{LacInflectionSegment, LacSegment, LacStandard};

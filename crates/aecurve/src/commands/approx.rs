@@ -69,17 +69,8 @@ pub(crate) fn approx(
         Some(sp) => aesthetic_curves::nurbs::Nurbs::from_spline(sp),
         None => aesthetic_curves::nurbs::Nurbs::from_bezier(&fit.curve),
     };
-    let n = 200;
-    let comb: Vec<plot::CombSample> = (0..=n)
-        .map(|i| {
-            let u = i as f64 / n as f64;
-            let spans = nurbs.bezier_spans().expect("spline spans");
-            let k = ((u * spans.len() as f64) as usize).min(spans.len() - 1);
-            let t = u * spans.len() as f64 - k as f64;
-            let d = aesthetic_curves::PlanarCurve::derivs(&spans[k], t);
-            (d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa())
-        })
-        .collect();
+    let pieces = nurbs.as_curve()?;
+    let comb = plot::curve_samples(&pieces, (200 / pieces.0.len()).max(8) + 1)?;
     let caption = format!(
         "rational cubic for LAC alpha = {alpha}: rms {:.2e}, max {:.2e}",
         fit.rms, fit.max_error

@@ -134,7 +134,7 @@ pub(crate) fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
         std::fs::write(
             out.join(&file),
             plot::comb_svg(
-                &plot::polyline_samples(&points, &kappa),
+                &plot::curve_samples(&seg, points.len())?,
                 &tri,
                 &[],
                 &caption,

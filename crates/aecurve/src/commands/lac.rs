@@ -16,7 +16,6 @@ pub(crate) fn lac(
 ) -> Result<()> {
     let pts = control_triangle(control)?;
     let seg = aesthetic_curves::lac::LacSegment::new(alpha, pts)?;
-    let (points, kappa) = seg.sample(samples.max(2))?;
     let (k0, k1) = seg.end_curvatures()?;
     if json {
         println!(
@@ -39,7 +38,7 @@ pub(crate) fn lac(
         );
     }
     let caption = format!("LAC alpha = {alpha}, lambda = {:.6}", seg.lambda());
-    let samples = plot::polyline_samples(&points, &kappa);
+    let samples = plot::curve_samples(&seg, samples.max(2))?;
     // CAD formats get the segment as rational cubics within 1e-7 of its size (a LAC segment
     // has no exact rational form): the exact rational geometry of that approximation.
     let cad = || {
@@ -113,8 +112,7 @@ pub(crate) fn lac_inflection(
 ) -> Result<()> {
     let pts = control_triangle(control)?;
     let seg = aesthetic_curves::lac::LacInflectionSegment::new(pts)?;
-    let (points, kappa) = seg.sample(samples.max(2))?;
-    let k1 = kappa[kappa.len() - 1];
+    let k1 = seg.end_curvature();
     if json {
         println!(
             "{}",
@@ -128,7 +126,7 @@ pub(crate) fn lac_inflection(
         println!("  curvature      0 at the start, {k1:.9} at the end");
     }
     let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha);
-    let samples = plot::polyline_samples(&points, &kappa);
+    let samples = plot::curve_samples(&seg, samples.max(2))?;
     // CAD formats: rational cubics within 1e-7 of the size, as for a LAC segment: next to the
     // inflection one cubic with zero curvature there, then the rest (an ordinary LAC
     // segment); G2 at the joints, every piece's curvature proven monotone.

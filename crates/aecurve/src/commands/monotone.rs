@@ -92,19 +92,7 @@ pub(crate) fn monotone(
             }
         }
     }
-    let comb: Vec<plot::CombSample> = (0..=200)
-        .map(|i| {
-            let d = curve.as_monotone().derivs(i as f64 / 200.0);
-            let k = d.kappa();
-            let speed = d.d1.hypot();
-            let nrm = if speed > 0.0 {
-                d.d1.turn_90() / speed
-            } else {
-                aesthetic_curves::Vec2::ZERO
-            };
-            (d.p, nrm, if k.is_finite() { k } else { 0.0 })
-        })
-        .collect();
+    let comb = plot::curve_samples(curve.as_curve(), 201)?;
     write_curvature_plot(curvature_plot, &comb, "curvature of the Bézier curve")?;
     let caption = format!("{kind} degree {degree}: curvature comb");
     let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);

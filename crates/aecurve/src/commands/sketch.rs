@@ -66,13 +66,7 @@ pub(crate) fn sketch(
     let curves: Vec<aesthetic_curves::RationalBezier> =
         sk.pieces.iter().map(|p| p.rational.clone()).collect();
     let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&curves)?;
-    let mut comb: Vec<plot::CombSample> = Vec::new();
-    for p in &sk.pieces {
-        for k in 0..=60 {
-            let d = aesthetic_curves::PlanarCurve::derivs(&p.rational, k as f64 / 60.0);
-            comb.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
-        }
-    }
+    let comb = plot::curve_samples(&sk.as_curve(), 61)?;
     write_curvature_plot(
         curvature_plot,
         &comb,

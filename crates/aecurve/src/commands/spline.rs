@@ -56,19 +56,7 @@ pub(crate) fn spline(
         );
     }
     if !output.is_empty() || curvature_plot.is_some() {
-        let mut samples: Vec<plot::CombSample> = Vec::new();
-        for g in &s.segments {
-            let c = aesthetic_curves::Bezier::new(vec![
-                g.p0,
-                g.p0 + g.d0 / 3.0,
-                g.p1 - g.d1 / 3.0,
-                g.p1,
-            ])?;
-            for k in 0..=40 {
-                let d = aesthetic_curves::PlanarCurve::derivs(&c, k as f64 / 40.0);
-                samples.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
-            }
-        }
+        let samples = plot::curve_samples(&s.as_curve()?, 41)?;
         let caption = format!("pseudo-elastic spline: length {:.6}", s.length);
         write_curvature_plot(
             curvature_plot,

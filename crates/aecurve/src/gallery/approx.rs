@@ -41,14 +41,7 @@ pub(crate) fn approx_gallery(out: &std::path::Path) -> Result<String> {
                 fit.max_error
             );
             if k == 2 {
-                let n = 200;
-                let samples: Vec<plot::CombSample> = (0..=n)
-                    .map(|i| {
-                        let dd =
-                            aesthetic_curves::PlanarCurve::derivs(&fit.curve, i as f64 / n as f64);
-                        (dd.p, dd.d1.turn_90() / dd.d1.hypot(), dd.kappa())
-                    })
-                    .collect();
+                let samples = plot::curve_samples(&fit.curve, 201)?;
                 let file = format!("approx-alpha{alpha}.svg");
                 let caption = format!(
                     "alpha = {alpha}: rms {:.2e}, errMax {:.2e}",

@@ -55,12 +55,11 @@ pub(crate) fn sketch_gallery(out: &std::path::Path) -> Result<String> {
         for (i, p) in sk.pieces.iter().enumerate() {
             let mut line = Vec::new();
             let mut prev = p.rational.points()[0];
-            for k in 0..=80 {
-                let d = aesthetic_curves::PlanarCurve::derivs(&p.rational, k as f64 / 80.0);
-                samples.push((d.p, d.d1.turn_90() / d.d1.hypot(), d.kappa()));
-                s_acc += d.p.distance(prev);
-                prev = d.p;
-                line.push((s_acc, d.kappa()));
+            for q in aesthetic_curves::Curve::curve_points(&p.rational, 81)? {
+                samples.push((q.p, q.normal(), q.kappa));
+                s_acc += q.p.distance(prev);
+                prev = q.p;
+                line.push((s_acc, q.kappa));
             }
             let mut series = plot::Series::nth(format!("{i}: α {:.2}", p.alpha), line, i);
             series.markers = false;

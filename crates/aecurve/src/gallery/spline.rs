@@ -8,22 +8,12 @@ pub(crate) fn span_samples(
     spans: &[aesthetic_curves::pseudo_spline::HermiteSpan],
     per: usize,
 ) -> Result<Vec<plot::CombSample>> {
-    let mut samples = Vec::new();
-    for g in spans {
-        let c = g.to_bezier()?;
-        for k in 0..=per {
-            let d = aesthetic_curves::PlanarCurve::derivs(&c, k as f64 / per as f64);
-            let speed = d.d1.hypot();
-            let k = d.kappa();
-            let nrm = if speed > 0.0 {
-                d.d1.turn_90() / speed
-            } else {
-                aesthetic_curves::Vec2::ZERO
-            };
-            samples.push((d.p, nrm, if k.is_finite() { k } else { 0.0 }));
-        }
-    }
-    Ok(samples)
+    let pieces: aesthetic_curves::Result<Vec<aesthetic_curves::Bezier>> =
+        spans.iter().map(|g| g.to_bezier()).collect();
+    Ok(plot::curve_samples(
+        &aesthetic_curves::Pieces(pieces?),
+        per + 1,
+    )?)
 }
 
 /// S2's printed Table 4 (length) and Table 5 (area) for n = 3..10, from its 36 x 36 table.

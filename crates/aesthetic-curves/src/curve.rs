@@ -1,0 +1,417 @@
+//! The one interface of the library's curves: [`Curve`], implemented by polynomial and
+//! rational Béziers, NURBS, log-aesthetic segments (with and without an inflection end), the
+//! pseudo-elastic spline and a sketch fit.
+//!
+//! Every implementation answers the same questions with the same names: where the curve
+//! starts and ends ([`Curve::ends`]), its signed curvature there
+//! ([`Curve::end_curvatures`]), its arc length ([`Curve::arc_length`]), points with unit
+//! tangent and signed curvature along it ([`Curve::curve_points`]: what a curvature comb or
+//! a curvature plot draws), and cubic Béziers within an accuracy ([`Curve::to_bezpath`]).
+//! A piecewise curve (NURBS, spline, sketch) answers for all its pieces in order.
+//!
+//! Signed curvature is positive where the curve turns counter-clockwise (kurbo's has the
+//! opposite sign). A point where the parameterisation stops (a zero first derivative, as
+//! at a Bézier whose first two control points coincide) takes its tangent and curvature
+//! from 1e-7 inside: the limit along the curve.
+
+use crate::bezier::{Bezier, Derivs, PlanarCurve, RationalBezier};
+use crate::error::{Error, Result};
+use crate::lac::{LacInflectionSegment, LacSegment};
+use crate::nurbs::Nurbs;
+use crate::pseudo_spline::PseudoSpline;
+use crate::quadrature::{integrate, QuadOptions};
+use crate::sketch::Sketch;
+use kurbo::{BezPath, Point, Vec2};
+
+/// A point of a curve with its unit tangent and signed curvature.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurvePoint {
+    /// The point.
+    pub p: Point,
+    /// The unit tangent, in the direction of travel.
+    pub tangent: Vec2,
+    /// Signed curvature (positive: turning counter-clockwise).
+    pub kappa: f64,
+}
+
+impl CurvePoint {
+    /// The unit left normal (the tangent turned by +90°): where the curve bends for κ > 0.
+    pub fn normal(&self) -> Vec2 {
+        self.tangent.turn_90()
+    }
+}
+
+/// The interface every curve type of the library implements (module documentation).
+pub trait Curve {
+    /// The start and end points.
+    fn ends(&self) -> (Point, Point);
+    /// Signed curvature at the start and at the end.
+    fn end_curvatures(&self) -> Result<(f64, f64)>;
+    /// The arc length (to about 1e-14 of itself, or as the type states).
+    fn arc_length(&self) -> Result<f64>;
+    /// `n >= 2` points per piece, from the start to the end, evenly spaced in each piece's
+    /// own parameter (turning angle for log-aesthetic segments, t for Béziers); the shared
+    /// end of consecutive pieces appears once.
+    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>>;
+    /// Cubic Béziers within `accuracy` of the curve (exact for polynomial pieces of degree 3
+    /// or less).
+    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath>;
+}
+
+fn check_n(n: usize) -> Result<()> {
+    if n < 2 {
+        return Err(Error::invalid("samples", "need at least 2 per piece"));
+    }
+    if n > 10_000_000 {
+        return Err(Error::invalid("samples", "at most 10,000,000 per piece"));
+    }
+    Ok(())
+}
+
+/// Derivatives at `t`, from 1e-7 inside where the first derivative vanishes.
+fn regular(c: &impl PlanarCurve, t: f64) -> Result<Derivs> {
+    let d = c.derivs(t);
+    if d.is_regular() {
+        return Ok(d);
+    }
+    let inner = if t < 0.5 { t + 1e-7 } else { t - 1e-7 };
+    let e = c.derivs(inner);
+    if !e.is_regular() {
+        return Err(Error::Degenerate(
+            "the curve does not move: its first derivative vanishes".into(),
+        ));
+    }
+    Ok(Derivs { p: d.p, ..e })
+}
+
+fn point_of(c: &impl PlanarCurve, t: f64) -> Result<CurvePoint> {
+    let d = regular(c, t)?;
+    let kappa = d.kappa();
+    if !kappa.is_finite() {
+        return Err(Error::Degenerate(format!(
+            "the curvature at t = {t} is not finite"
+        )));
+    }
+    Ok(CurvePoint {
+        p: d.p,
+        tangent: d.d1 / d.d1.hypot(),
+        kappa,
+    })
+}
+
+fn bezier_points(c: &impl PlanarCurve, n: usize) -> Result<Vec<CurvePoint>> {
+    check_n(n)?;
+    (0..n)
+        .map(|i| point_of(c, i as f64 / (n - 1) as f64))
+        .collect()
+}
+
+/// ∫ |x'(t)| dt over [0, 1] by adaptive Gauss–Kronrod to 1e-14 of the control polygon's
+/// length.
+fn bezier_length(c: &impl PlanarCurve, polygon: &[Point]) -> Result<f64> {
+    let scale: f64 = polygon.windows(2).map(|w| (w[1] - w[0]).hypot()).sum();
+    let v = integrate(
+        |t| Vec2::new(c.derivs(t).d1.hypot(), 0.0),
+        0.0,
+        1.0,
+        QuadOptions {
+            accuracy: (1e-14 * scale).max(f64::MIN_POSITIVE),
+            max_panels: 4000,
+        },
+    )?;
+    Ok(v.x)
+}
+
+impl Curve for Bezier {
+    fn ends(&self) -> (Point, Point) {
+        let p = self.points();
+        (p[0], p[p.len() - 1])
+    }
+    fn end_curvatures(&self) -> Result<(f64, f64)> {
+        Ok((point_of(self, 0.0)?.kappa, point_of(self, 1.0)?.kappa))
+    }
+    fn arc_length(&self) -> Result<f64> {
+        bezier_length(self, self.points())
+    }
+    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
+        bezier_points(self, n)
+    }
+    /// Exact for degree 3 or less; kurbo's curve fitting above.
+    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
+        if self.degree() <= 3 {
+            return Bezier::to_bezpath(std::slice::from_ref(self));
+        }
+        crate::bezpath::fit_planar(self, accuracy)
+    }
+}
+
+impl Curve for RationalBezier {
+    fn ends(&self) -> (Point, Point) {
+        let p = self.points();
+        (p[0], p[p.len() - 1])
+    }
+    fn end_curvatures(&self) -> Result<(f64, f64)> {
+        Ok((point_of(self, 0.0)?.kappa, point_of(self, 1.0)?.kappa))
+    }
+    fn arc_length(&self) -> Result<f64> {
+        bezier_length(self, self.points())
+    }
+    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
+        bezier_points(self, n)
+    }
+    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
+        RationalBezier::to_bezpath(self, accuracy)
+    }
+}
+
+/// Unit tangents at turning angles `taus` from a start direction `d0`, turning with `sign`.
+fn turned(d0: Vec2, sign: f64, taus: impl Iterator<Item = f64>) -> Vec<Vec2> {
+    let u = d0 / d0.hypot();
+    taus.map(|t| {
+        let (s, c) = (sign * t).sin_cos();
+        Vec2::new(u.x * c - u.y * s, u.x * s + u.y * c)
+    })
+    .collect()
+}
+
+/// Points of a turning-angle sampled curve: `sample` gives n points and curvatures evenly in
+/// turning angle over [0, θ_d], the tangents turn from the first leg of the triangle.
+fn turning_points(
+    control: &[Point; 3],
+    theta_d: f64,
+    (pts, kappa): (Vec<Point>, Vec<f64>),
+) -> Vec<CurvePoint> {
+    let n = pts.len();
+    let (d0, d1) = (control[1] - control[0], control[2] - control[1]);
+    let sign = if d0.cross(d1) >= 0.0 { 1.0 } else { -1.0 };
+    let tangents = turned(
+        d0,
+        sign,
+        (0..n).map(|i| theta_d * i as f64 / (n - 1) as f64),
+    );
+    pts.into_iter()
+        .zip(tangents)
+        .zip(kappa)
+        .map(|((p, tangent), kappa)| CurvePoint { p, tangent, kappa })
+        .collect()
+}
+
+impl Curve for LacSegment {
+    fn ends(&self) -> (Point, Point) {
+        (self.control[0], self.control[2])
+    }
+    fn end_curvatures(&self) -> Result<(f64, f64)> {
+        LacSegment::end_curvatures(self)
+    }
+    fn arc_length(&self) -> Result<f64> {
+        LacSegment::arc_length(self)
+    }
+    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
+        check_n(n)?;
+        Ok(turning_points(&self.control, self.theta_d, self.sample(n)?))
+    }
+    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
+        LacSegment::to_bezpath(self, accuracy)
+    }
+}
+
+impl Curve for LacInflectionSegment {
+    fn ends(&self) -> (Point, Point) {
+        (self.control[0], self.control[2])
+    }
+    /// 0 at the inflection end.
+    fn end_curvatures(&self) -> Result<(f64, f64)> {
+        Ok((0.0, self.end_curvature()))
+    }
+    fn arc_length(&self) -> Result<f64> {
+        Ok(LacInflectionSegment::arc_length(self))
+    }
+    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
+        check_n(n)?;
+        Ok(turning_points(&self.control, self.theta_d, self.sample(n)?))
+    }
+    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
+        LacInflectionSegment::to_bezpath(self, accuracy)
+    }
+}
+
+/// The [`Curve`] answers of consecutive pieces.
+fn pieces_points<C: Curve>(pieces: &[C], n: usize) -> Result<Vec<CurvePoint>> {
+    check_n(n)?;
+    let mut out = Vec::with_capacity(pieces.len() * (n - 1) + 1);
+    for (i, c) in pieces.iter().enumerate() {
+        let pts = c.curve_points(n)?;
+        out.extend(pts.into_iter().skip(usize::from(i > 0)));
+    }
+    Ok(out)
+}
+
+fn pieces_ends<C: Curve>(pieces: &[C]) -> Result<((Point, Point), (f64, f64))> {
+    let (Some(first), Some(last)) = (pieces.first(), pieces.last()) else {
+        return Err(Error::Degenerate("the curve has no pieces".into()));
+    };
+    Ok((
+        (first.ends().0, last.ends().1),
+        (first.end_curvatures()?.0, last.end_curvatures()?.1),
+    ))
+}
+
+fn pieces_length<C: Curve>(pieces: &[C]) -> Result<f64> {
+    pieces.iter().map(|c| c.arc_length()).sum()
+}
+
+fn pieces_path<C: Curve>(pieces: &[C], accuracy: f64) -> Result<BezPath> {
+    let mut path = BezPath::new();
+    for (i, c) in pieces.iter().enumerate() {
+        for (j, el) in c.to_bezpath(accuracy)?.elements().iter().enumerate() {
+            if i > 0 && j == 0 {
+                continue; // the piece's move-to: the previous piece ended there
+            }
+            path.push(*el);
+        }
+    }
+    Ok(path)
+}
+
+/// A curve made of pieces of one type (the spans of a NURBS, the Hermite spans of a spline,
+/// the rational cubics of a sketch), in order, each starting where the previous one ends.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pieces<C>(pub Vec<C>);
+
+impl<C: Curve> Curve for Pieces<C> {
+    fn ends(&self) -> (Point, Point) {
+        match (self.0.first(), self.0.last()) {
+            (Some(a), Some(b)) => (a.ends().0, b.ends().1),
+            _ => (
+                Point::new(f64::NAN, f64::NAN),
+                Point::new(f64::NAN, f64::NAN),
+            ),
+        }
+    }
+    fn end_curvatures(&self) -> Result<(f64, f64)> {
+        Ok(pieces_ends(&self.0)?.1)
+    }
+    fn arc_length(&self) -> Result<f64> {
+        pieces_length(&self.0)
+    }
+    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
+        pieces_points(&self.0, n)
+    }
+    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
+        pieces_path(&self.0, accuracy)
+    }
+}
+
+impl Nurbs {
+    /// The curve's Bézier spans as [`Pieces`] (the [`Curve`] of a NURBS); an error when it
+    /// has none (a knot vector without interior spans).
+    pub fn as_curve(&self) -> Result<Pieces<RationalBezier>> {
+        match self.bezier_spans() {
+            Some(s) if !s.is_empty() => Ok(Pieces(s)),
+            _ => Err(Error::Degenerate("the NURBS has no Bézier spans".into())),
+        }
+    }
+}
+
+impl PseudoSpline {
+    /// The spline's Hermite spans as cubic Béziers ([`Pieces`], its [`Curve`]).
+    pub fn as_curve(&self) -> Result<Pieces<Bezier>> {
+        let spans: Result<Vec<Bezier>> = self.segments.iter().map(|s| s.to_bezier()).collect();
+        Ok(Pieces(spans?))
+    }
+}
+
+impl Sketch {
+    /// The fitted curve's rational cubics ([`Pieces`], its [`Curve`]).
+    pub fn as_curve(&self) -> Pieces<RationalBezier> {
+        Pieces(self.pieces.iter().map(|p| p.rational.clone()).collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    #[test]
+    fn every_type_answers_alike_on_a_circle() {
+        // The same quarter circle of radius 2 as a rational quadratic, its NURBS, and a LAC
+        // segment with α = 0 in the isosceles triangle (Λ = 0: a circular arc): curvature
+        // 1/2 everywhere, length π, tangents along the circle.
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let arc = RationalBezier::new(
+            vec![p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)],
+            vec![1.0, s, 1.0],
+        )
+        .unwrap();
+        let lac = LacSegment::new(0.0, [p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)]).unwrap();
+        let nurbs = Nurbs::from_beziers(std::slice::from_ref(&arc))
+            .unwrap()
+            .as_curve()
+            .unwrap();
+        let curves: [&dyn Curve; 3] = [&arc, &lac, &nurbs];
+        for c in curves {
+            let (a, b) = c.ends();
+            assert!((a - p(2.0, 0.0)).hypot() < 1e-12 && (b - p(0.0, 2.0)).hypot() < 1e-12);
+            let (k0, k1) = c.end_curvatures().unwrap();
+            assert!(
+                (k0 - 0.5).abs() < 1e-12 && (k1 - 0.5).abs() < 1e-12,
+                "{k0} {k1}"
+            );
+            let len = c.arc_length().unwrap();
+            assert!((len - std::f64::consts::PI).abs() < 1e-12, "{len}");
+            for q in c.curve_points(17).unwrap() {
+                let r = q.p.to_vec2();
+                assert!((r.hypot() - 2.0).abs() < 1e-12);
+                assert!((q.kappa - 0.5).abs() < 1e-10, "{}", q.kappa);
+                // Counter-clockwise: the tangent is the radius turned by +90°, the normal
+                // points at the centre.
+                assert!((q.tangent - r.turn_90() / 2.0).hypot() < 1e-9, "{q:?}");
+                assert!((q.normal() + r / 2.0).hypot() < 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn pieces_share_their_joins_and_add_their_lengths() {
+        let a = Bezier::new(vec![p(0.0, 0.0), p(1.0, 0.0), p(2.0, 1.0)]).unwrap();
+        let b = Bezier::new(vec![p(2.0, 1.0), p(3.0, 2.0), p(5.0, 2.0), p(6.0, 2.0)]).unwrap();
+        let both = Pieces(vec![a.clone(), b.clone()]);
+        let pts = both.curve_points(11).unwrap();
+        assert_eq!(pts.len(), 21);
+        assert_eq!(pts[10].p, p(2.0, 1.0));
+        let len = both.arc_length().unwrap();
+        assert!((len - a.arc_length().unwrap() - b.arc_length().unwrap()).abs() < 1e-14);
+        // A straight quadratic's length is its chord's: an independent check of the
+        // quadrature.
+        let line = Bezier::new(vec![p(0.0, 0.0), p(1.0, 1.0), p(3.0, 3.0)]).unwrap();
+        assert!((line.arc_length().unwrap() - 18f64.sqrt()).abs() < 1e-14);
+        // The path: one move-to, then the pieces' segments, exactly.
+        let path = both.to_bezpath(1e-9).unwrap();
+        assert_eq!(path.segments().count(), 2);
+        assert!(Pieces::<Bezier>(vec![]).end_curvatures().is_err());
+    }
+
+    #[test]
+    fn stationary_ends_take_the_limit_and_bad_counts_are_refused() {
+        // P0 = P1: x'(0) = 0; the tangent and curvature at t = 0 come from just inside.
+        let c = Bezier::new(vec![p(0.0, 0.0), p(0.0, 0.0), p(1.0, 1.0), p(2.0, 1.0)]).unwrap();
+        let pts = c.curve_points(5).unwrap();
+        assert!(pts
+            .iter()
+            .all(|q| q.kappa.is_finite() && q.tangent.is_finite()));
+        assert!((pts[0].tangent.hypot() - 1.0).abs() < 1e-12);
+        assert!(c.curve_points(1).is_err());
+        let lac = LacSegment::new(-1.0, [p(0.0, 0.0), p(10.0, 0.0), p(16.0, 9.0)]).unwrap();
+        assert!(lac.curve_points(0).is_err());
+        // The LAC's tangents follow its turning: first along the first leg, last along the
+        // second.
+        let pts = lac.curve_points(9).unwrap();
+        assert!((pts[0].tangent - Vec2::new(1.0, 0.0)).hypot() < 1e-12);
+        let last = Vec2::new(6.0, 9.0) / 117f64.sqrt();
+        assert!((pts[8].tangent - last).hypot() < 1e-12);
+    }
+}
