@@ -3,7 +3,8 @@
 // 20 MB body, `parse` for malformed JSON, concurrent requests, loopback only), then drives the
 // page like a person: drags a control point, moves the alpha slider, clicks spline points,
 // draws a sketch and four jittery hand strokes (S, arc, spiral, wave; fixed seeds), selects a
-// Bézier control point, exports. Screenshots go to
+// Bézier control point, switches mode during a request (the old mode's answer must never
+// show), exports. Screenshots go to
 // target/e2e-artifacts/. Exits non-zero on the first failure.
 //
 //   cargo build --release -p aecurve && (cd e2e && npm ci && node editor.test.mjs)
@@ -289,6 +290,42 @@ await step('Bézier: select a control point, see its monotone region, drag it', 
   assert.ok((await text('verdict')).length > 0);
   await shot('07-bezier');
   console.log(`     verdict before / after: ${v0} / ${await text('verdict')}`);
+});
+
+await step('an answer is never shown under another mode', async () => {
+  // Every change of the numbers table is logged with the mode whose button is active and the
+  // mode the answer belongs to. An update is started in the LAC mode and the mode switched
+  // to the spline before it is answered: the LAC answer must never reach the screen.
+  await page.click('#mode-lac');
+  await idle();
+  await page.evaluate(() => {
+    window.__log = [];
+    new MutationObserver(() => window.__log.push([
+      document.querySelector('#modes button.active').dataset.mode,
+      window.__editor.frameMode(),
+    ])).observe(document.getElementById('numbers'), { childList: true });
+    const a = document.getElementById('alpha');
+    a.value = '0.3';
+    a.dispatchEvent(new Event('input'));
+    document.getElementById('mode-spline').click();
+  });
+  await idle();
+  const log = await page.evaluate(() => window.__log);
+  assert.ok(log.length > 0, 'nothing was shown');
+  for (const [active, answer] of log) assert.equal(answer, active, JSON.stringify(log));
+  assert.equal(await page.evaluate(() => window.__editor.frameMode()), 'spline');
+  assert.ok(Number.isFinite(await num('length')));
+  // Put the LAC mode back as the later steps expect it.
+  await page.click('#mode-lac');
+  await idle();
+  await page.evaluate(() => {
+    const a = document.getElementById('alpha');
+    a.value = '0.5';
+    a.dispatchEvent(new Event('input'));
+  });
+  await idle();
+  await page.click('#mode-bezier');
+  await idle();
 });
 
 await step('wheel zooms about the pointer, F fits the view', async () => {

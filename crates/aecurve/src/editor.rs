@@ -38,8 +38,19 @@ pub const REGION_WORK_BUDGET: f64 = 4.0e6;
 pub const MAX_REGION_CELLS: usize = 200;
 
 static INDEX_HTML: &str = include_str!("../assets/editor/index.html");
-static APP_JS: &str = include_str!("../assets/editor/app.js");
 static STYLE_CSS: &str = include_str!("../assets/editor/style.css");
+
+/// The page's ES modules: `app.js` (state, update loop, interaction, export) imports the
+/// others: `api.js` (requests), `view.js` (viewport), `draw.js` (drawing), `ui.js` (panel
+/// text), `modes.js` (one object per editing mode).
+static MODULES: [(&str, &str); 6] = [
+    ("/app.js", include_str!("../assets/editor/app.js")),
+    ("/api.js", include_str!("../assets/editor/api.js")),
+    ("/view.js", include_str!("../assets/editor/view.js")),
+    ("/draw.js", include_str!("../assets/editor/draw.js")),
+    ("/ui.js", include_str!("../assets/editor/ui.js")),
+    ("/modes.js", include_str!("../assets/editor/modes.js")),
+];
 
 /// Whether a `Host` header names this server: `127.0.0.1`, `localhost` or `[::1]` with the
 /// port it listens on. Any other name is how a DNS-rebinding page would reach it.
@@ -117,15 +128,17 @@ pub fn router(port: u16, limits: Limits) -> Router {
         slots: std::sync::Arc::new(tokio::sync::Semaphore::new(limits.computations.max(1))),
         timeout: limits.request_timeout,
     };
-    Router::new()
-        .route(
-            "/",
-            get(|| async { asset(INDEX_HTML, "text/html; charset=utf-8") }),
-        )
-        .route(
-            "/app.js",
-            get(|| async { asset(APP_JS, "text/javascript; charset=utf-8") }),
-        )
+    let mut routes = Router::new().route(
+        "/",
+        get(|| async { asset(INDEX_HTML, "text/html; charset=utf-8") }),
+    );
+    for (path, body) in MODULES {
+        routes = routes.route(
+            path,
+            get(move || async move { asset(body, "text/javascript; charset=utf-8") }),
+        );
+    }
+    routes
         .route(
             "/style.css",
             get(|| async { asset(STYLE_CSS, "text/css; charset=utf-8") }),

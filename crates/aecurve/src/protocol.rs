@@ -309,9 +309,10 @@ fn curvature_monotone(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         }
     }
     let method = string_param(obj, "method", "exact", &["exact", "sampling"])?;
+    let draw = draw_param(obj)?;
     let curve = AnyBezier::new(points, weights)?;
     let c = curve.as_monotone();
-    if method == "exact" {
+    let mut out = if method == "exact" {
         if obj.get("samples").is_some_and(|v| !v.is_null()) {
             // Accepted and ignored would hide a mistake: say so.
             return Err(ProtoError::invalid(
@@ -319,11 +320,33 @@ fn curvature_monotone(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
                 "only applies to method \"sampling\"",
             ));
         }
-        Ok(monotone_json(&c.curvature_monotone()?))
+        monotone_json(&c.curvature_monotone()?)
     } else {
         let n = count_param(obj, "samples", 100, MAX_SAMPLES)?;
-        Ok(sampled_json(&c.curvature_monotone_sampled(n as usize)?))
+        sampled_json(&c.curvature_monotone_sampled(n as usize)?)
+    };
+    if let Some(n) = draw {
+        let rational = match &curve {
+            AnyBezier::Poly(b) => b.to_rational(),
+            AnyBezier::Rational(r) => r.clone(),
+        };
+        let nurbs = aesthetic_curves::nurbs::Nurbs::from_bezier(&rational);
+        let mut d = drawing_json(curve.as_curve(), n, Some(&nurbs))?;
+        // The interior curvature extrema, where a picture circles them.
+        let ts: Vec<f64> = out["extrema"]
+            .as_array()
+            .map(|a| a.iter().filter_map(|v| v.as_f64()).collect())
+            .unwrap_or_default();
+        d["marks"] = json!(ts
+            .iter()
+            .map(|&t| {
+                let p = curve.eval(t);
+                [p.x, p.y]
+            })
+            .collect::<Vec<_>>());
+        out["drawing"] = d;
     }
+    Ok(out)
 }
 
 /// The result of `bezier.curvature_monotone` (exact test), also `aecurve monotone --json`.
@@ -402,8 +425,14 @@ fn lac_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     if samples < 2 {
         return Err(ProtoError::invalid("samples", "must be at least 2"));
     }
+    let draw = draw_param(obj)?;
     let seg = aesthetic_curves::lac::LacSegment::new(alpha, [control[0], control[1], control[2]])?;
-    Ok(lac_segment_json(&seg, samples as usize)?)
+    let mut out = lac_segment_json(&seg, samples as usize)?;
+    if let Some(n) = draw {
+        // No NURBS: a LAC segment has no exact rational form (lac.rational_approx gives one).
+        out["drawing"] = drawing_json(&seg, n, None)?;
+    }
+    Ok(out)
 }
 
 /// The result of `lac.segment` (also `aecurve lac --json`): the segment's numbers and
@@ -453,9 +482,13 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
             return Err(ProtoError::invalid("tolerance", "must be > 0"));
         }
     }
+    let draw = draw_param(obj)?;
     let seg =
         aesthetic_curves::lac::LacInflectionSegment::new([control[0], control[1], control[2]])?;
     let mut out = lac_inflection_json(&seg, samples as usize)?;
+    if let Some(n) = draw {
+        out["drawing"] = drawing_json(&seg, n, None)?;
+    }
     // Optional: the segment's rational cubic (κ = 0 at its start, G2 at its end, curvature
     // proven monotone), as `lac.rational_approx` gives for a LAC segment.
     if obj.get("rational") == Some(&Value::Bool(true)) {
@@ -469,6 +502,10 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
             "max_error": fit.max_error,
             "monotone": fit.monotone,
         });
+        if let Some(n) = draw {
+            let nurbs = aesthetic_curves::nurbs::Nurbs::from_bezier(&fit.curve);
+            out["rational"]["drawing"] = drawing_json(&fit.curve, n, Some(&nurbs))?;
+        }
     }
     // Optional: rational cubics within `tolerance` (input units), G2, as one NURBS, as
     // `lac.rational_approx` gives with a tolerance.
@@ -504,6 +541,47 @@ fn optional_number(obj: &Map<String, Value>, field: &str) -> Result<Option<f64>,
     }
 }
 
+/// Largest `draw` (points per piece).
+pub const MAX_DRAW_SAMPLES: u64 = 2000;
+
+/// The optional `draw` parameter: points per piece of the `drawing` member (None: absent).
+fn draw_param(obj: &Map<String, Value>) -> Result<Option<usize>, ProtoError> {
+    match obj.get("draw") {
+        None | Some(Value::Null) => Ok(None),
+        Some(v) => match v.as_u64() {
+            Some(n) if (2..=MAX_DRAW_SAMPLES).contains(&n) => Ok(Some(n as usize)),
+            _ => Err(ProtoError::invalid(
+                "draw",
+                format!("must be an integer from 2 to {MAX_DRAW_SAMPLES} (points per piece)"),
+            )),
+        },
+    }
+}
+
+/// The `drawing` member (with `draw`): what a picture of the result needs, computed here so
+/// that a client draws without evaluating curves itself: `n` points per piece with the
+/// curve's unit left normal and signed curvature (consecutive pieces share their joint), the
+/// number of pieces, and the curve as one NURBS (what an export writes).
+pub fn drawing_json(
+    curve: &dyn aesthetic_curves::Curve,
+    n: usize,
+    nurbs: Option<&aesthetic_curves::nurbs::Nurbs>,
+) -> Result<Value, Error> {
+    let pts = curve.curve_points(n)?;
+    let pieces = (pts.len() - 1) / (n - 1);
+    let mut out = json!({
+        "points": pts.iter().map(|q| [q.p.x, q.p.y]).collect::<Vec<_>>(),
+        "normals": pts.iter().map(|q| { let v = q.normal(); [v.x, v.y] }).collect::<Vec<_>>(),
+        "curvature": pts.iter().map(|q| q.kappa).collect::<Vec<_>>(),
+        "per_piece": n,
+        "pieces": pieces,
+    });
+    if let Some(c) = nurbs {
+        out["nurbs"] = crate::export::json_text(c);
+    }
+    Ok(out)
+}
+
 fn lac_rational_approx(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     use aesthetic_curves::approx;
     let alpha = number_param(obj, "alpha")?;
@@ -514,13 +592,19 @@ fn lac_rational_approx(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
             return Err(ProtoError::invalid("tolerance", "must be > 0"));
         }
     }
+    let draw = draw_param(obj)?;
     let seg = aesthetic_curves::lac::LacSegment::new(alpha, [control[0], control[1], control[2]])?;
     let opts = approx::ApproxOptions::default();
     let fit = approx::fit_rational_cubic(&seg, &opts)?;
     let spline = tolerance
         .map(|t| approx::fit_rational_spline(&seg, t, 64, &opts))
         .transpose()?;
-    Ok(rational_approx_json(&seg, &fit, spline.as_ref())?)
+    let mut out = rational_approx_json(&seg, &fit, spline.as_ref())?;
+    if let Some(n) = draw {
+        let nurbs = aesthetic_curves::nurbs::Nurbs::from_bezier(&fit.curve);
+        out["drawing"] = drawing_json(&fit.curve, n, Some(&nurbs))?;
+    }
+    Ok(out)
 }
 
 /// The result object of `lac.rational_approx` (the `spline` member only with a spline).
@@ -619,11 +703,18 @@ fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         Some(_) => return Err(ProtoError::invalid("tolerance", "must be positive")),
         None => aesthetic_curves::sketch::default_tolerance(&points),
     };
+    let draw = draw_param(obj)?;
     let sk = aesthetic_curves::sketch::fit_sketch(
         &points,
         &aesthetic_curves::sketch::SketchOptions::with_tolerance(tolerance),
     )?;
-    Ok(sketch_json(&sk, tolerance))
+    let mut out = sketch_json(&sk, tolerance);
+    if let Some(n) = draw {
+        let curve = sk.as_curve();
+        let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&curve.0)?;
+        out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
+    }
+    Ok(out)
 }
 
 /// The `sketch.fit` result of a sketch (shared with `aecurve sketch --json`).
@@ -712,8 +803,16 @@ fn spline_pseudo_elastic(obj: &Map<String, Value>) -> Result<Value, ProtoError> 
         MAX_SPLINE_POINTS
     };
     let points = points_param(obj, "points", if closed { 3 } else { 2 }, max)?;
+    let draw = draw_param(obj)?;
     let s = aesthetic_curves::pseudo_spline::pseudo_elastic(&points, closed, spline_mode(mode))?;
-    Ok(spline_json(&s, mode))
+    let mut out = spline_json(&s, mode);
+    if let Some(n) = draw {
+        let curve = s.as_curve()?;
+        let rational: Vec<RationalBezier> = curve.0.iter().map(|b| b.to_rational()).collect();
+        let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&rational)?;
+        out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
+    }
+    Ok(out)
 }
 
 /// The result object of `spline.pseudo_elastic`.
@@ -774,6 +873,47 @@ mod tests {
 
     fn kind(v: &Value) -> &str {
         v["error"]["kind"].as_str().unwrap_or("")
+    }
+
+    #[test]
+    fn draw_gives_points_normals_curvature_and_the_nurbs() {
+        let f = |v: &Value| v.as_f64().unwrap();
+        // A quarter circle of radius 2 as a rational quadratic: every drawn point on the
+        // circle, normals towards its centre, curvature 1/2, and the NURBS to export.
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let req = format!(
+            r#"{{"op": "bezier.curvature_monotone", "control_points": [[2, 0], [2, 2], [0, 2]], "weights": [1, {s}, 1], "draw": 9}}"#
+        );
+        let v = handle_line(&req);
+        let d = &v["result"]["drawing"];
+        assert_eq!(d["points"].as_array().unwrap().len(), 9);
+        assert_eq!(d["pieces"], 1);
+        for i in 0..9 {
+            let (x, y) = (f(&d["points"][i][0]), f(&d["points"][i][1]));
+            let (nx, ny) = (f(&d["normals"][i][0]), f(&d["normals"][i][1]));
+            assert!((x.hypot(y) - 2.0).abs() < 1e-12);
+            assert!((nx + x / 2.0).abs() < 1e-9 && (ny + y / 2.0).abs() < 1e-9);
+            assert!((f(&d["curvature"][i]) - 0.5).abs() < 1e-9);
+        }
+        assert_eq!(d["nurbs"]["degree"], 2);
+        // Pieces share their joints; a LAC segment has no NURBS; the count is checked.
+        let v = handle_line(
+            r#"{"op": "spline.pseudo_elastic", "points": [[0, 0], [2, 1], [4, 0], [6, 1]], "draw": 5}"#,
+        );
+        let d = &v["result"]["drawing"];
+        assert_eq!(d["pieces"], 3);
+        assert_eq!(d["points"].as_array().unwrap().len(), 3 * 4 + 1);
+        assert_eq!(d["nurbs"]["control_points"].as_array().unwrap().len(), 10);
+        let v = handle_line(
+            r#"{"op": "lac.segment", "alpha": -1, "control": [[0, 0], [8, 0], [12, 5]], "draw": 3}"#,
+        );
+        assert!(v["result"]["drawing"]["nurbs"].is_null());
+        for bad in ["1", "0", "2001", "-3", "2.5", "\"9\""] {
+            let v = handle_line(&format!(
+                r#"{{"op": "lac.segment", "alpha": -1, "control": [[0, 0], [8, 0], [12, 5]], "draw": {bad}}}"#
+            ));
+            assert_eq!(kind(&v), "invalid_input", "{bad}");
+        }
     }
 
     #[test]

@@ -1,0 +1,205 @@
+// One object per editing mode: its starting view, hint and controls, the handles it drags,
+// how it asks the server for its curve (update: state -> frame), and which region it shades.
+// A frame is everything the page shows for one answer:
+//   {shown, nurbs, numbers, verdict: [text, good], lcg: {fit, note}}
+// shown: {curve, kappa, normals, overlay, overlayPolygon, pieces, marks, polygon, handles,
+// selected, stroke}. Every point, normal and curvature comes from the server (`draw`).
+
+import { api } from './api.js';
+import { fmt } from './ui.js';
+
+// Points per piece the server samples for the picture.
+const DRAW = { segment: 161, overlay: 81, spline: 41, sketch: 51, bezier: 161 };
+
+async function lcgOf(points) {
+  try {
+    // Every other sample is plenty for the graph (and keeps the request a few milliseconds).
+    const fit = await api({ op: 'lcg.estimate', points: points.filter((_, i) => i % 2 === 0) });
+    return { fit };
+  } catch (e) {
+    return { fit: null, note: e.message };
+  }
+}
+
+// The drawing member as the stage's curve fields.
+function curveOf(d) {
+  return { curve: d.points, kappa: d.curvature, normals: d.normals };
+}
+
+// Split a drawing into its pieces (consecutive pieces share their joint).
+function piecesOf(d) {
+  const n = d.per_piece;
+  const out = [];
+  for (let i = 0; i < d.pieces; i++) out.push(d.points.slice(i * (n - 1), i * (n - 1) + n));
+  return out;
+}
+
+const rationalVerdict = (ra) => [ra.monotone ? 'rational cubic: curvature monotone (proven)' : 'rational cubic: curvature NOT monotone', ra.monotone];
+
+export const MODES = {
+  lac: {
+    box: { x0: -1, y0: -2, x1: 15, y1: 9 },
+    hint: 'Drag the three control points; move the alpha slider. Green: where the third control point may go (a LAC segment exists). Dashed blue: the rational cubic Bézier.',
+    controls: ['alpha-box', 'region-box'],
+    polygon: true,
+    initial: () => ({ p: [[0, 0], [8, 0], [12, 5]], alpha: -1 }),
+    handles: (st) => st.p,
+    async update(st) {
+      const { p, alpha } = st;
+      const seg = await api({ op: 'lac.segment', alpha, control: p, samples: 2, draw: DRAW.segment });
+      const [ra, lcg] = await Promise.all([
+        api({ op: 'lac.rational_approx', alpha, control: p, draw: DRAW.overlay }).catch((e) => ({ error: e })),
+        lcgOf(seg.drawing.points),
+      ]);
+      return {
+        shown: Object.assign(curveOf(seg.drawing), {
+          overlay: ra.error ? null : ra.drawing.points,
+          overlayPolygon: ra.error ? null : ra.control_points,
+          handles: p,
+          polygon: p,
+        }),
+        nurbs: ra.error ? null : ra.drawing.nurbs,
+        numbers: [
+          ['alpha', 'alpha', alpha],
+          ['arc_length', 'arc length', seg.arc_length],
+          ['curvature_start', 'curvature at P0', seg.curvature_start],
+          ['curvature_end', 'curvature at P2', seg.curvature_end],
+          ['lambda', 'Λ', seg.lambda],
+          ['lcg_alpha', 'LCG slope (from samples)', lcg.fit ? lcg.fit.alpha : '—'],
+          ['rational_error', 'rational cubic: max error', ra.error ? ra.error.kind : ra.max_error],
+        ],
+        verdict: ra.error ? [`LAC curvature is monotone by construction; no rational cubic: ${ra.error.message}`, true] : rationalVerdict(ra),
+        lcg,
+      };
+    },
+    region: (st, grid) => ({ kind: 'lac', alpha: st.alpha, control: st.p, grid: grid(128), key: [st.p[0], st.p[1], st.alpha] }),
+  },
+
+  inflection: {
+    box: { x0: -1, y0: -2, x1: 15, y1: 9 },
+    hint: 'A segment with zero curvature at its first point: drag the three control points. Green: where the third control point may go. Dashed blue: its rational cubic.',
+    controls: ['region-box'],
+    polygon: true,
+    initial: () => ({ p: [[0, 0], [7, 0], [12, 4]] }),
+    handles: (st) => st.p,
+    async update(st, env) {
+      const { p } = st;
+      // The rational cubic of an inflection segment takes a while (~0.1 s): only when the
+      // drag ends.
+      const seg = await api({ op: 'lac.inflection_segment', control: p, samples: 2, rational: !env.dragging, draw: DRAW.segment });
+      const ra = seg.rational || null;
+      const lcg = await lcgOf(seg.drawing.points.slice(8));
+      return {
+        shown: Object.assign(curveOf(seg.drawing), {
+          handles: p,
+          polygon: p,
+          overlay: ra ? ra.drawing.points : null,
+          overlayPolygon: ra ? ra.control_points : null,
+          marks: [seg.drawing.points[0]],
+        }),
+        nurbs: ra ? ra.drawing.nurbs : null,
+        numbers: [
+          ['alpha', 'alpha (from the triangle)', seg.alpha],
+          ['arc_length', 'arc length', seg.arc_length],
+          ['curvature_end', 'curvature at P2', seg.curvature_end],
+          ['lcg_alpha', 'LCG slope (from samples)', lcg.fit ? lcg.fit.alpha : '—'],
+          ['rational_error', 'rational cubic: max error', ra ? ra.max_error : '…'],
+        ],
+        verdict: ra ? rationalVerdict(ra) : ['LAC segment: curvature monotone by construction (its rational cubic when the drag ends)', true],
+        lcg,
+      };
+    },
+    region: (st, grid) => ({ kind: 'inflection', control: st.p, grid: grid(128), key: [st.p[0], st.p[1]] }),
+  },
+
+  spline: {
+    box: { x0: 0, y0: 0, x1: 14, y1: 10 },
+    hint: 'Click to add points, drag them. The pseudo-elastic spline (S2) through them, open or closed.',
+    controls: ['closed-box', 'add-point', 'remove-point', 'clear'],
+    addsPoints: true,
+    initial: () => ({ p: [[1.5, 2], [4.5, 6.5], [8, 4], [12, 7.5]], closed: false }),
+    handles: (st) => st.p,
+    async update(st) {
+      const { p, closed } = st;
+      const note = { fit: null, note: 'the spline is not one monotone piece' };
+      if (p.length < (closed ? 3 : 2)) {
+        return { shown: { handles: p }, nurbs: null, numbers: [['points', 'points', p.length]], verdict: ['add points by clicking'], lcg: note };
+      }
+      const r = await api({ op: 'spline.pseudo_elastic', points: p, closed, draw: DRAW.spline });
+      return {
+        shown: Object.assign(curveOf(r.drawing), { handles: p }),
+        nurbs: r.drawing.nurbs,
+        numbers: [
+          ['points', 'points', p.length],
+          ['length', 'length', r.length],
+          ['area', closed ? 'enclosed area' : 'area to the chord', r.area],
+          ['energy', 'pseudo-energy Σ l J', r.energy],
+          ['mode', 'mode', r.mode],
+        ],
+        verdict: [`${r.segments.length} Hermite spans, G1 at every point`],
+        lcg: note,
+      };
+    },
+    region: () => null,
+  },
+
+  sketch: {
+    box: { x0: 0, y0: 0, x1: 14, y1: 10 },
+    hint: 'Draw with the mouse or a pen: the stroke becomes a G2 curve of log-aesthetic pieces (colours; circles: joints).',
+    controls: ['clear'],
+    draws: true,
+    initial: () => ({ stroke: [] }),
+    handles: () => [],
+    async update(st) {
+      const s = st.stroke;
+      if (s.length < 8) {
+        return { shown: { stroke: s }, nurbs: null, numbers: [['pieces', 'pieces', 0]], verdict: ['draw a stroke'], lcg: { fit: null, note: 'draw a stroke' } };
+      }
+      const r = await api({ op: 'sketch.fit', points: s, draw: DRAW.sketch });
+      const joints = r.segments.map((g) => g.control[0]).concat([r.segments[r.segments.length - 1].control[2]]);
+      return {
+        shown: Object.assign(curveOf(r.drawing), { pieces: piecesOf(r.drawing), marks: joints, stroke: s }),
+        nurbs: r.drawing.nurbs,
+        numbers: [
+          ['pieces', 'pieces', r.segments.length],
+          ['max_deviation', 'max deviation', r.max_deviation],
+          ['tolerance', 'tolerance', r.tolerance],
+          ['g2', 'G2', r.g2 ? 'yes' : 'no'],
+          ['max_curvature_jump', 'largest curvature jump', r.max_curvature_jump ?? 0],
+          ['alphas', 'alphas', r.segments.map((g) => fmt(g.alpha, 2)).join(' ')],
+        ],
+        verdict: [r.all_monotone ? 'every piece: curvature monotone (proven)' : 'some piece is NOT monotone', r.all_monotone],
+        lcg: { fit: null, note: 'one graph per piece: see the alphas' },
+      };
+    },
+    region: () => null,
+  },
+
+  bezier: {
+    box: { x0: 0, y0: -1, x1: 14, y1: 9 },
+    hint: 'Drag the control points; click one to select it. Green: where the selected point keeps the curvature monotone.',
+    controls: ['region-box', 'add-point', 'remove-point'],
+    polygon: true,
+    minPoints: 3,
+    initial: () => ({ p: [[1, 1], [6, 1], [10, 3], [12, 7]], selected: 2 }),
+    handles: (st) => st.p,
+    async update(st) {
+      const { p } = st;
+      const r = await api({ op: 'bezier.curvature_monotone', control_points: p, draw: DRAW.bezier });
+      const lcg = await lcgOf(r.drawing.points);
+      return {
+        shown: Object.assign(curveOf(r.drawing), { handles: p, polygon: p, marks: r.drawing.marks, selected: st.selected }),
+        nurbs: r.drawing.nurbs,
+        numbers: [
+          ['degree', 'degree', p.length - 1],
+          ['extrema', 'curvature extrema inside', r.extrema.length],
+          ['trend', 'trend', r.trend || '—'],
+          ['test_degree', 'degree of the dκ/ds test', r.test_degree],
+        ],
+        verdict: [r.monotone ? 'curvature monotone (exact test)' : 'curvature NOT monotone (circles: extrema)', r.monotone],
+        lcg,
+      };
+    },
+    region: (st, grid) => ({ kind: 'bezier', control_points: st.p, index: st.selected, grid: grid(82), key: [st.p, st.selected] }),
+  },
+};
