@@ -122,47 +122,40 @@ fn bezier_length(c: &impl PlanarCurve, polygon: &[Point]) -> Result<f64> {
     Ok(v.x)
 }
 
-impl Curve for Bezier {
-    fn ends(&self) -> (Point, Point) {
-        let p = self.points();
-        (p[0], p[p.len() - 1])
-    }
-    fn end_curvatures(&self) -> Result<(f64, f64)> {
-        Ok((point_of(self, 0.0)?.kappa, point_of(self, 1.0)?.kappa))
-    }
-    fn arc_length(&self) -> Result<f64> {
-        bezier_length(self, self.points())
-    }
-    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
-        bezier_points(self, n)
-    }
-    /// Exact for degree 3 or less; kurbo's curve fitting above.
-    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
-        if self.degree() <= 3 {
-            return Bezier::to_bezpath(std::slice::from_ref(self));
+/// The [`Curve`] of a Bézier type (points from [`PlanarCurve`]; `$path`: its `to_bezpath`).
+macro_rules! bezier_curve {
+    ($ty:ty, $path:expr) => {
+        impl Curve for $ty {
+            fn ends(&self) -> (Point, Point) {
+                let p = self.points();
+                (p[0], p[p.len() - 1])
+            }
+            fn end_curvatures(&self) -> Result<(f64, f64)> {
+                Ok((point_of(self, 0.0)?.kappa, point_of(self, 1.0)?.kappa))
+            }
+            fn arc_length(&self) -> Result<f64> {
+                bezier_length(self, self.points())
+            }
+            fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
+                bezier_points(self, n)
+            }
+            fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
+                let path: fn(&$ty, f64) -> Result<BezPath> = $path;
+                path(self, accuracy)
+            }
         }
-        crate::bezpath::fit_planar(self, accuracy)
-    }
+    };
 }
 
-impl Curve for RationalBezier {
-    fn ends(&self) -> (Point, Point) {
-        let p = self.points();
-        (p[0], p[p.len() - 1])
+// Exact for degree 3 or less; kurbo's curve fitting above.
+bezier_curve!(Bezier, |c, accuracy| {
+    if c.degree() <= 3 {
+        Bezier::to_bezpath(std::slice::from_ref(c))
+    } else {
+        crate::bezpath::fit_planar(c, accuracy)
     }
-    fn end_curvatures(&self) -> Result<(f64, f64)> {
-        Ok((point_of(self, 0.0)?.kappa, point_of(self, 1.0)?.kappa))
-    }
-    fn arc_length(&self) -> Result<f64> {
-        bezier_length(self, self.points())
-    }
-    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
-        bezier_points(self, n)
-    }
-    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
-        RationalBezier::to_bezpath(self, accuracy)
-    }
-}
+});
+bezier_curve!(RationalBezier, RationalBezier::to_bezpath);
 
 /// Unit tangents at turning angles `taus` from a start direction `d0`, turning with `sign`.
 fn turned(d0: Vec2, sign: f64, taus: impl Iterator<Item = f64>) -> Vec<Vec2> {

@@ -588,6 +588,22 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
         }
     }
     let (a_best, x_tri, _, conv_tri) = best.expect("a start");
+    // Alpha and the triangle together, alpha kept within [lo, hi]: (alpha, triangle,
+    // converged).
+    let with_alpha = |x0: [f64; 7], (lo, hi): (f64, f64), iterations: usize| {
+        let fit = least_squares(
+            x0,
+            |x, out| {
+                if x[0] < lo || x[0] > hi {
+                    return None;
+                }
+                eval(x[0], triangle(&x[1..], size), out)
+            },
+            iterations,
+        );
+        let x = fit.x;
+        (x[0], triangle(&x[1..], size), fit.converged())
+    };
     let (alpha, tri, converged) = if opts.alpha.is_some() {
         (a_best, triangle(&x_tri, size), conv_tri)
     } else {
@@ -598,18 +614,7 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
             Some(g) => (g - 0.1 * g.abs(), g + 0.1 * g.abs()),
             None => ALPHA_RANGE,
         };
-        let fit = least_squares(
-            x0,
-            |x, out| {
-                if x[0] < lo || x[0] > hi {
-                    return None;
-                }
-                eval(x[0], triangle(&x[1..], size), out)
-            },
-            60,
-        );
-        let x = fit.x;
-        (x[0], triangle(&x[1..], size), fit.converged())
+        with_alpha(x0, (lo, hi), 60)
     };
     // Polish on every point (a subsampled fit), alpha free as before.
     let (alpha, tri, converged) = if subsampled {
@@ -624,18 +629,8 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
             (None, Some(g)) => (g - 0.1 * g.abs(), g + 0.1 * g.abs()),
             (None, None) => ALPHA_RANGE,
         };
-        let fit = least_squares(
-            x0,
-            |x, out| {
-                if x[0] < lo || x[0] > hi {
-                    return None;
-                }
-                eval(x[0], triangle(&x[1..], size), out)
-            },
-            POLISH_ITERATIONS,
-        );
-        let x = fit.x;
-        (x[0], triangle(&x[1..], size), fit.converged() && converged)
+        let (a, t, c) = with_alpha(x0, (lo, hi), POLISH_ITERATIONS);
+        (a, t, c && converged)
     } else {
         (alpha, tri, converged)
     };

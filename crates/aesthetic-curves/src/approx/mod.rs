@@ -179,6 +179,29 @@ pub fn approximation_error(
     Ok(((sum / n as f64).sqrt(), max))
 }
 
+/// Quintic Hermite interpolation between two table nodes (values, first and second
+/// derivatives in τ at both), at the fraction `x` of the cell of width `h`: error O(h⁶).
+#[inline]
+fn quintic(a: &Node, b: &Node, x: f64, h: f64) -> Vec2 {
+    let x2 = x * x;
+    let x3 = x2 * x;
+    let x4 = x3 * x;
+    let x5 = x4 * x;
+    let h0 = 1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5;
+    let h1 = x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5;
+    let h2 = 0.5 * (x2 - 3.0 * x3 + 3.0 * x4 - x5);
+    let h3 = 0.5 * (x3 - 2.0 * x4 + x5);
+    let h4 = -4.0 * x3 + 7.0 * x4 - 3.0 * x5;
+    let h5 = 10.0 * x3 - 15.0 * x4 + 6.0 * x5;
+    let hh = h * h;
+    a.p.to_vec2() * h0
+        + a.d * (h1 * h)
+        + a.dd * (h2 * hh)
+        + b.dd * (h3 * hh)
+        + b.d * (h4 * h)
+        + b.p.to_vec2() * h5
+}
+
 /// A rational cubic's point and a positive multiple of its tangent at `t`, from the
 /// homogeneous control points `h` = (w x, w y, w): x' ∝ H'_xy w - H_xy w' (the factor 3/w²
 /// does not change the direction).
@@ -387,43 +410,15 @@ impl<'a> Problem<'a> {
     /// interpolation in τ. No atan2 and no logarithm per sample.
     fn lac_at_dir(&self, v: Vec2, k: &mut usize) -> Point {
         let (a, b, x, h) = self.lac_cell(v, k);
-        // Quintic Hermite interpolation (values, first and second derivatives at both
-        // nodes): error O(h⁶).
-        let x2 = x * x;
-        let x3 = x2 * x;
-        let x4 = x3 * x;
-        let x5 = x4 * x;
-        let h0 = 1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5;
-        let h1 = x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5;
-        let h2 = 0.5 * (x2 - 3.0 * x3 + 3.0 * x4 - x5);
-        let h3 = 0.5 * (x3 - 2.0 * x4 + x5);
-        let h4 = -4.0 * x3 + 7.0 * x4 - 3.0 * x5;
-        let h5 = 10.0 * x3 - 15.0 * x4 + 6.0 * x5;
-        let hh = h * h;
-        (a.p.to_vec2() * h0
-            + a.d * (h1 * h)
-            + a.dd * (h2 * hh)
-            + b.dd * (h3 * hh)
-            + b.d * (h4 * h)
-            + b.p.to_vec2() * h5)
-            .to_point()
+        quintic(&a, &b, x, h).to_point()
     }
 
     /// [`Self::lac_at_dir`] and the interpolant's derivative in τ there.
     fn lac_at_dir_d(&self, v: Vec2, k: &mut usize) -> (Point, Vec2) {
         let (a, b, x, h) = self.lac_cell(v, k);
-        let x2 = x * x;
-        let x3 = x2 * x;
-        let x4 = x3 * x;
-        let x5 = x4 * x;
-        let hh = h * h;
-        let q = a.p.to_vec2() * (1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5)
-            + a.d * ((x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5) * h)
-            + a.dd * (0.5 * (x2 - 3.0 * x3 + 3.0 * x4 - x5) * hh)
-            + b.dd * (0.5 * (x3 - 2.0 * x4 + x5) * hh)
-            + b.d * ((-4.0 * x3 + 7.0 * x4 - 3.0 * x5) * h)
-            + b.p.to_vec2() * (10.0 * x3 - 15.0 * x4 + 6.0 * x5);
-        // d/dx of the six basis functions, then d/dτ = (d/dx) / h.
+        let q = quintic(&a, &b, x, h);
+        // d/dx of the six basis functions of `quintic`, then d/dτ = (d/dx) / h.
+        let (x2, x3, x4) = (x * x, x * x * x, x * x * x * x);
         let g05 = 30.0 * x2 - 60.0 * x3 + 30.0 * x4;
         let dq = (b.p - a.p) * (g05 / h)
             + a.d * (1.0 - 18.0 * x2 + 32.0 * x3 - 15.0 * x4)
@@ -440,11 +435,9 @@ impl<'a> Problem<'a> {
         let m = t.len() - 1;
         let s = self.sign;
         let before = |j: usize| s * t[j].u.cross(v) > 0.0;
-        if *k == usize::MAX {
-            // No hint: bisection on the node directions (they turn by less than π, so
-            // "before v" holds for a prefix of them), where the walk would cross the whole
-            // table.
-            let (mut lo, mut hi) = (0, m);
+        // The last node "before v" in (lo, hi), given that lo is one (or the start) and hi is
+        // not (or the end): bisection.
+        let bisect = |mut lo: usize, mut hi: usize| {
             while hi - lo > 1 {
                 let mid = (lo + hi) / 2;
                 if before(mid) {
@@ -453,13 +446,18 @@ impl<'a> Problem<'a> {
                     hi = mid;
                 }
             }
-            *k = lo;
+            lo
+        };
+        if *k == usize::MAX {
+            // No hint: bisection over the node directions (they turn by less than π, so
+            // "before v" holds for a prefix of them), where a walk would cross the table.
+            *k = bisect(0, m);
         } else {
             *k = (*k).min(m - 1);
             if *k > 0 && !before(*k) {
                 // Backward by galloping from the hint, then bisection.
                 let (mut hi, mut step) = (*k, 1);
-                let mut lo = loop {
+                let lo = loop {
                     if step > hi {
                         break 0;
                     }
@@ -470,21 +468,13 @@ impl<'a> Problem<'a> {
                     hi = next;
                     step *= 2;
                 };
-                while hi - lo > 1 {
-                    let mid = (lo + hi) / 2;
-                    if before(mid) {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                *k = lo;
+                *k = bisect(lo, hi);
             }
         }
         // Forward by galloping (the samples are some nodes apart), then bisection.
         if *k + 1 < m && before(*k + 1) {
             let (mut lo, mut step) = (*k + 1, 1);
-            let mut hi = loop {
+            let hi = loop {
                 let next = lo + step;
                 if next >= m || !before(next) {
                     break next.min(m);
@@ -492,15 +482,7 @@ impl<'a> Problem<'a> {
                 lo = next;
                 step *= 2;
             };
-            while hi - lo > 1 {
-                let mid = (lo + hi) / 2;
-                if before(mid) {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            *k = lo;
+            *k = bisect(lo, hi);
         }
         while *k > 0 && s * t[*k].u.cross(v) < 0.0 {
             *k -= 1;
@@ -905,6 +887,11 @@ fn refine_with(
         [start.0, start.1],
         &opts,
     );
+    as_pair(&fit)
+}
+
+/// A two-parameter run's result as (point, sum of squares, evaluations, converged).
+fn as_pair(fit: &crate::solve::least_squares::LeastSquares<2>) -> ((f64, f64), f64, usize, bool) {
     (
         (fit.x[0], fit.x[1]),
         fit.cost,
@@ -940,12 +927,7 @@ fn levenberg_marquardt(
         [start.0, start.1],
         &opts,
     );
-    (
-        (fit.x[0], fit.x[1]),
-        fit.cost,
-        fit.evaluations,
-        fit.converged(),
-    )
+    as_pair(&fit)
 }
 
 /// Dips of the error across a valley through `x`: the direction in which the error rises
