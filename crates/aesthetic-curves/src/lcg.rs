@@ -340,6 +340,37 @@ pub fn estimate_with_window(points: &[Point], half: usize, degree: usize) -> Res
     fit_line(graph)
 }
 
+/// The closed-form graph of a LAC segment (here rather than in `lac`, which stays below the
+/// measures' layer).
+impl crate::lac::LacSegment {
+    /// The logarithmic curvature graph at the `n >= 2` sample points of [`Self::sample`],
+    /// in this segment's units, from the closed form `log(rho ds/drho) = alpha log rho -
+    /// log Lambda` of the standard form. A circular arc (Λ = 0) has none: [`Error::Degenerate`].
+    pub fn lcg(&self, n: usize) -> Result<Vec<LcgPoint>> {
+        if n < 2 {
+            return Err(Error::invalid("samples", "need at least 2"));
+        }
+        let lambda = self.lambda();
+        if lambda <= 0.0 {
+            return Err(Error::Degenerate(
+                "a circular arc (isosceles triangle) has constant curvature: no LCG".into(),
+            ));
+        }
+        let lc = self.scale().ln();
+        let (a, ll) = (self.standard.alpha(), lambda.ln());
+        self.sample_thetas(n)
+            .iter()
+            .map(|t| {
+                let lr = self.standard.log_rho(*t)?;
+                Ok(LcgPoint {
+                    log_rho: lr + lc,
+                    log_rho_ds_drho: a * lr - ll + lc,
+                })
+            })
+            .collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -108,3 +108,56 @@ fn the_reader_sees_real_edges() {
     // A module in a folder (lac/) is read too.
     assert!(g["approx"].contains("lac") && g["lac"].contains("quadrature"));
 }
+
+/// The layers of docs/architecture.md, bottom up: a module may use modules of its own layer
+/// or below, never above.
+const LAYERS: [(&str, &[&str]); 6] = [
+    (
+        "foundations",
+        &["error", "roots", "quadrature", "solve", "deadline"],
+    ),
+    (
+        "curves",
+        &["bernstein", "bezier", "bezpath", "lac", "bspline"],
+    ),
+    ("measures", &["monotone", "lcg", "region"]),
+    (
+        "constructions",
+        &[
+            "approx",
+            "approx_table",
+            "nurbs",
+            "pseudo_segment",
+            "pseudo_table",
+            "pseudo_spline",
+            "lac_fit",
+            "sketch",
+        ],
+    ),
+    ("interface", &["curve"]),
+    ("support", &["samples"]),
+];
+
+#[test]
+fn modules_use_only_their_layer_and_below() {
+    let g = graph();
+    let layer = |m: &str| {
+        LAYERS
+            .iter()
+            .position(|(_, ms)| ms.contains(&m))
+            .unwrap_or_else(|| panic!("module {m} is in no layer of docs/architecture.md"))
+    };
+    let mut wrong = Vec::new();
+    for (m, uses) in &g {
+        for u in uses {
+            if layer(u) > layer(m) {
+                wrong.push(format!(
+                    "{m} ({}) uses {u} ({})",
+                    LAYERS[layer(m)].0,
+                    LAYERS[layer(u)].0
+                ));
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "upward uses: {wrong:#?}");
+}

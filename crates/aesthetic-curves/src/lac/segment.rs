@@ -464,7 +464,7 @@ impl LacSegment {
 
     /// Standard-form parameters of `n >= 2` samples from `control[0]` to `control[2]`, evenly
     /// spaced in tangent angle.
-    fn sample_thetas(&self, n: usize) -> Vec<f64> {
+    pub(crate) fn sample_thetas(&self, n: usize) -> Vec<f64> {
         let (a, b) = if self.reversed {
             (self.interval.1, self.interval.0)
         } else {
@@ -515,33 +515,6 @@ impl LacSegment {
             ));
         }
         Ok((out, k))
-    }
-
-    /// The logarithmic curvature graph at the `n >= 2` sample points of [`Self::sample`],
-    /// in this segment's units, from the closed form `log(rho ds/drho) = alpha log rho -
-    /// log Lambda` of the standard form. A circular arc (Λ = 0) has none: [`Error::Degenerate`].
-    pub fn lcg(&self, n: usize) -> Result<Vec<crate::lcg::LcgPoint>> {
-        if n < 2 {
-            return Err(Error::invalid("samples", "need at least 2"));
-        }
-        let lambda = self.lambda();
-        if lambda <= 0.0 {
-            return Err(Error::Degenerate(
-                "a circular arc (isosceles triangle) has constant curvature: no LCG".into(),
-            ));
-        }
-        let lc = self.scale().ln();
-        let (a, ll) = (self.standard.alpha(), lambda.ln());
-        self.sample_thetas(n)
-            .iter()
-            .map(|t| {
-                let lr = self.standard.log_rho(*t)?;
-                Ok(crate::lcg::LcgPoint {
-                    log_rho: lr + lc,
-                    log_rho_ds_drho: a * lr - ll + lc,
-                })
-            })
-            .collect()
     }
 
     /// Standard-form θ at turning angle `tau` from `control[0]`.
