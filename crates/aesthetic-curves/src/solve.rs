@@ -3,7 +3,8 @@
 //! [`least_squares`]: Levenberg–Marquardt for small nonlinear least-squares problems (the
 //! rational-cubic fit and the single-LAC fit), with a [`least_squares::Stop`] reason.
 //!
-//! [`brent`] minimises a function of one variable on an interval; [`along_boundary`]
+//! [`brent`] minimises a function of one variable on an interval; [`compass_search`] is a
+//! pattern search in two variables that keeps to a feasible set; [`along_boundary`]
 //! follows the boundary of a feasible set in two variables when the minimum lies on it.
 //!
 //! [`nelder_mead`] minimises a function of a few variables (the simplex method of Nelder and
@@ -207,6 +208,74 @@ pub fn brent(f: &mut dyn FnMut(f64) -> f64, lo: f64, hi: f64, tol: f64) -> (f64,
     (x, fx)
 }
 
+/// The result of [`compass_search`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Compass {
+    /// The best feasible point found.
+    pub x: (f64, f64),
+    /// The function's value there.
+    pub value: f64,
+    /// Evaluations spent (the start's not counted: the caller gives its value).
+    pub evaluations: usize,
+    /// The step the search ended with (0 when it started at 0: nothing searched).
+    pub step: f64,
+    /// Whether the step fell below the floor (else the evaluation budget ran out).
+    pub converged: bool,
+}
+
+/// Compass search in two variables: from `start` (value `value`), the eight points at
+/// `± step` along each axis and both diagonals (the second coordinate's step times
+/// `scale`); the best one that lowers the value and that `feasible` accepts is taken and the
+/// step doubles, else the step halves. Stops when the step is at most `floor` or after
+/// `max_evaluations`; the [`Compass`] says which. Derivative-free and monotone: the value
+/// never rises, and an infeasible point is never returned.
+pub fn compass_search(
+    f: &mut dyn FnMut((f64, f64)) -> f64,
+    feasible: &dyn Fn((f64, f64)) -> bool,
+    (start, value): ((f64, f64), f64),
+    scale: f64,
+    step: f64,
+    floor: f64,
+    max_evaluations: usize,
+) -> Compass {
+    const DIRECTIONS: [(f64, f64); 8] = [
+        (1.0, 0.0),
+        (-1.0, 0.0),
+        (0.0, 1.0),
+        (0.0, -1.0),
+        (1.0, 1.0),
+        (-1.0, -1.0),
+        (1.0, -1.0),
+        (-1.0, 1.0),
+    ];
+    let (mut x, mut value, mut h) = (start, value, step);
+    let mut evaluations = 0;
+    while h > floor && evaluations < max_evaluations {
+        let mut best = (value, x);
+        for (d0, d1) in DIRECTIONS {
+            let y = (x.0 + d0 * h, x.1 + scale * d1 * h);
+            let c = f(y);
+            evaluations += 1;
+            if c < best.0 && feasible(y) {
+                best = (c, y);
+            }
+        }
+        if best.0 < value {
+            (value, x) = best;
+            h *= 2.0;
+        } else {
+            h *= 0.5;
+        }
+    }
+    Compass {
+        x,
+        value,
+        evaluations,
+        step: h,
+        converged: h <= floor,
+    }
+}
+
 /// Minimise a smooth `cost` of two variables over the set where `feasible` holds, from a
 /// point `x` on that set's boundary where the cost keeps falling outwards: the constrained
 /// minimum then lies on the boundary, which pattern searches with fixed directions cannot
@@ -358,6 +427,40 @@ mod tests {
             },
         );
         assert!(!m.converged && m.evaluations >= 20);
+    }
+
+    #[test]
+    fn compass_search_descends_within_the_feasible_set_and_says_how_it_ended() {
+        // (x - 1)² + 4 (y - 2)²: the minimum, to the floor.
+        let mut f = |p: (f64, f64)| (p.0 - 1.0).powi(2) + 4.0 * (p.1 - 2.0).powi(2);
+        let r = compass_search(
+            &mut f,
+            &|_| true,
+            ((0.0, 0.0), 17.0),
+            1.0,
+            0.5,
+            1e-10,
+            100_000,
+        );
+        assert!(r.converged && r.step <= 1e-10);
+        assert!(
+            (r.x.0 - 1.0).abs() < 1e-9 && (r.x.1 - 2.0).abs() < 1e-9,
+            "{r:?}"
+        );
+        // Kept to y <= 1: the constrained minimum's side, never outside.
+        let r = compass_search(
+            &mut f,
+            &|p| p.1 <= 1.0,
+            ((0.0, 0.0), 17.0),
+            1.0,
+            0.5,
+            1e-10,
+            100_000,
+        );
+        assert!(r.x.1 <= 1.0 && (r.x.1 - 1.0).abs() < 1e-8, "{r:?}");
+        // Out of budget: reported.
+        let r = compass_search(&mut f, &|_| true, ((0.0, 0.0), 17.0), 1.0, 0.5, 1e-10, 16);
+        assert!(!r.converged && r.evaluations == 16);
     }
 
     #[test]

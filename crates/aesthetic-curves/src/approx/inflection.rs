@@ -233,7 +233,7 @@ pub(crate) fn fit_inflection_cubic_from(
         // valley; a compass search from there, monotone steps only, slides along the
         // monotone boundary when the optimum lies on it.
         let mut x = s;
-        let mut h = match (warm, search) {
+        let h = match (warm, search) {
             (Some(_), false) => 0.0,
             _ => {
                 let (y, _, e, _) = levenberg_marquardt(
@@ -251,33 +251,17 @@ pub(crate) fn fit_inflection_cubic_from(
                 0.02 / n as f64
             }
         };
-        let mut cost = table.cost(make(x), &tr);
-        while h > INFLECTION_STEP_FLOOR && evals < 20_000 {
-            let mut step = (cost, x);
-            for (d0, d1) in [
-                (1.0, 0.0),
-                (-1.0, 0.0),
-                (0.0, 1.0),
-                (0.0, -1.0),
-                (1.0, 1.0),
-                (-1.0, -1.0),
-                (1.0, -1.0),
-                (-1.0, 1.0),
-            ] {
-                let y = (x.0 + d0 * h, x.1 + 6.0 * d1 * h);
-                let c = table.cost(make(y), &tr);
-                evals += 1;
-                if c < step.0 && monotone(y) {
-                    step = (c, y);
-                }
-            }
-            if step.0 < cost {
-                (cost, x) = step;
-                h *= 2.0;
-            } else {
-                h *= 0.5;
-            }
-        }
+        let r = crate::solve::compass_search(
+            &mut |y| table.cost(make(y), &tr),
+            &|y| monotone(y),
+            (x, table.cost(make(x), &tr)),
+            6.0,
+            h,
+            INFLECTION_STEP_FLOOR,
+            20_000usize.saturating_sub(evals),
+        );
+        evals += r.evaluations;
+        let (mut cost, mut x, h) = (r.value, r.x, r.step);
         // The compass stalls where the optimum lies on the monotone boundary and the
         // boundary runs between its directions: walk along it.
         if h > 0.0 {

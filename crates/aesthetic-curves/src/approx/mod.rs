@@ -750,39 +750,20 @@ fn compass_search(
     start: (f64, f64),
     ts: &Samples,
     feasible: &dyn Fn(f64, f64) -> bool,
-    mut h: f64,
+    h: f64,
 ) -> ((f64, f64), f64, usize) {
     let mut buf = Vec::new();
-    let mut x = start;
-    let mut cost = prob.cost(x.0, x.1, ts, &mut buf);
-    let mut evals = 1;
-    while h > 1e-9 && evals < 2000 {
-        let mut best = (cost, x);
-        for (d0, d1) in [
-            (1.0, 0.0),
-            (-1.0, 0.0),
-            (0.0, 1.0),
-            (0.0, -1.0),
-            (1.0, 1.0),
-            (-1.0, -1.0),
-            (1.0, -1.0),
-            (-1.0, 1.0),
-        ] {
-            let y = (x.0 + d0 * h, x.1 + d1 * h);
-            let c = prob.cost(y.0, y.1, ts, &mut buf);
-            evals += 1;
-            if c < best.0 && feasible(y.0, y.1) {
-                best = (c, y);
-            }
-        }
-        if best.0 < cost {
-            (cost, x) = best;
-            h *= 2.0;
-        } else {
-            h *= 0.5;
-        }
-    }
-    (x, cost, evals)
+    let value = prob.cost(start.0, start.1, ts, &mut buf);
+    let r = crate::solve::compass_search(
+        &mut |y| prob.cost(y.0, y.1, ts, &mut buf),
+        &|y| feasible(y.0, y.1),
+        (start, value),
+        1.0,
+        h,
+        1e-9,
+        1999,
+    );
+    (r.x, r.value, r.evaluations + 1)
 }
 
 /// Parameters t of the error samples and the square roots of their weights (the weights sum
