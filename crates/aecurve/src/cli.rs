@@ -190,6 +190,22 @@ pub(crate) enum Cmd {
         #[command(subcommand)]
         what: BenchCmd,
     },
+    /// Check the curves of a font (.ttf, .otf) or an SVG drawing exactly: per segment,
+    /// curvature monotone or not, its extrema, inflections and largest curvature; per join,
+    /// the tangent break and curvature jump; the places most worth a look first.
+    Check {
+        /// The file.
+        file: PathBuf,
+        /// Only these glyphs or SVG element ids (repeatable).
+        #[arg(long = "select", alias = "glyphs")]
+        select: Vec<String>,
+        /// Print everything as JSON instead of the summary.
+        #[arg(long)]
+        json: bool,
+        /// How many findings the summary lists.
+        #[arg(long, default_value_t = 20)]
+        top: usize,
+    },
     /// Write the gallery of examples (HTML + SVG) to a folder.
     Demo {
         /// Output folder.

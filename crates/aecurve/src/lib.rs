@@ -6,6 +6,7 @@ pub mod bench;
 pub mod bench_targets;
 pub mod editor;
 pub mod export;
+pub mod outline_io;
 pub mod plot;
 pub mod protocol;
 

@@ -205,6 +205,12 @@ fn run() -> Result<()> {
             what: BenchCmd::Spline(args),
         } => bench_targets(aecurve::bench_targets::Group::Spline, &args),
         Cmd::Demo { out, quick } => demo(&out, quick)?,
+        Cmd::Check {
+            file,
+            select,
+            json,
+            top,
+        } => commands::check::check(&file, &select, json, top)?,
         Cmd::Editor {
             port,
             no_open,

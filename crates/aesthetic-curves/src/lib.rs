@@ -91,6 +91,9 @@
 //! - [`lcg`]: the logarithmic curvature graph and alpha estimation.
 //! - [`monotone`]: the exact curvature-monotonicity test (Bernstein form of dkappa/ds plus
 //!   subdivision) and the sampling test.
+//! - [`outline`]: the exact curvature check of existing outlines (fonts, SVG, DXF): per
+//!   segment (monotone, extrema, inflections, largest curvature) and per join (tangent
+//!   break, curvature jump), and the places most worth a look.
 //! - [`nurbs`]: rational B-splines, the exchange form of CAD systems.
 //! - [`pseudo_segment`]: one pseudo-elastic Hermite segment on the unit chord (its energy,
 //!   every local minimum of J = E L², the single-angle function).
@@ -127,6 +130,7 @@ pub mod lac_fit;
 pub mod lcg;
 pub mod monotone;
 pub mod nurbs;
+pub mod outline;
 pub mod pseudo_segment;
 pub mod pseudo_spline;
 pub mod pseudo_table;

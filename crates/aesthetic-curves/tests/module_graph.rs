@@ -120,7 +120,7 @@ const LAYERS: [(&str, &[&str]); 6] = [
         "curves",
         &["bernstein", "bezier", "bezpath", "lac", "bspline"],
     ),
-    ("measures", &["monotone", "lcg", "region"]),
+    ("measures", &["monotone", "lcg", "region", "outline"]),
     (
         "constructions",
         &[

@@ -2,6 +2,7 @@
 //! `main.rs`), and the output helpers they share.
 
 pub(crate) mod approx;
+pub(crate) mod check;
 pub(crate) mod demo;
 pub(crate) mod lac;
 pub(crate) mod lcg;

@@ -1,0 +1,162 @@
+//! `aecurve check FILE`: the exact curvature check of a font's glyphs or an SVG's paths
+//! (`aesthetic_curves::outline`), as a summary with the places most worth a look, or JSON.
+
+use aecurve::outline_io::{self, Outlines, ShapeCheck as Checked};
+use aesthetic_curves::outline::{ContourCheck, Finding};
+use anyhow::Result;
+use serde_json::{json, Value};
+use std::path::Path;
+
+pub(crate) fn check(file: &Path, select: &[String], json_out: bool, top: usize) -> Result<()> {
+    let t0 = std::time::Instant::now();
+    let outlines: Outlines = outline_io::read(file)?;
+    let read_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let shapes: Vec<_> = outlines
+        .shapes
+        .iter()
+        .filter(|s| select.is_empty() || select.iter().any(|n| n == &s.name))
+        .collect();
+    if !select.is_empty() {
+        for n in select {
+            anyhow::ensure!(
+                outlines.shapes.iter().any(|s| &s.name == n),
+                "{}: no glyph or element named {n:?}",
+                file.display()
+            );
+        }
+    }
+    let opts = outline_io::options_for(&outlines);
+    let bar = (shapes.len() > 2000 && !json_out).then(|| {
+        let b = indicatif::ProgressBar::new(shapes.len() as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("checking {bar:40} {pos}/{len} shapes")
+                .expect("template"),
+        );
+        b
+    });
+    let t1 = std::time::Instant::now();
+    let tick = || {
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    };
+    let checked: Vec<Checked> = outline_io::check_shapes(&shapes, &opts, &tick);
+    let check_ms = t1.elapsed().as_secs_f64() * 1e3;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let count = |f: &dyn Fn(&ContourCheck) -> usize| -> usize {
+        checked.iter().flat_map(|c| c.contours.iter()).map(f).sum()
+    };
+    let segments = count(&|c| c.segments.len());
+    let monotone = count(&|c| c.monotone_count());
+    let curved = count(&|c| c.segments.iter().filter(|s| s.degree > 1).count());
+    let joins = count(&|c| c.joins.len());
+    let g1 = count(&|c| c.joins.iter().filter(|j| j.g1).count());
+    let g2 = count(&|c| c.joins.iter().filter(|j| j.g2).count());
+    let near = count(&|c| c.joins.iter().filter(|j| j.near_break).count());
+    let inflections = count(&|c| c.segments.iter().map(|s| s.inflections.len()).sum());
+    let mut ranked: Vec<(&str, &Finding)> = checked
+        .iter()
+        .flat_map(|c| c.findings.iter().map(move |f| (c.name, f)))
+        .collect();
+    ranked.sort_by(|a, b| b.1.score.total_cmp(&a.1.score));
+    if json_out {
+        let shapes: Vec<Value> = checked.iter().map(shape_json).collect();
+        let v = json!({
+            "file": file.display().to_string(),
+            "kind": outlines.kind,
+            "shapes": shapes,
+            "unreadable": outlines.unreadable.iter().map(|(n, e)| json!({"name": n, "error": e})).collect::<Vec<_>>(),
+            "counts": {
+                "shapes": checked.len(), "segments": segments, "curved_segments": curved,
+                "monotone_segments": monotone, "inflections": inflections, "joins": joins,
+                "g1_joins": g1, "g2_joins": g2, "near_breaks": near,
+            },
+            "findings": ranked.iter().map(|(n, f)| finding_json(n, f)).collect::<Vec<_>>(),
+            "milliseconds": {"read": read_ms, "check": check_ms},
+        });
+        println!("{v}");
+        return Ok(());
+    }
+    println!(
+        "{} ({}): {} {}, {segments} segments ({curved} curved), {joins} joins",
+        file.display(),
+        outlines.kind,
+        checked.len(),
+        if outlines.kind == "font" {
+            "glyphs"
+        } else {
+            "paths"
+        }
+    );
+    println!(
+        "  curvature monotone: {monotone} of {segments} segments ({} not, or flagged); {inflections} inflection(s) inside segments",
+        segments - monotone
+    );
+    println!(
+        "  joins: {g1} G1 (of which {g2} G2), {near} near-breaks (above G1{} and under 3°: probably meant smooth)",
+        if opts.grid > 0.0 { " and the integer grid's rounding" } else { "" }
+    );
+    if !outlines.unreadable.is_empty() {
+        println!("  unreadable: {}", outlines.unreadable.len());
+        for (n, e) in outlines.unreadable.iter().take(5) {
+            println!("    {n}: {e}");
+        }
+    }
+    println!("  read in {read_ms:.1} ms, checked in {check_ms:.1} ms");
+    if !ranked.is_empty() {
+        println!(
+            "most worth a look ({} of {}):",
+            top.min(ranked.len()),
+            ranked.len()
+        );
+        for (n, f) in ranked.iter().take(top) {
+            println!(
+                "  {n}, contour {}, segment {} at ({:.1}, {:.1}): {}",
+                f.contour, f.segment, f.point.x, f.point.y, f.message
+            );
+        }
+    }
+    Ok(())
+}
+
+fn finding_json(name: &str, f: &Finding) -> Value {
+    json!({
+        "shape": name, "contour": f.contour, "segment": f.segment, "kind": f.kind,
+        "point": [f.point.x, f.point.y], "message": f.message,
+    })
+}
+
+fn shape_json(c: &Checked) -> Value {
+    let pt = |p: aesthetic_curves::Point| json!([p.x, p.y]);
+    json!({
+        "name": c.name,
+        "contours": c.contours.iter().map(|k| json!({
+            "closed": k.closed,
+            "segments": k.segments.iter().map(|s| {
+                let mut o = json!({
+                    "degree": s.degree,
+                    "rational": s.rational,
+                    "extrema": s.extrema.iter().map(|(t, p)| json!({"t": t, "point": pt(*p)})).collect::<Vec<_>>(),
+                    "inflections": s.inflections.iter().map(|(t, p)| json!({"t": t, "point": pt(*p)})).collect::<Vec<_>>(),
+                    "max_abs_curvature": s.max_abs_curvature,
+                });
+                if let Some(m) = s.monotone { o["monotone"] = json!(m); }
+                if let Some(t) = s.trend { o["trend"] = json!(t.as_str()); }
+                if let Some((a, b)) = s.end_curvatures { o["end_curvatures"] = json!([a, b]); }
+                if let Some(f) = &s.flag { o["flag"] = json!(f); }
+                o
+            }).collect::<Vec<_>>(),
+            "joins": k.joins.iter().map(|j| {
+                let mut o = json!({
+                    "after_segment": j.after_segment, "point": pt(j.point),
+                    "angle_break_degrees": j.angle_break.to_degrees(),
+                    "g1": j.g1, "g2": j.g2, "near_break": j.near_break,
+                });
+                if let Some(x) = j.curvature_jump { o["curvature_jump"] = json!(x); }
+                o
+            }).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+    })
+}

@@ -1,0 +1,166 @@
+//! `aecurve check` on real and hand-made files: the font's own glyph count, verdicts that
+//! dense sampling never contradicts, known shapes' known answers, bad input refused clearly.
+
+use aecurve::outline_io::{check_shapes, options_for, read, read_font, read_svg};
+use aesthetic_curves::outline::check_segment;
+use aesthetic_curves::PlanarCurve;
+use std::path::Path;
+
+const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+
+/// numGlyphs of the font's `maxp` table, read from the bytes (independent of skrifa).
+fn maxp_glyphs(font: &[u8]) -> usize {
+    let be16 = |o: usize| u16::from_be_bytes([font[o], font[o + 1]]) as usize;
+    let be32 =
+        |o: usize| u32::from_be_bytes([font[o], font[o + 1], font[o + 2], font[o + 3]]) as usize;
+    let tables = be16(4);
+    for i in 0..tables {
+        let rec = 12 + 16 * i;
+        if &font[rec..rec + 4] == b"maxp" {
+            return be16(be32(rec + 8) + 4);
+        }
+    }
+    panic!("no maxp table");
+}
+
+#[test]
+fn every_glyph_of_a_real_font_is_read_and_checked() {
+    let o = read_font(FONT).unwrap();
+    assert_eq!(o.shapes.len() + o.unreadable.len(), maxp_glyphs(FONT));
+    assert!(
+        o.unreadable.is_empty(),
+        "{:?}",
+        &o.unreadable[..o.unreadable.len().min(3)]
+    );
+    let shapes: Vec<_> = o.shapes.iter().collect();
+    let checked = check_shapes(&shapes, &options_for(&o), &|| {});
+    let segments: usize = checked
+        .iter()
+        .flat_map(|c| &c.contours)
+        .map(|c| c.segments.len())
+        .sum();
+    assert!(segments > 100_000, "{segments}");
+    // Every curved segment got a verdict or a flag; nothing is NaN.
+    for c in checked.iter().flat_map(|c| &c.contours) {
+        for s in &c.segments {
+            assert!(s.monotone.is_some() || s.flag.is_some());
+            assert!(s.max_abs_curvature.is_finite());
+        }
+        for j in &c.joins {
+            assert!(j.angle_break.is_finite() && j.angle_break >= 0.0);
+        }
+    }
+    // The letter o: two closed contours, smooth all round.
+    let o_glyph = checked.iter().find(|c| c.name == "o").unwrap();
+    assert_eq!(o_glyph.contours.len(), 2);
+    for c in &o_glyph.contours {
+        assert!(c.closed && c.joins.iter().all(|j| j.g1), "{:?}", c.joins);
+    }
+}
+
+#[test]
+fn monotone_verdicts_on_the_font_never_contradict_dense_sampling() {
+    // Every 300th curved segment of the font: where the exact test says monotone, 20,000
+    // samples of the curvature never turn back (beyond rounding).
+    let o = read_font(FONT).unwrap();
+    let curved: Vec<_> = o
+        .shapes
+        .iter()
+        .flat_map(|s| &s.contours)
+        .flat_map(|c| &c.segments)
+        .filter(|s| s.degree() > 1)
+        .collect();
+    let mut checked = 0;
+    for seg in curved.iter().step_by(300) {
+        if check_segment(seg).monotone != Some(true) {
+            continue;
+        }
+        checked += 1;
+        let ks: Vec<f64> = (0..20_000)
+            .map(|i| seg.kappa(i as f64 / 19_999.0))
+            .collect();
+        let scale = ks.iter().fold(0.0f64, |m, k| m.max(k.abs()));
+        let up = ks.windows(2).all(|w| w[1] >= w[0] - 1e-9 * scale);
+        let down = ks.windows(2).all(|w| w[1] <= w[0] + 1e-9 * scale);
+        assert!(up || down, "{:?}", seg.points());
+    }
+    assert!(checked > 50, "{checked}");
+}
+
+#[test]
+fn svg_shapes_give_their_known_answers() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/check-shapes.svg");
+    let o = read(&path).unwrap();
+    let names: Vec<&str> = o.shapes.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["circle", "kinked", "s-curve"]);
+    let shapes: Vec<_> = o.shapes.iter().collect();
+    let checked = check_shapes(&shapes, &options_for(&o), &|| {});
+    // The circle: moved by its group, radius 20 everywhere (curvature 1/20 within 1 %),
+    // G1 and G2 at every join.
+    let circle = &checked[0].contours[0];
+    assert!(circle.closed);
+    for seg in &o.shapes[0].contours[0].segments {
+        for i in 0..=50 {
+            let p = seg.eval(i as f64 / 50.0);
+            assert!(
+                ((p.x - 40.0).hypot(p.y - 60.0) - 20.0).abs() < 0.02,
+                "{p:?}"
+            );
+        }
+    }
+    for s in &circle.segments {
+        assert!(
+            (s.max_abs_curvature - 0.05).abs() < 5e-4,
+            "{}",
+            s.max_abs_curvature
+        );
+    }
+    assert!(
+        circle.joins.iter().all(|j| j.g1 && j.g2),
+        "{:?}",
+        circle.joins
+    );
+    // The kink: a 1° near-break, the first finding.
+    let kinked = &checked[1];
+    assert!((kinked.contours[0].joins[0].angle_break.to_degrees() - 1.0).abs() < 1e-3);
+    assert_eq!(kinked.findings[0].kind, "near-break");
+    // The S: one inflection, in the middle.
+    let s = &checked[2].contours[0].segments[0];
+    assert_eq!(s.inflections.len(), 1);
+    assert!((s.inflections[0].0 - 0.5).abs() < 1e-9);
+}
+
+#[test]
+fn bad_files_get_clear_errors() {
+    let dir = std::env::temp_dir().join(format!("aecurve-check-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let err = |name: &str, bytes: &[u8]| {
+        let p = dir.join(name);
+        std::fs::write(&p, bytes).unwrap();
+        format!("{:#}", read(&p).unwrap_err())
+    };
+    assert!(err("cut.ttf", &FONT[..1000]).contains("not a readable font"));
+    // Cut in the middle of its glyphs: either refused, or every glyph accounted for (read,
+    // or listed as unreadable with its name).
+    let half = dir.join("half.ttf");
+    std::fs::write(&half, &FONT[..FONT.len() / 2]).unwrap();
+    if let Ok(o) = read(&half) {
+        assert_eq!(o.shapes.len() + o.unreadable.len(), maxp_glyphs(FONT));
+    }
+    assert!(err("empty.svg", br#"<svg xmlns="http://www.w3.org/2000/svg"/>"#).contains("no path"));
+    assert!(err("junk.svg", b"not xml at all").contains("not a readable SVG"));
+    assert!(err("notes.txt", b"x").contains("not a file `check` reads"));
+    // Too big: refused before it is read (a sparse file).
+    let big = dir.join("big.svg");
+    let f = std::fs::File::create(&big).unwrap();
+    f.set_len(aecurve::outline_io::MAX_FILE_BYTES + 1).unwrap();
+    assert!(format!("{:#}", read(&big).unwrap_err()).contains("over the"));
+    // A zero-length segment and coincident handles are flagged, not errors.
+    let o = read_svg(br#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 0 0 C 0 0 10 10 20 10" stroke="black" fill="none"/></svg>"#).unwrap();
+    let shapes: Vec<_> = o.shapes.iter().collect();
+    let checked = check_shapes(&shapes, &options_for(&o), &|| {});
+    let segs = &checked[0].contours[0].segments;
+    assert!(segs.iter().all(|s| s.max_abs_curvature.is_finite()));
+    assert!(segs.iter().any(|s| s.flag.is_some()), "{segs:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}

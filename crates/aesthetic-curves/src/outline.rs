@@ -1,0 +1,462 @@
+//! The exact curvature check of outlines people already have (fonts, SVG, DXF): per segment
+//! and per join, and the places most worth a look.
+//!
+//! An outline is contours of polynomial or rational Bézier segments (lines, TrueType
+//! quadratics, CFF and SVG cubics, DXF rational splines), each segment starting where the
+//! previous one ends. For every segment:
+//! - whether its curvature is monotone, by the exact test of [`crate::monotone`], and where
+//!   it has curvature extrema (t and point);
+//! - its inflections: the sign changes of `det(H, H', H'')` (H = (wx, wy, w), the
+//!   homogeneous curve; for a polynomial curve `x'y'' - y'x''`), isolated exactly on its
+//!   Bernstein form;
+//! - its largest |curvature|, exact: |κ| is largest at an end or at an interior extremum.
+//!
+//! For every join (between consecutive segments, and last to first on a closed contour): the
+//! tangent angle break (0: G1), and at G1 joins (break at most [`OutlineOptions::g1_angle`])
+//! the relative curvature jump `|κ₁ - κ₂| / max(|κ₁|, |κ₂|)` (G2 when below
+//! [`OutlineOptions::g2_jump`]). A break above zero but under
+//! [`OutlineOptions::near_break`] (a few degrees) is almost always unintended: it is
+//! flagged.
+//!
+//! A segment that does not move (all control points equal) or whose tangent vanishes at an
+//! end (coincident handles) is flagged, never an error or a NaN: its curvature at that end is
+//! the limit from inside (as in [`crate::curve`]), or absent for a point.
+
+use crate::bernstein::{sign_change_roots, Bernstein};
+use crate::bezier::{PlanarCurve, RationalBezier};
+use crate::monotone::{CurvatureMonotone, Trend};
+use kurbo::{Point, Vec2};
+
+/// Thresholds of the join checks.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OutlineOptions {
+    /// A join whose tangent directions differ by at most this (radians) counts as G1.
+    pub g1_angle: f64,
+    /// A G1 join whose relative curvature jump is below this counts as G2.
+    pub g2_jump: f64,
+    /// Breaks above `g1_angle` and below this (radians) are flagged as probably unintended.
+    pub near_break: f64,
+    /// The coordinate grid of the file (1 for a font's integer units, 0 for exact
+    /// coordinates): a join also counts as G1 when its break is what rounding the handles
+    /// to this grid can make, `√2/2 grid (1/|h₁| + 1/|h₂|)` for handle legs h₁, h₂.
+    pub grid: f64,
+}
+
+impl Default for OutlineOptions {
+    /// G1 within 0.05°, G2 within 5 %, near-breaks up to 3°, exact coordinates.
+    fn default() -> Self {
+        OutlineOptions {
+            g1_angle: 0.05f64.to_radians(),
+            g2_jump: 0.05,
+            near_break: 3f64.to_radians(),
+            grid: 0.0,
+        }
+    }
+}
+
+/// What the check found on one segment.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SegmentCheck {
+    /// Polynomial degree (1: a line).
+    pub degree: usize,
+    /// Whether any weight differs from the others (a truly rational segment).
+    pub rational: bool,
+    /// The exact verdict: curvature monotone along the segment (None: the segment does not
+    /// move, or the test could not run; see `flag`).
+    pub monotone: Option<bool>,
+    /// Increasing, decreasing or constant, when monotone.
+    pub trend: Option<Trend>,
+    /// Interior curvature extrema: parameter and point.
+    pub extrema: Vec<(f64, Point)>,
+    /// Interior inflections: parameter and point.
+    pub inflections: Vec<(f64, Point)>,
+    /// Signed curvature at the start and at the end (None for a segment that does not move).
+    pub end_curvatures: Option<(f64, f64)>,
+    /// Largest |curvature| on the segment.
+    pub max_abs_curvature: f64,
+    /// Why the segment could not be checked fully (a point, coincident handles), if so.
+    pub flag: Option<String>,
+}
+
+/// What the check found at one join.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JoinCheck {
+    /// The segment before the join (the one after is the next, cyclically).
+    pub after_segment: usize,
+    /// Where.
+    pub point: Point,
+    /// Angle between the end tangent before and the start tangent after (radians, 0 to π).
+    pub angle_break: f64,
+    /// At G1 joins: `|κ₁ - κ₂| / max(|κ₁|, |κ₂|)` (0 when both are 0).
+    pub curvature_jump: Option<f64>,
+    /// G1 (break at most `g1_angle`).
+    pub g1: bool,
+    /// G2 (G1 and jump below `g2_jump`).
+    pub g2: bool,
+    /// Break above `g1_angle` and below `near_break`: probably unintended.
+    pub near_break: bool,
+}
+
+/// A place worth a look, for the ranked list.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finding {
+    /// Contour index.
+    pub contour: usize,
+    /// What: "near-break", "not-monotone", "curvature-jump", "degenerate".
+    pub kind: &'static str,
+    /// Segment index (for a join, the segment before it).
+    pub segment: usize,
+    /// Where.
+    pub point: Point,
+    /// How bad, for the ranking (a break in degrees, extrema count, a relative jump).
+    pub score: f64,
+    /// For a person.
+    pub message: String,
+}
+
+/// The check of one contour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContourCheck {
+    /// Per segment, in order.
+    pub segments: Vec<SegmentCheck>,
+    /// Per join, in order (n - 1 for an open contour, n for a closed one).
+    pub joins: Vec<JoinCheck>,
+    /// Whether the last segment joins the first.
+    pub closed: bool,
+}
+
+impl ContourCheck {
+    /// Segments whose curvature is monotone.
+    pub fn monotone_count(&self) -> usize {
+        self.segments
+            .iter()
+            .filter(|s| s.monotone == Some(true))
+            .count()
+    }
+}
+
+/// The parameter values in (0, 1) where the curvature of `c` changes sign.
+pub fn inflections(c: &RationalBezier) -> Vec<f64> {
+    if c.degree() < 2 {
+        return Vec::new();
+    }
+    let (x, y, w) = c.components();
+    let (x1, y1, w1) = (x.deriv(), y.deriv(), w.deriv());
+    let (x2, y2, w2) = (x1.deriv(), y1.deriv(), w1.deriv());
+    // det [H, H', H''] by its first column.
+    let minor = |a1: &Bernstein, a2: &Bernstein, b1: &Bernstein, b2: &Bernstein| {
+        a1.mul(b2).sub(&b1.mul(a2))
+    };
+    let det = x
+        .mul(&minor(&y1, &y2, &w1, &w2))
+        .sub(&y.mul(&minor(&x1, &x2, &w1, &w2)))
+        .add(&w.mul(&minor(&x1, &x2, &y1, &y2)));
+    sign_change_roots(&det)
+}
+
+/// Unit tangent and curvature at `t` (0 or 1), from just inside where the tangent vanishes;
+/// None for a segment that does not move.
+fn end_state(c: &RationalBezier, t: f64) -> Option<(Vec2, f64)> {
+    for dt in [0.0, 1e-7, 1e-4] {
+        let s = if t < 0.5 { t + dt } else { t - dt };
+        let d = c.derivs(s);
+        if d.is_regular() {
+            let k = d.kappa();
+            return Some((d.d1 / d.d1.hypot(), if k.is_finite() { k } else { 0.0 }));
+        }
+    }
+    None
+}
+
+/// Check one segment.
+pub fn check_segment(c: &RationalBezier) -> SegmentCheck {
+    let w = c.weights();
+    let rational = w.iter().any(|v| (v - w[0]).abs() > 1e-12 * w[0].abs());
+    let mut out = SegmentCheck {
+        degree: c.degree(),
+        rational,
+        monotone: None,
+        trend: None,
+        extrema: Vec::new(),
+        inflections: Vec::new(),
+        end_curvatures: None,
+        max_abs_curvature: 0.0,
+        flag: None,
+    };
+    let (Some((_, k0)), Some((_, k1))) = (end_state(c, 0.0), end_state(c, 1.0)) else {
+        out.flag = Some("the segment is a point (all control points coincide)".into());
+        return out;
+    };
+    out.end_curvatures = Some((k0, k1));
+    out.max_abs_curvature = k0.abs().max(k1.abs());
+    let stationary = !c.derivs(0.0).is_regular() || !c.derivs(1.0).is_regular();
+    if c.degree() == 1 {
+        out.monotone = Some(true);
+        out.trend = Some(Trend::Constant);
+        return out;
+    }
+    out.inflections = inflections(c).into_iter().map(|t| (t, c.eval(t))).collect();
+    match c.curvature_monotone() {
+        Ok(r) => {
+            out.monotone = Some(r.monotone);
+            out.trend = r.trend;
+            for &t in &r.extrema {
+                let k = c.kappa(t);
+                if k.is_finite() {
+                    out.max_abs_curvature = out.max_abs_curvature.max(k.abs());
+                }
+                out.extrema.push((t, c.eval(t)));
+            }
+        }
+        Err(e) => {
+            out.flag = Some(e.to_string());
+        }
+    }
+    if stationary && out.flag.is_none() {
+        out.flag = Some(
+            "a handle coincides with its end point: the tangent there is the limit from inside"
+                .into(),
+        );
+    }
+    out
+}
+
+/// Check a contour of consecutive segments.
+pub fn check_contour(
+    segments: &[RationalBezier],
+    closed: bool,
+    opts: &OutlineOptions,
+) -> ContourCheck {
+    let checks: Vec<SegmentCheck> = segments.iter().map(check_segment).collect();
+    let n = segments.len();
+    let join_count = if closed { n } else { n.saturating_sub(1) };
+    let mut joins = Vec::with_capacity(join_count);
+    for i in 0..join_count {
+        let (a, b) = (&segments[i], &segments[(i + 1) % n]);
+        let (Some((ta, ka)), Some((tb, kb))) = (end_state(a, 1.0), end_state(b, 0.0)) else {
+            continue; // a point segment: flagged on the segment
+        };
+        let angle = ta.cross(tb).atan2(ta.dot(tb)).abs();
+        // The handle legs at the join: what rounding to the grid can turn them by.
+        let leg = |c: &RationalBezier, end: bool| {
+            let p = c.points();
+            let n = p.len();
+            let l = if end {
+                p[n - 1] - p[n - 2]
+            } else {
+                p[1] - p[0]
+            };
+            l.hypot()
+        };
+        let slack = std::f64::consts::FRAC_1_SQRT_2
+            * opts.grid
+            * (1.0 / leg(a, true) + 1.0 / leg(b, false));
+        let g1 = angle <= opts.g1_angle + if slack.is_finite() { slack } else { 0.0 };
+        let jump = g1.then(|| {
+            let m = ka.abs().max(kb.abs());
+            if m > 0.0 {
+                (ka - kb).abs() / m
+            } else {
+                0.0
+            }
+        });
+        joins.push(JoinCheck {
+            after_segment: i,
+            point: a.points()[a.points().len() - 1],
+            angle_break: angle,
+            curvature_jump: jump,
+            g1,
+            g2: jump.is_some_and(|j| j < opts.g2_jump),
+            near_break: !g1 && angle < opts.near_break,
+        });
+    }
+    ContourCheck {
+        segments: checks,
+        joins,
+        closed,
+    }
+}
+
+/// The places of `contours` most worth a look, worst first: near-breaks (by angle), then
+/// segments whose curvature is not monotone (by their number of extrema), then curvature
+/// jumps at G1 joins (by size), then degenerate segments.
+pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding> {
+    let mut out = Vec::new();
+    for (ci, c) in contours.iter().enumerate() {
+        for j in &c.joins {
+            if j.near_break {
+                out.push(Finding {
+                    contour: ci,
+                    kind: "near-break",
+                    segment: j.after_segment,
+                    point: j.point,
+                    score: 3.0 + j.angle_break.to_degrees(),
+                    message: format!(
+                        "tangent break of {:.3}° (under {:.1}°: probably meant smooth)",
+                        j.angle_break.to_degrees(),
+                        opts.near_break.to_degrees()
+                    ),
+                });
+            }
+            if let Some(jump) = j.curvature_jump.filter(|v| *v >= opts.g2_jump) {
+                out.push(Finding {
+                    contour: ci,
+                    kind: "curvature-jump",
+                    segment: j.after_segment,
+                    point: j.point,
+                    score: jump.min(1.0),
+                    message: format!("smooth join, curvature jumps by {:.0} %", 100.0 * jump),
+                });
+            }
+        }
+        for (si, s) in c.segments.iter().enumerate() {
+            if s.monotone == Some(false) {
+                let at = s.extrema.first().map(|e| e.1).unwrap_or(Point::ORIGIN);
+                out.push(Finding {
+                    contour: ci,
+                    kind: "not-monotone",
+                    segment: si,
+                    point: at,
+                    score: 1.0 + s.extrema.len() as f64,
+                    message: format!(
+                        "curvature not monotone: {} extrem{}",
+                        s.extrema.len(),
+                        if s.extrema.len() == 1 { "um" } else { "a" }
+                    ),
+                });
+            }
+            if let Some(f) = &s.flag {
+                out.push(Finding {
+                    contour: ci,
+                    kind: "degenerate",
+                    segment: si,
+                    point: Point::ORIGIN,
+                    score: 0.5,
+                    message: f.clone(),
+                });
+            }
+        }
+    }
+    out.sort_by(|a, b| b.score.total_cmp(&a.score));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Bezier;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+    fn cubic(a: [f64; 8]) -> RationalBezier {
+        Bezier::new(vec![
+            p(a[0], a[1]),
+            p(a[2], a[3]),
+            p(a[4], a[5]),
+            p(a[6], a[7]),
+        ])
+        .unwrap()
+        .to_rational()
+    }
+
+    #[test]
+    fn a_circle_of_four_cubics_is_g2_with_near_constant_curvature() {
+        // The usual four-cubic circle (handle 0.5523 of the radius): curvature within 3e-4 of
+        // constant, every join G1 and G2.
+        let k = 0.552_284_749_8;
+        let segs = [
+            cubic([1.0, 0.0, 1.0, k, k, 1.0, 0.0, 1.0]),
+            cubic([0.0, 1.0, -k, 1.0, -1.0, k, -1.0, 0.0]),
+            cubic([-1.0, 0.0, -1.0, -k, -k, -1.0, 0.0, -1.0]),
+            cubic([0.0, -1.0, k, -1.0, 1.0, -k, 1.0, 0.0]),
+        ];
+        let c = check_contour(&segs, true, &OutlineOptions::default());
+        assert_eq!(c.joins.len(), 4);
+        for j in &c.joins {
+            assert!(j.g1 && j.g2 && j.angle_break < 1e-12, "{j:?}");
+        }
+        for (s, seg) in c.segments.iter().zip(&segs) {
+            assert!(s.inflections.is_empty());
+            // The exact largest |κ| bounds the sampled one, within 1 % of 1.
+            let sampled = (0..=1000)
+                .map(|i| seg.kappa(i as f64 / 1000.0).abs())
+                .fold(0.0, f64::max);
+            assert!(s.max_abs_curvature >= sampled - 1e-12);
+            assert!(
+                s.max_abs_curvature - sampled < 1e-6,
+                "{} {sampled}",
+                s.max_abs_curvature
+            );
+            assert!((s.max_abs_curvature - 1.0).abs() < 1e-2);
+            for i in 0..=100 {
+                let r = seg.eval(i as f64 / 100.0).to_vec2().hypot();
+                assert!((r - 1.0).abs() < 3e-4, "{r}");
+            }
+        }
+        assert!(findings(&[c], &OutlineOptions::default())
+            .iter()
+            .all(|f| f.kind == "not-monotone"));
+    }
+
+    #[test]
+    fn inflections_breaks_and_degenerate_segments_are_found() {
+        // An S-curve: one inflection at t = 1/2 by symmetry.
+        let s = cubic([0.0, 0.0, 1.0, 1.0, 2.0, -1.0, 3.0, 0.0]);
+        let c = check_segment(&s);
+        assert_eq!(c.inflections.len(), 1);
+        assert!((c.inflections[0].0 - 0.5).abs() < 1e-12);
+        // Two lines meeting at 1°: a near-break, found first.
+        let l1 = Bezier::new(vec![p(0.0, 0.0), p(1.0, 0.0)])
+            .unwrap()
+            .to_rational();
+        let a = 1f64.to_radians();
+        let l2 = Bezier::new(vec![p(1.0, 0.0), p(1.0 + a.cos(), a.sin())])
+            .unwrap()
+            .to_rational();
+        let opts = OutlineOptions::default();
+        let c = check_contour(&[l1.clone(), l2], false, &opts);
+        assert!(c.joins[0].near_break && !c.joins[0].g1);
+        assert!((c.joins[0].angle_break.to_degrees() - 1.0).abs() < 1e-9);
+        let f = findings(&[c], &opts);
+        assert_eq!(f[0].kind, "near-break");
+        // A point segment and a cubic with a coincident handle: flagged, no NaN.
+        let point = Bezier::new(vec![p(1.0, 1.0), p(1.0, 1.0), p(1.0, 1.0)])
+            .unwrap()
+            .to_rational();
+        let c = check_segment(&point);
+        assert!(c.flag.is_some() && c.monotone.is_none() && c.end_curvatures.is_none());
+        let hooked = cubic([0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 1.0]);
+        let c = check_segment(&hooked);
+        assert!(c.flag.is_some());
+        let (k0, k1) = c.end_curvatures.unwrap();
+        assert!(k0.is_finite() && k1.is_finite() && c.max_abs_curvature.is_finite());
+        let c = check_contour(&[l1, point], false, &opts);
+        assert!(c.joins.is_empty());
+    }
+
+    #[test]
+    fn verdicts_never_contradict_dense_sampling() {
+        // Random cubics: a "monotone" verdict is never contradicted by 20,000 samples of κ.
+        let mut rng = crate::samples::SplitMix64::new(19);
+        for _ in 0..200 {
+            let mut v = [0.0; 8];
+            for x in v.iter_mut() {
+                *x = rng.next_f64() * 10.0;
+            }
+            let c = cubic(v);
+            let s = check_segment(&c);
+            if s.monotone != Some(true) {
+                continue;
+            }
+            let ks: Vec<f64> = (0..20_000).map(|i| c.kappa(i as f64 / 19_999.0)).collect();
+            let up = ks
+                .windows(2)
+                .all(|w| w[1] >= w[0] - 1e-9 * w[0].abs().max(1.0));
+            let down = ks
+                .windows(2)
+                .all(|w| w[1] <= w[0] + 1e-9 * w[0].abs().max(1.0));
+            assert!(up || down, "{v:?}");
+        }
+    }
+}
