@@ -1,19 +1,27 @@
 #!/usr/bin/env python3
 """`aecurve check` on files made by other tools (CI step; needs fonts-texgyre and
-adwaita-icon-theme from Debian, fontTools from PyPI).
+adwaita-icon-theme from Debian, fontTools and ezdxf from PyPI).
 
 - OpenType/CFF fonts (TeX Gyre): the glyphs read (plus those listed unreadable) are the
   font's own glyph order as fontTools reads it, names included; every segment has a verdict
   or a flag; the JSON has no NaN or infinity.
 - SVG icons (Adwaita's scalable set): every file is read and checked, or refused with the
   clear "no path" error (icons that hold only images or text); the JSON is clean.
+- A DXF written by ezdxf with every entity type `check` reads (LINE, ARC, CIRCLE, LWPOLYLINE
+  with bulges, a rational SPLINE, and a fit-point SPLINE it lists as unreadable): the
+  curvature of every arc is 1/radius.
 
 Exits non-zero on the first failure, printing what failed.
 """
 import glob
 import json
+import math
+import os
 import subprocess
 import sys
+import tempfile
+
+import ezdxf
 
 from fontTools.ttLib import TTFont
 
@@ -79,4 +87,41 @@ for f in icons:
         print(f"FAIL {f}: {err.strip()}")
         failures += 1
 print(f"ok   {read} Adwaita icons checked, {refused} refused as pathless, of {len(icons)}")
+
+dxf_path = os.path.join(tempfile.mkdtemp(), "all.dxf")
+doc = ezdxf.new("R2010")
+msp = doc.modelspace()
+msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "line"})
+msp.add_arc((20, 0), 5, 0, 120, dxfattribs={"layer": "r5"})
+msp.add_circle((40, 0), 4, dxfattribs={"layer": "r4"})
+msp.add_lwpolyline(
+    [(50, 0, 0, 0, 0), (60, 0, 0, 0, 1), (60, 4, 0, 0, 0), (50, 4, 0, 0, 1)],
+    format="xyseb", close=True, dxfattribs={"layer": "slot"},
+)
+msp.add_rational_spline(
+    [(73, 0), (73, 3), (70, 3)], [1, math.sqrt(0.5), 1], degree=2, knots=[0, 0, 0, 1, 1, 1],
+    dxfattribs={"layer": "r3"},
+)
+msp.add_spline(fit_points=[(80, 0), (82, 1), (84, 0), (86, 1)], dxfattribs={"layer": "fit"})
+doc.saveas(dxf_path)
+code, out, err = check(dxf_path)
+if code != 0:
+    print(f"FAIL ezdxf drawing: {err.strip()}")
+    failures += 1
+else:
+    v = strict(out)
+    radius = {"r5": 5, "r4": 4, "r3": 3, "slot": 2}
+    bad = []
+    for s in v["shapes"]:
+        layer = s["name"].split(" #")[0]
+        for g in s["contours"][0]["segments"]:
+            if g["degree"] > 1 and abs(g["max_abs_curvature"] - 1 / radius[layer]) > 1e-9:
+                bad.append((s["name"], g["max_abs_curvature"]))
+    layers = sorted(s["name"].split(" #")[0] for s in v["shapes"])
+    unread = [u["name"].split(" #")[0] for u in v["unreadable"]]
+    if bad or layers != ["line", "r3", "r4", "r5", "slot"] or unread != ["fit"]:
+        print(f"FAIL ezdxf drawing: {bad} {layers} {unread}")
+        failures += 1
+    else:
+        print("ok   ezdxf drawing: every entity type read, every arc's curvature 1/radius")
 sys.exit(1 if failures else 0)

@@ -1,7 +1,11 @@
-//! Outline readers for `aecurve check`: fonts (TrueType and OpenType/CFF, with `skrifa`) and
-//! SVG (paths, basic shapes and transforms resolved, with `usvg`). Each file becomes named
-//! shapes (glyph names, SVG element ids) of contours of Bézier segments, in the file's own
-//! coordinates (font units; SVG user units with y down, as the file has them).
+//! Outline readers for `aecurve check`: fonts (TrueType and OpenType/CFF, with `skrifa`),
+//! SVG (paths, basic shapes and transforms resolved, with `usvg`) and DXF (LINE, ARC, CIRCLE,
+//! LWPOLYLINE with bulges, SPLINE with weights, with the `dxf` crate). Each file becomes
+//! named shapes (glyph names, SVG element ids, DXF layer and handle) of contours of Bézier
+//! segments, in the file's own coordinates (font units; SVG user units with y down, as the
+//! file has them; DXF drawing units). Arcs and bulges become rational quadratics of at most
+//! 90° each and splines their Bézier spans: exactly, no resampling. A DXF entity is one
+//! shape: joins between separate entities are not checked.
 //!
 //! Bad input is a clear error, never a panic: a file over [`MAX_FILE_BYTES`] is refused
 //! before it is read, a truncated or foreign file says what it is not, a glyph that cannot be
@@ -128,7 +132,7 @@ impl OutlinePen for Collector {
     }
 }
 
-/// Read a font or an SVG file by its extension (`.ttf`, `.otf`, `.svg`).
+/// Read a font, an SVG or a DXF file by its extension (`.ttf`, `.otf`, `.svg`, `.dxf`).
 pub fn read(path: &Path) -> Result<Outlines> {
     let len = std::fs::metadata(path)
         .with_context(|| format!("reading {}", path.display()))?
@@ -149,8 +153,9 @@ pub fn read(path: &Path) -> Result<Outlines> {
     match ext.as_str() {
         "ttf" | "otf" => read_font(&data).with_context(|| format!("{}", path.display())),
         "svg" => read_svg(&data).with_context(|| format!("{}", path.display())),
+        "dxf" => read_dxf(&data).with_context(|| format!("{}", path.display())),
         _ => bail!(
-            "{}: not a file `check` reads (.ttf, .otf, .svg)",
+            "{}: not a file `check` reads (.ttf, .otf, .svg, .dxf)",
             path.display()
         ),
     }
@@ -244,6 +249,164 @@ pub fn read_svg(data: &[u8]) -> Result<Outlines> {
         kind: "svg",
         shapes,
         unreadable: Vec::new(),
+    })
+}
+
+/// A circular arc about `c` of radius `r` from angle `a0` (radians) turning by `sweep`
+/// (signed: positive counter-clockwise), as rational quadratics of at most 90° each.
+pub fn arc(c: Point, r: f64, a0: f64, sweep: f64) -> Vec<RationalBezier> {
+    let n = (sweep.abs() / std::f64::consts::FRAC_PI_2).ceil().max(1.0) as usize;
+    let step = sweep / n as f64;
+    let at = |a: f64| Point::new(c.x + r * a.cos(), c.y + r * a.sin());
+    (0..n)
+        .filter_map(|i| {
+            let (s, e) = (a0 + step * i as f64, a0 + step * (i + 1) as f64);
+            let half = 0.5 * step;
+            let m = 0.5 * (s + e);
+            let mid = Point::new(
+                c.x + r / half.cos() * m.cos(),
+                c.y + r / half.cos() * m.sin(),
+            );
+            RationalBezier::new(vec![at(s), mid, at(e)], vec![1.0, half.cos().abs(), 1.0]).ok()
+        })
+        .collect()
+}
+
+/// The segment of a polyline from `p0` to `p1` with DXF bulge `b` (tan of a quarter of the
+/// included angle, positive counter-clockwise): a line, or an arc.
+fn bulge_segment(p0: Point, p1: Point, b: f64) -> Vec<RationalBezier> {
+    let chord = p1 - p0;
+    let c = chord.hypot();
+    if b == 0.0 || !b.is_finite() || c == 0.0 {
+        return RationalBezier::new(vec![p0, p1], vec![1.0, 1.0])
+            .into_iter()
+            .collect();
+    }
+    let theta = 4.0 * b.atan();
+    let m = p0.midpoint(p1);
+    let left = chord.turn_90() / c;
+    let center = m + left * (0.5 * c / (0.5 * theta).tan());
+    let r = (p0 - center).hypot();
+    let a0 = (p0.y - center.y).atan2(p0.x - center.x);
+    let mut out = arc(center, r, a0, theta);
+    // The ends exactly as given (the arc's are equal to rounding).
+    if let (Some(first), Some(last)) = (out.first().cloned(), out.last().cloned()) {
+        let n = out.len();
+        let mut pts = first.points().to_vec();
+        pts[0] = p0;
+        out[0] = RationalBezier::new(pts, first.weights().to_vec()).unwrap_or(first);
+        let mut pts = out[n - 1].points().to_vec();
+        let k = pts.len() - 1;
+        pts[k] = p1;
+        out[n - 1] = RationalBezier::new(pts, last.weights().to_vec()).unwrap_or(last);
+    }
+    out
+}
+
+/// The curves of a DXF drawing: one shape per LINE, ARC, CIRCLE, LWPOLYLINE and SPLINE
+/// (named by layer and handle); other entities are skipped, a SPLINE given only by fit points
+/// is listed as unreadable.
+pub fn read_dxf(data: &[u8]) -> Result<Outlines> {
+    use dxf::entities::EntityType;
+    let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(data))
+        .map_err(|e| anyhow::anyhow!("not a readable DXF drawing: {e}"))?;
+    let mut shapes = Vec::new();
+    let mut unreadable = Vec::new();
+    let p2 = |p: &dxf::Point| Point::new(p.x, p.y);
+    for e in drawing.entities() {
+        let name = format!("{} #{:X}", e.common.layer, e.common.handle.0);
+        let contour = match &e.specific {
+            EntityType::Line(l) => Contour {
+                segments: RationalBezier::new(vec![p2(&l.p1), p2(&l.p2)], vec![1.0, 1.0])
+                    .into_iter()
+                    .collect(),
+                closed: false,
+            },
+            EntityType::Arc(a) => {
+                let (s, mut e) = (a.start_angle.to_radians(), a.end_angle.to_radians());
+                while e <= s {
+                    e += std::f64::consts::TAU;
+                }
+                Contour {
+                    segments: arc(p2(&a.center), a.radius, s, e - s),
+                    closed: false,
+                }
+            }
+            EntityType::Circle(c) => Contour {
+                segments: arc(p2(&c.center), c.radius, 0.0, std::f64::consts::TAU),
+                closed: true,
+            },
+            EntityType::LwPolyline(pl) => {
+                let v = &pl.vertices;
+                let closed = pl.is_closed();
+                let count = if closed {
+                    v.len()
+                } else {
+                    v.len().saturating_sub(1)
+                };
+                let mut segments = Vec::new();
+                for i in 0..count {
+                    let (a, b) = (&v[i], &v[(i + 1) % v.len()]);
+                    segments.extend(bulge_segment(
+                        Point::new(a.x, a.y),
+                        Point::new(b.x, b.y),
+                        a.bulge,
+                    ));
+                }
+                Contour { segments, closed }
+            }
+            EntityType::Spline(sp) => {
+                if sp.control_points.is_empty() {
+                    unreadable.push((name, "a spline given by fit points only".into()));
+                    continue;
+                }
+                let pts: Vec<Point> = sp.control_points.iter().map(p2).collect();
+                let w = if sp.weight_values.len() == pts.len() {
+                    sp.weight_values.clone()
+                } else {
+                    vec![1.0; pts.len()]
+                };
+                let spans = aesthetic_curves::nurbs::Nurbs::new(
+                    sp.degree_of_curve.max(1) as usize,
+                    sp.knot_values.clone(),
+                    pts,
+                    w,
+                )
+                .map_err(|e| e.to_string())
+                .and_then(|n| {
+                    n.bezier_spans()
+                        .ok_or_else(|| "no Bézier spans".to_string())
+                });
+                match spans {
+                    Ok(segments) => {
+                        let closed = match (segments.first(), segments.last()) {
+                            (Some(a), Some(b)) => a.points()[0] == b.points()[b.points().len() - 1],
+                            _ => false,
+                        };
+                        Contour { segments, closed }
+                    }
+                    Err(e) => {
+                        unreadable.push((name, e));
+                        continue;
+                    }
+                }
+            }
+            _ => continue,
+        };
+        if !contour.segments.is_empty() {
+            shapes.push(Shape {
+                name,
+                contours: vec![contour],
+            });
+        }
+    }
+    if shapes.is_empty() && unreadable.is_empty() {
+        bail!("the DXF drawing has no curves (LINE, ARC, CIRCLE, LWPOLYLINE or SPLINE)");
+    }
+    Ok(Outlines {
+        kind: "dxf",
+        shapes,
+        unreadable,
     })
 }
 
