@@ -51,6 +51,7 @@ pub const OPS: &[&str] = &[
     "spline.pseudo_elastic",
     "lac.fit",
     "sketch.fit",
+    "outline.check",
 ];
 
 /// Answer one request line (JSON text) with one response object.
@@ -124,6 +125,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "spline.pseudo_elastic" => spline_pseudo_elastic(obj),
         "lac.fit" => lac_fit(obj),
         "sketch.fit" => sketch_fit(obj),
+        "outline.check" => outline_check(obj),
         _ => Err(ProtoError {
             kind: "unknown_op",
             message: format!(
@@ -773,6 +775,105 @@ pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Val
     o
 }
 
+/// Longest SVG path data `outline.check` accepts (characters).
+pub const MAX_PATH_DATA: usize = 1 << 20;
+
+/// Most segments `outline.check` accepts.
+pub const MAX_OUTLINE_SEGMENTS: usize = 10_000;
+
+/// `outline.check`: the exact check of one outline (`aecurve check` for one shape), given as
+/// SVG path data (`path`; arcs become cubics, as usvg writes them) or as `segments` (each
+/// `control_points` and optional `weights`, consecutive, with `closed`).
+fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    use crate::outline_io::{check_shapes, finding_json, options_for, shape_json, Outlines};
+    let outlines = match (obj.get("path"), obj.get("segments")) {
+        (Some(Value::String(d)), None) => {
+            if d.len() > MAX_PATH_DATA {
+                return Err(ProtoError::invalid(
+                    "path",
+                    format!("longer than {MAX_PATH_DATA} characters"),
+                ));
+            }
+            let esc = d
+                .replace('&', "&amp;")
+                .replace('<', "&lt;")
+                .replace('"', "&quot;");
+            let doc = format!(
+                r#"<svg xmlns="http://www.w3.org/2000/svg"><path id="path" d="{esc}"/></svg>"#
+            );
+            crate::outline_io::read_svg(doc.as_bytes()).map_err(|e| {
+                ProtoError::invalid("path", format!("{e:#} (SVG path data expected)"))
+            })?
+        }
+        (None, Some(Value::Array(segs))) => {
+            if segs.is_empty() || segs.len() > MAX_OUTLINE_SEGMENTS {
+                return Err(ProtoError::invalid(
+                    "segments",
+                    format!("must hold 1 to {MAX_OUTLINE_SEGMENTS} segments"),
+                ));
+            }
+            let closed = match obj.get("closed") {
+                None | Some(Value::Null) => false,
+                Some(Value::Bool(b)) => *b,
+                Some(_) => return Err(ProtoError::invalid("closed", "must be true or false")),
+            };
+            let mut segments = Vec::with_capacity(segs.len());
+            for (i, v) in segs.iter().enumerate() {
+                let Some(o) = v.as_object() else {
+                    return Err(ProtoError::invalid(
+                        &format!("segments[{i}]"),
+                        "must be an object with control_points",
+                    ));
+                };
+                let field = |f: &str| format!("segments[{i}].{f}");
+                let pts = points_param(o, "control_points", 2, 21)
+                    .map_err(|e| ProtoError::invalid(&field("control_points"), e.message))?;
+                let w = numbers_param(o, "weights", pts.len())
+                    .map_err(|e| ProtoError::invalid(&field("weights"), e.message))?
+                    .unwrap_or_else(|| vec![1.0; pts.len()]);
+                if w.iter().any(|v| *v <= 0.0) {
+                    return Err(ProtoError::invalid(&field("weights"), "must be > 0"));
+                }
+                segments.push(RationalBezier::new(pts, w)?);
+            }
+            for (i, w) in segments.windows(2).enumerate() {
+                let (a, b) = (w[0].points(), w[1].points());
+                let gap = (a[a.len() - 1] - b[0]).hypot();
+                let size = (a[0] - a[a.len() - 1]).hypot().max(1.0);
+                if gap > 1e-9 * size {
+                    return Err(ProtoError::invalid(
+                        &format!("segments[{}]", i + 1),
+                        "must start where the previous segment ends",
+                    ));
+                }
+            }
+            Outlines {
+                kind: "segments",
+                shapes: vec![crate::outline_io::Shape {
+                    name: "outline".into(),
+                    contours: vec![crate::outline_io::Contour { segments, closed }],
+                }],
+                unreadable: Vec::new(),
+            }
+        }
+        _ => {
+            return Err(ProtoError::invalid(
+                "path",
+                "give either path (SVG path data) or segments",
+            ))
+        }
+    };
+    let shapes: Vec<_> = outlines.shapes.iter().collect();
+    let checked = check_shapes(&shapes, &options_for(&outlines), &|| {});
+    Ok(json!({
+        "shapes": checked.iter().map(shape_json).collect::<Vec<_>>(),
+        "findings": checked
+            .iter()
+            .flat_map(|c| c.findings.iter().map(move |f| finding_json(c.name, f)))
+            .collect::<Vec<_>>(),
+    }))
+}
+
 /// Largest number of points `spline.pseudo_elastic` accepts in table mode (microseconds
 /// per point, but about 3.5 KB of memory per point for the request and its answer: 20,000
 /// points keep a request near 70 MB; the library itself has no limit).
@@ -913,6 +1014,37 @@ mod tests {
                 r#"{{"op": "lac.segment", "alpha": -1, "control": [[0, 0], [8, 0], [12, 5]], "draw": {bad}}}"#
             ));
             assert_eq!(kind(&v), "invalid_input", "{bad}");
+        }
+    }
+
+    #[test]
+    fn outline_check_takes_path_data_or_segments() {
+        let v = handle_line(
+            r#"{"op": "outline.check", "path": "M 0 0 L 10 0 L 19.9939 0.3490 C 25 5 30 -5 35 0"}"#,
+        );
+        let r = &v["result"];
+        assert_eq!(r["findings"][0]["kind"], "near-break", "{v}");
+        let segs = &r["shapes"][0]["contours"][0]["segments"];
+        assert_eq!(segs.as_array().unwrap().len(), 3);
+        assert_eq!(segs[2]["inflections"].as_array().unwrap().len(), 1);
+        let v = handle_line(
+            r#"{"op": "outline.check", "segments": [{"control_points": [[2, 0], [2, 2], [0, 2]], "weights": [1, 0.7071067811865476, 1]}]}"#,
+        );
+        let s = &v["result"]["shapes"][0]["contours"][0]["segments"][0];
+        assert!(
+            (s["max_abs_curvature"].as_f64().unwrap() - 0.5).abs() < 1e-12,
+            "{v}"
+        );
+        assert_eq!(s["monotone"], true);
+        for bad in [
+            r#"{"op": "outline.check"}"#,
+            r#"{"op": "outline.check", "path": "M 0 0 Q"}"#,
+            r#"{"op": "outline.check", "segments": []}"#,
+            r#"{"op": "outline.check", "segments": [{"control_points": [[0, 0]]}]}"#,
+            r#"{"op": "outline.check", "segments": [{"control_points": [[0, 0], [1, 0]]}, {"control_points": [[5, 5], [6, 0]]}]}"#,
+            r#"{"op": "outline.check", "segments": [{"control_points": [[0, 0], [1, 0], [2, 1]], "weights": [1, -1, 1]}]}"#,
+        ] {
+            assert_eq!(kind(&handle_line(bad)), "invalid_input", "{bad}");
         }
     }
 

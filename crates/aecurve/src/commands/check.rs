@@ -1,7 +1,7 @@
 //! `aecurve check FILE`: the exact curvature check of a font's glyphs or an SVG's paths
 //! (`aesthetic_curves::outline`), as a summary with the places most worth a look, or JSON.
 
-use aecurve::outline_io::{self, Outlines, ShapeCheck as Checked};
+use aecurve::outline_io::{self, finding_json, shape_json, Outlines, ShapeCheck as Checked};
 use aesthetic_curves::outline::{ContourCheck, Finding};
 use anyhow::Result;
 use serde_json::{json, Value};
@@ -119,44 +119,4 @@ pub(crate) fn check(file: &Path, select: &[String], json_out: bool, top: usize) 
         }
     }
     Ok(())
-}
-
-fn finding_json(name: &str, f: &Finding) -> Value {
-    json!({
-        "shape": name, "contour": f.contour, "segment": f.segment, "kind": f.kind,
-        "point": [f.point.x, f.point.y], "message": f.message,
-    })
-}
-
-fn shape_json(c: &Checked) -> Value {
-    let pt = |p: aesthetic_curves::Point| json!([p.x, p.y]);
-    json!({
-        "name": c.name,
-        "contours": c.contours.iter().map(|k| json!({
-            "closed": k.closed,
-            "segments": k.segments.iter().map(|s| {
-                let mut o = json!({
-                    "degree": s.degree,
-                    "rational": s.rational,
-                    "extrema": s.extrema.iter().map(|(t, p)| json!({"t": t, "point": pt(*p)})).collect::<Vec<_>>(),
-                    "inflections": s.inflections.iter().map(|(t, p)| json!({"t": t, "point": pt(*p)})).collect::<Vec<_>>(),
-                    "max_abs_curvature": s.max_abs_curvature,
-                });
-                if let Some(m) = s.monotone { o["monotone"] = json!(m); }
-                if let Some(t) = s.trend { o["trend"] = json!(t.as_str()); }
-                if let Some((a, b)) = s.end_curvatures { o["end_curvatures"] = json!([a, b]); }
-                if let Some(f) = &s.flag { o["flag"] = json!(f); }
-                o
-            }).collect::<Vec<_>>(),
-            "joins": k.joins.iter().map(|j| {
-                let mut o = json!({
-                    "after_segment": j.after_segment, "point": pt(j.point),
-                    "angle_break_degrees": j.angle_break.to_degrees(),
-                    "g1": j.g1, "g2": j.g2, "near_break": j.near_break,
-                });
-                if let Some(x) = j.curvature_jump { o["curvature_jump"] = json!(x); }
-                o
-            }).collect::<Vec<_>>(),
-        })).collect::<Vec<_>>(),
-    })
 }
