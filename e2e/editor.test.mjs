@@ -383,6 +383,24 @@ await step('no script errors on the page', async () => {
   assert.deepEqual(pageErrors, []);
 });
 
+await step('the HTML report of aecurve check (50 glyphs of a real font) opens with no script errors', async () => {
+  const report = `${out}check-report.html`;
+  await new Promise((resolve, reject) => {
+    const c = spawn(bin, ['check', `${root}crates/aecurve/assets/DejaVuSans.ttf`, '--pictures', '50', '--top', '0', '-o', report], { stdio: 'ignore' });
+    c.on('exit', (code) => (code === 0 ? resolve() : reject(new Error(`aecurve check exited with ${code}`))));
+  });
+  const p2 = await browser.newPage({ viewport: { width: 1300, height: 900 } });
+  const errors = [];
+  p2.on('pageerror', (e) => errors.push(String(e)));
+  await p2.goto(`file://${report}`);
+  assert.equal(await p2.locator('figure').count(), 50);
+  assert.equal(await p2.locator('figure svg').count(), 50);
+  assert.equal(await p2.locator('figcaption b').count(), 50);
+  await p2.screenshot({ path: `${out}09-check-report.png` });
+  assert.deepEqual(errors, []);
+  await p2.close();
+});
+
 await browser.close();
 child.kill();
 writeFileSync(`${out}results.txt`, results.join('\n') + '\n');

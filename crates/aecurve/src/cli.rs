@@ -205,6 +205,13 @@ pub(crate) enum Cmd {
         /// How many findings the summary lists.
         #[arg(long, default_value_t = 20)]
         top: usize,
+        /// Write an HTML report: a picture per glyph or path (curve, comb, extrema,
+        /// inflections, flagged joins), the worst first.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Most pictures in the report.
+        #[arg(long, default_value_t = 200)]
+        pictures: usize,
     },
     /// Write the gallery of examples (HTML + SVG) to a folder.
     Demo {

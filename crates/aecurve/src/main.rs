@@ -210,7 +210,9 @@ fn run() -> Result<()> {
             select,
             json,
             top,
-        } => commands::check::check(&file, &select, json, top)?,
+            output,
+            pictures,
+        } => commands::check::check(&file, &select, json, top, output.as_deref(), pictures)?,
         Cmd::Editor {
             port,
             no_open,

@@ -258,3 +258,25 @@ fn dxf_entities_read_exactly() {
     let e = format!("{:#}", aecurve::outline_io::read_dxf(&empty).unwrap_err());
     assert!(e.contains("no curves"), "{e}");
 }
+
+#[test]
+fn the_html_report_has_a_labelled_picture_per_shape_worst_first() {
+    let o = read_font(FONT).unwrap();
+    let shapes: Vec<_> = o
+        .shapes
+        .iter()
+        .filter(|s| ["o", "S", "a", "period"].contains(&s.name.as_str()))
+        .collect();
+    let checked = check_shapes(&shapes, &options_for(&o), &|| {});
+    let page = aecurve::report::outline_report("DejaVu Sans", true, &shapes, &checked, 3);
+    assert_eq!(page.matches("<figure>").count(), 3);
+    for bad in ["NaN", "Linf", "Minf", ",inf", "-inf", "=\"inf"] {
+        assert!(!page.contains(bad), "{bad}");
+    }
+    // The S has near-breaks (the worst findings here): it comes first; the period, with
+    // nothing to look at, is left out of three pictures.
+    let first = page.find("<b>S</b>").unwrap();
+    assert!(page.find("<b>o</b>").is_none_or(|i| i > first));
+    assert!(!page.contains("<b>period</b>"));
+    assert!(page.contains("the first 3 are drawn"));
+}

@@ -7,7 +7,22 @@ use anyhow::Result;
 use serde_json::{json, Value};
 use std::path::Path;
 
-pub(crate) fn check(file: &Path, select: &[String], json_out: bool, top: usize) -> Result<()> {
+pub(crate) fn check(
+    file: &Path,
+    select: &[String],
+    json_out: bool,
+    top: usize,
+    report: Option<&Path>,
+    pictures: usize,
+) -> Result<()> {
+    if let Some(r) = report {
+        anyhow::ensure!(
+            r.extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("html")),
+            "{}: the report is an .html page",
+            r.display()
+        );
+    }
     let t0 = std::time::Instant::now();
     let outlines: Outlines = outline_io::read(file)?;
     let read_ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -56,6 +71,25 @@ pub(crate) fn check(file: &Path, select: &[String], json_out: bool, top: usize) 
     let g2 = count(&|c| c.joins.iter().filter(|j| j.g2).count());
     let near = count(&|c| c.joins.iter().filter(|j| j.near_break).count());
     let inflections = count(&|c| c.segments.iter().map(|s| s.inflections.len()).sum());
+    if let Some(r) = report {
+        let title = format!(
+            "aecurve check: {}",
+            file.file_name()
+                .map_or(String::new(), |n| n.to_string_lossy().to_string())
+        );
+        // Fonts have y up; SVG (and its user units) y down; DXF y up.
+        let page = aecurve::report::outline_report(
+            &title,
+            outlines.kind != "svg",
+            &shapes,
+            &checked,
+            pictures,
+        );
+        std::fs::write(r, page).map_err(|e| anyhow::anyhow!("writing {}: {e}", r.display()))?;
+        if !json_out {
+            eprintln!("wrote {}", r.display());
+        }
+    }
     let mut ranked: Vec<(&str, &Finding)> = checked
         .iter()
         .flat_map(|c| c.findings.iter().map(move |f| (c.name, f)))
