@@ -212,6 +212,11 @@ pub(crate) enum Cmd {
         /// Most pictures in the report.
         #[arg(long, default_value_t = 200)]
         pictures: usize,
+        /// For every cubic whose curvature is not monotone, suggest handle lengths that make
+        /// it monotone (end points and tangent directions kept), moving it by at most this
+        /// (file units: font units for a font).
+        #[arg(long)]
+        suggest: Option<f64>,
     },
     /// Write the gallery of examples (HTML + SVG) to a folder.
     Demo {

@@ -212,7 +212,15 @@ fn run() -> Result<()> {
             top,
             output,
             pictures,
-        } => commands::check::check(&file, &select, json, top, output.as_deref(), pictures)?,
+            suggest,
+        } => commands::check::check(
+            &file,
+            &select,
+            json,
+            top,
+            (output.as_deref(), pictures),
+            suggest,
+        )?,
         Cmd::Editor {
             port,
             no_open,

@@ -484,6 +484,13 @@ pub fn shape_json(c: &ShapeCheck) -> Value {
                 if let Some(t) = s.trend { o["trend"] = json!(t.as_str()); }
                 if let Some((a, b)) = s.end_curvatures { o["end_curvatures"] = json!([a, b]); }
                 if let Some(f) = &s.flag { o["flag"] = json!(f); }
+                if let Some(g) = &s.suggestion {
+                    o["suggestion"] = json!({
+                        "control_points": g.curve.points().iter().map(|p| pt(*p)).collect::<Vec<_>>(),
+                        "handle_scale": [g.scale.0, g.scale.1],
+                        "deviation": g.deviation,
+                    });
+                }
                 o
             }).collect::<Vec<_>>(),
             "joins": k.joins.iter().map(|j| {

@@ -863,8 +863,16 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
             ))
         }
     };
+    let suggest = optional_number(obj, "suggest")?;
+    if suggest.is_some_and(|t| t <= 0.0) {
+        return Err(ProtoError::invalid("suggest", "must be > 0"));
+    }
+    let opts = aesthetic_curves::outline::OutlineOptions {
+        suggest,
+        ..options_for(&outlines)
+    };
     let shapes: Vec<_> = outlines.shapes.iter().collect();
-    let checked = check_shapes(&shapes, &options_for(&outlines), &|| {});
+    let checked = check_shapes(&shapes, &opts, &|| {});
     Ok(json!({
         "shapes": checked.iter().map(shape_json).collect::<Vec<_>>(),
         "findings": checked

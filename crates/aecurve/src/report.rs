@@ -47,7 +47,8 @@ pub fn outline_report(
          <span style=\"color:#1f77b4\">&#9675; curvature extremum</span>\
          <span style=\"color:#2ca02c\">&#9671; inflection</span>\
          <span style=\"color:#e41a1c\">&#9711; near-break (probably meant smooth)</span>\
-         <span style=\"color:#ff9f40\">&#9675; smooth join, curvature jumps (not G2)</span></p>\n\
+         <span style=\"color:#ff9f40\">&#9675; smooth join, curvature jumps (not G2)</span>\
+         <span style=\"color:#2ca02c\">- - suggested handles (monotone)</span></p>\n\
          <p>{n} shapes, the worst first{more}.</p>\n<div class=\"grid\">\n",
         t = esc(title),
         n = shapes.len(),
@@ -142,6 +143,15 @@ fn picture(shape: &Shape, check: &ShapeCheck, y_up: bool) -> String {
                 let _ = write!(
                     svg,
                     "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"3\" fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.2\"/>"
+                );
+            }
+            if let Some(g) = &seg.suggestion {
+                let q = g.curve.points();
+                let m: Vec<(f64, f64)> = q.iter().map(|p| map(*p)).collect();
+                let _ = write!(
+                    svg,
+                    "<path d=\"M{:.1},{:.1}C{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"none\" stroke=\"#2ca02c\" stroke-width=\"1.4\" stroke-dasharray=\"4 3\"/>",
+                    m[0].0, m[0].1, m[1].0, m[1].1, m[2].0, m[2].1, m[3].0, m[3].1
                 );
             }
             for (_, p) in &seg.inflections {

@@ -40,6 +40,10 @@ pub struct OutlineOptions {
     /// coordinates): a join also counts as G1 when its break is what rounding the handles
     /// to this grid can make, `√2/2 grid (1/|h₁| + 1/|h₂|)` for handle legs h₁, h₂.
     pub grid: f64,
+    /// With a tolerance (file units): for every polynomial cubic whose curvature is not
+    /// monotone, the handle lengths nearest to its own that make it monotone, moving the curve
+    /// by at most this ([`suggest_handles`]).
+    pub suggest: Option<f64>,
 }
 
 impl Default for OutlineOptions {
@@ -50,6 +54,7 @@ impl Default for OutlineOptions {
             g2_jump: 0.05,
             near_break: 3f64.to_radians(),
             grid: 0.0,
+            suggest: None,
         }
     }
 }
@@ -76,6 +81,93 @@ pub struct SegmentCheck {
     pub max_abs_curvature: f64,
     /// Why the segment could not be checked fully (a point, coincident handles), if so.
     pub flag: Option<String>,
+    /// With [`OutlineOptions::suggest`]: monotone handle lengths within the tolerance.
+    pub suggestion: Option<HandleSuggestion>,
+}
+
+/// New handle lengths for a cubic whose curvature is not monotone: the end points and the
+/// tangent directions stay (so G1 joins stay G1), the handles scale by `scale`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HandleSuggestion {
+    /// The factors of the first and the second handle's length.
+    pub scale: (f64, f64),
+    /// The suggested cubic (its curvature is monotone: the exact test says so).
+    pub curve: crate::Bezier,
+    /// How far it moves the curve: `max_t |new(t) - old(t)|` (an upper bound of the distance
+    /// between the two curves).
+    pub deviation: f64,
+}
+
+/// The monotone handle lengths nearest to those of the cubic `c` (degree 3), moving it by at
+/// most `tolerance`, if any: a search of the factors (a, b) of the two handle lengths over
+/// 0.2 to 5 (log-spaced, 33 × 33), then bisection between the current handles and the best
+/// monotone point found towards the boundary of the monotone region, so that the curve
+/// moves as little as it must. The change of the curve is
+/// `3(1-t)²t (a-1) h₁ + 3(1-t)t² (b-1) h₂`, its largest length taken over 65 values of t.
+/// None for a curve already monotone, not a cubic, with a zero handle, or with nothing
+/// monotone within the tolerance.
+pub fn suggest_handles(c: &crate::Bezier, tolerance: f64) -> Option<HandleSuggestion> {
+    let p = c.points();
+    if p.len() != 4 || tolerance.is_nan() || tolerance <= 0.0 {
+        return None;
+    }
+    let (h1, h2) = (p[1] - p[0], p[2] - p[3]);
+    if h1.hypot() == 0.0 || h2.hypot() == 0.0 {
+        return None;
+    }
+    let make =
+        |a: f64, b: f64| crate::Bezier::new(vec![p[0], p[0] + h1 * a, p[3] + h2 * b, p[3]]).ok();
+    let monotone =
+        |a: f64, b: f64| make(a, b).is_some_and(|c| c.is_curvature_monotone().unwrap_or(false));
+    if monotone(1.0, 1.0) {
+        return None;
+    }
+    let deviation = |a: f64, b: f64| {
+        (0..=64)
+            .map(|i| {
+                let t = i as f64 / 64.0;
+                let u = 1.0 - t;
+                (h1 * (3.0 * u * u * t * (a - 1.0)) + h2 * (3.0 * u * t * t * (b - 1.0))).hypot()
+            })
+            .fold(0.0, f64::max)
+    };
+    let n = 33;
+    let (lo, hi) = (0.2f64.ln(), 5f64.ln());
+    let at = |i: usize| (lo + (hi - lo) * i as f64 / (n - 1) as f64).exp();
+    let mut best: Option<(f64, f64, f64)> = None;
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b) = (at(i), at(j));
+            let d = deviation(a, b);
+            if d > tolerance || best.is_some_and(|x| d >= x.2) {
+                continue;
+            }
+            if monotone(a, b) {
+                best = Some((a, b, d));
+            }
+        }
+    }
+    let (a, b, _) = best?;
+    // Towards the current handles in (ln a, ln b) while it stays monotone.
+    let (mut inside, mut outside) = (1.0f64, 0.0f64); // fraction of the way from (1,1)
+    for _ in 0..30 {
+        let m = 0.5 * (inside + outside);
+        if monotone(a.powf(m), b.powf(m)) {
+            inside = m;
+        } else {
+            outside = m;
+        }
+    }
+    let (a, b) = (a.powf(inside), b.powf(inside));
+    let curve = make(a, b)?;
+    if !curve.is_curvature_monotone().unwrap_or(false) {
+        return None;
+    }
+    Some(HandleSuggestion {
+        scale: (a, b),
+        curve,
+        deviation: deviation(a, b),
+    })
 }
 
 /// What the check found at one join.
@@ -168,8 +260,13 @@ fn end_state(c: &RationalBezier, t: f64) -> Option<(Vec2, f64)> {
     None
 }
 
-/// Check one segment.
+/// Check one segment (no suggestion: [`check_segment_with`]).
 pub fn check_segment(c: &RationalBezier) -> SegmentCheck {
+    check_segment_with(c, &OutlineOptions::default())
+}
+
+/// Check one segment, with a handle suggestion when [`OutlineOptions::suggest`] asks.
+pub fn check_segment_with(c: &RationalBezier, opts: &OutlineOptions) -> SegmentCheck {
     let w = c.weights();
     let rational = w.iter().any(|v| (v - w[0]).abs() > 1e-12 * w[0].abs());
     let mut out = SegmentCheck {
@@ -182,6 +279,7 @@ pub fn check_segment(c: &RationalBezier) -> SegmentCheck {
         end_curvatures: None,
         max_abs_curvature: 0.0,
         flag: None,
+        suggestion: None,
     };
     let (Some((_, k0)), Some((_, k1))) = (end_state(c, 0.0), end_state(c, 1.0)) else {
         out.flag = Some("the segment is a point (all control points coincide)".into());
@@ -212,6 +310,13 @@ pub fn check_segment(c: &RationalBezier) -> SegmentCheck {
             out.flag = Some(e.to_string());
         }
     }
+    if let (Some(tol), Some(false), false) = (opts.suggest, out.monotone, rational) {
+        if c.degree() == 3 {
+            if let Ok(b) = crate::Bezier::new(c.points().to_vec()) {
+                out.suggestion = suggest_handles(&b, tol);
+            }
+        }
+    }
     if stationary && out.flag.is_none() {
         out.flag = Some(
             "a handle coincides with its end point: the tangent there is the limit from inside"
@@ -227,7 +332,10 @@ pub fn check_contour(
     closed: bool,
     opts: &OutlineOptions,
 ) -> ContourCheck {
-    let checks: Vec<SegmentCheck> = segments.iter().map(check_segment).collect();
+    let checks: Vec<SegmentCheck> = segments
+        .iter()
+        .map(|c| check_segment_with(c, opts))
+        .collect();
     let n = segments.len();
     let join_count = if closed { n } else { n.saturating_sub(1) };
     let mut joins = Vec::with_capacity(join_count);
@@ -433,6 +541,37 @@ mod tests {
         assert!(k0.is_finite() && k1.is_finite() && c.max_abs_curvature.is_finite());
         let c = check_contour(&[l1, point], false, &opts);
         assert!(c.joins.is_empty());
+    }
+
+    #[test]
+    fn handle_suggestions_make_the_cubic_monotone_and_move_it_little() {
+        // The classic bump: curvature peaks in the middle.
+        let c =
+            crate::Bezier::new(vec![p(0.0, 0.0), p(1.0, 1.0), p(2.0, 1.0), p(3.0, 0.0)]).unwrap();
+        assert!(!c.is_curvature_monotone().unwrap());
+        // A symmetric arch cannot be made monotone by its handle lengths within a small
+        // tolerance ...
+        assert!(suggest_handles(&c, 1e-3).is_none());
+        // ... a lopsided one can: ends and tangent directions kept, curvature monotone, the
+        // deviation within the tolerance.
+        let c =
+            crate::Bezier::new(vec![p(0.0, 0.0), p(2.0, 0.0), p(3.0, 0.5), p(3.2, 2.0)]).unwrap();
+        assert!(!c.is_curvature_monotone().unwrap());
+        let s = suggest_handles(&c, 0.5).expect("a suggestion");
+        let q = s.curve.points();
+        assert_eq!(q[0], c.points()[0]);
+        assert_eq!(q[3], c.points()[3]);
+        assert!((q[1] - q[0]).cross(c.points()[1] - c.points()[0]).abs() < 1e-12);
+        assert!((q[2] - q[3]).cross(c.points()[2] - c.points()[3]).abs() < 1e-12);
+        assert!(s.curve.is_curvature_monotone().unwrap());
+        assert!(s.deviation <= 0.5 && s.deviation > 0.0, "{}", s.deviation);
+        // Through the options: only not-monotone polynomial cubics get one.
+        let opts = OutlineOptions {
+            suggest: Some(0.5),
+            ..OutlineOptions::default()
+        };
+        let r = check_segment_with(&c.to_rational(), &opts);
+        assert_eq!(r.suggestion.as_ref().map(|s| s.scale), Some(s.scale));
     }
 
     #[test]

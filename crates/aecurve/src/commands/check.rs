@@ -12,9 +12,15 @@ pub(crate) fn check(
     select: &[String],
     json_out: bool,
     top: usize,
-    report: Option<&Path>,
-    pictures: usize,
+    (report, pictures): (Option<&Path>, usize),
+    suggest: Option<f64>,
 ) -> Result<()> {
+    if let Some(t) = suggest {
+        anyhow::ensure!(
+            t.is_finite() && t > 0.0,
+            "--suggest must be a positive distance"
+        );
+    }
     if let Some(r) = report {
         anyhow::ensure!(
             r.extension()
@@ -40,7 +46,10 @@ pub(crate) fn check(
             );
         }
     }
-    let opts = outline_io::options_for(&outlines);
+    let opts = aesthetic_curves::outline::OutlineOptions {
+        suggest,
+        ..outline_io::options_for(&outlines)
+    };
     let bar = (shapes.len() > 2000 && !json_out).then(|| {
         let b = indicatif::ProgressBar::new(shapes.len() as u64);
         b.set_style(
@@ -71,6 +80,7 @@ pub(crate) fn check(
     let g2 = count(&|c| c.joins.iter().filter(|j| j.g2).count());
     let near = count(&|c| c.joins.iter().filter(|j| j.near_break).count());
     let inflections = count(&|c| c.segments.iter().map(|s| s.inflections.len()).sum());
+    let suggested = count(&|c| c.segments.iter().filter(|s| s.suggestion.is_some()).count());
     if let Some(r) = report {
         let title = format!(
             "aecurve check: {}",
@@ -105,7 +115,7 @@ pub(crate) fn check(
             "counts": {
                 "shapes": checked.len(), "segments": segments, "curved_segments": curved,
                 "monotone_segments": monotone, "inflections": inflections, "joins": joins,
-                "g1_joins": g1, "g2_joins": g2, "near_breaks": near,
+                "g1_joins": g1, "g2_joins": g2, "near_breaks": near, "suggestions": suggested,
             },
             "findings": ranked.iter().map(|(n, f)| finding_json(n, f)).collect::<Vec<_>>(),
             "milliseconds": {"read": read_ms, "check": check_ms},
@@ -137,6 +147,11 @@ pub(crate) fn check(
         for (n, e) in outlines.unreadable.iter().take(5) {
             println!("    {n}: {e}");
         }
+    }
+    if let Some(t) = suggest {
+        println!(
+            "  suggestions: {suggested} cubics become monotone by their handle lengths alone, moving at most {t}"
+        );
     }
     println!("  read in {read_ms:.1} ms, checked in {check_ms:.1} ms");
     if !ranked.is_empty() {
