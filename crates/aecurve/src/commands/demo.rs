@@ -3,7 +3,7 @@
 
 use crate::gallery::{
     approx::approx_gallery, inflection::inflection_gallery, lac_fit::lac_fit_gallery,
-    sketch::sketch_gallery, spline::spline_gallery,
+    outline::outline_gallery, sketch::sketch_gallery, spline::spline_gallery,
 };
 use aecurve::protocol::AnyBezier;
 use aecurve::{bench, plot};
@@ -172,6 +172,7 @@ pub(crate) fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     html += &inflection_gallery(out)?;
     html += &sketch_gallery(out)?;
     html += &lac_fit_gallery(out)?;
+    html += &outline_gallery(out)?;
     pb.inc(1);
     pb.set_message("timing the monotonicity tests");
     let cfg = if quick {

@@ -4,5 +4,6 @@
 pub(crate) mod approx;
 pub(crate) mod inflection;
 pub(crate) mod lac_fit;
+pub(crate) mod outline;
 pub(crate) mod sketch;
 pub(crate) mod spline;
