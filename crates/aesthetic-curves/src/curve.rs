@@ -43,8 +43,8 @@ impl CurvePoint {
 
 /// The interface every curve type of the library implements (module documentation).
 pub trait Curve {
-    /// The start and end points.
-    fn ends(&self) -> (Point, Point);
+    /// The start and end points (an error only for a [`Pieces`] without pieces).
+    fn ends(&self) -> Result<(Point, Point)>;
     /// Signed curvature at the start and at the end.
     fn end_curvatures(&self) -> Result<(f64, f64)>;
     /// The arc length (to about 1e-14 of itself, or as the type states).
@@ -126,9 +126,9 @@ fn bezier_length(c: &impl PlanarCurve, polygon: &[Point]) -> Result<f64> {
 macro_rules! bezier_curve {
     ($ty:ty, $path:expr) => {
         impl Curve for $ty {
-            fn ends(&self) -> (Point, Point) {
+            fn ends(&self) -> Result<(Point, Point)> {
                 let p = self.points();
-                (p[0], p[p.len() - 1])
+                Ok((p[0], p[p.len() - 1]))
             }
             fn end_curvatures(&self) -> Result<(f64, f64)> {
                 Ok((point_of(self, 0.0)?.kappa, point_of(self, 1.0)?.kappa))
@@ -190,8 +190,8 @@ fn turning_points(
 }
 
 impl Curve for LacSegment {
-    fn ends(&self) -> (Point, Point) {
-        (self.control[0], self.control[2])
+    fn ends(&self) -> Result<(Point, Point)> {
+        Ok((self.control[0], self.control[2]))
     }
     fn end_curvatures(&self) -> Result<(f64, f64)> {
         LacSegment::end_curvatures(self)
@@ -209,8 +209,8 @@ impl Curve for LacSegment {
 }
 
 impl Curve for LacInflectionSegment {
-    fn ends(&self) -> (Point, Point) {
-        (self.control[0], self.control[2])
+    fn ends(&self) -> Result<(Point, Point)> {
+        Ok((self.control[0], self.control[2]))
     }
     /// 0 at the inflection end.
     fn end_curvatures(&self) -> Result<(f64, f64)> {
@@ -239,14 +239,12 @@ fn pieces_points<C: Curve>(pieces: &[C], n: usize) -> Result<Vec<CurvePoint>> {
     Ok(out)
 }
 
-fn pieces_ends<C: Curve>(pieces: &[C]) -> Result<((Point, Point), (f64, f64))> {
-    let (Some(first), Some(last)) = (pieces.first(), pieces.last()) else {
-        return Err(Error::Degenerate("the curve has no pieces".into()));
-    };
-    Ok((
-        (first.ends().0, last.ends().1),
-        (first.end_curvatures()?.0, last.end_curvatures()?.1),
-    ))
+/// The first and the last piece (an error when there is none).
+fn first_last<C>(pieces: &[C]) -> Result<(&C, &C)> {
+    match (pieces.first(), pieces.last()) {
+        (Some(a), Some(b)) => Ok((a, b)),
+        _ => Err(Error::Degenerate("the curve has no pieces".into())),
+    }
 }
 
 fn pieces_length<C: Curve>(pieces: &[C]) -> Result<f64> {
@@ -272,17 +270,13 @@ fn pieces_path<C: Curve>(pieces: &[C], accuracy: f64) -> Result<BezPath> {
 pub struct Pieces<C>(pub Vec<C>);
 
 impl<C: Curve> Curve for Pieces<C> {
-    fn ends(&self) -> (Point, Point) {
-        match (self.0.first(), self.0.last()) {
-            (Some(a), Some(b)) => (a.ends().0, b.ends().1),
-            _ => (
-                Point::new(f64::NAN, f64::NAN),
-                Point::new(f64::NAN, f64::NAN),
-            ),
-        }
+    fn ends(&self) -> Result<(Point, Point)> {
+        let (a, b) = first_last(&self.0)?;
+        Ok((a.ends()?.0, b.ends()?.1))
     }
     fn end_curvatures(&self) -> Result<(f64, f64)> {
-        Ok(pieces_ends(&self.0)?.1)
+        let (a, b) = first_last(&self.0)?;
+        Ok((a.end_curvatures()?.0, b.end_curvatures()?.1))
     }
     fn arc_length(&self) -> Result<f64> {
         pieces_length(&self.0)
@@ -347,7 +341,7 @@ mod tests {
             .unwrap();
         let curves: [&dyn Curve; 3] = [&arc, &lac, &nurbs];
         for c in curves {
-            let (a, b) = c.ends();
+            let (a, b) = c.ends().unwrap();
             assert!((a - p(2.0, 0.0)).hypot() < 1e-12 && (b - p(0.0, 2.0)).hypot() < 1e-12);
             let (k0, k1) = c.end_curvatures().unwrap();
             assert!(
@@ -386,6 +380,7 @@ mod tests {
         let path = both.to_bezpath(1e-9).unwrap();
         assert_eq!(path.segments().count(), 2);
         assert!(Pieces::<Bezier>(vec![]).end_curvatures().is_err());
+        assert!(Pieces::<Bezier>(vec![]).ends().is_err());
     }
 
     #[test]
