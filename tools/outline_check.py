@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """`aecurve check` on files made by other tools (CI step; needs fonts-texgyre and
-adwaita-icon-theme from Debian, fontTools and ezdxf from PyPI).
+adwaita-icon-theme from Debian, fontTools, ufo-extractor, ufoLib2 and ezdxf from PyPI).
 
 - OpenType/CFF fonts (TeX Gyre): the glyphs read (plus those listed unreadable) are the
   font's own glyph order as fontTools reads it, names included; every segment has a verdict
   or a flag; the JSON has no NaN or infinity.
 - SVG icons (Adwaita's scalable set): every file is read and checked, or refused with the
   clear "no path" error (icons that hold only images or text); the JSON is clean.
+- UFO sources made from two of those fonts by ufo-extractor: every glyph reads with the
+  same segments and the same verdicts as the font itself.
 - A DXF written by ezdxf with every entity type `check` reads (LINE, ARC, CIRCLE, LWPOLYLINE
   with bulges, a rational SPLINE, and a fit-point SPLINE it lists as unreadable): the
   curvature of every arc is 1/radius.
@@ -21,7 +23,9 @@ import subprocess
 import sys
 import tempfile
 
+import extractor
 import ezdxf
+import ufoLib2
 
 from fontTools.ttLib import TTFont
 
@@ -87,6 +91,31 @@ for f in icons:
         print(f"FAIL {f}: {err.strip()}")
         failures += 1
 print(f"ok   {read} Adwaita icons checked, {refused} refused as pathless, of {len(icons)}")
+
+def verdicts(v):
+    return {
+        s["name"]: [[(g["degree"], g.get("monotone")) for g in c["segments"]] for c in s["contours"]]
+        for s in v["shapes"]
+    }
+
+
+for f in [x for x in fonts if "heros-" in x or "adventor-" in x]:
+    ufo_path = os.path.join(tempfile.mkdtemp(), "font.ufo")
+    ufo = ufoLib2.Font()
+    extractor.extractUFO(f, ufo)
+    ufo.save(ufo_path)
+    codes = [check(x) for x in (f, ufo_path)]
+    if any(c[0] != 0 for c in codes):
+        print(f"FAIL UFO of {f}: {[c[2].strip() for c in codes]}")
+        failures += 1
+        continue
+    a, b = (verdicts(strict(c[1])) for c in codes)
+    differ = [n for n in a if a[n] != b.get(n)]
+    if differ or len(a) != len(b):
+        print(f"FAIL UFO of {f}: {len(differ)} glyphs differ, e.g. {differ[:3]}")
+        failures += 1
+    else:
+        print(f"ok   UFO of {f.split('/')[-1]}: {len(b)} glyphs, the same segments and verdicts")
 
 dxf_path = os.path.join(tempfile.mkdtemp(), "all.dxf")
 doc = ezdxf.new("R2010")

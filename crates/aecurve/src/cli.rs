@@ -190,7 +190,8 @@ pub(crate) enum Cmd {
         #[command(subcommand)]
         what: BenchCmd,
     },
-    /// Check the curves of a font (.ttf, .otf), an SVG or a DXF drawing exactly: per segment,
+    /// Check the curves of a font (.ttf, .otf, a .ufo folder), an SVG or a DXF drawing
+    /// exactly: per segment,
     /// curvature monotone or not, its extrema, inflections and largest curvature; per join,
     /// the tangent break and curvature jump; the places most worth a look first.
     Check {

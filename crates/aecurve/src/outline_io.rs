@@ -1,4 +1,5 @@
-//! Outline readers for `aecurve check`: fonts (TrueType and OpenType/CFF, with `skrifa`),
+//! Outline readers for `aecurve check`: fonts (TrueType and OpenType/CFF, with `skrifa`; UFO
+//! sources, with `norad`),
 //! SVG (paths, basic shapes and transforms resolved, with `usvg`) and DXF (LINE, ARC, CIRCLE,
 //! LWPOLYLINE with bulges, SPLINE with weights, with the `dxf` crate). Each file becomes
 //! named shapes (glyph names, SVG element ids, DXF layer and handle) of contours of Bézier
@@ -133,8 +134,18 @@ impl OutlinePen for Collector {
     }
 }
 
-/// Read a font, an SVG or a DXF file by its extension (`.ttf`, `.otf`, `.svg`, `.dxf`).
+/// Read a font, an SVG or a DXF file by its extension (`.ttf`, `.otf`, `.svg`, `.dxf`), or
+/// a UFO source (a `.ufo` folder).
 pub fn read(path: &Path) -> Result<Outlines> {
+    if path.is_dir() {
+        anyhow::ensure!(
+            path.extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("ufo")),
+            "{}: a folder, and not a .ufo source",
+            path.display()
+        );
+        return read_ufo(path).with_context(|| format!("{}", path.display()));
+    }
     let len = std::fs::metadata(path)
         .with_context(|| format!("reading {}", path.display()))?
         .len();
@@ -251,6 +262,121 @@ pub fn read_svg(data: &[u8]) -> Result<Outlines> {
         shapes,
         unreadable: Vec::new(),
     })
+}
+
+/// Every glyph of a UFO source's default layer (with `norad`), in font units, in name order.
+/// Contours are read from the UFO point stream: `line`, `curve` (cubic, or a line or a
+/// quadratic with fewer off-curve points), `qcurve` (TrueType quadratics with implied
+/// on-curve points, also a contour of off-curve points alone); components are not resolved
+/// (the glyphs they name are checked themselves).
+pub fn read_ufo(path: &Path) -> Result<Outlines> {
+    let font = norad::Font::load(path).map_err(|e| anyhow::anyhow!("not a readable UFO: {e}"))?;
+    let mut shapes = Vec::new();
+    let mut unreadable = Vec::new();
+    let mut glyphs: Vec<_> = font.default_layer().iter().collect();
+    glyphs.sort_by(|a, b| a.name().as_str().cmp(b.name().as_str()));
+    for g in glyphs {
+        let name = g.name().as_str().to_string();
+        let mut pen = Collector::default();
+        for c in &g.contours {
+            ufo_contour(&c.points, &mut pen);
+        }
+        match pen.done() {
+            Ok(contours) => shapes.push(Shape { name, contours }),
+            Err(e) => unreadable.push((name, e)),
+        }
+    }
+    if shapes.is_empty() && unreadable.is_empty() {
+        bail!("not a readable UFO: its default layer has no glyphs");
+    }
+    Ok(Outlines {
+        kind: "font",
+        shapes,
+        unreadable,
+    })
+}
+
+/// One UFO contour into the pen.
+fn ufo_contour(points: &[norad::ContourPoint], pen: &mut Collector) {
+    use norad::PointType as T;
+    if points.is_empty() {
+        return;
+    }
+    let p = |q: &norad::ContourPoint| Point::new(q.x, q.y);
+    let open = points[0].typ == T::Move;
+    // A closed contour starts at its first on-curve point (rotated); one of off-curve
+    // points alone is all implied quadratics.
+    let start = if open {
+        0
+    } else {
+        match points.iter().position(|q| q.typ != T::OffCurve) {
+            Some(i) => i,
+            None => {
+                let n = points.len();
+                let mid = |i: usize| p(&points[i]).midpoint(p(&points[(i + 1) % n]));
+                pen.move_to(mid(n - 1));
+                for i in 0..n {
+                    pen.quad_to(p(&points[i]), mid(i));
+                }
+                pen.close();
+                return;
+            }
+        }
+    };
+    let n = points.len();
+    let order: Vec<&norad::ContourPoint> = (0..n).map(|k| &points[(start + k) % n]).collect();
+    pen.move_to(p(order[0]));
+    let mut off: Vec<Point> = Vec::new();
+    // The on-curve points after the first, and (closed) the first again at the end.
+    let rest = order[1..]
+        .iter()
+        .copied()
+        .chain((!open).then_some(order[0]));
+    for q in rest {
+        match q.typ {
+            T::OffCurve => off.push(p(q)),
+            T::QCurve => {
+                // Implied on-curve points halfway between consecutive off-curve ones.
+                let end = p(q);
+                match off.len() {
+                    0 => pen.line_to(end),
+                    k => {
+                        for i in 0..k {
+                            let to = if i + 1 < k {
+                                off[i].midpoint(off[i + 1])
+                            } else {
+                                end
+                            };
+                            pen.quad_to(off[i], to);
+                        }
+                    }
+                }
+                off.clear();
+            }
+            _ => {
+                let end = p(q);
+                match off.len() {
+                    0 => pen.line_to(end),
+                    1 => pen.quad_to(off[0], end),
+                    2 => pen.cubic_to(off[0], off[1], end),
+                    _ => {
+                        pen.bad = Some(format!(
+                            "a curve point after {} off-curve points (at most 2)",
+                            off.len()
+                        ));
+                    }
+                }
+                off.clear();
+            }
+        }
+    }
+    if open {
+        pen.finish(false);
+    } else {
+        // The closing segment is drawn (back to the first point): close without another line.
+        pen.finish(true);
+        pen.at = pen.start;
+    }
 }
 
 /// A circular arc about `c` of radius `r` from angle `a0` (radians) turning by `sweep`

@@ -280,3 +280,83 @@ fn the_html_report_has_a_labelled_picture_per_shape_worst_first() {
     assert!(!page.contains("<b>period</b>"));
     assert!(page.contains("the first 3 are drawn"));
 }
+
+#[test]
+fn ufo_point_streams_read_as_their_segments() {
+    use norad::{Contour, ContourPoint, Font, Glyph, PointType as T};
+    let pt = |x: f64, y: f64, t: T| ContourPoint::new(x, y, t, false, None, None);
+    let mut font = Font::new();
+    // A circle of off-curve points only (TrueType style): four implied quadratics.
+    let mut o = Glyph::new("o");
+    o.contours.push(Contour::new(
+        vec![
+            pt(10.0, 0.0, T::OffCurve),
+            pt(10.0, 10.0, T::OffCurve),
+            pt(-10.0, 10.0, T::OffCurve),
+            pt(-10.0, -10.0, T::OffCurve),
+        ],
+        None,
+    ));
+    // A closed contour starting with off-curve points, with a line, a cubic and a qcurve
+    // of two off-curve points (two quadratics).
+    let mut d = Glyph::new("d");
+    d.contours.push(Contour::new(
+        vec![
+            pt(5.0, 10.0, T::OffCurve),
+            pt(0.0, 10.0, T::Curve),
+            pt(0.0, 0.0, T::Line),
+            pt(4.0, -2.0, T::OffCurve),
+            pt(8.0, -2.0, T::OffCurve),
+            pt(10.0, 0.0, T::Curve),
+            pt(12.0, 3.0, T::OffCurve),
+            pt(12.0, 7.0, T::OffCurve),
+            pt(10.0, 10.0, T::QCurve),
+        ],
+        None,
+    ));
+    // An open contour.
+    let mut l = Glyph::new("l");
+    l.contours.push(Contour::new(
+        vec![
+            pt(0.0, 0.0, T::Move),
+            pt(0.0, 5.0, T::Line),
+            pt(2.0, 7.0, T::OffCurve),
+            pt(4.0, 7.0, T::Curve),
+        ],
+        None,
+    ));
+    for g in [o, d, l] {
+        font.default_layer_mut().insert_glyph(g);
+    }
+    let dir = std::env::temp_dir().join(format!("aecurve-ufo-{}.ufo", std::process::id()));
+    font.save(&dir).unwrap();
+    let u = read(&dir).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    let get = |n: &str| &u.shapes.iter().find(|s| s.name == n).unwrap().contours[0];
+    let o = get("o");
+    assert!(o.closed && o.segments.len() == 4);
+    assert!(o.segments.iter().all(|s| s.degree() == 2));
+    let d = get("d");
+    let degrees: Vec<usize> = d.segments.iter().map(|s| s.degree()).collect();
+    // From (0, 10): line, cubic, two quadratics (the implied point at (12, 5)), quadratic back.
+    assert_eq!(degrees, [1, 3, 2, 2, 2], "{:?}", d.segments);
+    assert_eq!(
+        d.segments[2].points()[2],
+        aesthetic_curves::Point::new(12.0, 5.0)
+    );
+    assert!(d.closed);
+    // Consecutive segments share their ends, and the contour closes on its start.
+    for w in d.segments.windows(2) {
+        assert_eq!(w[0].points().last(), w[1].points().first());
+    }
+    assert_eq!(
+        d.segments.last().unwrap().points().last(),
+        d.segments[0].points().first()
+    );
+    let l = get("l");
+    assert!(!l.closed);
+    assert_eq!(
+        l.segments.iter().map(|s| s.degree()).collect::<Vec<_>>(),
+        [1, 2]
+    );
+}
