@@ -315,8 +315,8 @@ fn ufo_contour(points: &[norad::ContourPoint], pen: &mut Collector) {
                 let n = points.len();
                 let mid = |i: usize| p(&points[i]).midpoint(p(&points[(i + 1) % n]));
                 pen.move_to(mid(n - 1));
-                for i in 0..n {
-                    pen.quad_to(p(&points[i]), mid(i));
+                for (i, q) in points.iter().enumerate() {
+                    pen.quad_to(p(q), mid(i));
                 }
                 pen.close();
                 return;
