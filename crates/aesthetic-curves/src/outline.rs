@@ -14,7 +14,7 @@
 //! For every join (between consecutive segments, and last to first on a closed contour): the
 //! tangent angle break (0: G1), and at G1 joins (break at most [`OutlineOptions::g1_angle`])
 //! the relative curvature jump `|κ₁ - κ₂| / max(|κ₁|, |κ₂|)` (G2 when below
-//! [`OutlineOptions::g2_jump`]). A break above zero but under
+//! [`OutlineOptions::g2_jump`]). A break that is not G1 but under
 //! [`OutlineOptions::near_break`] (a few degrees) is almost always unintended: it is
 //! flagged.
 //!
