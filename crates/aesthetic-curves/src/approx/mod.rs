@@ -53,7 +53,9 @@
 //! alone). Near-exact fits (rms below 1e-7 of the length) need care: their valleys are
 //! hairline-narrow and curved and can hold twin minima a few thousandths apart, so there a
 //! start is skipped only within 0.003 of a minimum already found, and a run is never
-//! abandoned while it is itself near-exact.
+//! abandoned while it is itself near-exact. On fresh cases the optimiser was not tuned on
+//! (the ignored hold-out test of the same file), 3 of 700 miss the 1 % band, by 1.3 to
+//! 2.8 %: near-flat valley floors with several shallow minima.
 
 use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
@@ -169,7 +171,7 @@ pub fn approximation_error(
         pts.push(p);
         taus.push(turning(d0, d1, sign));
     }
-    let (lac, _) = seg.eval_turning(&taus)?;
+    let lac = seg.points_at_turning(&taus)?;
     let mut sum = 0.0;
     let mut max = 0.0f64;
     for (a, b) in pts.iter().zip(&lac) {
@@ -807,6 +809,7 @@ const LM_FULL: LmOptions = LmOptions {
     fd_step: 1e-7,
     abandon_after: usize::MAX,
     abandon_above: f64::INFINITY,
+    abandon_predicted_above: f64::INFINITY,
 };
 
 /// Levenberg–Marquardt on the residual vector from `start`; steps where `feasible` is false
@@ -1127,6 +1130,11 @@ pub fn refine_minimum(seg: &LacSegment, f0: f64, f1: f64) -> Result<ErrorMinimum
 /// Mean square error (relative to the arc length) below which a fit counts as near-exact
 /// (rms 1e-8): its valley is a hairline whose floor can hold several minima.
 const NEAR_EXACT: f64 = 1e-14;
+/// A start's run is abandoned once its Gauss–Newton model's minimum is above this many
+/// times the best minimum found (or [`NEAR_EXACT`]): on the sweep's 1000 cases, 2 cut the
+/// starts' evaluations by a third with no miss; 1.3 was still exact there, 1.5 leaves a
+/// margin.
+const MODEL_MARGIN: f64 = 1.5;
 
 /// The table's starting points for `seg` ([`crate::approx_table`]), each refined by
 /// Levenberg–Marquardt (starts within 1e-3 of one already refined, or of its result, are
@@ -1176,6 +1184,7 @@ fn table_candidates(
     let stop = |best: f64| LmOptions {
         abandon_after: 5,
         abandon_above: (100.0 * best).max(NEAR_EXACT),
+        abandon_predicted_above: (MODEL_MARGIN * best).max(NEAR_EXACT),
         rel_progress: 1e-6,
         mu0: 1e-8,
         ..LM_FULL

@@ -483,6 +483,45 @@ mod tests {
     /// of α - 1, and an interval that runs up to 1e-6 of the singular end (where the walk
     /// must switch to its fallback steps).
     #[test]
+    fn monotone_walk_matches_quadrature() {
+        // Uneven steps (rotation by each step's own angle, the third-derivative Hermite
+        // rule where its bound allows, Gauss or adaptive steps elsewhere), both directions.
+        let mut rng = crate::samples::SplitMix64::new(5);
+        for &(alpha, lambda) in &[
+            (-1.0, 0.3),
+            (0.5, 0.4),
+            (2.0, 0.5),
+            (5.0, 0.1),
+            (-8.0, 2.0),
+            (1.0, 0.5),
+        ] {
+            let c = LacStandard::new(alpha, lambda).unwrap();
+            let (lo, hi) = c.domain();
+            let (lo, hi) = ((lo + 1e-6).max(-2.5), (hi - 1e-6).min(2.5));
+            for n in [9, 40, 201, 1000] {
+                let mut th: Vec<f64> = (0..n).map(|_| rng.range(lo, hi)).collect();
+                th.sort_by(f64::total_cmp);
+                if rng.range(0.0, 1.0) < 0.5 {
+                    th.reverse();
+                }
+                let (p, k) = c.walk_monotone(&th).unwrap();
+                let len = (c.arc_length(th[n - 1]).unwrap() - c.arc_length(th[0]).unwrap()).abs();
+                for (i, t) in th.iter().enumerate() {
+                    let want = c.integral(th[0], *t).unwrap();
+                    let err = (p[i] - want).hypot() / len;
+                    assert!(err < 2e-14, "alpha {alpha} n {n} theta {t}: {err:.2e}");
+                    let kw = c.kappa(*t).unwrap();
+                    assert!(
+                        (k[i] - kw).abs() <= 1e-14 * kw,
+                        "{alpha} {t}: {} vs {kw}",
+                        k[i]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
     fn uniform_walk_matches_quadrature() {
         let cases = [
             (-1.0, 0.3),

@@ -540,6 +540,20 @@ impl LacSegment {
         self.eval_thetas(&th)
     }
 
+    /// The points of [`Self::eval_turning`] alone (no tangents: no sine and cosine per
+    /// point).
+    pub(crate) fn points_at_turning(&self, taus: &[f64]) -> Result<Vec<Point>> {
+        if let Some(i) = taus.iter().position(|t| !t.is_finite()) {
+            return Err(Error::invalid(format!("tau[{i}]"), "must be finite"));
+        }
+        let th: Vec<f64> = taus
+            .iter()
+            .map(|t| self.theta_at_turning(t.clamp(0.0, self.theta_d)))
+            .collect();
+        let (pts, _) = self.standard_points(&th)?;
+        Ok(pts.iter().map(|p| self.map.apply(p.to_vec2())).collect())
+    }
+
     /// Standard-form points and curvatures at `th`: a monotone sequence (the usual case:
     /// sorted turning angles) by one walk ([`LacStandard::walk_monotone`]) from the first
     /// point, anything else by [`LacStandard::eval_many_with_kappa`].

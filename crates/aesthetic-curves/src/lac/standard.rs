@@ -400,11 +400,12 @@ impl LacStandard {
     /// `P(θ_k) - P(t0)` and the curvature κ(θ_k) at the `n >= 2` evenly spaced angles
     /// `θ_k = t0 + (t1 - t0) k/(n-1)`: the polyline of a segment.
     ///
-    /// Each sample is evaluated once (ρ, ρ', ρ'' in closed form from U = 1 + cθ, e^{iθ} by
-    /// rotation, recomputed every 32 samples) and consecutive samples are joined by the
-    /// two-point Hermite rule with second derivatives,
-    /// `∫_0^h f = h/2 (f0 + f1) + h²/10 (f0' - f1') + h³/120 (f0'' + f1'') - h⁷/100800 f⁽⁶⁾(ξ)`,
-    /// whenever the bound of [`Self::integral_step`] (m = 6) puts that error below 2e-17 of
+    /// Each sample is evaluated once (ρ and its first three derivatives in closed form from
+    /// U = 1 + cθ, e^{iθ} by rotation, recomputed every 32 samples) and consecutive samples
+    /// are joined by the two-point Hermite rule with third derivatives,
+    /// `∫_0^h f = h/2 (f0 + f1) + 3h²/28 (f0' - f1') + h³/84 (f0'' + f1'')
+    /// + h⁴/1680 (f0''' - f1''') + h⁹/25401600 f⁽⁸⁾(ξ)`,
+    /// whenever the bound of [`Self::integral_step`] (m = 8) puts that error below 2e-17 of
     /// the step's arc length; other steps (near the singular end, coarse sampling) go
     /// through `integral_step`. Errors when `integral_step` would.
     pub(crate) fn uniform_walk(&self, t0: f64, t1: f64, n: usize) -> Result<(Vec<Vec2>, Vec<f64>)> {
@@ -422,8 +423,9 @@ impl LacStandard {
         self.walk(n, theta, (t1 - t0).abs() / last, true)
     }
 
-    /// [`Self::uniform_walk`] at any monotone sequence of angles (at least 2): e^{iθ} is
-    /// computed at every sample instead of by rotation; the same error bound per step.
+    /// [`Self::uniform_walk`] at any monotone sequence of angles (at least 2): e^{iθ} by
+    /// the rotation of each step's own angle (its Taylor series, steps up to 0.05 rad;
+    /// larger ones from scratch); the same error bound per step.
     pub(crate) fn walk_monotone(&self, thetas: &[f64]) -> Result<(Vec<Vec2>, Vec<f64>)> {
         let n = thetas.len();
         if n < 2 {
@@ -483,18 +485,21 @@ impl LacStandard {
             let (u, ue) = two_sum(1.0, x);
             (u, ue + xe)
         };
-        // f = ρ e^{iθ}, f' = (ρ' + iρ) e^{iθ}, f'' = (ρ'' - ρ + 2iρ') e^{iθ}.
-        let node = |rho: f64, inv_u: f64, e: Vec2| -> [Vec2; 3] {
+        // f = ρ e^{iθ}, f' = (ρ' + iρ) e^{iθ}, f'' = (ρ'' - ρ + 2iρ') e^{iθ},
+        // f''' = (ρ''' - 3ρ' + i(3ρ'' - ρ)) e^{iθ}, with ρ^(k) = ρ a (a-1)...(a-k+1) (c/U)^k.
+        let node = |rho: f64, inv_u: f64, e: Vec2| -> [Vec2; 4] {
             let r1 = a * c * rho * inv_u;
             let r2 = (a - 1.0) * c * r1 * inv_u;
+            let r3 = (a - 2.0) * c * r2 * inv_u;
             [
                 e * rho,
                 cmul(e, Vec2::new(r1, rho)),
                 cmul(e, Vec2::new(r2 - rho, 2.0 * r1)),
+                cmul(e, Vec2::new(r3 - 3.0 * r1, 3.0 * r2 - rho)),
             ]
         };
         // The Hermite rule's error bound for a step of width `h` where U >= `umin`: with
-        // r = |c|/U_min, D = Σ_j C(6,j) |a (a-1) ... (a-j+1)| r^j bounds |f⁽⁶⁾| / ρ_max and
+        // r = |c|/U_min, D = Σ_j C(8,j) |a (a-1) ... (a-j+1)| r^j bounds |f⁽⁸⁾| / ρ_max and
         // ρ_max/ρ_min <= e^{|a| r h} <= 1 + 2 |a| r h.
         let hermite_ok = |h: f64, umin: f64| {
             let r = c.abs() / umin;
@@ -502,9 +507,10 @@ impl LacStandard {
             if !(umin > 0.0 && spread <= 1.0) {
                 return false;
             }
-            let d = leibniz_bound(a, r, 6);
-            let h6 = (h * h) * (h * h) * (h * h);
-            1.5 * h6 * d * (1.0 + 2.0 * spread) * (1.0 / 100_800.0) <= 2e-17
+            let d = leibniz_bound(a, r, 8);
+            let h2 = h * h;
+            let h8 = (h2 * h2) * (h2 * h2);
+            1.5 * h8 * d * (1.0 + 2.0 * spread) * (1.0 / 25_401_600.0) <= 2e-17
         };
         // U is linear in θ: its minimum over the walk is at an end. When the widest step
         // passes at that minimum, every step does.
@@ -547,6 +553,8 @@ impl LacStandard {
                 rho *= binomial_pow(&ratios, eps, terms);
                 e = if uniform {
                     cmul(e, turn)
+                } else if h.abs() <= 0.05 {
+                    cmul(e, rotation(h))
                 } else {
                     Vec2::from_angle(th)
                 };
@@ -566,8 +574,9 @@ impl LacStandard {
             if all_fine || (!bad && hermite_ok(h, u_prev.min(uu))) {
                 let h2 = h * h;
                 acc += (prev[0] + cur[0]) * (0.5 * h)
-                    + (prev[1] - cur[1]) * (h2 * 0.1)
-                    + (prev[2] + cur[2]) * (h2 * h * (1.0 / 120.0));
+                    + (prev[1] - cur[1]) * (h2 * (3.0 / 28.0))
+                    + (prev[2] + cur[2]) * (h2 * h * (1.0 / 84.0))
+                    + (prev[3] - cur[3]) * (h2 * h2 * (1.0 / 1680.0));
             } else if !bad {
                 acc += self.integral_step(th_prev, th, &mut cache)?.0;
             }
@@ -864,6 +873,17 @@ fn binomial_ratios(a: f64) -> [f64; 8] {
 
 /// `D = Σ_k C(m,k) |a (a-1) ... (a-k+1)| r^k` (m = 6, 8 or 10): with ρ = U^a and
 /// r = |c| / U_min, `|f^(m)| <= ρ_max D` for f = ρ e^{iψ} (Leibniz).
+/// e^{ih} for |h| <= 0.05 by its Taylor series to h^9 (truncation below 3e-20).
+#[inline]
+fn rotation(h: f64) -> Vec2 {
+    let h2 = h * h;
+    let re = 1.0 - h2 * (0.5 - h2 * (1.0 / 24.0 - h2 * (1.0 / 720.0 - h2 * (1.0 / 40320.0))));
+    let im = h
+        * (1.0
+            - h2 * (1.0 / 6.0 - h2 * (1.0 / 120.0 - h2 * (1.0 / 5040.0 - h2 * (1.0 / 362_880.0)))));
+    Vec2::new(re, im)
+}
+
 fn leibniz_bound(a: f64, r: f64, m: usize) -> f64 {
     let binom = &BINOM_ROWS[m / 2 - 3];
     let (mut d, mut prod) = (1.0, 1.0);
