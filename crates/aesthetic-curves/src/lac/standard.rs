@@ -400,13 +400,14 @@ impl LacStandard {
     /// `P(θ_k) - P(t0)` and the curvature κ(θ_k) at the `n >= 2` evenly spaced angles
     /// `θ_k = t0 + (t1 - t0) k/(n-1)`: the polyline of a segment.
     ///
-    /// Each sample is evaluated once (ρ and its first three derivatives in closed form from
-    /// U = 1 + cθ, e^{iθ} by rotation, recomputed every 32 samples) and consecutive samples
-    /// are joined by the two-point Hermite rule with third derivatives,
-    /// `∫_0^h f = h/2 (f0 + f1) + 3h²/28 (f0' - f1') + h³/84 (f0'' + f1'')
-    /// + h⁴/1680 (f0''' - f1''') + h⁹/25401600 f⁽⁸⁾(ξ)`,
-    /// whenever the bound of [`Self::integral_step`] (m = 8) puts that error below 2e-17 of
-    /// the step's arc length; other steps (near the singular end, coarse sampling) go
+    /// Each sample is evaluated once (ρ and its derivatives in closed form from U = 1 + cθ,
+    /// e^{iθ} by rotation, recomputed every 32 samples) and consecutive samples are joined
+    /// by a two-point Hermite rule: with second derivatives,
+    /// `∫_0^h f = h/2 (f0 + f1) + h²/10 (f0' - f1') + h³/120 (f0'' + f1'') - h⁷/100800 f⁽⁶⁾(ξ)`,
+    /// when the bound of [`Self::integral_step`] (m = 6) puts that error below 2e-17 of every
+    /// step's arc length (dense walks), else with third derivatives,
+    /// `h/2 (f0 + f1) + 3h²/28 (f0' - f1') + h³/84 (f0'' + f1'') + h⁴/1680 (f0''' - f1''')`,
+    /// error `h⁹/25401600 f⁽⁸⁾(ξ)`, at each step where that bound (m = 8) passes; other steps (near the singular end, coarse sampling) go
     /// through `integral_step`. Errors when `integral_step` would.
     pub(crate) fn uniform_walk(&self, t0: f64, t1: f64, n: usize) -> Result<(Vec<Vec2>, Vec<f64>)> {
         if n < 2 {
@@ -487,35 +488,49 @@ impl LacStandard {
         };
         // f = ρ e^{iθ}, f' = (ρ' + iρ) e^{iθ}, f'' = (ρ'' - ρ + 2iρ') e^{iθ},
         // f''' = (ρ''' - 3ρ' + i(3ρ'' - ρ)) e^{iθ}, with ρ^(k) = ρ a (a-1)...(a-k+1) (c/U)^k.
-        let node = |rho: f64, inv_u: f64, e: Vec2| -> [Vec2; 4] {
+        // (f''' only when the walk needs the higher rule: `low_order` below.)
+        let node = |rho: f64, inv_u: f64, e: Vec2, third: bool| -> [Vec2; 4] {
             let r1 = a * c * rho * inv_u;
             let r2 = (a - 1.0) * c * r1 * inv_u;
-            let r3 = (a - 2.0) * c * r2 * inv_u;
+            let f3 = if third {
+                let r3 = (a - 2.0) * c * r2 * inv_u;
+                cmul(e, Vec2::new(r3 - 3.0 * r1, 3.0 * r2 - rho))
+            } else {
+                Vec2::ZERO
+            };
             [
                 e * rho,
                 cmul(e, Vec2::new(r1, rho)),
                 cmul(e, Vec2::new(r2 - rho, 2.0 * r1)),
-                cmul(e, Vec2::new(r3 - 3.0 * r1, 3.0 * r2 - rho)),
+                f3,
             ]
         };
-        // The Hermite rule's error bound for a step of width `h` where U >= `umin`: with
-        // r = |c|/U_min, D = Σ_j C(8,j) |a (a-1) ... (a-j+1)| r^j bounds |f⁽⁸⁾| / ρ_max and
-        // ρ_max/ρ_min <= e^{|a| r h} <= 1 + 2 |a| r h.
-        let hermite_ok = |h: f64, umin: f64| {
+        // The Hermite rules' error bounds for a step of width `h` where U >= `umin`: with
+        // r = |c|/U_min, D_m = Σ_j C(m,j) |a (a-1) ... (a-j+1)| r^j bounds |f⁽ᵐ⁾| / ρ_max
+        // and ρ_max/ρ_min <= e^{|a| r h} <= 1 + 2 |a| r h; m = 6 for the rule with second
+        // derivatives (error h⁷/100800 f⁽⁶⁾), m = 8 with third (h⁹/25401600 f⁽⁸⁾).
+        let hermite_ok = |h: f64, umin: f64, m: usize| {
             let r = c.abs() / umin;
             let spread = a.abs() * r * h.abs();
             if !(umin > 0.0 && spread <= 1.0) {
                 return false;
             }
-            let d = leibniz_bound(a, r, 8);
+            let d = leibniz_bound(a, r, m);
             let h2 = h * h;
-            let h8 = (h2 * h2) * (h2 * h2);
-            1.5 * h8 * d * (1.0 + 2.0 * spread) * (1.0 / 25_401_600.0) <= 2e-17
+            let (hm, k) = if m == 6 {
+                (h2 * h2 * h2, 1.0 / 100_800.0)
+            } else {
+                ((h2 * h2) * (h2 * h2), 1.0 / 25_401_600.0)
+            };
+            1.5 * hm * d * (1.0 + 2.0 * spread) * k <= 2e-17
         };
         // U is linear in θ: its minimum over the walk is at an end. When the widest step
         // passes at that minimum, every step does.
         let u_ends = (1.0 + c * t0).min(1.0 + c * t1) * (1.0 - 1e-12);
-        let all_fine = hermite_ok(hmax * (1.0 + 1e-9), u_ends);
+        // Dense walks (the usual polyline) take the cheaper rule at every step; others the
+        // higher one, step by step where its bound allows.
+        let low_order = hermite_ok(hmax * (1.0 + 1e-9), u_ends, 6);
+        let all_fine = low_order || hermite_ok(hmax * (1.0 + 1e-9), u_ends, 8);
         let turn = Vec2::from_angle((t1 - t0) / last);
         let mut pts = vec![Vec2::ZERO; n];
         let mut kappa = vec![0.0; n];
@@ -528,7 +543,7 @@ impl LacStandard {
             return fallback();
         }
         let mut e = Vec2::from_angle(t0);
-        let mut prev = node(rho, inv_prev, e);
+        let mut prev = node(rho, inv_prev, e, !low_order);
         kappa[0] = 1.0 / rho;
         let mut acc = Vec2::ZERO;
         let mut th_prev = t0;
@@ -543,49 +558,66 @@ impl LacStandard {
             .saturating_sub(1)
             .clamp(2, 8);
         let ratios = binomial_ratios(a);
-        for (k, (p_out, k_out)) in pts.iter_mut().zip(kappa.iter_mut()).enumerate().skip(1) {
-            let th = theta(k);
-            let h = th - th_prev;
-            let eps = c * h * inv_prev;
-            let resync = k % 32 == 0 || k == n - 1;
-            let uu;
-            if !resync && eps.abs() * a_big <= reach {
-                rho *= binomial_pow(&ratios, eps, terms);
-                e = if uniform {
-                    cmul(e, turn)
-                } else if h.abs() <= 0.05 {
-                    cmul(e, rotation(h))
-                } else {
-                    Vec2::from_angle(th)
-                };
-                uu = 1.0 + c * th;
-            } else {
-                let (u, ue) = u_of(th);
-                rho = (a * (u.ln() + ue / u)).exp();
-                e = Vec2::from_angle(th);
-                uu = u + ue;
-            }
-            let kk = 1.0 / rho;
-            // Checked once after the loop (no branch per sample): a bad value only spoils
-            // what the fallback recomputes anyway.
-            bad |= !(rho.is_finite() && rho > 0.0 && kk.is_finite() && uu > 0.0);
-            let inv_u = 1.0 / uu;
-            let cur = node(rho, inv_u, e);
-            if all_fine || (!bad && hermite_ok(h, u_prev.min(uu))) {
-                let h2 = h * h;
-                acc += (prev[0] + cur[0]) * (0.5 * h)
-                    + (prev[1] - cur[1]) * (h2 * (3.0 / 28.0))
-                    + (prev[2] + cur[2]) * (h2 * h * (1.0 / 84.0))
-                    + (prev[3] - cur[3]) * (h2 * h2 * (1.0 / 1680.0));
-            } else if !bad {
-                acc += self.integral_step(th_prev, th, &mut cache)?.0;
-            }
-            *p_out = acc;
-            *k_out = kk;
-            prev = cur;
-            u_prev = uu;
-            inv_prev = inv_u;
-            th_prev = th;
+        // The loop twice (by macro): once per rule, so that the dense walk's cheaper rule
+        // pays nothing for the other.
+        macro_rules! steps {
+            ($third:literal) => {
+                for (k, (p_out, k_out)) in pts.iter_mut().zip(kappa.iter_mut()).enumerate().skip(1)
+                {
+                    let th = theta(k);
+                    let h = th - th_prev;
+                    let eps = c * h * inv_prev;
+                    let resync = k % 32 == 0 || k == n - 1;
+                    let uu;
+                    if !resync && eps.abs() * a_big <= reach {
+                        rho *= binomial_pow(&ratios, eps, terms);
+                        e = if uniform {
+                            cmul(e, turn)
+                        } else if h.abs() <= 0.05 {
+                            cmul(e, rotation(h))
+                        } else {
+                            Vec2::from_angle(th)
+                        };
+                        uu = 1.0 + c * th;
+                    } else {
+                        let (u, ue) = u_of(th);
+                        rho = (a * (u.ln() + ue / u)).exp();
+                        e = Vec2::from_angle(th);
+                        uu = u + ue;
+                    }
+                    let kk = 1.0 / rho;
+                    // Checked once after the loop (no branch per sample): a bad value only spoils
+                    // what the fallback recomputes anyway.
+                    bad |= !(rho.is_finite() && rho > 0.0 && kk.is_finite() && uu > 0.0);
+                    let inv_u = 1.0 / uu;
+                    let cur = node(rho, inv_u, e, $third);
+                    if !$third {
+                        let h2 = h * h;
+                        acc += (prev[0] + cur[0]) * (0.5 * h)
+                            + (prev[1] - cur[1]) * (h2 * 0.1)
+                            + (prev[2] + cur[2]) * (h2 * h * (1.0 / 120.0));
+                    } else if all_fine || (!bad && hermite_ok(h, u_prev.min(uu), 8)) {
+                        let h2 = h * h;
+                        acc += (prev[0] + cur[0]) * (0.5 * h)
+                            + (prev[1] - cur[1]) * (h2 * (3.0 / 28.0))
+                            + (prev[2] + cur[2]) * (h2 * h * (1.0 / 84.0))
+                            + (prev[3] - cur[3]) * (h2 * h2 * (1.0 / 1680.0));
+                    } else if !bad {
+                        acc += self.integral_step(th_prev, th, &mut cache)?.0;
+                    }
+                    *p_out = acc;
+                    *k_out = kk;
+                    prev = cur;
+                    u_prev = uu;
+                    inv_prev = inv_u;
+                    th_prev = th;
+                }
+            };
+        }
+        if low_order {
+            steps!(false);
+        } else {
+            steps!(true);
         }
         if bad {
             return fallback();
