@@ -127,9 +127,9 @@ pub fn levenberg_marquardt<const N: usize>(
 }
 
 /// [`levenberg_marquardt`] with the Jacobian in closed form: `jacobian(x)` fills the
-/// residuals and their columns. It is evaluated once per iteration, at the current point,
-/// instead of N forward differences (it counts as one evaluation); trial points take the
-/// residuals alone.
+/// residuals and their columns, instead of N forward differences (it counts as one
+/// evaluation). Trial points are evaluated with it, so an accepted step brings the next
+/// iteration's Jacobian along; `residuals` serves only the start.
 pub fn levenberg_marquardt_jac<const N: usize>(
     residuals: &mut ResidualFn<N>,
     jacobian: &mut JacobianFn<N>,
@@ -170,6 +170,10 @@ fn solve<const N: usize>(
     let mut jac: [Vec<f64>; N] = std::array::from_fn(|_| Vec::new());
     out.stop = Stop::IterationLimit;
     let mut trusted = false;
+    // With a closed-form Jacobian, trial points are evaluated with it (most are accepted,
+    // and then the next iteration needs it there): `have_jac` says `jac` belongs to `x`.
+    let mut have_jac = false;
+    let mut jac_trial: [Vec<f64>; N] = std::array::from_fn(|_| Vec::new());
     for iter in 0..opts.max_iterations {
         if iter >= opts.abandon_after && cost > opts.abandon_above {
             out.stop = Stop::Abandoned;
@@ -183,8 +187,12 @@ fn solve<const N: usize>(
         // Forward differences, backwards where the forward point cannot be evaluated.
         let mut evaluable = true;
         if let Some(jf) = jacobian.as_deref_mut() {
-            out.evaluations += 1;
-            evaluable = jf(&x, &mut r, &mut jac).is_some();
+            // (An accepted trial point brought its Jacobian along.)
+            if !have_jac {
+                out.evaluations += 1;
+                evaluable = jf(&x, &mut r, &mut jac).is_some();
+            }
+            have_jac = false;
         } else {
             for (i, col) in jac.iter_mut().enumerate() {
                 let h = opts.fd_step * x[i].abs().max(1.0);
@@ -251,7 +259,12 @@ fn solve<const N: usize>(
                 continue;
             };
             let xn: [f64; N] = std::array::from_fn(|i| x[i] + step[i]);
-            let new_cost = if feasible(&xn) && residuals(&xn, &mut rp).is_some() {
+            let evaluated = feasible(&xn)
+                && match jacobian.as_deref_mut() {
+                    Some(jf) => jf(&xn, &mut rp, &mut jac_trial).is_some(),
+                    None => residuals(&xn, &mut rp).is_some(),
+                };
+            let new_cost = if evaluated {
                 out.evaluations += 1;
                 sum_sq(&rp)
             } else {
@@ -267,6 +280,10 @@ fn solve<const N: usize>(
                 x = xn;
                 cost = new_cost;
                 std::mem::swap(&mut r, &mut rp);
+                if jacobian.is_some() {
+                    std::mem::swap(&mut jac, &mut jac_trial);
+                    have_jac = true;
+                }
                 mu = (mu * 0.3).max(1e-12);
                 improved = !small;
                 break;
