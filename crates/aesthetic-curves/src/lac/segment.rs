@@ -581,10 +581,24 @@ impl LacSegment {
         let dir = if self.reversed { -1.0 } else { 1.0 };
         let o = self.map.apply(Vec2::ZERO);
         let points = pts.iter().map(|p| self.map.apply(p.to_vec2())).collect();
+        // e^{iθ} by the rotation of each step (sorted angles, steps up to 0.05 rad),
+        // from scratch every 32 points.
+        let mut e = Vec2::ZERO;
+        let mut prev = f64::NAN;
         let derivs = th
             .iter()
             .zip(&kappa)
-            .map(|(t, k)| self.map.apply(Vec2::from_angle(*t) * (dir / k)) - o)
+            .enumerate()
+            .map(|(i, (t, k))| {
+                let h = t - prev;
+                e = if i % 32 != 0 && h.abs() <= 0.05 {
+                    super::cmul(e, super::standard::rotation(h))
+                } else {
+                    Vec2::from_angle(*t)
+                };
+                prev = *t;
+                self.map.apply(e * (dir / k)) - o
+            })
             .collect();
         Ok((points, derivs))
     }

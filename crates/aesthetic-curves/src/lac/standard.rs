@@ -907,7 +907,7 @@ fn binomial_ratios(a: f64) -> [f64; 8] {
 /// r = |c| / U_min, `|f^(m)| <= ρ_max D` for f = ρ e^{iψ} (Leibniz).
 /// e^{ih} for |h| <= 0.05 by its Taylor series to h^9 (truncation below 3e-20).
 #[inline]
-fn rotation(h: f64) -> Vec2 {
+pub(super) fn rotation(h: f64) -> Vec2 {
     let h2 = h * h;
     let re = 1.0 - h2 * (0.5 - h2 * (1.0 / 24.0 - h2 * (1.0 / 720.0 - h2 * (1.0 / 40320.0))));
     let im = h
