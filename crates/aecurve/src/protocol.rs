@@ -526,10 +526,10 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
 /// The `spline` member of `lac.rational_approx` and `lac.inflection_segment`.
 fn rational_spline_json(sp: &aesthetic_curves::approx::RationalSpline) -> Value {
     json!({
-        "degree": sp.degree,
-        "knots": sp.knots,
-        "control_points": sp.control_points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
-        "weights": sp.weights,
+        "degree": sp.nurbs.degree,
+        "knots": sp.nurbs.knots,
+        "control_points": sp.nurbs.control_points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+        "weights": sp.nurbs.weights,
         "pieces": sp.pieces.len(),
         "max_error": sp.max_error,
         "monotone": sp.pieces.iter().all(|p| p.monotone),

@@ -2,10 +2,9 @@
 //!
 //! [`Nurbs`] holds a degree, a clamped knot vector, control points and positive weights, and
 //! evaluates by de Boor's algorithm on homogeneous coordinates. Rational Bézier curves and
-//! the G2 piecewise splines of [`crate::approx`] convert to it exactly (no resampling), so an
-//! exporter needs only this one type.
+//! the G2 piecewise splines of [`crate::approx`] are one (no resampling), so an exporter
+//! needs only this one type.
 
-use crate::approx::RationalSpline;
 use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
 use kurbo::Point;
@@ -96,13 +95,31 @@ impl Nurbs {
     /// of multiplicity `degree`, each piece's weights scaled (which keeps its curve) so the
     /// shared control point has one weight.
     pub fn from_beziers(pieces: &[RationalBezier]) -> Result<Nurbs> {
+        let breaks: Vec<f64> = (0..=pieces.len()).map(|i| i as f64).collect();
+        Nurbs::from_beziers_at(pieces, &breaks)
+    }
+
+    /// [`Nurbs::from_beziers`] with span i on [`breaks[i]`, `breaks[i + 1]`] (increasing,
+    /// one more than the pieces): for example the pieces' arc-length fractions.
+    pub fn from_beziers_at(pieces: &[RationalBezier], breaks: &[f64]) -> Result<Nurbs> {
         let first = pieces
             .first()
             .ok_or_else(|| Error::invalid("pieces", "need at least one"))?;
+        if breaks.len() != pieces.len() + 1
+            || breaks
+                .windows(2)
+                .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+            || breaks.iter().any(|b| !b.is_finite())
+        {
+            return Err(Error::invalid(
+                "breaks",
+                "one more than the pieces, finite and increasing",
+            ));
+        }
         let p = first.degree();
         let mut control_points = vec![first.points()[0]];
         let mut weights = vec![first.weights()[0]];
-        let mut knots = vec![0.0; p + 1];
+        let mut knots = vec![breaks[0]; p + 1];
         let size = pieces
             .iter()
             .flat_map(|c| c.points().iter())
@@ -124,21 +141,11 @@ impl Nurbs {
             control_points.extend_from_slice(&c.points()[1..]);
             weights.extend(c.weights()[1..].iter().map(|w| w * f));
             if i > 0 {
-                knots.extend(vec![i as f64; p]);
+                knots.extend(vec![breaks[i]; p]);
             }
         }
-        knots.extend(vec![pieces.len() as f64; p + 1]);
+        knots.extend(vec![breaks[pieces.len()]; p + 1]);
         Nurbs::new(p, knots, control_points, weights)
-    }
-
-    /// The spline of [`crate::approx::fit_rational_spline`].
-    pub fn from_spline(s: &RationalSpline) -> Nurbs {
-        Nurbs {
-            degree: s.degree,
-            knots: s.knots.clone(),
-            control_points: s.control_points.clone(),
-            weights: s.weights.clone(),
-        }
     }
 
     /// Parameter range [first knot, last knot].
@@ -294,6 +301,43 @@ mod tests {
                     assert!(d < 1e-12, "degree {p}: {d}");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn beziers_join_at_given_breaks() {
+        // Two quarter circles (exact rational quadratics) joined on [0, 0.3] and [0.3, 1]:
+        // every point of the joined spline lies on the unit circle, the interior knot
+        // sits at the break, and bad breaks are refused.
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        let q1 = RationalBezier::new(
+            vec![
+                Point::new(1.0, 0.0),
+                Point::new(1.0, 1.0),
+                Point::new(0.0, 1.0),
+            ],
+            vec![1.0, w, 1.0],
+        )
+        .unwrap();
+        let q2 = RationalBezier::new(
+            vec![
+                Point::new(0.0, 1.0),
+                Point::new(-1.0, 1.0),
+                Point::new(-1.0, 0.0),
+            ],
+            vec![2.0, 2.0 * w, 2.0],
+        )
+        .unwrap();
+        let n = Nurbs::from_beziers_at(&[q1.clone(), q2.clone()], &[0.0, 0.3, 1.0]).unwrap();
+        assert_eq!(n.knots, vec![0.0, 0.0, 0.0, 0.3, 0.3, 1.0, 1.0, 1.0]);
+        assert_eq!(n.weights, vec![1.0, w, 1.0, w, 1.0]);
+        for i in 0..=50 {
+            let r = n.eval(i as f64 / 50.0).to_vec2().hypot();
+            assert!((r - 1.0).abs() < 1e-15, "{r}");
+        }
+        assert!((n.eval(0.3) - Point::new(0.0, 1.0)).hypot() < 1e-15);
+        for bad in [&[0.0, 1.0][..], &[0.0, 0.5, 0.5], &[0.0, f64::NAN, 1.0]] {
+            assert!(Nurbs::from_beziers_at(&[q1.clone(), q2.clone()], bad).is_err());
         }
     }
 

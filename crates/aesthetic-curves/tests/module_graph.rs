@@ -105,6 +105,7 @@ fn the_reader_sees_real_edges() {
     let g = graph();
     assert!(g["pseudo_spline"].contains("pseudo_table"));
     assert!(g["approx"].contains("approx_table"));
+    assert!(g["approx"].contains("nurbs") && !g["nurbs"].contains("approx"));
     // A module in a folder (lac/) is read too.
     assert!(g["approx"].contains("lac") && g["lac"].contains("quadrature"));
 }
@@ -118,7 +119,7 @@ const LAYERS: [(&str, &[&str]); 6] = [
     ),
     (
         "curves",
-        &["bernstein", "bezier", "bezpath", "lac", "bspline"],
+        &["bernstein", "bezier", "bezpath", "lac", "bspline", "nurbs"],
     ),
     ("measures", &["monotone", "lcg", "region", "outline"]),
     (
@@ -126,7 +127,6 @@ const LAYERS: [(&str, &[&str]); 6] = [
         &[
             "approx",
             "approx_table",
-            "nurbs",
             "pseudo_segment",
             "pseudo_table",
             "pseudo_spline",

@@ -66,7 +66,7 @@ pub(crate) fn approx(
         }
     }
     let nurbs = match &spline {
-        Some(sp) => aesthetic_curves::nurbs::Nurbs::from_spline(sp),
+        Some(sp) => sp.nurbs.clone(),
         None => aesthetic_curves::nurbs::Nurbs::from_bezier(&fit.curve),
     };
     let pieces = nurbs.as_curve()?;

@@ -74,12 +74,7 @@ fn cad_nurbs(
             "NOT monotone in every piece"
         }
     );
-    Ok(aesthetic_curves::nurbs::Nurbs::new(
-        sp.degree,
-        sp.knots,
-        sp.control_points,
-        sp.weights,
-    )?)
+    Ok(sp.nurbs)
 }
 
 /// `-o` for a LAC segment command: pictures (.svg, .png) of the segment with its comb; CAD

@@ -1702,9 +1702,9 @@ mod tests {
         let k = sp.pieces.len();
         assert!(k >= 2, "{k}");
         assert!(sp.max_error <= 1e-6);
-        assert_eq!(sp.control_points.len(), 3 * k + 1);
-        assert_eq!(sp.knots.len(), 3 * k + 1 + 4);
-        assert!(sp.weights.iter().all(|w| *w > 0.0));
+        assert_eq!(sp.nurbs.control_points.len(), 3 * k + 1);
+        assert_eq!(sp.nurbs.knots.len(), 3 * k + 1 + 4);
+        assert!(sp.nurbs.weights.iter().all(|w| *w > 0.0));
         // G2 at the joints: each piece's end matches the next one's start.
         for w in sp.pieces.windows(2) {
             let (a, b) = (&w[0].curve, &w[1].curve);
@@ -1715,9 +1715,9 @@ mod tests {
         }
         // The shared control points carry equal weights (one NURBS), and the spline
         // evaluated by de Boor is the pieces.
-        assert_eq!(sp.control_points[3], sp.pieces[0].curve.points()[3]);
+        assert_eq!(sp.nurbs.control_points[3], sp.pieces[0].curve.points()[3]);
         for (i, piece) in sp.pieces.iter().enumerate() {
-            let (u0, u1) = (sp.knots[3 + 3 * i], sp.knots[4 + 3 * i]);
+            let (u0, u1) = (sp.nurbs.knots[3 + 3 * i], sp.nurbs.knots[4 + 3 * i]);
             for j in 0..=10 {
                 let t = j as f64 / 10.0;
                 let q = sp.eval(u0 + (u1 - u0) * t);
@@ -1880,9 +1880,9 @@ mod tests {
             "{k} pieces, {:e}",
             sp.max_error
         );
-        assert_eq!(sp.control_points.len(), 3 * k + 1);
-        assert_eq!(sp.knots.len(), 3 * k + 5);
-        assert!(sp.weights.iter().all(|w| *w > 0.0));
+        assert_eq!(sp.nurbs.control_points.len(), 3 * k + 1);
+        assert_eq!(sp.nurbs.knots.len(), 3 * k + 5);
+        assert!(sp.nurbs.weights.iter().all(|w| *w > 0.0));
         assert!(sp.pieces.iter().all(|p| p.monotone));
         // Zero curvature at the inflection end; G2 at every joint.
         assert!(sp.pieces[0].curve.kappa(0.0).abs() < 1e-12 / size);

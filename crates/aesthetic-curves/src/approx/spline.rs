@@ -2,8 +2,10 @@
 //! within a tolerance.
 
 use super::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions, RationalCubicFit};
+use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
 use crate::lac::{LacInflectionSegment, LacSegment};
+use crate::nurbs::Nurbs;
 use kurbo::Point;
 
 /// A LAC segment as rational cubic pieces joined with G2 continuity, as one rational
@@ -12,16 +14,10 @@ use kurbo::Point;
 /// parameter).
 #[derive(Clone, Debug)]
 pub struct RationalSpline {
-    /// Always 3.
-    pub degree: usize,
-    /// Knot vector: 0,0,0,0, u1,u1,u1, ..., 1,1,1,1 (interior knots at the pieces' joints,
-    /// proportional to arc length).
-    pub knots: Vec<f64>,
-    /// Control points (3 k + 1 for k pieces).
-    pub control_points: Vec<Point>,
-    /// Weights, one per control point, all > 0 (each piece scaled to share its first weight
-    /// with the previous piece's last).
-    pub weights: Vec<f64>,
+    /// The spline: degree 3, knots 0,0,0,0, u1,u1,u1, ..., 1,1,1,1 (interior knots at the
+    /// pieces' joints, proportional to arc length), 3 k + 1 control points for k pieces,
+    /// each piece's weights scaled to share its first weight with the previous piece's last.
+    pub nurbs: Nurbs,
     /// The pieces, in order, each with its own fit report.
     pub pieces: Vec<RationalCubicFit>,
     /// Largest distance to the LAC over all pieces, in input units.
@@ -32,13 +28,7 @@ impl RationalSpline {
     /// The point at knot parameter `u` in [0, 1], by de Boor's algorithm on homogeneous
     /// coordinates (independent of the pieces: a check of the assembled spline).
     pub fn eval(&self, u: f64) -> Point {
-        crate::bspline::de_boor(
-            self.degree,
-            &self.knots,
-            &self.control_points,
-            Some(&self.weights),
-            u,
-        )
+        self.nurbs.eval(u)
     }
 }
 
@@ -105,48 +95,32 @@ pub fn fit_rational_spline(
         with_lengths.push((fit, seg.sub_segment(start, end)?.arc_length()?));
         start = end;
     }
-    Ok(assemble(with_lengths))
+    assemble(with_lengths)
 }
 
 /// G2 rational cubic pieces, each with its arc length (input units), as one
 /// [`RationalSpline`]: shared joint points, each piece's weights scaled to meet the previous
 /// piece's last weight, interior knots of multiplicity 3 at the arc-length fractions.
-fn assemble(pieces: Vec<(RationalCubicFit, f64)>) -> RationalSpline {
-    let mut control_points = Vec::new();
-    let mut weights: Vec<f64> = Vec::new();
-    for (k, (fit, _)) in pieces.iter().enumerate() {
-        let (b, w) = (fit.curve.points(), fit.curve.weights());
-        let scale = if k == 0 {
-            1.0
-        } else {
-            weights[weights.len() - 1] / w[0]
-        };
-        let first = if k == 0 { 0 } else { 1 };
-        for i in first..4 {
-            control_points.push(b[i]);
-            weights.push(w[i] * scale);
-        }
-    }
+fn assemble(pieces: Vec<(RationalCubicFit, f64)>) -> Result<RationalSpline> {
     let total: f64 = pieces.iter().map(|(_, l)| l).sum();
-    let mut knots = vec![0.0; 4];
+    let mut breaks = vec![0.0];
     let mut acc = 0.0;
     for (_, l) in &pieces[..pieces.len() - 1] {
         acc += l / total;
-        knots.extend([acc; 3]);
+        breaks.push(acc);
     }
-    knots.extend([1.0; 4]);
+    breaks.push(1.0);
+    let curves: Vec<RationalBezier> = pieces.iter().map(|(f, _)| f.curve.clone()).collect();
+    let nurbs = Nurbs::from_beziers_at(&curves, &breaks)?;
     let max_error = pieces
         .iter()
         .map(|(f, l)| f.max_error * l)
         .fold(0.0, f64::max);
-    RationalSpline {
-        degree: 3,
-        knots,
-        control_points,
-        weights,
+    Ok(RationalSpline {
+        nurbs,
         pieces: pieces.into_iter().map(|(f, _)| f).collect(),
         max_error,
-    }
+    })
 }
 
 /// An inflection-end segment as rational cubic pieces within `tolerance` (input units), as
@@ -172,7 +146,7 @@ pub fn fit_inflection_spline(
     let whole = fit_inflection_cubic(seg, opts)?;
     let len = seg.arc_length();
     if whole.max_error * len <= tolerance {
-        return Ok(assemble(vec![(whole, len)]));
+        return assemble(vec![(whole, len)]);
     }
     // The head's error falls fast with its turning: search τ geometrically.
     let try_head = |tau: f64| -> Option<(LacInflectionSegment, LacSegment, RationalCubicFit)> {
@@ -211,7 +185,10 @@ pub fn fit_inflection_spline(
     let lt = tail.arc_length()?;
     let mut pieces = vec![(head_fit, head.arc_length())];
     for (i, f) in rest.pieces.into_iter().enumerate() {
-        pieces.push((f, (rest.knots[4 + 3 * i] - rest.knots[3 + 3 * i]) * lt));
+        pieces.push((
+            f,
+            (rest.nurbs.knots[4 + 3 * i] - rest.nurbs.knots[3 + 3 * i]) * lt,
+        ));
     }
-    Ok(assemble(pieces))
+    assemble(pieces)
 }
