@@ -447,7 +447,7 @@ pub fn lac_segment_json(
     let (k0, k1) = seg.end_curvatures()?;
     Ok(json!({
         "lambda": seg.lambda(),
-        "theta_d": seg.theta_d,
+        "theta_d": seg.theta_d(),
         "arc_length": seg.arc_length()?,
         "curvature_start": k0,
         "curvature_end": k1,
@@ -463,8 +463,8 @@ pub fn lac_inflection_json(
 ) -> Result<Value, aesthetic_curves::Error> {
     let (points, curvature) = seg.sample(samples)?;
     Ok(json!({
-        "alpha": seg.alpha,
-        "theta_d": seg.theta_d,
+        "alpha": seg.alpha(),
+        "theta_d": seg.theta_d(),
         "arc_length": seg.arc_length(),
         "curvature_end": curvature[curvature.len() - 1],
         "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
@@ -673,7 +673,7 @@ fn lac_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
             start,
         },
     )?;
-    let c = f.segment.control;
+    let c = f.segment.control();
     let mut o = json!({
         "alpha": f.alpha,
         "control": c.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),

@@ -21,7 +21,7 @@ fn bump(noise: f64) -> Vec<Point> {
     .unwrap();
     let (pts, _) = seg.sample(500).unwrap();
     let end = pts[499];
-    let (_, d) = seg.eval_turning(&[seg.theta_d]).unwrap();
+    let (_, d) = seg.eval_turning(&[seg.theta_d()]).unwrap();
     let nrm = Vec2::new(-d[0].y, d[0].x) / d[0].hypot();
     let mut out = pts.clone();
     for q in pts.iter().rev().skip(1) {

@@ -577,8 +577,14 @@ fn triangle(pa: Point, da: Vec2, pb: Point, db: Vec2) -> Option<[Point; 3]> {
     Some([pa, pa + da * s, pb])
 }
 
-/// A built piece: its curve, α and signed end curvatures (curve order).
-type Built = (PieceCurve, f64, (f64, f64));
+/// A built piece.
+#[derive(Clone, Debug)]
+struct Built {
+    curve: PieceCurve,
+    alpha: f64,
+    /// Signed curvature at the start and at the end (curve order).
+    kappa: (f64, f64),
+}
 
 /// The segment of a piece with end points and tangent angles given.
 /// Split where the curve misses the points most (kept off the piece's ends); a piece with an
@@ -654,14 +660,14 @@ fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2) -> Result<
             let alpha = segment.alpha;
             // In curve order; a reversed segment's signed curvature changes sign.
             let ends = if infl_a { (0.0, k) } else { (-k, 0.0) };
-            return Ok((
-                PieceCurve::Inflection {
+            return Ok(Built {
+                curve: PieceCurve::Inflection {
                     segment,
                     inflection_at_start: infl_a,
                 },
                 alpha,
-                ends,
-            ));
+                kappa: ends,
+            });
         }
     }
     let target = slot.alpha.unwrap_or(1.0);
@@ -704,7 +710,11 @@ fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2) -> Result<
     };
     let ends = seg.end_curvatures()?;
     let alpha = seg.standard.alpha();
-    Ok((PieceCurve::Lac(seg), alpha, ends))
+    Ok(Built {
+        curve: PieceCurve::Lac(seg),
+        alpha,
+        kappa: ends,
+    })
 }
 
 /// The pieces for joint tangents `dirs` (one unit vector per joint, ends included).
@@ -728,8 +738,14 @@ fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) -> Vec<u
         matches!(
             (l, r),
             (
-                Ok((PieceCurve::Inflection { .. }, _, _)),
-                Ok((PieceCurve::Inflection { .. }, _, _))
+                Ok(Built {
+                    curve: PieceCurve::Inflection { .. },
+                    ..
+                }),
+                Ok(Built {
+                    curve: PieceCurve::Inflection { .. },
+                    ..
+                })
             )
         )
     };
@@ -751,7 +767,15 @@ fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) -> Vec<u
         if let Some(d) = found {
             dirs[j] = d;
         } else {
-            let is_infl = |r: Result<Built>| matches!(r, Ok((PieceCurve::Inflection { .. }, _, _)));
+            let is_infl = |r: Result<Built>| {
+                matches!(
+                    r,
+                    Ok(Built {
+                        curve: PieceCurve::Inflection { .. },
+                        ..
+                    })
+                )
+            };
             if !is_infl(build_piece(&slots[j - 1], pts[j - 1], before, pts[j], here)) {
                 failed.push(j - 1);
             }
@@ -792,7 +816,7 @@ fn split_at_peak(track: &Track, slots: &mut Vec<Slot>, i: usize) -> bool {
 fn curvature_scale(built: &[Built]) -> f64 {
     built
         .iter()
-        .map(|b| b.2 .0.abs().max(b.2 .1.abs()))
+        .map(|b| b.kappa.0.abs().max(b.kappa.1.abs()))
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE)
 }
@@ -801,7 +825,7 @@ fn curvature_scale(built: &[Built]) -> f64 {
 fn mismatches(built: &[Built], active: &[usize], scale: f64) -> Vec<f64> {
     active
         .iter()
-        .map(|&j| (built[j].2 .0 - built[j - 1].2 .1) / scale)
+        .map(|&j| (built[j].kappa.0 - built[j - 1].kappa.1) / scale)
         .collect()
 }
 
@@ -869,13 +893,13 @@ fn fair(
     // faired.
     let zero_both = |built: &[Built], j: usize| {
         matches!(
-            built[j - 1].0,
+            built[j - 1].curve,
             PieceCurve::Inflection {
                 inflection_at_start: false,
                 ..
             }
         ) && matches!(
-            built[j].0,
+            built[j].curve,
             PieceCurve::Inflection {
                 inflection_at_start: true,
                 ..
@@ -1018,7 +1042,7 @@ fn free_alphas(
     for (k, &j) in active.iter().enumerate() {
         if d0[k].abs() > tol {
             for i in [j - 1, j] {
-                if matches!(built[i].0, PieceCurve::Lac(_)) && !free.contains(&i) {
+                if matches!(built[i].curve, PieceCurve::Lac(_)) && !free.contains(&i) {
                     free.push(i);
                 }
             }
@@ -1033,12 +1057,12 @@ fn free_alphas(
     // tenth of the way from there to 0.5, which every triangle admits.
     let mut local: Vec<Slot> = slots.to_vec();
     for &i in &free {
-        let a = built[i].1;
+        let a = built[i].alpha;
         let snapped = slots[i].alpha.is_some_and(|s| (s - a).abs() > 1e-9);
         local[i].alpha = Some(if snapped { a + 0.1 * (0.5 - a) } else { a });
     }
     let mut d0 = d0;
-    if free.iter().any(|&i| local[i].alpha != Some(built[i].1)) {
+    if free.iter().any(|&i| local[i].alpha != Some(built[i].alpha)) {
         if let Ok(b2) = build_all(&local, pts, dirs) {
             *built = b2;
             d0 = mismatches(built, active, scale);
@@ -1073,7 +1097,7 @@ fn free_alphas(
                     }
                     sl.alpha = Some(a);
                     b2[i] = build_piece(&sl, pts[i], dirs[i], pts[i + 1], dirs[i + 1]).ok()?;
-                    if (b2[i].1 - a).abs() > 1e-12 {
+                    if (b2[i].alpha - a).abs() > 1e-12 {
                         return None; // moved back inside the existence region: no derivative
                     }
                 }
@@ -1382,7 +1406,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         if !fairing.converged && slots.len() < opts.max_pieces {
             let polys: Option<Vec<Vec<Point>>> = built
                 .iter()
-                .map(|(c, _, _)| match c {
+                .map(|b| match &b.curve {
                     PieceCurve::Lac(seg) => seg.sample(129).ok().map(|x| x.0),
                     PieceCurve::Inflection { segment, .. } => segment.sample(129).ok().map(|x| x.0),
                 })
@@ -1401,7 +1425,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         type Fitted = (RationalCubicFit, Option<InflectionStart>);
         let fits: Vec<Result<Fitted>> = built
             .par_iter()
-            .map(|(curve, _, _)| match curve {
+            .map(|b| match &b.curve {
                 PieceCurve::Lac(seg) => {
                     let key = memo_key(0, seg.standard.alpha().to_bits(), &seg.control);
                     match memo.get(&key) {
@@ -1437,7 +1461,12 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             .collect();
         let mut pieces = Vec::with_capacity(slots.len());
         let mut split_here: Option<usize> = None;
-        for ((s, (curve, alpha, ends)), fitted) in slots.iter().zip(built).zip(fits) {
+        for ((s, b), fitted) in slots.iter().zip(built).zip(fits) {
+            let Built {
+                curve,
+                alpha,
+                kappa: ends,
+            } = b;
             let (kind, control, rat) = match &curve {
                 PieceCurve::Lac(seg) => match fitted {
                     Ok((f, _)) => {

@@ -75,10 +75,10 @@ impl Table {
     fn new(seg: &LacSegment) -> Table {
         let m = 4097;
         let (p, k) = seg.sample(m).unwrap();
-        let c = seg.control;
+        let c = seg.control();
         let d0 = (c[1] - c[0]) / (c[1] - c[0]).hypot();
         let sign = (c[1] - c[0]).cross(c[2] - c[1]).signum();
-        let h = seg.theta_d / (m - 1) as f64;
+        let h = seg.theta_d() / (m - 1) as f64;
         let d = k
             .iter()
             .enumerate()
@@ -92,7 +92,7 @@ impl Table {
             p,
             d,
             h,
-            theta_d: seg.theta_d,
+            theta_d: seg.theta_d(),
             d0,
             sign,
             len: seg.arc_length().unwrap(),

@@ -61,7 +61,7 @@ fn beats_the_published_fits_without_hooks() {
         let (poly, k) = fit.segment.sample(6001).unwrap();
         let (max, rms) = max_rms(&distances(&poly, &pts));
         let kmax = k.iter().map(|v| v.abs()).fold(0.0, f64::max);
-        let c = fit.segment.control;
+        let c = fit.segment.control();
         let gap = |q: Point, p: Point, t: aesthetic_curves::Vec2| (q - p).dot(t.normalize());
         let (g0, g1) = (
             gap(pts[0], c[0], c[1] - c[0]),

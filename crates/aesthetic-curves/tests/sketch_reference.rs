@@ -22,7 +22,7 @@ fn bump(alpha: f64, n: usize) -> Vec<Point> {
     let seg = LacSegment::new(alpha, [p(0.0, 0.0), p(6.0, 3.0), p(9.0, 0.5)]).unwrap();
     let (pts, _) = seg.sample(n).unwrap();
     let end = pts[n - 1];
-    let (_, d) = seg.eval_turning(&[seg.theta_d]).unwrap();
+    let (_, d) = seg.eval_turning(&[seg.theta_d()]).unwrap();
     let normal = Vec2::new(-d[0].y, d[0].x);
     let mut out = pts.clone();
     for q in pts.iter().rev().skip(1) {
@@ -37,7 +37,7 @@ fn s_curve(n: usize) -> (Vec<Point>, f64) {
     let (pts, _) = seg.sample(n).unwrap();
     let mut out: Vec<Point> = pts.iter().rev().map(|q| p(-q.x, -q.y)).collect();
     out.extend(pts.iter().skip(1));
-    (out, seg.alpha)
+    (out, seg.alpha())
 }
 
 fn noisy(points: &[Point], amp: f64) -> Vec<Point> {

@@ -37,7 +37,7 @@ pub(crate) fn approx(
     } else {
         let len = seg.arc_length()?;
         println!("rational cubic for the LAC segment alpha = {alpha}");
-        println!("  turning angle   {:.6} deg", seg.theta_d.to_degrees());
+        println!("  turning angle   {:.6} deg", seg.theta_d().to_degrees());
         println!("  f0, f1          {:.9}, {:.9}", fit.f0, fit.f1);
         for (i, (p, w)) in fit
             .curve
@@ -87,7 +87,7 @@ pub(crate) fn approx(
         let m = approx::error_map(&seg, map_cells, 32)?;
         let caption = format!(
             "error over (f0, f1), alpha = {alpha}, turning {:.1} deg",
-            seg.theta_d.to_degrees()
+            seg.theta_d().to_degrees()
         );
         plot::write_picture(path, &plot::error_map_svg(&m, (fit.f0, fit.f1), &caption))?;
         eprintln!("wrote {}", path.display());

@@ -24,13 +24,13 @@ pub(crate) fn lac(
         );
     } else {
         println!("log-aesthetic segment, alpha = {alpha}");
-        println!("  turning angle  {:.6} deg", seg.theta_d.to_degrees());
+        println!("  turning angle  {:.6} deg", seg.theta_d().to_degrees());
         println!("  lambda         {:.12}", seg.lambda());
         println!("  arc length     {:.9}", seg.arc_length()?);
         println!("  curvature      {k0:.9} at the start, {k1:.9} at the end");
         println!(
             "  high-curvature end at {}",
-            if seg.reversed {
+            if seg.reversed() {
                 "the end point"
             } else {
                 "the start point"
@@ -115,12 +115,12 @@ pub(crate) fn lac_inflection(
         );
     } else {
         println!("log-aesthetic segment with an inflection at the start point");
-        println!("  alpha          {:.10}", seg.alpha);
-        println!("  turning angle  {:.6} deg", seg.theta_d.to_degrees());
+        println!("  alpha          {:.10}", seg.alpha());
+        println!("  turning angle  {:.6} deg", seg.theta_d().to_degrees());
         println!("  arc length     {:.9}", seg.arc_length());
         println!("  curvature      0 at the start, {k1:.9} at the end");
     }
-    let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha);
+    let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha());
     let samples = plot::curve_samples(&seg, samples.max(2))?;
     // CAD formats: rational cubics within 1e-7 of the size, as for a LAC segment: next to the
     // inflection one cubic with zero curvature there, then the rest (an ordinary LAC

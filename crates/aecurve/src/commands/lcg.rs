@@ -23,7 +23,7 @@ pub(crate) fn lcg(source: LcgSource, json: bool, output: &[PathBuf]) -> Result<(
             lcg::fit_line(lcg::curve_lcg(b.as_monotone(), 81))?,
         ),
         LcgSource::Lac(seg) => (
-            format!("the LAC segment, alpha = {}", seg.standard.alpha()),
+            format!("the LAC segment, alpha = {}", seg.standard().alpha()),
             lcg::fit_line(seg.lcg(81)?)?,
         ),
     };

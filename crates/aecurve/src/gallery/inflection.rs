@@ -24,10 +24,10 @@ pub(crate) fn inflection_gallery(out: &std::path::Path) -> Result<String> {
         ));
         let kap = seg.end_curvature();
         kappa.push((deg as f64, kap));
-        alpha.push((deg as f64, seg.alpha));
+        alpha.push((deg as f64, seg.alpha()));
         rows += &format!(
             "<tr><td>{deg}</td><td>{:.5}</td><td>{:.5}</td><td>{:.5}</td></tr>\n",
-            seg.alpha,
+            seg.alpha(),
             kap,
             seg.arc_length()
         );
@@ -43,7 +43,7 @@ pub(crate) fn inflection_gallery(out: &std::path::Path) -> Result<String> {
         let p1 = Point::new(p2.x - p2.y / th.tan(), 0.0);
         let seg = LacInflectionSegment::new([Point::ORIGIN, p1, p2])?;
         kappa.push((deg as f64, seg.end_curvature()));
-        alpha.push((deg as f64, seg.alpha));
+        alpha.push((deg as f64, seg.alpha()));
     }
     std::fs::write(
         out.join("s4-fig1.svg"),

@@ -12,13 +12,28 @@ use kurbo::{Point, Vec2};
 #[derive(Clone, Debug, PartialEq)]
 pub struct LacInflectionSegment {
     /// The shape parameter (< 0).
-    pub alpha: f64,
+    pub(crate) alpha: f64,
     /// Turning angle θ_d in (0, π).
-    pub theta_d: f64,
+    pub(crate) theta_d: f64,
     /// Control triangle; `control[0]` is the inflection end.
-    pub control: [Point; 3],
+    pub(crate) control: [Point; 3],
     /// From the standard form to the input.
     map: Similarity,
+}
+
+impl LacInflectionSegment {
+    /// α (< 0).
+    pub fn alpha(&self) -> f64 {
+        self.alpha
+    }
+    /// The turning angle θ_d in (0, π).
+    pub fn theta_d(&self) -> f64 {
+        self.theta_d
+    }
+    /// The control triangle; `control()[0]` is the inflection end.
+    pub fn control(&self) -> [Point; 3] {
+        self.control
+    }
 }
 
 /// `∫_0^θ u^(r-1) e^{iu} du` for `r` in (0, 1] and θ in [0, 3.5], by its power series

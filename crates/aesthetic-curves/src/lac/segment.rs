@@ -10,20 +10,51 @@ use kurbo::{Point, Vec2};
 /// A log-aesthetic segment fitted into a control triangle (docs/math.md §3.1; Yoshida & Saito
 /// 2006): start, tangent intersection, end.
 #[derive(Clone, Debug, PartialEq)]
+///
+/// Its fields are private (they hold the solved Λ, the similarity and the orientation
+/// together); read them through the accessors of the same names.
 pub struct LacSegment {
     /// The standard-form curve (Λ >= 0).
-    pub standard: LacStandard,
+    pub(crate) standard: LacStandard,
     /// Turning angle θ_d in (0, π).
-    pub theta_d: f64,
+    pub(crate) theta_d: f64,
     /// The standard-form θ interval: [0, θ_d] for α <= 1, [-θ_d, 0] for α > 1 (a
     /// [`LacSegment::sub_segment`] keeps the parent's curve and takes a part of this).
-    pub interval: (f64, f64),
+    pub(crate) interval: (f64, f64),
     /// The three control points as given.
-    pub control: [Point; 3],
+    pub(crate) control: [Point; 3],
     /// True when the standard start (high-curvature end) maps to `control[2]`.
-    pub reversed: bool,
+    pub(crate) reversed: bool,
     /// From the standard form to the input.
     map: Similarity,
+}
+
+impl LacSegment {
+    /// The standard-form curve (α and Λ >= 0).
+    pub fn standard(&self) -> &LacStandard {
+        &self.standard
+    }
+    /// α.
+    pub fn alpha(&self) -> f64 {
+        self.standard.alpha()
+    }
+    /// The turning angle θ_d in (0, π).
+    pub fn theta_d(&self) -> f64 {
+        self.theta_d
+    }
+    /// The standard-form θ interval: [0, θ_d] for α <= 1, [-θ_d, 0] for α > 1 (a
+    /// [`LacSegment::sub_segment`] keeps the parent's curve and takes a part of this).
+    pub fn interval(&self) -> (f64, f64) {
+        self.interval
+    }
+    /// The control triangle: start, tangent intersection, end.
+    pub fn control(&self) -> [Point; 3] {
+        self.control
+    }
+    /// True when the standard start (the high-curvature end) is `control()[2]`.
+    pub fn reversed(&self) -> bool {
+        self.reversed
+    }
 }
 
 /// The second-order Taylor guess of Λ for base angle `phi`: ρ ≈ 1 + Λψ + (2-α)Λ²ψ²/2 near the
