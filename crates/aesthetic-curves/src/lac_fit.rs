@@ -205,18 +205,19 @@ fn correspondence(
     let (lo, hi) = (ta.min(tb), ta.max(tb));
     let mut th = ta;
     let mut thetas = Vec::with_capacity(sigma.len());
+    let opts = crate::solve::Newton1d {
+        max_iterations: 30,
+        max_step: f64::INFINITY,
+        abs_tol: 1e-14,
+        rel_tol: 1e-14,
+        bounds: (lo, hi),
+        clamp: true,
+    };
     for &f in sigma {
         let target = sa + (sb - sa) * f;
-        for _ in 0..30 {
-            let g = c.arc_length(th).ok()? - target;
-            let d = c.rho(th).ok()?;
-            let next = (th - g / d).clamp(lo, hi);
-            let done = (next - th).abs() <= 1e-14 * (1.0 + th.abs());
-            th = next;
-            if done {
-                break;
-            }
-        }
+        let update = |t: f64| Some(-(c.arc_length(t).ok()? - target) / c.rho(t).ok()?);
+        // (An unconverged run keeps its last iterate: the residuals measure what it costs.)
+        th = crate::solve::newton_1d(update, th, &opts).x;
         thetas.push(th);
     }
     let taus: Vec<f64> = thetas.iter().map(|t| (t - ta).abs()).collect();

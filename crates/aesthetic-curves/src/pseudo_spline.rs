@@ -172,26 +172,26 @@ fn table_tangent(lp: f64, li: f64, turn: f64, guess: f64) -> Option<f64> {
     let t = crate::pseudo_table::tables();
     // Start from the minimiser of the small-angle energy lp (a + turn)² + li a² (J ~ θ²);
     // `guess` (the bisector) stays the centre of the window.
-    let mut a = (-turn * lp / (lp + li)).clamp(guess - 0.5, guess + 0.5);
-    for _ in 0..30 {
+    let a0 = (-turn * lp / (lp + li)).clamp(guess - 0.5, guess + 0.5);
+    let update = |a: f64| {
         let (d1p, d2p) = t.single_slope_curvature(a + turn);
         let (d1, d2) = t.single_slope_curvature(a);
         let (g, h) = (lp * d1p + li * d1, lp * d2p + li * d2);
-        if h <= 0.0 || !h.is_finite() {
-            return None;
-        }
-        let step = (-g / h).clamp(-0.1, 0.1);
-        a += step;
-        if (a - guess).abs() > 0.6 {
-            return None;
-        }
-        // Newton converges quadratically here: a step below 1e-6 leaves an error of order
-        // its square (1e-12 rad), far below the accuracy of the tables themselves.
-        if step.abs() < 1e-6 {
-            return Some(a);
-        }
-    }
-    None
+        (h > 0.0 && h.is_finite()).then(|| -g / h)
+    };
+    // Newton converges quadratically here: a step below 1e-6 leaves an error of order its
+    // square (1e-12 rad), far below the accuracy of the tables themselves. The window:
+    // within 0.6 of `guess`.
+    let opts = crate::solve::Newton1d {
+        max_iterations: 30,
+        max_step: 0.1,
+        abs_tol: 1e-6,
+        rel_tol: 0.0,
+        bounds: (guess - 0.6, guess + 0.6),
+        clamp: false,
+    };
+    let root = crate::solve::newton_1d(update, a0, &opts);
+    root.converged().then_some(root.x)
 }
 
 /// The pseudo-elastic spline through `points`. Errors: fewer than 2 points (3 when closed)

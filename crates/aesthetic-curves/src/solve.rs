@@ -3,6 +3,9 @@
 //! [`least_squares`]: Levenberg–Marquardt for small nonlinear least-squares problems (the
 //! rational-cubic fit and the single-LAC fit), with a [`least_squares::Stop`] reason.
 //!
+//! [`newton_1d`] is the safeguarded one-variable Newton (or Gauss–Newton projection) loop
+//! with a [`Root1d`] report.
+//!
 //! [`brent`] minimises a function of one variable on an interval; [`compass_search`] is a
 //! pattern search in two variables that keeps to a feasible set; [`along_boundary`]
 //! follows the boundary of a feasible set in two variables when the minimum lies on it.
@@ -208,6 +211,98 @@ pub fn brent(f: &mut dyn FnMut(f64) -> f64, lo: f64, hi: f64, tol: f64) -> (f64,
     (x, fx)
 }
 
+/// Stopping rules and safeguards of [`newton_1d`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Newton1d {
+    /// Most iterations (one evaluation each).
+    pub max_iterations: usize,
+    /// Each update is clamped to ±this.
+    pub max_step: f64,
+    /// Converged when an update moves x by at most `abs_tol + rel_tol |x|`.
+    pub abs_tol: f64,
+    /// See `abs_tol`.
+    pub rel_tol: f64,
+    /// The domain of x.
+    pub bounds: (f64, f64),
+    /// True: iterates are clamped into `bounds`; false: an iterate outside them ends the run
+    /// ([`Stop1d::Refused`]).
+    pub clamp: bool,
+}
+
+/// Why [`newton_1d`] stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop1d {
+    /// An update was below the tolerance: `x` is the root to it.
+    Converged,
+    /// `max_iterations` ran out first; `x` is the last iterate.
+    IterationLimit,
+    /// The update function refused the point (outside its domain, or a slope of the wrong
+    /// sign), or an iterate left `bounds` without `clamp`.
+    Refused,
+}
+
+/// The result of [`newton_1d`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Root1d {
+    /// The last iterate.
+    pub x: f64,
+    /// Evaluations of the update function.
+    pub iterations: usize,
+    /// Why the run ended.
+    pub stop: Stop1d,
+}
+
+impl Root1d {
+    /// Whether the stopping test was met.
+    pub fn converged(&self) -> bool {
+        self.stop == Stop1d::Converged
+    }
+}
+
+/// Newton's method (or any fixed-point update) in one variable without a bracket: from
+/// `x0`, `x <- x + update(x)`, the update (for Newton `-g/g'`, for a Gauss–Newton
+/// projection `-(P - q)·P'/|P'|²`) clamped to `max_step` and the iterate kept in `bounds`
+/// as [`Newton1d`] says. `update` returns `None` where it cannot go on. The one loop behind
+/// the library's point projections and one-dimensional Newton iterations; it never runs
+/// past `max_iterations` and says how it ended.
+#[inline]
+pub fn newton_1d(mut update: impl FnMut(f64) -> Option<f64>, x0: f64, opts: &Newton1d) -> Root1d {
+    let mut x = x0;
+    for i in 0..opts.max_iterations {
+        let Some(d) = update(x).filter(|d| d.is_finite()) else {
+            return Root1d {
+                x,
+                iterations: i + 1,
+                stop: Stop1d::Refused,
+            };
+        };
+        let mut next = x + d.clamp(-opts.max_step, opts.max_step);
+        if opts.clamp {
+            next = next.clamp(opts.bounds.0, opts.bounds.1);
+        } else if !(opts.bounds.0..=opts.bounds.1).contains(&next) {
+            return Root1d {
+                x,
+                iterations: i + 1,
+                stop: Stop1d::Refused,
+            };
+        }
+        let done = (next - x).abs() <= opts.abs_tol + opts.rel_tol * next.abs();
+        x = next;
+        if done {
+            return Root1d {
+                x,
+                iterations: i + 1,
+                stop: Stop1d::Converged,
+            };
+        }
+    }
+    Root1d {
+        x,
+        iterations: opts.max_iterations,
+        stop: Stop1d::IterationLimit,
+    }
+}
+
 /// The result of [`compass_search`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Compass {
@@ -406,6 +501,43 @@ pub fn along_boundary(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn newton_1d_converges_refuses_and_stops_as_it_says() {
+        let opts = Newton1d {
+            max_iterations: 40,
+            max_step: 1.0,
+            abs_tol: 1e-15,
+            rel_tol: 1e-15,
+            bounds: (0.0, 10.0),
+            clamp: true,
+        };
+        // √2 from 3: steps clamped to 1 at first, then quadratic.
+        let r = newton_1d(|x| Some(-(x * x - 2.0) / (2.0 * x)), 3.0, &opts);
+        assert!(
+            r.converged() && (r.x - 2f64.sqrt()).abs() < 1e-15 && r.iterations < 10,
+            "{r:?}"
+        );
+        // A refusing update ends the run where it is.
+        let r = newton_1d(|x| (x > 2.5).then_some(-0.3), 3.0, &opts);
+        assert_eq!((r.stop, r.iterations), (Stop1d::Refused, 3));
+        assert!((r.x - 2.4).abs() < 1e-12);
+        // Clamped into the bounds: the root of x + 1 is outside, so x rests at 0 (an update
+        // that moves nothing any more counts as converged); unclamped it is refused.
+        let r = newton_1d(|x| Some(-(x + 1.0)), 0.5, &opts);
+        assert_eq!((r.stop, r.x), (Stop1d::Converged, 0.0));
+        let free = Newton1d {
+            clamp: false,
+            ..opts
+        };
+        assert_eq!(
+            newton_1d(|x| Some(-(x + 1.0)), 0.5, &free).stop,
+            Stop1d::Refused
+        );
+        // A cycle never converges: the iteration limit, said so.
+        let r = newton_1d(|x| Some(if x < 1.0 { 1.0 } else { -1.0 }), 0.5, &opts);
+        assert_eq!((r.stop, r.iterations), (Stop1d::IterationLimit, 40));
+    }
 
     #[test]
     fn rosenbrock_and_budget() {

@@ -87,18 +87,21 @@ impl InflectionTable {
 
     /// The arc-length fraction of the point of the segment nearest to `q`, from a start
     /// `sigma`: Gauss–Newton on the tabulated curve (the foot of the perpendicular).
-    fn nearest_sigma(&self, q: Point, mut sigma: f64) -> f64 {
-        for _ in 0..30 {
-            let (p, d) = self.at_sigma(sigma);
-            let step = (p - q).dot(d) / d.hypot2();
-            let next = (sigma - step).clamp(0.0, 1.0);
-            let done = (next - sigma).abs() < 1e-15;
-            sigma = next;
-            if done {
-                break;
-            }
-        }
-        sigma
+    fn nearest_sigma(&self, q: Point, sigma: f64) -> f64 {
+        let opts = crate::solve::Newton1d {
+            max_iterations: 30,
+            max_step: f64::INFINITY,
+            abs_tol: 1e-15,
+            rel_tol: 0.0,
+            bounds: (0.0, 1.0),
+            clamp: true,
+        };
+        let update = |s: f64| {
+            let (p, d) = self.at_sigma(s);
+            Some(-(p - q).dot(d) / d.hypot2())
+        };
+        // (Its last iterate either way: the fit measures the distance it gives.)
+        crate::solve::newton_1d(update, sigma, &opts).x
     }
 
     fn at_turning(&self, tau: f64) -> Point {

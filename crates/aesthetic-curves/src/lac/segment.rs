@@ -639,8 +639,10 @@ impl LacSegment {
     /// `None` if it leaves the curve's domain or does not converge.
     pub fn project_turning(&self, q: Point, tau0: f64) -> Option<f64> {
         let (lo, hi) = self.standard.domain();
-        let mut tau = tau0;
-        for _ in 0..50 {
+        let sign = self.turn_sign();
+        // g(τ) = (q - P)·u, g'(τ) = -ρ + (q - P)·u' with u' = ±n (the tangent turns by dτ
+        // towards the side the curve bends to); g' < 0 at a nearest point.
+        let update = |tau: f64| {
             let th = self.theta_at_turning(tau);
             if !(lo < th && th < hi) {
                 return None;
@@ -648,23 +650,20 @@ impl LacSegment {
             let (p, d) = self.eval_thetas(&[th]).ok()?;
             let rho = d[0].hypot();
             let (u, n) = (d[0] / rho, Vec2::new(-d[0].y, d[0].x) / rho);
-            // g(τ) = (q - P)·u, g'(τ) = -ρ + (q - P)·u' with u' = ±n (the tangent turns by
-            // dτ towards the side the curve bends to).
-            let sign = self.turn_sign();
             let r = q - p[0];
-            let g = r.dot(u);
             let dg = -rho + sign * r.dot(n);
-            if dg.is_nan() || dg >= 0.0 {
-                return None;
-            }
-            let step = g / dg;
-            let step = step.clamp(-0.5, 0.5);
-            tau -= step;
-            if step.abs() <= 1e-13 * (1.0 + tau.abs()) {
-                return Some(tau);
-            }
-        }
-        None
+            (dg < 0.0).then(|| -r.dot(u) / dg)
+        };
+        let opts = crate::solve::Newton1d {
+            max_iterations: 50,
+            max_step: 0.5,
+            abs_tol: 1e-13,
+            rel_tol: 1e-13,
+            bounds: (f64::NEG_INFINITY, f64::INFINITY),
+            clamp: false,
+        };
+        let root = crate::solve::newton_1d(update, tau0, &opts);
+        root.converged().then_some(root.x)
     }
 
     /// The part of this segment between turning angles `ta < tb` (from `control[0]`): the same
