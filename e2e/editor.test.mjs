@@ -292,6 +292,29 @@ await step('Bézier: select a control point, see its monotone region, drag it', 
   console.log(`     verdict before / after: ${v0} / ${await text('verdict')}`);
 });
 
+await step('outline check: the sample contour, pasted path data, a dragged point re-checked', async () => {
+  await page.click('#mode-outline');
+  await idle();
+  assert.ok((await text('verdict')).length > 0);
+  // An arch (curvature largest in its middle: not monotone) closed by a line.
+  await page.fill('#outline-path', 'M 0 0 C 0 5 10 5 10 0 Z');
+  await page.click('#outline-load');
+  await page.waitForFunction(() => window.__editor.state.outline.source !== null, null, { timeout: 15000 });
+  await idle();
+  const v1 = await text('verdict');
+  assert.match(v1, /NOT monotone/, v1);
+  // Four distinct points: the closing line's end is the first point, shared.
+  assert.equal(await page.evaluate(() => window.__editor.state.outline.p.length), 4);
+  const u0 = await page.evaluate(() => window.__editor.updates());
+  const before = await page.evaluate(() => window.__editor.state.outline.p[1].slice());
+  await dragHandle(1, 30, 25);
+  const after = await page.evaluate(() => window.__editor.state.outline.p[1]);
+  assert.ok(after[0] !== before[0] && (await page.evaluate(() => window.__editor.updates())) > u0);
+  assert.equal(await page.evaluate(() => window.__editor.frameMode()), 'outline');
+  await shot('09-outline');
+  console.log(`     outline verdict after the drag: ${await text('verdict')}`);
+});
+
 await step('an answer is never shown under another mode', async () => {
   // Every change of the numbers table is logged with the mode whose button is active and the
   // mode the answer belongs to. An update is started in the LAC mode and the mode switched

@@ -787,6 +787,7 @@ pub const MAX_OUTLINE_SEGMENTS: usize = 10_000;
 fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     use crate::outline_io::{check_shapes, finding_json, options_for, shape_json, Outlines};
     let outlines = match (obj.get("path"), obj.get("segments")) {
+        (None, None) if obj.contains_key("svg") || obj.contains_key("file") => outline_file(obj)?,
         (Some(Value::String(d)), None) => {
             if d.len() > MAX_PATH_DATA {
                 return Err(ProtoError::invalid(
@@ -859,9 +860,22 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         _ => {
             return Err(ProtoError::invalid(
                 "path",
-                "give either path (SVG path data) or segments",
+                "give one of path (SVG path data), segments, svg (an SVG document) or file",
             ))
         }
+    };
+    let draw = draw_param(obj)?;
+    let pick = match obj.get("shape") {
+        None | Some(Value::Null) => None,
+        Some(v) => match v.as_u64() {
+            Some(i) if (i as usize) < outlines.shapes.len() => Some(i as usize),
+            _ => {
+                return Err(ProtoError::invalid(
+                    "shape",
+                    format!("must be a shape index below {}", outlines.shapes.len()),
+                ))
+            }
+        },
     };
     let suggest = optional_number(obj, "suggest")?;
     if suggest.is_some_and(|t| t <= 0.0) {
@@ -871,15 +885,105 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         suggest,
         ..options_for(&outlines)
     };
-    let shapes: Vec<_> = outlines.shapes.iter().collect();
+    // One shape (`shape`), or every shape.
+    let shapes: Vec<_> = match pick {
+        Some(i) => vec![&outlines.shapes[i]],
+        None => outlines.shapes.iter().collect(),
+    };
     let checked = check_shapes(&shapes, &opts, &|| {});
-    Ok(json!({
+    let mut out = json!({
+        "shape_names": outlines.shapes.iter().map(|s| s.name.as_str()).collect::<Vec<_>>(),
         "shapes": checked.iter().map(shape_json).collect::<Vec<_>>(),
         "findings": checked
             .iter()
             .flat_map(|c| c.findings.iter().map(move |f| finding_json(c.name, f)))
             .collect::<Vec<_>>(),
-    }))
+    });
+    if let (Some(n), Some(first)) = (draw, shapes.first()) {
+        let segments: usize = first.contours.iter().map(|c| c.segments.len()).sum();
+        if segments.saturating_mul(n) > MAX_OUTLINE_DRAWING {
+            return Err(ProtoError::invalid(
+                "draw",
+                format!("{segments} segments at {n} points each: more than {MAX_OUTLINE_DRAWING} points"),
+            ));
+        }
+        // The (first) shape's contours for a picture: their segments (what an editor drags)
+        // and `n` points per segment with normals and curvature.
+        let mut contours = Vec::new();
+        for c in &first.contours {
+            if c.segments.is_empty() {
+                continue;
+            }
+            let pieces = aesthetic_curves::curve::Pieces(c.segments.clone());
+            contours.push(json!({
+                "closed": c.closed,
+                "segments": c.segments.iter().map(|b| json!({
+                    "control_points": b.points().iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                    "weights": b.weights(),
+                })).collect::<Vec<_>>(),
+                "drawing": drawing_json(&pieces, n, None)?,
+            }));
+        }
+        out["drawing"] = json!({ "name": first.name, "contours": contours });
+    }
+    Ok(out)
+}
+
+/// Most points an `outline.check` drawing holds (segments times `draw`).
+pub const MAX_OUTLINE_DRAWING: usize = 500_000;
+
+/// Largest file `outline.check` takes in `svg` or `file` (bytes).
+pub const MAX_OUTLINE_FILE: usize = 3 << 20;
+
+/// The outlines of an SVG document (`svg`: its text) or of a file (`file`: `{name, base64}`;
+/// a font, an SVG or a DXF by the name's extension).
+fn outline_file(obj: &Map<String, Value>) -> Result<crate::outline_io::Outlines, ProtoError> {
+    use base64::Engine;
+    let (name, bytes) = match (obj.get("svg"), obj.get("file")) {
+        (Some(Value::String(t)), None) => ("drawing.svg".to_string(), t.as_bytes().to_vec()),
+        (None, Some(Value::Object(f))) => {
+            let name = f
+                .get("name")
+                .and_then(Value::as_str)
+                .unwrap_or("")
+                .to_lowercase();
+            let Some(b64) = f.get("base64").and_then(Value::as_str) else {
+                return Err(ProtoError::invalid(
+                    "file",
+                    "needs base64 (the file's bytes)",
+                ));
+            };
+            if b64.len() > MAX_OUTLINE_FILE / 3 * 4 + 4 {
+                return Err(ProtoError::invalid(
+                    "file",
+                    format!("larger than {MAX_OUTLINE_FILE} bytes"),
+                ));
+            }
+            let bytes = base64::engine::general_purpose::STANDARD
+                .decode(b64)
+                .map_err(|e| ProtoError::invalid("file", format!("base64: {e}")))?;
+            (name, bytes)
+        }
+        _ => {
+            return Err(ProtoError::invalid(
+                "svg",
+                "give svg (text) or file, not both",
+            ))
+        }
+    };
+    if bytes.len() > MAX_OUTLINE_FILE {
+        return Err(ProtoError::invalid(
+            "file",
+            format!("larger than {MAX_OUTLINE_FILE} bytes"),
+        ));
+    }
+    let ext = name.rsplit('.').next().unwrap_or("");
+    let read = match ext {
+        "ttf" | "otf" | "ttc" | "otc" => crate::outline_io::read_font(&bytes),
+        "dxf" => crate::outline_io::read_dxf(&bytes),
+        _ => crate::outline_io::read_svg(&bytes),
+    };
+    read.map_err(|e| ProtoError::invalid("file", format!("{e:#}")))
 }
 
 /// Largest number of points `spline.pseudo_elastic` accepts in table mode (microseconds
@@ -1022,6 +1126,38 @@ mod tests {
                 r#"{{"op": "lac.segment", "alpha": -1, "control": [[0, 0], [8, 0], [12, 5]], "draw": {bad}}}"#
             ));
             assert_eq!(kind(&v), "invalid_input", "{bad}");
+        }
+    }
+
+    #[test]
+    fn outline_check_takes_documents_and_files_and_draws_one_shape() {
+        use base64::Engine;
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg"><path id="a" d="M 0 0 L 10 0"/><g transform="translate(5 0)"><path id="b" d="M 0 0 C 3 4 7 4 10 0 Z"/></g></svg>"#;
+        let req = json!({"op": "outline.check", "svg": svg, "shape": 1, "draw": 11});
+        let v = handle_line(&req.to_string());
+        let r = &v["result"];
+        assert_eq!(r["shape_names"].as_array().unwrap().len(), 2, "{v}");
+        assert_eq!(r["shapes"].as_array().unwrap().len(), 1, "{v}");
+        let c = &r["drawing"]["contours"][0];
+        assert_eq!(r["drawing"]["name"], "b");
+        // The cubic and the closing line, in the document's coordinates (translated).
+        assert_eq!(c["segments"][0]["control_points"][1], json!([8.0, 4.0]));
+        assert_eq!(c["drawing"]["per_piece"], 11);
+        assert_eq!(c["drawing"]["points"].as_array().unwrap().len(), 2 * 10 + 1);
+        // The same document as a file; a bad index, bad base64 and a foreign file: errors.
+        let b64 = base64::engine::general_purpose::STANDARD.encode(svg);
+        let req = json!({"op": "outline.check", "file": {"name": "x.svg", "base64": b64}});
+        let v = handle_line(&req.to_string());
+        assert_eq!(v["result"]["shapes"].as_array().unwrap().len(), 2, "{v}");
+        for bad in [
+            json!({"op": "outline.check", "svg": svg, "shape": 2}),
+            json!({"op": "outline.check", "file": {"name": "x.svg", "base64": "@@"}}),
+            json!({"op": "outline.check", "file": {"name": "x.ttf", "base64": b64}}),
+            json!({"op": "outline.check", "svg": "<svg"}),
+        ] {
+            let v = handle_line(&bad.to_string());
+            assert_eq!(v["ok"], false, "{bad}: {v}");
+            assert_eq!(v["error"]["kind"], "invalid_input", "{bad}: {v}");
         }
     }
 

@@ -8,7 +8,7 @@
 
 import { api, post, timing } from './api.js';
 import { drawCurvature, drawLcg, drawStage } from './draw.js';
-import { MODES } from './modes.js';
+import { loadOutline, MODES } from './modes.js';
 import { $, fmt, setNumbers, setStatus, setVerdict } from './ui.js';
 import { Viewport } from './view.js';
 
@@ -141,6 +141,7 @@ function syncControls() {
     $('alpha-value').textContent = state.lac.alpha.toFixed(2);
   }
   if (state.mode === 'spline') $('closed').checked = state.spline.closed;
+  if (state.mode === 'outline') syncOutline();
 }
 function undo() {
   for (let i = history.length - 1; i >= 0; i--) {
@@ -296,7 +297,7 @@ $('clear').addEventListener('click', () => {
 for (const b of document.querySelectorAll('#modes button')) {
   b.addEventListener('click', () => setMode(b.dataset.mode));
 }
-const OPTIONAL = ['alpha-box', 'closed-box', 'region-box', 'add-point', 'remove-point', 'clear'];
+const OPTIONAL = ['alpha-box', 'closed-box', 'region-box', 'add-point', 'remove-point', 'clear', 'outline-box'];
 function setMode(m) {
   state.mode = m;
   vp.box = views[m];
@@ -309,6 +310,75 @@ function setMode(m) {
   draw();
   requestUpdate();
 }
+
+// ---------- outline mode: loading ----------
+// The shape and contour pickers show what the loaded outline holds.
+function syncOutline() {
+  const st = state.outline;
+  const opts = (sel, labels, chosen) => {
+    sel.replaceChildren(...labels.map((t, i) => {
+      const o = document.createElement('option');
+      o.value = String(i);
+      o.textContent = t;
+      o.selected = i === chosen;
+      return o;
+    }));
+  };
+  opts($('outline-shape'), st.names, st.shape);
+  opts($('outline-contour'), Array.from({ length: st.contours }, (_, i) => String(i + 1)), st.contour);
+}
+async function outlineLoad(req, shape, contour) {
+  const st = JSON.parse(JSON.stringify(state.outline));
+  try {
+    await loadOutline(st, req, shape, contour);
+  } catch (e) {
+    setStatus(`could not load: ${e.message}`, true);
+    return;
+  }
+  remember();
+  state.outline = st;
+  syncOutline();
+  frame = null;
+  if (state.mode !== 'outline') setMode('outline');
+  const b = st.p.reduce((a, q) => [Math.min(a[0], q[0]), Math.min(a[1], q[1]), Math.max(a[2], q[0]), Math.max(a[3], q[1])], [Infinity, Infinity, -Infinity, -Infinity]);
+  vp.fit([[b[0], b[1]], [b[2], b[3]]]);
+  requestUpdate();
+}
+// A file: SVG as text, fonts and DXF as base64 (the server reads every one).
+async function outlineFile(file) {
+  if (file.size > 3 * 1024 * 1024) {
+    setStatus(`${file.name}: larger than 3 MB`, true);
+    return;
+  }
+  if (/\.svg$/i.test(file.name)) {
+    await outlineLoad({ svg: await file.text() }, 0, 0);
+    return;
+  }
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  let bin = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) bin += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  await outlineLoad({ file: { name: file.name, base64: btoa(bin) } }, 0, 0);
+}
+$('outline-load').addEventListener('click', () => outlineLoad({ path: $('outline-path').value }, 0, 0));
+$('outline-file').addEventListener('change', () => {
+  const f = $('outline-file').files[0];
+  if (f) outlineFile(f);
+});
+$('outline-shape').addEventListener('change', () => {
+  const st = state.outline;
+  if (st.source) outlineLoad(st.source, +$('outline-shape').value, 0);
+});
+$('outline-contour').addEventListener('change', () => {
+  const st = state.outline;
+  if (st.source) outlineLoad(st.source, st.shape, +$('outline-contour').value);
+});
+view.addEventListener('dragover', (ev) => ev.preventDefault());
+view.addEventListener('drop', (ev) => {
+  ev.preventDefault();
+  const f = ev.dataTransfer && ev.dataTransfer.files[0];
+  if (f) outlineFile(f);
+});
+syncOutline();
 
 // ---------- export ----------
 // CAD geometry of a LAC or inflection-end segment: rational cubics within 1e-7 of its size

@@ -9,7 +9,7 @@ import { api } from './api.js';
 import { fmt } from './ui.js';
 
 // Points per piece the server samples for the picture.
-const DRAW = { segment: 161, overlay: 81, spline: 41, sketch: 51, bezier: 161 };
+const DRAW = { segment: 161, overlay: 81, spline: 41, sketch: 51, bezier: 161, outline: 41 };
 
 async function lcgOf(points) {
   try {
@@ -203,3 +203,116 @@ export const MODES = {
     region: (st, grid) => ({ kind: 'bezier', control_points: st.p, index: st.selected, grid: grid(82), key: [st.p, st.selected] }),
   },
 };
+
+// ---------- outline mode ----------
+// A contour of an existing outline (pasted SVG path data, or a dropped SVG, font or DXF
+// file; the server reads them): its control points as handles, shared on-curve points
+// moving both segments, re-checked on every drag.
+
+// The editing state of one contour of an outline.check drawing: unique points `p`, each
+// segment as indices into it (consecutive segments share their joint; a closed contour's
+// last end is its first start), and the segments' weights.
+export function contourState(c) {
+  const p = [];
+  const segs = [];
+  const weights = [];
+  c.segments.forEach((s, k) => {
+    const idx = [];
+    s.control_points.forEach((q, j) => {
+      if (j === 0 && k > 0) {
+        idx.push(p.length - 1);
+        return;
+      }
+      idx.push(p.length);
+      p.push(q);
+    });
+    segs.push(idx);
+    weights.push(s.weights);
+  });
+  if (c.closed && segs.length > 1) {
+    const last = segs[segs.length - 1];
+    const e = last[last.length - 1];
+    const size = Math.max(1, ...p.map((q) => Math.hypot(q[0], q[1])));
+    if (Math.hypot(p[e][0] - p[0][0], p[e][1] - p[0][1]) <= 1e-9 * size && e === p.length - 1) {
+      last[last.length - 1] = 0;
+      p.pop();
+    }
+  }
+  return { p, segs, weights, closed: c.closed };
+}
+
+// Load an outline (req: {path} | {svg} | {file: {name, base64}}) into the mode's state: the
+// shape `shape` (an index into the file's shapes) and its contour `contour`.
+export async function loadOutline(st, req, shape, contour) {
+  const r = await api(Object.assign({ op: 'outline.check', shape, draw: 2 }, req));
+  const contours = r.drawing ? r.drawing.contours : [];
+  if (!contours.length) throw new Error('no contour with segments in this shape');
+  const k = Math.min(contour, contours.length - 1);
+  Object.assign(st, contourState(contours[k]), {
+    source: req,
+    names: r.shape_names,
+    shape,
+    contour: k,
+    contours: contours.length,
+    name: r.drawing.name,
+  });
+}
+
+function outlineSegments(st) {
+  return st.segs.map((idx, k) => ({ control_points: idx.map((i) => st.p[i]), weights: st.weights[k] }));
+}
+
+export const OUTLINE = {
+  box: { x0: -1, y0: -2, x1: 15, y1: 9 },
+  hint: 'Paste SVG path data (Load) or drop an SVG, a font or a DXF file; pick a path or glyph and a contour. Circles: curvature extrema, inflections, near-breaks and curvature jumps at smooth joins. Drag any point: the contour is re-checked.',
+  controls: ['outline-box'],
+  polygon: true,
+  initial: () => Object.assign(
+    contourState({
+      closed: true,
+      segments: [
+        { control_points: [[1, 1], [5, 0], [9, 0.5], [12, 2]], weights: [1, 1, 1, 1] },
+        { control_points: [[12, 2], [14, 3], [13, 6], [11, 7]], weights: [1, 1, 1, 1] },
+        { control_points: [[11, 7], [8, 8.5], [4, 8.5], [1.5, 6]], weights: [1, 1, 1, 1] },
+        { control_points: [[1.5, 6], [0, 4.5], [0, 2.5], [1, 1]], weights: [1, 1, 1, 1] },
+      ],
+    }),
+    { source: null, names: ['sample'], shape: 0, contour: 0, contours: 1, name: 'sample' },
+  ),
+  handles: (st) => st.p,
+  async update(st) {
+    const r = await api({ op: 'outline.check', segments: outlineSegments(st), closed: st.closed, draw: DRAW.outline });
+    const k = r.shapes[0].contours[0];
+    const d = r.drawing.contours[0].drawing;
+    const marks = [];
+    k.segments.forEach((s) => {
+      for (const e of s.extrema.concat(s.inflections)) marks.push(e.point);
+    });
+    for (const j of k.joins) if (j.near_break || (j.g1 && j.g2 === false)) marks.push(j.point);
+    const bad = k.segments.filter((s) => s.monotone === false).length;
+    const curved = k.segments.filter((s) => s.monotone !== undefined).length;
+    const breaks = k.joins.filter((j) => j.near_break).length;
+    const jumps = k.joins.filter((j) => j.g1 && j.g2 === false).length;
+    const polygon = st.closed ? st.p.concat([st.p[0]]) : st.p;
+    return {
+      shown: Object.assign(curveOf(d), { handles: st.p, polygon, marks }),
+      nurbs: null,
+      numbers: [
+        ['outline', 'outline', `${st.name} (contour ${st.contour + 1} of ${st.contours})`],
+        ['segments', 'segments', k.segments.length],
+        ['not_monotone', 'curved segments not monotone', `${bad} of ${curved}`],
+        ['near_breaks', 'joins almost smooth (near-breaks)', breaks],
+        ['curvature_jumps', 'G1 joins with a curvature jump', jumps],
+        ['findings', 'findings', r.findings.length],
+      ],
+      verdict: bad || breaks
+        ? [`${bad} segment(s) with curvature NOT monotone, ${breaks} near-break(s): ${r.findings[0] ? r.findings[0].message : ''}`, false]
+        : ['every curved segment has monotone curvature (exact test); no near-breaks', true],
+      lcg: { fit: null, note: 'the logarithmic curvature graph is for single segments: not drawn for outlines' },
+    };
+  },
+  region: () => null,
+};
+
+MODES.outline = OUTLINE;
+
