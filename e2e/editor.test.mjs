@@ -313,6 +313,19 @@ await step('outline check: the sample contour, pasted path data, a dragged point
   assert.equal(await page.evaluate(() => window.__editor.frameMode()), 'outline');
   await shot('09-outline');
   console.log(`     outline verdict after the drag: ${await text('verdict')}`);
+  // A font chosen as a file: every glyph offered, the glyph o's two contours.
+  await page.setInputFiles('#outline-file', `${root}crates/aecurve/assets/DejaVuSans.ttf`);
+  await page.waitForFunction(() => window.__editor.state.outline.names.length > 1000, null, { timeout: 20000 });
+  const o = await page.evaluate(() => window.__editor.state.outline.names.indexOf('o'));
+  assert.ok(o >= 0, 'no glyph o');
+  await page.selectOption('#outline-shape', String(o));
+  await page.waitForFunction(() => window.__editor.state.outline.name === 'o', null, { timeout: 15000 });
+  await idle();
+  assert.equal(await page.evaluate(() => window.__editor.state.outline.contours), 2);
+  assert.equal(await page.evaluate(() => window.__editor.frameMode()), 'outline');
+  assert.ok((await text('verdict')).length > 0);
+  await shot('10-outline-font-o');
+  console.log(`     DejaVu Sans o, contour 1: ${await text('verdict')}`);
 });
 
 await step('an answer is never shown under another mode', async () => {
