@@ -482,19 +482,25 @@ mod tests {
     /// to each sample, and the closed-form curvature: fine and coarse sampling, both signs
     /// of α - 1, and an interval that runs up to 1e-6 of the singular end (where the walk
     /// must switch to its fallback steps).
+    /// (α, Λ) of the walk tests: every regime of ρ = U^a, the spiral, and Λ = 0 (circles).
+    const WALK_CASES: [(f64, f64); 9] = [
+        (-1.0, 0.3),
+        (0.5, 0.4),
+        (2.0, 0.5),
+        (5.0, 0.1),
+        (-8.0, 2.0),
+        (1.0, 0.5),
+        (1.0, 4.0),
+        (0.5, 0.0),
+        (1.0, 0.0),
+    ];
+
     #[test]
     fn monotone_walk_matches_quadrature() {
         // Uneven steps (rotation by each step's own angle, the third-derivative Hermite
         // rule where its bound allows, Gauss or adaptive steps elsewhere), both directions.
         let mut rng = crate::samples::SplitMix64::new(5);
-        for &(alpha, lambda) in &[
-            (-1.0, 0.3),
-            (0.5, 0.4),
-            (2.0, 0.5),
-            (5.0, 0.1),
-            (-8.0, 2.0),
-            (1.0, 0.5),
-        ] {
+        for &(alpha, lambda) in &WALK_CASES[..6] {
             let c = LacStandard::new(alpha, lambda).unwrap();
             let (lo, hi) = c.domain();
             let (lo, hi) = ((lo + 1e-6).max(-2.5), (hi - 1e-6).min(2.5));
@@ -523,18 +529,7 @@ mod tests {
 
     #[test]
     fn uniform_walk_matches_quadrature() {
-        let cases = [
-            (-1.0, 0.3),
-            (0.5, 0.4),
-            (2.0, 0.5),
-            (5.0, 0.1),
-            (-8.0, 2.0),
-            (1.0, 0.5),
-            (1.0, 4.0),
-            (0.5, 0.0),
-            (1.0, 0.0),
-        ];
-        for &(alpha, lambda) in &cases {
+        for &(alpha, lambda) in &WALK_CASES {
             let c = LacStandard::new(alpha, lambda).unwrap();
             let (lo, hi) = c.domain();
             // Up to 1e-6 of the domain's finite end, or ±2.5.

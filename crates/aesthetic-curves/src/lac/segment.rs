@@ -561,27 +561,24 @@ impl LacSegment {
     /// turning angles τ measured from `control[0]` (τ = 0) to `control[2]` (τ = θ_d); τ outside
     /// [0, θ_d] is clamped.
     pub fn eval_turning(&self, taus: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+        self.eval_thetas(&self.thetas_at_turning(taus)?)
+    }
+
+    /// The standard-form θ of turning angles τ (finite; clamped to [0, θ_d]).
+    fn thetas_at_turning(&self, taus: &[f64]) -> Result<Vec<f64>> {
         if let Some(i) = taus.iter().position(|t| !t.is_finite()) {
             return Err(Error::invalid(format!("tau[{i}]"), "must be finite"));
         }
-        let th: Vec<f64> = taus
+        Ok(taus
             .iter()
             .map(|t| self.theta_at_turning(t.clamp(0.0, self.theta_d)))
-            .collect();
-        self.eval_thetas(&th)
+            .collect())
     }
 
     /// The points of [`Self::eval_turning`] alone (no tangents: no sine and cosine per
     /// point).
     pub(crate) fn points_at_turning(&self, taus: &[f64]) -> Result<Vec<Point>> {
-        if let Some(i) = taus.iter().position(|t| !t.is_finite()) {
-            return Err(Error::invalid(format!("tau[{i}]"), "must be finite"));
-        }
-        let th: Vec<f64> = taus
-            .iter()
-            .map(|t| self.theta_at_turning(t.clamp(0.0, self.theta_d)))
-            .collect();
-        let (pts, _) = self.standard_points(&th)?;
+        let (pts, _) = self.standard_points(&self.thetas_at_turning(taus)?)?;
         Ok(pts.iter().map(|p| self.map.apply(p.to_vec2())).collect())
     }
 
