@@ -5,8 +5,9 @@
 //! named shapes (glyph names, SVG element ids, DXF layer and handle) of contours of Bézier
 //! segments, in the file's own coordinates (font units; SVG user units with y down, as the
 //! file has them; DXF drawing units). Arcs and bulges become rational quadratics of at most
-//! 90° each and splines their Bézier spans: exactly, no resampling. A DXF entity is one
-//! shape: joins between separate entities are not checked.
+//! 90° each and splines their Bézier spans: exactly, no resampling. Open DXF entities of one
+//! layer that meet end to end are chained into one contour (one shape), so the joins between
+//! separate LINEs, ARCs and polylines are checked too.
 //!
 //! Bad input is a clear error, never a panic: a file over [`MAX_FILE_BYTES`] is refused
 //! before it is read, a truncated or foreign file says what it is not, a glyph that cannot be
@@ -437,7 +438,7 @@ pub fn read_dxf(data: &[u8]) -> Result<Outlines> {
     use dxf::entities::EntityType;
     let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(data))
         .map_err(|e| anyhow::anyhow!("not a readable DXF drawing: {e}"))?;
-    let mut shapes = Vec::new();
+    let mut pieces: Vec<(String, String, Contour)> = Vec::new(); // (layer, name, contour)
     let mut unreadable = Vec::new();
     let p2 = |p: &dxf::Point| Point::new(p.x, p.y);
     for e in drawing.entities() {
@@ -521,12 +522,10 @@ pub fn read_dxf(data: &[u8]) -> Result<Outlines> {
             _ => continue,
         };
         if !contour.segments.is_empty() {
-            shapes.push(Shape {
-                name,
-                contours: vec![contour],
-            });
+            pieces.push((e.common.layer.clone(), name, contour));
         }
     }
+    let shapes = chain_entities(pieces);
     if shapes.is_empty() && unreadable.is_empty() {
         bail!("the DXF drawing has no curves (LINE, ARC, CIRCLE, LWPOLYLINE or SPLINE)");
     }
@@ -535,6 +534,109 @@ pub fn read_dxf(data: &[u8]) -> Result<Outlines> {
         shapes,
         unreadable,
     })
+}
+
+/// Open entities of one layer that meet end to end (within 1e-9 of the drawing's size),
+/// joined into one contour each, so the joins between them are checked like any other (a
+/// CAD profile is usually separate LINEs and ARCs); an entity is reversed where its end
+/// meets the chain's end. A chain whose ends meet is closed. Closed entities stay alone.
+/// The shape's name is the layer and the handles of its entities.
+fn chain_entities(pieces: Vec<(String, String, Contour)>) -> Vec<Shape> {
+    let size = pieces
+        .iter()
+        .flat_map(|p| p.2.segments.iter().flat_map(|s| s.points().iter()))
+        .map(|q| q.to_vec2().hypot())
+        .fold(1.0, f64::max);
+    let tol = 1e-9 * size;
+    let ends = |c: &Contour| -> (Point, Point) {
+        let (a, b) = (&c.segments[0], &c.segments[c.segments.len() - 1]);
+        (a.points()[0], b.points()[b.points().len() - 1])
+    };
+    let reversed = |c: Contour| -> Contour {
+        let segments = c
+            .segments
+            .iter()
+            .rev()
+            .map(|s| {
+                let mut p = s.points().to_vec();
+                let mut w = s.weights().to_vec();
+                p.reverse();
+                w.reverse();
+                RationalBezier::new(p, w).expect("a valid segment reversed")
+            })
+            .collect();
+        Contour {
+            segments,
+            closed: c.closed,
+        }
+    };
+    let mut used = vec![false; pieces.len()];
+    let mut shapes = Vec::new();
+    for i in 0..pieces.len() {
+        if used[i] {
+            continue;
+        }
+        used[i] = true;
+        let (layer, name, first) = &pieces[i];
+        let mut chain = first.clone();
+        let mut names = vec![name.clone()];
+        if !chain.closed {
+            // Extend at the end, then at the start, while an unused open entity of the layer
+            // meets it.
+            for at_end in [true, false] {
+                loop {
+                    let (start, end) = ends(&chain);
+                    if (end - start).hypot() <= tol && chain.segments.len() > 1 {
+                        break;
+                    }
+                    let here = if at_end { end } else { start };
+                    let next = (0..pieces.len()).find_map(|j| {
+                        let (l, _, c) = &pieces[j];
+                        if used[j] || c.closed || l != layer {
+                            return None;
+                        }
+                        let (a, b) = ends(c);
+                        // At the end: the piece's start should meet it (else reverse);
+                        // at the start: the piece's end should.
+                        let (keep, flip) = if at_end { (a, b) } else { (b, a) };
+                        if (keep - here).hypot() <= tol {
+                            Some((j, false))
+                        } else if (flip - here).hypot() <= tol {
+                            Some((j, true))
+                        } else {
+                            None
+                        }
+                    });
+                    let Some((j, flip)) = next else { break };
+                    used[j] = true;
+                    let piece = pieces[j].2.clone();
+                    let piece = if flip { reversed(piece) } else { piece };
+                    if at_end {
+                        chain.segments.extend(piece.segments);
+                        names.push(pieces[j].1.clone());
+                    } else {
+                        let mut segs = piece.segments;
+                        segs.extend(chain.segments);
+                        chain.segments = segs;
+                        names.insert(0, pieces[j].1.clone());
+                    }
+                }
+            }
+            let (start, end) = ends(&chain);
+            chain.closed = chain.segments.len() > 1 && (end - start).hypot() <= tol;
+        }
+        let name = if names.len() == 1 {
+            names.remove(0)
+        } else {
+            let handles: Vec<&str> = names.iter().filter_map(|n| n.rsplit(" #").next()).collect();
+            format!("{layer} #{} ({} entities)", handles.join("+#"), names.len())
+        };
+        shapes.push(Shape {
+            name,
+            contours: vec![chain],
+        });
+    }
+    shapes
 }
 
 /// The check of one shape.

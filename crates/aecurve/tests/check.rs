@@ -166,6 +166,74 @@ fn bad_files_get_clear_errors() {
 }
 
 #[test]
+fn dxf_entities_that_meet_are_one_contour() {
+    use dxf::entities::{Arc, Entity, EntityType, Line};
+    // A slot drawn as four entities in no particular order, one line against the flow, and
+    // a line of another layer touching it: the slot is one closed contour of 4 entities
+    // whose joins are all smooth (G1) with curvature jumps where line meets arc.
+    let mut d = dxf::Drawing::new();
+    let pt = |x: f64, y: f64| dxf::Point::new(x, y, 0.0);
+    let mut add = |layer: &str, t: EntityType| {
+        let mut e = Entity::new(t);
+        e.common.layer = layer.into();
+        d.add_entity(e);
+    };
+    add(
+        "slot",
+        EntityType::Arc(Arc::new(pt(0.0, 2.0), 2.0, 90.0, 270.0)),
+    );
+    add(
+        "slot",
+        EntityType::Line(Line::new(pt(0.0, 0.0), pt(10.0, 0.0))),
+    );
+    add(
+        "slot",
+        EntityType::Line(Line::new(pt(0.0, 4.0), pt(10.0, 4.0))),
+    );
+    add(
+        "slot",
+        EntityType::Arc(Arc::new(pt(10.0, 2.0), 2.0, 270.0, 90.0)),
+    );
+    add(
+        "other",
+        EntityType::Line(Line::new(pt(10.0, 0.0), pt(20.0, -5.0))),
+    );
+    let mut bytes = Vec::new();
+    d.save(&mut bytes).unwrap();
+    let o = aecurve::outline_io::read_dxf(&bytes).unwrap();
+    assert_eq!(
+        o.shapes.len(),
+        2,
+        "{:?}",
+        o.shapes.iter().map(|s| &s.name).collect::<Vec<_>>()
+    );
+    let slot = o
+        .shapes
+        .iter()
+        .find(|s| s.name.starts_with("slot"))
+        .unwrap();
+    assert!(slot.name.ends_with("(4 entities)"), "{}", slot.name);
+    let c = &slot.contours[0];
+    assert!(c.closed);
+    // Consecutive segments meet exactly (the reversed line included).
+    for w in c.segments.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        assert!((a.eval(1.0) - b.eval(0.0)).hypot() < 1e-12);
+    }
+    let shapes = vec![slot];
+    let checked = check_shapes(&shapes, &options_for(&o), &|| {});
+    let joins = &checked[0].contours[0].joins;
+    assert_eq!(
+        joins.len(),
+        c.segments.len(),
+        "a closed contour: a join after every segment"
+    );
+    assert!(joins.iter().all(|j| j.g1), "{joins:?}");
+    let jumps = joins.iter().filter(|j| j.g1 && !j.g2).count();
+    assert_eq!(jumps, 4, "{joins:?}");
+}
+
+#[test]
 fn dxf_entities_read_exactly() {
     use dxf::entities::{Arc, Circle, Entity, EntityType, Line, LwPolyline};
     use dxf::LwPolylineVertex;
