@@ -570,6 +570,32 @@ fn chain_entities(pieces: Vec<(String, String, Contour)>) -> Vec<Shape> {
             closed: c.closed,
         }
     };
+    // Open entities' ends in a grid of cells 4 tolerances wide: a search looks at the 3 x 3
+    // cells around a point, so chaining stays linear in the number of entities.
+    let cell = 4.0 * tol;
+    let key = |p: Point| ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64);
+    let mut grid: std::collections::HashMap<(i64, i64), Vec<usize>> = Default::default();
+    for (j, (_, _, c)) in pieces.iter().enumerate() {
+        if !c.closed {
+            let (a, b) = ends(c);
+            grid.entry(key(a)).or_default().push(j);
+            if key(b) != key(a) {
+                grid.entry(key(b)).or_default().push(j);
+            }
+        }
+    }
+    let near = |p: Point| {
+        let (kx, ky) = key(p);
+        let mut out: Vec<usize> = (-1..=1)
+            .flat_map(|dx| (-1..=1).map(move |dy| (kx + dx, ky + dy)))
+            .filter_map(|k| grid.get(&k))
+            .flatten()
+            .copied()
+            .collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    };
     let mut used = vec![false; pieces.len()];
     let mut shapes = Vec::new();
     for i in 0..pieces.len() {
@@ -590,7 +616,7 @@ fn chain_entities(pieces: Vec<(String, String, Contour)>) -> Vec<Shape> {
                         break;
                     }
                     let here = if at_end { end } else { start };
-                    let next = (0..pieces.len()).find_map(|j| {
+                    let next = near(here).into_iter().find_map(|j| {
                         let (l, _, c) = &pieces[j];
                         if used[j] || c.closed || l != layer {
                             return None;
@@ -629,7 +655,17 @@ fn chain_entities(pieces: Vec<(String, String, Contour)>) -> Vec<Shape> {
             names.remove(0)
         } else {
             let handles: Vec<&str> = names.iter().filter_map(|n| n.rsplit(" #").next()).collect();
-            format!("{layer} #{} ({} entities)", handles.join("+#"), names.len())
+            let list = if handles.len() <= 4 {
+                handles.join("+#")
+            } else {
+                format!(
+                    "{}+#{}+…+#{}",
+                    handles[0],
+                    handles[1],
+                    handles[handles.len() - 1]
+                )
+            };
+            format!("{layer} #{list} ({} entities)", names.len())
         };
         shapes.push(Shape {
             name,
