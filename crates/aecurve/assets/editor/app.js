@@ -335,7 +335,8 @@ async function outlineLoad(req, shape, contour) {
     setStatus(`could not load: ${e.message}`, true);
     return;
   }
-  remember();
+  // Undo restores the outline mode's previous contour (only that mode's history).
+  history.push({ mode: 'outline', data: JSON.parse(JSON.stringify(state.outline)) });
   state.outline = st;
   syncOutline();
   frame = null;
