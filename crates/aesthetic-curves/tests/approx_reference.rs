@@ -19,7 +19,7 @@ fn exhaustive_best(seg: &LacSegment, n: usize) -> (f64, f64, f64) {
         if !c.is_curvature_monotone().ok()? {
             return None;
         }
-        approximation_error(seg, &c, 201).ok().map(|e| e.0)
+        approximation_error(seg, &c, 201).ok().map(|e| e.rms)
     };
     let mut best = (f64::INFINITY, 0.5, 0.5);
     for i in 0..n {

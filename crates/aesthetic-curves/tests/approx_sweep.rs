@@ -264,7 +264,7 @@ fn exhaustive(seg: &LacSegment) -> (f64, f64, f64) {
     }
     if best.0.is_finite() {
         let c = construct(seg, best.1, best.2).unwrap();
-        best.0 = approximation_error(seg, &c, 201).unwrap().0;
+        best.0 = approximation_error(seg, &c, 201).unwrap().rms;
     }
     best
 }

@@ -141,13 +141,23 @@ pub fn construct(seg: &LacSegment, f0: f64, f1: f64) -> Result<RationalBezier> {
     RationalBezier::new(b.to_vec(), w.to_vec())
 }
 
+/// The error of a curve against a LAC segment ([`approximation_error`]), relative to the
+/// segment's arc length.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ApproximationError {
+    /// Root mean square of the distances.
+    pub rms: f64,
+    /// The largest distance.
+    pub max: f64,
+}
+
 /// Rms and maximum error of `curve` against `seg` at `n >= 2` uniform t (both ends
 /// included), distances by turning-angle correspondence, divided by the segment's arc length.
 pub fn approximation_error(
     seg: &LacSegment,
     curve: &RationalBezier,
     n: usize,
-) -> Result<(f64, f64)> {
+) -> Result<ApproximationError> {
     if n < 2 {
         return Err(Error::invalid("samples", "need at least 2"));
     }
@@ -180,7 +190,10 @@ pub fn approximation_error(
         sum += e * e;
         max = max.max(e);
     }
-    Ok(((sum / n as f64).sqrt(), max))
+    Ok(ApproximationError {
+        rms: (sum / n as f64).sqrt(),
+        max,
+    })
 }
 
 /// Quintic Hermite interpolation between two table nodes (values, first and second
@@ -1549,7 +1562,10 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             "the optimal rational cubic is not curvature-monotone".into(),
         ));
     }
-    let (rms, max_error) = approximation_error(seg, &curve, nr)?;
+    let ApproximationError {
+        rms,
+        max: max_error,
+    } = approximation_error(seg, &curve, nr)?;
     Ok(RationalCubicFit {
         curve,
         f0,
