@@ -131,8 +131,8 @@ async function regionCompute() {
 // ---------- interaction ----------
 // Undo: the edited mode's state before each edit (Ctrl+Z).
 const history = [];
-function remember() {
-  history.push({ mode: state.mode, data: JSON.parse(JSON.stringify(edited())) });
+function remember(m = state.mode) {
+  history.push({ mode: m, data: JSON.parse(JSON.stringify(state[m])) });
   if (history.length > 200) history.shift();
 }
 function syncControls() {
@@ -253,7 +253,7 @@ function fitView() {
   }
 }
 
-$('alpha').addEventListener('pointerdown', remember);
+$('alpha').addEventListener('pointerdown', () => remember());
 $('alpha').addEventListener('keydown', (ev) => {
   if (ev.key.startsWith('Arrow')) remember();
 });
@@ -335,8 +335,8 @@ async function outlineLoad(req, shape, contour) {
     setStatus(`could not load: ${e.message}`, true);
     return;
   }
-  // Undo restores the outline mode's previous contour (only that mode's history).
-  history.push({ mode: 'outline', data: JSON.parse(JSON.stringify(state.outline)) });
+  // Undo restores the outline mode's previous contour, whatever mode it was loaded from.
+  remember('outline');
   state.outline = st;
   syncOutline();
   frame = null;
