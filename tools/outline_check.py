@@ -30,6 +30,8 @@ import ufoLib2
 from fontTools.ttLib import TTFont
 
 AECURVE = sys.argv[1] if len(sys.argv) > 1 else "target/release/aecurve"
+# Every file this check writes (UFOs, the DXF) goes here and is removed at exit.
+scratch = tempfile.TemporaryDirectory(prefix="aecurve-outline-check-")
 
 
 def strict(s):
@@ -100,7 +102,7 @@ def verdicts(v):
 
 
 for f in [x for x in fonts if "heros-" in x or "adventor-" in x]:
-    ufo_path = os.path.join(tempfile.mkdtemp(), "font.ufo")
+    ufo_path = os.path.join(scratch.name, os.path.basename(f) + ".ufo")
     ufo = ufoLib2.Font()
     extractor.extractUFO(f, ufo)
     ufo.save(ufo_path)
@@ -117,7 +119,7 @@ for f in [x for x in fonts if "heros-" in x or "adventor-" in x]:
     else:
         print(f"ok   UFO of {f.split('/')[-1]}: {len(b)} glyphs, the same segments and verdicts")
 
-dxf_path = os.path.join(tempfile.mkdtemp(), "all.dxf")
+dxf_path = os.path.join(scratch.name, "all.dxf")
 doc = ezdxf.new("R2010")
 msp = doc.modelspace()
 msp.add_line((0, 0), (10, 0), dxfattribs={"layer": "line"})

@@ -132,7 +132,8 @@ fn svg_shapes_give_their_known_answers() {
 
 #[test]
 fn bad_files_get_clear_errors() {
-    let dir = std::env::temp_dir().join(format!("aecurve-check-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-check-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let err = |name: &str, bytes: &[u8]| {
         let p = dir.join(name);
@@ -414,7 +415,8 @@ fn ufo_point_streams_read_as_their_segments() {
     for g in [o, d, l] {
         font.default_layer_mut().insert_glyph(g);
     }
-    let dir = std::env::temp_dir().join(format!("aecurve-ufo-{}.ufo", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-ufo-{}.ufo", std::process::id()));
     font.save(&dir).unwrap();
     let u = read(&dir).unwrap();
     std::fs::remove_dir_all(&dir).ok();

@@ -83,7 +83,8 @@ fn monotone_command_reads_for_a_person_and_fails_clearly() {
 
 #[test]
 fn bench_json_has_the_promised_shape() {
-    let dir = std::env::temp_dir().join(format!("aecurve-bench-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let svg = dir.join("fig.svg");
     let v = json_output(
@@ -105,6 +106,7 @@ fn bench_json_has_the_promised_shape() {
     }
     let chart = std::fs::read_to_string(&svg).unwrap();
     assert!(chart.starts_with("<svg") && chart.contains("polyline"));
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -166,7 +168,8 @@ fn lac_command_summarises_and_refuses_outside_the_region() {
 
 #[test]
 fn lcg_command_reads_a_file_and_plots() {
-    let dir = std::env::temp_dir().join(format!("aecurve-lcg-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-lcg-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     // Samples of a LAC segment (alpha = 2) written as CSV, read back by `lcg --input`.
     let seg = json_output(aecurve().args([
@@ -246,7 +249,8 @@ fn lac_inflection_form() {
 
 #[test]
 fn pictures_follow_the_extension() {
-    let dir = std::env::temp_dir().join(format!("aecurve-png-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-png-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let png = dir.join("c.png");
     let svg = dir.join("c.svg");
@@ -290,7 +294,8 @@ fn pictures_follow_the_extension() {
 
 #[test]
 fn approx_command_gives_a_checked_cubic_and_pictures() {
-    let dir = std::env::temp_dir().join(format!("aecurve-approx-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-approx-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let map = dir.join("map.svg");
     let v = json_output(
@@ -342,7 +347,8 @@ fn approx_command_gives_a_checked_cubic_and_pictures() {
 
 #[test]
 fn spline_command_and_op() {
-    let dir = std::env::temp_dir().join(format!("aecurve-spline-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-spline-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let input = dir.join("p.csv");
     std::fs::write(&input, "x,y\n0,0\n1,1\n2,0\n").unwrap();
@@ -418,7 +424,8 @@ fn spline_command_and_op() {
 
 #[test]
 fn sketch_command_and_op() {
-    let dir = std::env::temp_dir().join(format!("aecurve-sketch-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-sketch-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let input = concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -871,7 +878,8 @@ fn write_errors_and_limits_get_messages() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(want), "{args:?}: {err}");
     }
-    let dir = std::env::temp_dir().join(format!("aecurve-mxmy-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-mxmy-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for name in ["m.csv", "m.dat"] {
         let path = dir.join(name);

@@ -113,7 +113,8 @@ fn readme_command_line_section_runs_as_written() {
         "only {} commands found",
         commands.len()
     );
-    let dir = std::env::temp_dir().join(format!("aecurve-readme-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-readme-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     copy_dir(&PathBuf::from(ROOT).join("examples"), &dir.join("examples"));
     let mut failures = Vec::new();
