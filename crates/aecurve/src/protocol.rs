@@ -443,7 +443,10 @@ pub fn lac_segment_json(
     seg: &aesthetic_curves::lac::LacSegment,
     samples: usize,
 ) -> Result<Value, aesthetic_curves::Error> {
-    let (points, curvature) = seg.sample(samples)?;
+    let aesthetic_curves::Polyline {
+        points,
+        kappa: curvature,
+    } = seg.sample(samples)?;
     let (k0, k1) = seg.end_curvatures()?;
     Ok(json!({
         "lambda": seg.lambda(),
@@ -461,7 +464,10 @@ pub fn lac_inflection_json(
     seg: &aesthetic_curves::lac::LacInflectionSegment,
     samples: usize,
 ) -> Result<Value, aesthetic_curves::Error> {
-    let (points, curvature) = seg.sample(samples)?;
+    let aesthetic_curves::Polyline {
+        points,
+        kappa: curvature,
+    } = seg.sample(samples)?;
     Ok(json!({
         "alpha": seg.alpha(),
         "theta_d": seg.theta_d(),

@@ -19,10 +19,10 @@ fn bump(noise: f64) -> Vec<Point> {
         ],
     )
     .unwrap();
-    let (pts, _) = seg.sample(500).unwrap();
+    let pts = seg.sample(500).unwrap().points;
     let end = pts[499];
-    let (_, d) = seg.eval_turning(&[seg.theta_d()]).unwrap();
-    let nrm = Vec2::new(-d[0].y, d[0].x) / d[0].hypot();
+    let d = seg.eval_turning(&[seg.theta_d()]).unwrap().tangents[0];
+    let nrm = Vec2::new(-d.y, d.x);
     let mut out = pts.clone();
     for q in pts.iter().rev().skip(1) {
         let v = *q - end;

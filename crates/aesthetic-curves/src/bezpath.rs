@@ -99,8 +99,8 @@ impl LacSegment {
         let td = self.theta_d;
         fit(
             |t| {
-                let (p, d) = self.eval_turning(&[t * td])?;
-                Ok((p[0], d[0] * td))
+                let at = self.eval_turning(&[t * td])?;
+                Ok((at.points[0], at.derivative(0) * td))
             },
             accuracy,
         )
@@ -118,8 +118,8 @@ impl LacInflectionSegment {
         let td = self.theta_d;
         fit(
             |t| {
-                let (p, tangent) = self.eval_turning(&[td * t.powf(q)])?;
-                Ok((p[0], tangent[0] * len))
+                let at = self.eval_turning(&[td * t.powf(q)])?;
+                Ok((at.points[0], at.tangents[0] * len))
             },
             accuracy,
         )
@@ -165,7 +165,7 @@ mod tests {
         for alpha in [-2.0, -1.0, 0.0, 0.5, 1.0, 2.0, 4.0] {
             let seg = LacSegment::new(alpha, tri).unwrap();
             let taus: Vec<f64> = (0..2000).map(|i| seg.theta_d * i as f64 / 1999.0).collect();
-            let (pts, _) = seg.eval_turning(&taus).unwrap();
+            let pts = seg.eval_turning(&taus).unwrap().points;
             for acc in [1e-2, 1e-4, 1e-7] {
                 let path = seg.to_bezpath(acc).unwrap();
                 let dev = deviation(&path, &pts);
@@ -192,7 +192,7 @@ mod tests {
             let seg =
                 LacSegment::new(alpha, [Point::new(0.0, 0.0), Point::new(1.0, 0.0), end]).unwrap();
             let taus: Vec<f64> = (0..2000).map(|i| seg.theta_d * i as f64 / 1999.0).collect();
-            let (pts, _) = seg.eval_turning(&taus).unwrap();
+            let pts = seg.eval_turning(&taus).unwrap().points;
             let path = seg.to_bezpath(1e-6).unwrap();
             let dev = deviation(&path, &pts);
             assert!(dev <= 1.5e-6, "alpha {alpha}: {dev:e}");
@@ -204,7 +204,7 @@ mod tests {
         let p = Point::new;
         let inf = LacInflectionSegment::new([p(0.0, 0.0), p(5.0, 0.0), p(7.0, 4.0)]).unwrap();
         let taus: Vec<f64> = (0..2000).map(|i| inf.theta_d * i as f64 / 1999.0).collect();
-        let (pts, _) = inf.eval_turning(&taus).unwrap();
+        let pts = inf.eval_turning(&taus).unwrap().points;
         let path = inf.to_bezpath(1e-5).unwrap();
         assert!(deviation(&path, &pts) <= 1.5e-5);
         // A quarter circle as a rational quadratic: every point of the path within the

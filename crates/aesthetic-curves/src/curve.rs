@@ -172,7 +172,7 @@ fn turned(d0: Vec2, sign: f64, taus: impl Iterator<Item = f64>) -> Vec<Vec2> {
 fn turning_points(
     control: &[Point; 3],
     theta_d: f64,
-    (pts, kappa): (Vec<Point>, Vec<f64>),
+    crate::lac::Polyline { points: pts, kappa }: crate::lac::Polyline,
 ) -> Vec<CurvePoint> {
     let n = pts.len();
     let (d0, d1) = (control[1] - control[0], control[2] - control[1]);

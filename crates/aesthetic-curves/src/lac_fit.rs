@@ -221,7 +221,7 @@ fn correspondence(
         thetas.push(th);
     }
     let taus: Vec<f64> = thetas.iter().map(|t| (t - ta).abs()).collect();
-    let (pts, _) = seg.eval_turning(&taus).ok()?;
+    let pts = seg.eval_turning(&taus).ok()?.points;
     out.clear();
     for (q, p) in points.iter().zip(&pts) {
         out.push(q.x - p.x);
@@ -237,7 +237,7 @@ fn correspondence(
 /// the reported distances are re-measured without the descent ([`nearest_distances`]).
 fn distances(seg: &LacSegment, points: &[Point], out: &mut Vec<f64>) -> Option<()> {
     let m = 2 * points.len() + 200;
-    let (poly, _) = seg.sample(m).ok()?;
+    let poly = seg.sample(m).ok()?.points;
     out.clear();
     let mut j = 0usize;
     for q in points {
@@ -648,7 +648,7 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
         (Some(ta), Some(tb)) if ta < tb => fitted.extended(ta, tb).unwrap_or(fitted),
         _ => fitted,
     };
-    let (poly, _) = segment.sample(4 * pts.len() + 400)?;
+    let poly = segment.sample(4 * pts.len() + 400)?.points;
     let d = nearest_distances(&poly, &pts);
     let n = d.len() as f64;
     let mut rc = Vec::new();
@@ -674,7 +674,7 @@ pub fn fit_lac(points: &[Point], opts: LacFitOptions) -> Result<LacFit> {
 
 /// Largest true distance from `pts` to `seg`.
 fn max_deviation(seg: &LacSegment, pts: &[Point]) -> Result<f64> {
-    let (poly, _) = seg.sample(2 * pts.len() + 200)?;
+    let poly = seg.sample(2 * pts.len() + 200)?.points;
     Ok(nearest_distances(&poly, pts)
         .into_iter()
         .fold(0.0, f64::max))
@@ -722,7 +722,7 @@ mod tests {
         ];
         for alpha in [-1.0, 0.5, 2.0] {
             let seg = LacSegment::new(alpha, tri).unwrap();
-            let (pts, _) = seg.sample(150).unwrap();
+            let pts = seg.sample(150).unwrap().points;
             let f = fit_lac(&pts, LacFitOptions::default()).unwrap();
             assert!(f.max_deviation < 1e-4, "{alpha}: {f:?}");
             assert!((f.alpha - alpha).abs() < 0.1, "{alpha}: {}", f.alpha);

@@ -438,7 +438,7 @@ mod tests {
         ];
         for &alpha in &[-2.0, -1.0, 0.0, 0.5, 1.0, 2.0, 3.0] {
             let seg = LacSegment::new(alpha, tri).unwrap();
-            let (pts, _) = seg.sample(200).unwrap();
+            let pts = seg.sample(200).unwrap().points;
             let fit = estimate_from_points(&pts).unwrap();
             assert!((fit.alpha - alpha).abs() < 1e-5, "{alpha}: {}", fit.alpha);
             assert!(fit.rms_residual < 1e-4);
@@ -464,7 +464,7 @@ mod tests {
         let mut rng = crate::samples::SplitMix64::new(7);
         for &alpha in &[-1.0, 1.0, 2.0] {
             let seg = LacSegment::new(alpha, tri).unwrap();
-            let (pts, _) = seg.sample(400).unwrap();
+            let pts = seg.sample(400).unwrap().points;
             let noisy: Vec<Point> = pts
                 .iter()
                 .map(|p| {

@@ -145,6 +145,6 @@ pub use bezier::{Bezier, PlanarCurve, RationalBezier};
 pub use curve::{Curve, CurvePoint, Pieces};
 pub use error::{Error, Result};
 pub use kurbo::{Point, Vec2};
-pub use lac::{LacInflectionSegment, LacSegment, LacStandard};
+pub use lac::{LacInflectionSegment, LacSegment, LacStandard, Polyline, TurningSamples};
 pub use monotone::{CurvatureMonotone, MonotoneReport, SampledReport, Trend};
 pub use nurbs::Nurbs;

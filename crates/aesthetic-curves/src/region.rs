@@ -402,13 +402,10 @@ pub fn bezier_monotone(
     Ok(refined(grid, block, threads, &|i, k| {
         let mut p = control.to_vec();
         p[index] = grid.centre(i, k);
+        // The verdict alone: the same exact test, without locating the extrema.
         let verdict = match weights {
-            None => Bezier::new(p)
-                .and_then(|b| b.curvature_monotone())
-                .map(|r| r.monotone),
-            Some(w) => RationalBezier::new(p, w.to_vec())
-                .and_then(|b| b.curvature_monotone())
-                .map(|r| r.monotone),
+            None => Bezier::new(p).and_then(|b| b.is_curvature_monotone()),
+            Some(w) => RationalBezier::new(p, w.to_vec()).and_then(|b| b.is_curvature_monotone()),
         };
         verdict.unwrap_or(false)
     }))

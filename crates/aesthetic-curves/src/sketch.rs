@@ -1407,8 +1407,10 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             let polys: Option<Vec<Vec<Point>>> = built
                 .iter()
                 .map(|b| match &b.curve {
-                    PieceCurve::Lac(seg) => seg.sample(129).ok().map(|x| x.0),
-                    PieceCurve::Inflection { segment, .. } => segment.sample(129).ok().map(|x| x.0),
+                    PieceCurve::Lac(seg) => seg.sample(129).ok().map(|x| x.points),
+                    PieceCurve::Inflection { segment, .. } => {
+                        segment.sample(129).ok().map(|x| x.points)
+                    }
                 })
                 .collect();
             if let Some(polys) = polys {
@@ -1836,7 +1838,7 @@ fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point], cap: f64) -> Option<(f64
     if k0.abs().max(k1.abs()) > cap {
         return None;
     }
-    let (poly, _) = seg.sample(129).ok()?;
+    let poly = seg.sample(129).ok()?.points;
     let (mut sum, mut max) = (0.0, 0.0f64);
     // The nearest sample by descent from the previous point's (either way: points may step
     // back), then the parabolic arcs around it.
@@ -2086,7 +2088,7 @@ fn merge_slots(
                 [tri[2], tri[1], tri[0]]
             };
             let seg = LacInflectionSegment::new(ctrl).ok()?;
-            let (poly, _) = seg.sample(129).ok()?;
+            let poly = seg.sample(129).ok()?.points;
             let d = points_in(fit, m.ua, m.ub)
                 .iter()
                 .map(|q| curve_distance(&poly, *q))

@@ -74,7 +74,10 @@ struct Table {
 impl Table {
     fn new(seg: &LacSegment) -> Table {
         let m = 4097;
-        let (p, k) = seg.sample(m).unwrap();
+        let aesthetic_curves::Polyline {
+            points: p,
+            kappa: k,
+        } = seg.sample(m).unwrap();
         let c = seg.control();
         let d0 = (c[1] - c[0]) / (c[1] - c[0]).hypot();
         let sign = (c[1] - c[0]).cross(c[2] - c[1]).signum();

@@ -58,7 +58,10 @@ fn beats_the_published_fits_without_hooks() {
         let (m2, r2) = max_rms(&distances(&to_points(pf.euler_points()), &pts));
         let (pub_max, pub_rms, pub_k) = (m1.min(m2), r1.min(r2), pf.max_curvature());
         let fit = fit_lac(&pts, LacFitOptions::default()).unwrap();
-        let (poly, k) = fit.segment.sample(6001).unwrap();
+        let aesthetic_curves::Polyline {
+            points: poly,
+            kappa: k,
+        } = fit.segment.sample(6001).unwrap();
         let (max, rms) = max_rms(&distances(&poly, &pts));
         let kmax = k.iter().map(|v| v.abs()).fold(0.0, f64::max);
         let c = fit.segment.control();
@@ -151,7 +154,7 @@ fn reported_distances_are_the_true_ones() {
     for i in 1..=5 {
         let pts = points(i);
         let fit = fit_lac(&pts, LacFitOptions::default()).unwrap();
-        let (poly, _) = fit.segment.sample(6001).unwrap();
+        let poly = fit.segment.sample(6001).unwrap().points;
         let (max, rms) = max_rms(&distances(&poly, &pts));
         let (k0, k1) = fit.segment.end_curvatures().unwrap();
         println!(
@@ -186,7 +189,7 @@ fn twenty_thousand_points_fit_in_about_a_second() {
     let t = std::time::Instant::now();
     let fit = fit_lac(&many, LacFitOptions::default()).unwrap();
     let secs = t.elapsed().as_secs_f64();
-    let (poly, _) = fit.segment.sample(6001).unwrap();
+    let poly = fit.segment.sample(6001).unwrap().points;
     let (max, rms) = max_rms(&distances(
         &poly,
         &many[..many.len()]

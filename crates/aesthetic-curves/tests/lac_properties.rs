@@ -50,9 +50,9 @@ proptest! {
         if base.lambda() > lmax * (1.0 - 1e-9) {
             return Ok(());
         }
-        let (pa, ka) = base.sample(17).unwrap();
+        let aesthetic_curves::Polyline { points: pa, kappa: ka } = base.sample(17).unwrap();
         let moved = tri.map(|p| similar(p, angle, scale, (dx * scale, dy * scale), mirror));
-        let (pb, kb) = LacSegment::new(alpha, moved).unwrap().sample(17).unwrap();
+        let aesthetic_curves::Polyline { points: pb, kappa: kb } = LacSegment::new(alpha, moved).unwrap().sample(17).unwrap();
         let size = scale * (1.0 + t);
         for i in 0..17 {
             let want = similar(pa[i], angle, scale, (dx * scale, dy * scale), mirror);
@@ -64,7 +64,7 @@ proptest! {
             prop_assert!((kb[i] - kw).abs() < 1e-6 * kw.abs(), "{} vs {}", kb[i], kw);
         }
         // Reversal.
-        let (pr, _) = LacSegment::new(alpha, [tri[2], tri[1], tri[0]]).unwrap().sample(17).unwrap();
+        let pr = LacSegment::new(alpha, [tri[2], tri[1], tri[0]]).unwrap().sample(17).unwrap().points;
         for i in 0..17 {
             prop_assert!((pr[i] - pa[16 - i]).hypot() < 1e-9 * (1.0 + t));
         }
@@ -81,8 +81,8 @@ proptest! {
         let moved = tri.map(|p| similar(p, angle, scale, (3.0, -2.0), mirror));
         let other = LacInflectionSegment::new(moved).unwrap();
         prop_assert!((base.alpha() - other.alpha()).abs() < 1e-9 * base.alpha().abs().max(1.0));
-        let (pa, _) = base.sample(9).unwrap();
-        let (pb, _) = other.sample(9).unwrap();
+        let pa = base.sample(9).unwrap().points;
+        let pb = other.sample(9).unwrap().points;
         for i in 0..9 {
             let want = similar(pa[i], angle, scale, (3.0, -2.0), mirror);
             prop_assert!((pb[i] - want).hypot() < 1e-9 * scale * (1.0 + t));

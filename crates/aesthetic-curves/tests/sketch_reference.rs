@@ -20,10 +20,10 @@ fn mirror(q: Point, o: Point, d: Vec2) -> Point {
 fn bump(alpha: f64, n: usize) -> Vec<Point> {
     // High-curvature end at control[2] (larger base angle there).
     let seg = LacSegment::new(alpha, [p(0.0, 0.0), p(6.0, 3.0), p(9.0, 0.5)]).unwrap();
-    let (pts, _) = seg.sample(n).unwrap();
+    let pts = seg.sample(n).unwrap().points;
     let end = pts[n - 1];
-    let (_, d) = seg.eval_turning(&[seg.theta_d()]).unwrap();
-    let normal = Vec2::new(-d[0].y, d[0].x);
+    let d = seg.eval_turning(&[seg.theta_d()]).unwrap().tangents[0];
+    let normal = Vec2::new(-d.y, d.x);
     let mut out = pts.clone();
     for q in pts.iter().rev().skip(1) {
         out.push(mirror(*q, end, normal));
@@ -34,7 +34,7 @@ fn bump(alpha: f64, n: usize) -> Vec<Point> {
 /// An S curve: an inflection-end segment and its point reflection through the inflection.
 fn s_curve(n: usize) -> (Vec<Point>, f64) {
     let seg = LacInflectionSegment::new([p(0.0, 0.0), p(5.0, 0.0), p(7.0, 3.0)]).unwrap();
-    let (pts, _) = seg.sample(n).unwrap();
+    let pts = seg.sample(n).unwrap().points;
     let mut out: Vec<Point> = pts.iter().rev().map(|q| p(-q.x, -q.y)).collect();
     out.extend(pts.iter().skip(1));
     (out, seg.alpha())
@@ -130,7 +130,7 @@ fn check_g2(name: &str, points: &[Point], tol: f64, truth: Option<&[f64]>, want_
 fn single_segments() {
     for alpha in [-1.0, 0.0, 0.5, 1.0, 2.0] {
         let seg = LacSegment::new(alpha, [p(0.0, 0.0), p(6.0, 3.0), p(9.0, 0.5)]).unwrap();
-        let (pts, _) = seg.sample(300).unwrap();
+        let pts = seg.sample(300).unwrap().points;
         check(
             &format!("single {alpha}"),
             &pts,
@@ -300,7 +300,7 @@ fn single_lac_segments_come_back_as_one_piece_with_their_alpha() {
             }
             let seg = LacSegment::new(alpha, tri(td, lo)).unwrap();
             let (k0, k1) = seg.end_curvatures().unwrap();
-            let (pts, _) = seg.sample(200).unwrap();
+            let pts = seg.sample(200).unwrap().points;
             let tol = 1e-3 * size(&pts);
             let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
             let got: Vec<f64> = sk.pieces.iter().map(|p| p.alpha).collect();

@@ -117,7 +117,7 @@ pub(crate) fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     ];
     for alpha in [-1.0, 0.0, 1.0, 2.0] {
         let seg = aesthetic_curves::lac::LacSegment::new(alpha, tri)?;
-        let (points, kappa) = seg.sample(121)?;
+        let aesthetic_curves::Polyline { points, kappa } = seg.sample(121)?;
         let mut arc = 0.0;
         let mut series = Vec::with_capacity(points.len());
         for (i, k) in kappa.iter().enumerate() {

@@ -16,7 +16,7 @@ pub(crate) fn inflection_gallery(out: &std::path::Path) -> Result<String> {
         let th = (deg as f64).to_radians();
         let p1 = Point::new(p2.x - p2.y / th.tan(), 0.0);
         let seg = LacInflectionSegment::new([Point::ORIGIN, p1, p2])?;
-        let (pts, _) = seg.sample(120)?;
+        let pts = seg.sample(120)?.points;
         curves.push(plot::Series::nth(
             format!("θ = {deg}°"),
             pts.iter().map(|p| (p.x, p.y)).collect(),

@@ -38,7 +38,10 @@ pub(crate) fn lac_fit_gallery(out: &std::path::Path) -> Result<String> {
         let (m1, r1) = max_rms(&distances(&to_pts(pf.points(3000)), &pts));
         let (m2, r2) = max_rms(&distances(&to_pts(pf.euler_points()), &pts));
         // Curvature against arc length, both from the line's first point.
-        let (poly, k) = fit.segment.sample(400)?;
+        let aesthetic_curves::Polyline {
+            points: poly,
+            kappa: k,
+        } = fit.segment.sample(400)?;
         let mut s = 0.0;
         let mut line_ours = Vec::new();
         for (j, kj) in k.iter().enumerate() {

@@ -50,7 +50,11 @@ impl InflectionTable {
         let taus: Vec<f64> = (0..=n)
             .map(|k| seg.theta_d * (k as f64 / n as f64).powf(1.0 / r))
             .collect();
-        let (p, t) = seg.eval_turning(&taus)?;
+        let crate::lac::TurningSamples {
+            points: p,
+            tangents: t,
+            ..
+        } = seg.eval_turning(&taus)?;
         let len = seg.arc_length();
         let c = seg.control;
         Ok(InflectionTable {
@@ -302,7 +306,7 @@ pub(crate) fn fit_inflection_cubic_from(
             seg.theta_d * sigma.powf(1.0 / table.r)
         })
         .collect();
-    let (exact, _) = seg.eval_turning(&taus)?;
+    let exact = seg.eval_turning(&taus)?.points;
     let (mut sum, mut max) = (0.0f64, 0.0f64);
     for (&t, q) in ts.iter().zip(&exact) {
         let d = (curve.eval(t) - *q).hypot() / table.len;

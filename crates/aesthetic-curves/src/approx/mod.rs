@@ -355,7 +355,7 @@ impl<'a> Problem<'a> {
                 .collect();
             taus[0] = 0.0;
             taus[m] = theta_d;
-            let (pts, der) = seg.eval_turning(&taus)?;
+            let at = seg.eval_turning(&taus)?;
             // d²P/dτ² = ρ' T + ρ dT/dτ, with dT/dτ = ±N (the tangent turns by dτ) and, from
             // ρ_std = U^(1/(α-1)) (e^{Λθ} for α = 1) and θ = θ_start + dir τ,
             // ρ'/ρ = dir Λ / U: the same similarity scales ρ and ρ'.
@@ -367,11 +367,10 @@ impl<'a> Problem<'a> {
             };
             let sign = turn_sign(seg);
             taus.iter()
-                .zip(pts)
-                .zip(der)
-                .map(|((tau, p), d)| {
-                    let rho = d.hypot();
-                    let u = d / rho;
+                .zip(at.points)
+                .zip(at.tangents.into_iter().zip(at.radii))
+                .map(|((tau, p), (u, rho))| {
+                    let d = u * rho;
                     let big_u = 1.0 + c * (theta_start + dir * tau);
                     let drho = rho * dir * lambda / big_u;
                     Node {
@@ -571,7 +570,7 @@ impl<'a> Problem<'a> {
             });
         }
         if self.exact {
-            let (lac, _) = self.seg.eval_turning(&taus).ok()?;
+            let lac = self.seg.eval_turning(&taus).ok()?.points;
             for ((p, q), sw) in pts.iter().zip(&lac).zip(&smp.sw) {
                 let f = sw / self.len;
                 out.push((p.x - q.x) * f);
@@ -1607,9 +1606,9 @@ mod tests {
                     };
                     let prob = Problem::new(&seg, TABLE_INTERVALS).unwrap();
                     let taus: Vec<f64> = (0..=997).map(|i| td * i as f64 / 997.0).collect();
-                    let (pts, der) = seg.eval_turning(&taus).unwrap();
+                    let at = seg.eval_turning(&taus).unwrap();
                     let mut k = usize::MAX;
-                    for (p, d) in pts.iter().zip(&der) {
+                    for (p, d) in at.points.iter().zip(&at.tangents) {
                         let q = prob.lac_at_dir(*d, &mut k);
                         worst[slot] = worst[slot].max((q - *p).hypot() / prob.len);
                     }
@@ -1753,7 +1752,7 @@ mod tests {
         let taus: Vec<f64> = (0..=m)
             .map(|i| seg.theta_d * (i as f64 / m as f64).powi(3))
             .collect();
-        let (exact, _) = seg.eval_turning(&taus).unwrap();
+        let exact = seg.eval_turning(&taus).unwrap().points;
         (0..=n)
             .map(|j| {
                 let q = curve.eval(j as f64 / n as f64);
@@ -1916,7 +1915,7 @@ mod tests {
         let taus: Vec<f64> = (0..=n)
             .map(|i| seg.theta_d * (i as f64 / n as f64).powi(3))
             .collect();
-        let (exact, _) = seg.eval_turning(&taus).unwrap();
+        let exact = seg.eval_turning(&taus).unwrap().points;
         let mut worst: f64 = 0.0;
         for j in 0..=400 {
             let q = sp.eval(j as f64 / 400.0);

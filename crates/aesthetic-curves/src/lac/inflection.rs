@@ -1,6 +1,6 @@
 //! A log-aesthetic segment with an inflection point at its start.
 
-use super::{triangle_angles, LacSegment, Similarity, TriangleAngles};
+use super::{triangle_angles, LacSegment, Polyline, Similarity, TriangleAngles, TurningSamples};
 use crate::error::{Error, Result};
 use crate::roots::illinois;
 use kurbo::{Point, Vec2};
@@ -186,8 +186,8 @@ impl LacInflectionSegment {
                 format!("need 0 < tau < theta_d = {}, got {tau}", self.theta_d),
             ));
         }
-        let (pts, tangents) = self.eval_turning(&[tau])?;
-        let (p, t) = (pts[0], tangents[0]);
+        let at = self.eval_turning(&[tau])?;
+        let (p, t) = (at.points[0], at.tangents[0]);
         let c = self.control;
         let meet = |a: Point, da: Vec2, b: Point, db: Vec2| -> Result<Point> {
             let x = a + da * ((b - a).cross(db) / da.cross(db));
@@ -224,10 +224,10 @@ impl LacInflectionSegment {
         self.turn_sign() * self.theta_d.powf(1.0 - r) / (r * self.scale())
     }
 
-    /// Points at turning angles τ from the inflection end (τ = 0) to `control[2]` (τ = θ_d),
-    /// and the unit tangents there; τ outside [0, θ_d] is clamped. Ascending τ are
-    /// integrated incrementally.
-    pub fn eval_turning(&self, taus: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+    /// Points, unit tangents and radii of curvature (infinite at τ = 0) at turning angles τ
+    /// from the inflection end (τ = 0) to `control[2]` (τ = θ_d); τ outside [0, θ_d] is
+    /// clamped.
+    pub fn eval_turning(&self, taus: &[f64]) -> Result<TurningSamples> {
         if let Some(i) = taus.iter().position(|t| !t.is_finite()) {
             return Err(Error::invalid(format!("tau[{i}]"), "must be finite"));
         }
@@ -235,6 +235,9 @@ impl LacInflectionSegment {
         let o = self.map.apply(Vec2::ZERO);
         let mut pts = Vec::with_capacity(taus.len());
         let mut tangents = Vec::with_capacity(taus.len());
+        let mut radii = Vec::with_capacity(taus.len());
+        // kappa(θ) = q θ^(1 - r) in standard form ([`Self::sample`]).
+        let q = 1.0 / r;
         for t in taus {
             let th = t.clamp(0.0, self.theta_d);
             let acc = inflection_integral(r, 0.0, th)? * r;
@@ -247,13 +250,18 @@ impl LacInflectionSegment {
             });
             let d = self.map.apply(Vec2::from_angle(th)) - o;
             tangents.push(d / d.hypot());
+            radii.push(self.scale() / (q * th.powf(1.0 - r)));
         }
-        Ok((pts, tangents))
+        Ok(TurningSamples {
+            points: pts,
+            tangents,
+            radii,
+        })
     }
 
     /// `n >= 2` points from the inflection end to `control[2]`, evenly spaced in tangent angle,
     /// and their signed curvature (0 at the start).
-    pub fn sample(&self, n: usize) -> Result<(Vec<Point>, Vec<f64>)> {
+    pub fn sample(&self, n: usize) -> Result<Polyline> {
         if n < 2 {
             return Err(Error::invalid("samples", "need at least 2"));
         }
@@ -273,6 +281,9 @@ impl LacInflectionSegment {
         }
         pts[0] = self.control[0];
         pts[n - 1] = self.control[2];
-        Ok((pts, k))
+        Ok(Polyline {
+            points: pts,
+            kappa: k,
+        })
     }
 }

@@ -30,10 +30,42 @@ mod standard;
 
 pub use inflection::LacInflectionSegment;
 pub use segment::LacSegment;
+
 pub use standard::{LacStandard, MAX_ABS_ALPHA, MAX_QUARTER_TURNS};
 
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
+
+/// Samples of a segment with their signed curvature: what `sample` of [`LacSegment`] and
+/// [`LacInflectionSegment`] returns, from `control[0]` to `control[2]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polyline {
+    /// The points, the ends exact.
+    pub points: Vec<Point>,
+    /// The signed curvature at each point (positive when the curve turns left), in inverse
+    /// input units.
+    pub kappa: Vec<f64>,
+}
+
+/// Points at given turning angles with their tangents: what `eval_turning` of
+/// [`LacSegment`] and [`LacInflectionSegment`] returns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TurningSamples {
+    /// The points.
+    pub points: Vec<Point>,
+    /// The unit tangents, in the direction from `control[0]` to `control[2]`.
+    pub tangents: Vec<Vec2>,
+    /// The radius of curvature at each point, in input units (infinite at an inflection
+    /// end). `tangents[i] * radii[i]` is dP/dτ, the derivative in the turning angle.
+    pub radii: Vec<f64>,
+}
+
+impl TurningSamples {
+    /// dP/dτ at sample `i` (the tangent scaled by the radius of curvature).
+    pub fn derivative(&self, i: usize) -> Vec2 {
+        self.tangents[i] * self.radii[i]
+    }
+}
 
 fn cmul(a: Vec2, b: Vec2) -> Vec2 {
     Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
@@ -267,7 +299,10 @@ mod tests {
         ];
         for alpha in [-1.0, 0.0, 0.5, 1.0, 2.0] {
             let seg = LacSegment::new(alpha, pts).unwrap();
-            let (p, k) = seg.sample(65).unwrap();
+            let crate::Polyline {
+                points: p,
+                kappa: k,
+            } = seg.sample(65).unwrap();
             assert_eq!(p[0], pts[0]);
             assert_eq!(p[64], pts[2]);
             // The mapped end (before snapping) matches: check the next-to-last sample is close.
@@ -278,14 +313,20 @@ mod tests {
             // Mirrored triangle: same curve mirrored, negative curvature.
             let m = pts.map(|p| Point::new(p.x, -p.y));
             let sm = LacSegment::new(alpha, m).unwrap();
-            let (pm, km) = sm.sample(65).unwrap();
+            let crate::Polyline {
+                points: pm,
+                kappa: km,
+            } = sm.sample(65).unwrap();
             for i in 0..65 {
                 assert!((pm[i] - Point::new(p[i].x, -p[i].y)).hypot() < 1e-10 * 16.0);
                 assert!((km[i] + k[i]).abs() < 1e-10 * k[i].abs());
             }
             // Reversed triangle: same points in reverse order.
             let r = [pts[2], pts[1], pts[0]];
-            let (pr, kr) = LacSegment::new(alpha, r).unwrap().sample(65).unwrap();
+            let crate::Polyline {
+                points: pr,
+                kappa: kr,
+            } = LacSegment::new(alpha, r).unwrap().sample(65).unwrap();
             for i in 0..65 {
                 assert!((pr[i] - p[64 - i]).hypot() < 1e-10 * 16.0);
                 assert!((kr[i] + k[64 - i]).abs() < 1e-10 * k[64 - i].abs());
@@ -330,18 +371,19 @@ mod tests {
             assert!((head.alpha - seg.alpha).abs() < 1e-15);
             // The head is the curve from 0 to τ; the tail from τ to θ_d.
             let taus: Vec<f64> = (0..=20).map(|k| tau * k as f64 / 20.0).collect();
-            let (a, _) = head.eval_turning(&taus).unwrap();
-            let (b, _) = seg.eval_turning(&taus).unwrap();
+            let a = head.eval_turning(&taus).unwrap().points;
+            let b = seg.eval_turning(&taus).unwrap().points;
             for (x, y) in a.iter().zip(&b) {
                 assert!((*x - *y).hypot() < 1e-13 * size, "head at {frac}");
             }
             let rest: Vec<f64> = (0..=20)
                 .map(|k| (seg.theta_d - tau) * k as f64 / 20.0)
                 .collect();
-            let (c, _) = tail.eval_turning(&rest).unwrap();
-            let (d, _) = seg
+            let c = tail.eval_turning(&rest).unwrap().points;
+            let d = seg
                 .eval_turning(&rest.iter().map(|r| tau + r).collect::<Vec<_>>())
-                .unwrap();
+                .unwrap()
+                .points;
             let worst = c
                 .iter()
                 .zip(&d)
@@ -414,7 +456,10 @@ mod tests {
         assert!((seg.alpha + 1.066636984).abs() < 1e-8, "{}", seg.alpha);
         let t = seg.tangent_intersection().unwrap();
         assert!((t - Point::new(1.0, 0.0)).hypot() < 1e-10, "{t:?}");
-        let (p, k) = seg.sample(33).unwrap();
+        let crate::Polyline {
+            points: p,
+            kappa: k,
+        } = seg.sample(33).unwrap();
         assert_eq!(k[0], 0.0);
         assert!(k.windows(2).all(|w| w[1] > w[0]));
         assert!((p[16].y) > 0.0);
@@ -445,7 +490,10 @@ mod tests {
                         Point::new(1.0 + t * turn.cos(), t * turn.sin()),
                     ];
                     match LacSegment::new(alpha, tri).and_then(|s| s.sample(33)) {
-                        Ok((p, k)) => {
+                        Ok(Polyline {
+                            points: p,
+                            kappa: k,
+                        }) => {
                             assert!(p.iter().all(|q| q.is_finite()));
                             assert!(k.iter().all(|v| v.is_finite() && *v != 0.0));
                         }
@@ -599,9 +647,10 @@ mod tests {
                 assert!((*a - *b).hypot() < 1e-9, "{alpha}: {a:?} vs {b:?}");
             }
             // A point of the extension, moved off the curve along its normal, projects back.
-            let (p, d) = ext.eval_turning(&[0.03 * td]).unwrap();
-            let n = Vec2::new(-d[0].y, d[0].x).normalize();
-            let q = p[0] + n * 0.2;
+            let at = ext.eval_turning(&[0.03 * td]).unwrap();
+            let d = at.tangents[0];
+            let n = Vec2::new(-d.y, d.x).normalize();
+            let q = at.points[0] + n * 0.2;
             let tau = seg.project_turning(q, 0.0).unwrap();
             assert!(
                 (tau - (-0.07 * td)).abs() < 1e-9,

@@ -2,7 +2,7 @@
 //! sub-segments, projection.
 
 use super::{cdiv, cmul, triangle_angles, Similarity, TriangleAngles};
-use super::{LacStandard, MAX_ABS_ALPHA};
+use super::{LacStandard, Polyline, TurningSamples, MAX_ABS_ALPHA};
 use crate::error::{Error, Result};
 use crate::roots::brent;
 use kurbo::{Point, Vec2};
@@ -507,7 +507,7 @@ impl LacSegment {
     }
 
     /// `n >= 2` points from `control[0]` to `control[2]` (ends exact) and their signed curvature.
-    pub fn sample(&self, n: usize) -> Result<(Vec<Point>, Vec<f64>)> {
+    pub fn sample(&self, n: usize) -> Result<Polyline> {
         if n < 2 {
             return Err(Error::invalid("samples", "need at least 2"));
         }
@@ -545,7 +545,10 @@ impl LacSegment {
                 "the segment's samples overflow f64 (triangle too extreme)".into(),
             ));
         }
-        Ok((out, k))
+        Ok(Polyline {
+            points: out,
+            kappa: k,
+        })
     }
 
     /// Standard-form θ at turning angle `tau` from `control[0]`.
@@ -557,10 +560,9 @@ impl LacSegment {
         }
     }
 
-    /// Points and derivatives dP/dτ (length = radius of curvature, direction = tangent) at
-    /// turning angles τ measured from `control[0]` (τ = 0) to `control[2]` (τ = θ_d); τ outside
-    /// [0, θ_d] is clamped.
-    pub fn eval_turning(&self, taus: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+    /// Points, unit tangents and radii of curvature at turning angles τ measured from
+    /// `control[0]` (τ = 0) to `control[2]` (τ = θ_d); τ outside [0, θ_d] is clamped.
+    pub fn eval_turning(&self, taus: &[f64]) -> Result<TurningSamples> {
         self.eval_thetas(&self.thetas_at_turning(taus)?)
     }
 
@@ -603,32 +605,36 @@ impl LacSegment {
         self.standard.eval_many_with_kappa(th)
     }
 
-    /// Points and dP/dτ at standard-form angles (no clamping).
-    fn eval_thetas(&self, th: &[f64]) -> Result<(Vec<Point>, Vec<Vec2>)> {
+    /// Points, unit tangents and radii at standard-form angles (no clamping).
+    fn eval_thetas(&self, th: &[f64]) -> Result<TurningSamples> {
         let (pts, kappa) = self.standard_points(th)?;
         let dir = if self.reversed { -1.0 } else { 1.0 };
         let o = self.map.apply(Vec2::ZERO);
         let points = pts.iter().map(|p| self.map.apply(p.to_vec2())).collect();
         // e^{iθ} by the rotation of each step (sorted angles, steps up to 0.05 rad),
         // from scratch every 32 points.
+        // The map is a similarity: it scales lengths by `scale` and turns every tangent alike.
         let mut e = Vec2::ZERO;
         let mut prev = f64::NAN;
-        let derivs = th
-            .iter()
-            .zip(&kappa)
-            .enumerate()
-            .map(|(i, (t, k))| {
-                let h = t - prev;
-                e = if i % 32 != 0 && h.abs() <= 0.05 {
-                    super::cmul(e, super::standard::rotation(h))
-                } else {
-                    Vec2::from_angle(*t)
-                };
-                prev = *t;
-                self.map.apply(e * (dir / k)) - o
-            })
-            .collect();
-        Ok((points, derivs))
+        let scale = self.scale();
+        let mut tangents = Vec::with_capacity(th.len());
+        let mut radii = Vec::with_capacity(th.len());
+        for (i, (t, k)) in th.iter().zip(&kappa).enumerate() {
+            let h = t - prev;
+            e = if i % 32 != 0 && h.abs() <= 0.05 {
+                super::cmul(e, super::standard::rotation(h))
+            } else {
+                Vec2::from_angle(*t)
+            };
+            prev = *t;
+            tangents.push((self.map.apply(e * dir) - o) / scale);
+            radii.push(scale / k);
+        }
+        Ok(TurningSamples {
+            points,
+            tangents,
+            radii,
+        })
     }
 
     /// The turning angle (from `control[0]`, possibly outside `[0, θ_d]`: on the curve's
@@ -644,10 +650,10 @@ impl LacSegment {
             if !(lo < th && th < hi) {
                 return None;
             }
-            let (p, d) = self.eval_thetas(&[th]).ok()?;
-            let rho = d[0].hypot();
-            let (u, n) = (d[0] / rho, Vec2::new(-d[0].y, d[0].x) / rho);
-            let r = q - p[0];
+            let at = self.eval_thetas(&[th]).ok()?;
+            let (rho, u) = (at.radii[0], at.tangents[0]);
+            let n = Vec2::new(-u.y, u.x);
+            let r = q - at.points[0];
             let dg = -rho + sign * r.dot(n);
             (dg < 0.0).then(|| -r.dot(u) / dg)
         };
@@ -703,7 +709,11 @@ impl LacSegment {
 
     fn between(&self, ta: f64, tb: f64) -> Result<LacSegment> {
         let (a, b) = (self.theta_at_turning(ta), self.theta_at_turning(tb));
-        let (pts, der) = self.eval_thetas(&[a, b])?;
+        let crate::lac::TurningSamples {
+            points: pts,
+            tangents: der,
+            ..
+        } = self.eval_thetas(&[a, b])?;
         // The segment's own ends stay exact.
         let p0 = if ta == 0.0 { self.control[0] } else { pts[0] };
         let p2 = if tb == self.theta_d {
