@@ -32,7 +32,7 @@
 //! 2. the starting points come from the shipped table of local optima
 //!    ([`crate::approx_table`]): every minimum at the eight grid nodes around the segment's
 //!    shape (α, θ_d, base angle), each valley followed through the cell and interpolated;
-//!    Levenberg–Marquardt refines each (16 Gauss–Legendre samples; a start within 0.01 of
+//!    Levenberg–Marquardt refines each (10 Gauss–Legendre samples; a start within 0.01 of
 //!    a lower minimum already found is skipped, a run still 100 times above the best after
 //!    5 iterations is abandoned);
 //! 3. only when the best of those is not curvature-monotone, or the table has no start
@@ -43,9 +43,10 @@
 //!    curvature-monotone the search restarts from the best monotone grid points with steps
 //!    into the non-monotone region refused;
 //! 4. the winner is refined on a finer measure (24 Gauss nodes), near-exact fits (rms below
-//!    1e-12) on the exact LAC; its error is measured on the exact LAC (no table), and it is
-//!    returned only if the exact test proves its curvature monotone; otherwise
-//!    [`Error::NoSegment`].
+//!    1e-12) on the exact LAC; it is returned only if the exact test proves its curvature
+//!    monotone (otherwise [`Error::NoSegment`]), with its error measured at the reported
+//!    samples on the table, or on the exact LAC when the rms is below 1e-8 of the length
+//!    (where the table's own error could show in it).
 //!
 //! The result is the global optimum of the family up to the table's resolution of valleys,
 //! so it moves continuously with the input except where the global optimum itself jumps
@@ -55,8 +56,11 @@
 //! hairline-narrow and curved and can hold twin minima a few thousandths apart, so there a
 //! start is skipped only within 0.003 of a minimum already found, and a run is never
 //! abandoned while it is itself near-exact. On fresh cases the optimiser was not tuned on
-//! (the ignored hold-out test of the same file), 3 of 700 miss the 1 % band, by 1.3 to
-//! 2.8 %: near-flat valley floors with several shallow minima.
+//! (the ignored hold-out test of the same file, seeds 1, 3, 5, 7 and 11, 300 cases each),
+//! 5 of 1500 miss the 1 % band: by 2.4 %, 2.8 % and 3 %, and two by 22 % and 73 %. All
+//! lie in long valleys whose floors hold several minima (the 22 % case: two minima 0.06
+//! apart along a hairline valley) or descend so slowly that Levenberg–Marquardt crawls
+//! (the 73 % case: the optimum is 0.4 away along the floor from every start of the table).
 
 use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
@@ -82,7 +86,8 @@ pub struct ApproxOptions {
     pub grid: usize,
     /// Samples of the error during that grid search.
     pub grid_samples: usize,
-    /// Gauss–Legendre samples of the error during local refinement (16).
+    /// Gauss–Legendre samples of the error during local refinement (10; the finish always
+    /// uses 24).
     pub refine_samples: usize,
     /// Samples (uniform t, both ends included) of the reported error; at least 200.
     pub report_samples: usize,
@@ -101,7 +106,7 @@ impl Default for ApproxOptions {
         ApproxOptions {
             grid: 12,
             grid_samples: 8,
-            refine_samples: 16,
+            refine_samples: 10,
             report_samples: 201,
             starts: 2,
             max_iter: 60,
@@ -678,6 +683,27 @@ impl<'a> Problem<'a> {
         Some(())
     }
 
+    /// [`approximation_error`] of `curve` (a rational cubic) with the LAC points from the
+    /// table instead of the exact LAC: the same samples and the same correspondence, no
+    /// integration (a third of the time).
+    fn table_report(&self, curve: &RationalBezier, n: usize) -> ApproximationError {
+        let (b, w) = (curve.points(), curve.weights());
+        let h: [(f64, f64, f64); 4] = std::array::from_fn(|i| (b[i].x * w[i], b[i].y * w[i], w[i]));
+        let (mut sum, mut max, mut k) = (0.0, 0.0f64, usize::MAX);
+        for i in 0..n {
+            let t = i as f64 / (n - 1) as f64;
+            let (p, tangent) = cubic_point_tangent(&h, t);
+            let q = self.lac_at_dir(tangent, &mut k);
+            let e = (p - q).hypot() / self.len;
+            sum += e * e;
+            max = max.max(e);
+        }
+        ApproximationError {
+            rms: (sum / n as f64).sqrt(),
+            max,
+        }
+    }
+
     /// Weighted mean square residual (infinite for an invalid (f0, f1)).
     fn cost(&self, f0: f64, f1: f64, ts: &Samples, buf: &mut Vec<f64>) -> f64 {
         match self.residuals(f0, f1, ts, buf) {
@@ -1158,6 +1184,13 @@ const TABLE_INTERVALS: usize = 256;
 /// about a fifth fewer evaluations.
 const MODEL_MARGIN: f64 = 1.5;
 
+/// Least rms error (relative to the length) the fit's report takes from the LAC table
+/// rather than from the exact LAC. Measured on 1000 random shapes of the sweep's
+/// distribution: above it the two reports' rms and max agree to 5e-6 relative; from 1e-9 to
+/// 1e-8 to 3e-7; below 1e-9 the table's own error shows (up to 2e-3). The unit test
+/// `the_table_report_agrees_with_the_exact_one` checks 1e-5 on other shapes.
+const REPORT_BY_TABLE_ABOVE: f64 = 1e-8;
+
 /// The table's starting points for `seg` ([`crate::approx_table`]), each refined by
 /// Levenberg–Marquardt (starts within 1e-3 of one already refined, or of its result, are
 /// skipped), best first.
@@ -1555,16 +1588,23 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
         }
     }
     let curve = construct(seg, f0, f1)?;
-    let report = curve.curvature_monotone()?;
-    if !report.monotone {
+    // The proven verdict (the exact test, stopping at its first proof).
+    if !curve.is_curvature_monotone()? {
         return Err(Error::NoSegment(
             "the optimal rational cubic is not curvature-monotone".into(),
         ));
     }
+    // The report: by the table unless the fit is so close that the table's own error
+    // (module documentation) could show in it; then by the exact LAC.
+    let by_table = prob.table_report(&curve, nr);
     let ApproximationError {
         rms,
         max: max_error,
-    } = approximation_error(seg, &curve, nr)?;
+    } = if by_table.rms >= REPORT_BY_TABLE_ABOVE {
+        by_table
+    } else {
+        approximation_error(seg, &curve, nr)?
+    };
     Ok(RationalCubicFit {
         curve,
         f0,
@@ -1622,6 +1662,33 @@ mod tests {
         assert!(worst[0] < 1e-13, "{worst:?}");
         assert!(worst[1] < 1e-10, "{worst:?}");
         assert!(worst[2] < 1e-8, "{worst:?}");
+    }
+
+    #[test]
+    fn the_table_report_agrees_with_the_exact_one() {
+        // The fit's rms and max error against approximation_error's exact LAC, on random
+        // shapes of the sweep's distribution (other seeds than those the threshold was
+        // measured on).
+        let opts = ApproxOptions::default();
+        let (mut worst, mut by_table, mut exact) = (0.0f64, 0, 0);
+        for seg in crate::samples::random_lac_segments(150, 31) {
+            let Ok(fit) = fit_rational_cubic(&seg, &opts) else {
+                continue;
+            };
+            let e = approximation_error(&seg, &fit.curve, opts.report_samples.max(200)).unwrap();
+            if fit.rms >= REPORT_BY_TABLE_ABOVE {
+                by_table += 1;
+                worst = worst
+                    .max((fit.rms - e.rms).abs() / e.rms)
+                    .max((fit.max_error - e.max).abs() / e.max);
+            } else {
+                exact += 1;
+                assert_eq!((fit.rms, fit.max_error), (e.rms, e.max));
+            }
+        }
+        println!("{by_table} reports by the table (worst relative difference {worst:.1e}), {exact} exact");
+        assert!(by_table > 100 && exact > 0, "{by_table} {exact}");
+        assert!(worst < 1e-5, "{worst:e}");
     }
 
     #[test]
