@@ -630,6 +630,8 @@ pub fn rational_approx_json(
         "rms": fit.rms,
         "max_error": fit.max_error,
         "monotone": fit.monotone,
+        "converged": fit.converged,
+        "evaluations": fit.evaluations,
         "arc_length": seg.arc_length()?,
     });
     if let Some(sp) = spline {

@@ -1724,6 +1724,8 @@ fn inflection_fallback(seg: &LacInflectionSegment) -> Result<crate::approx::Rati
         max_error: f64::NAN,
         monotone,
         evaluations: 1,
+        // A fixed cubic, not an optimum.
+        converged: false,
     })
 }
 

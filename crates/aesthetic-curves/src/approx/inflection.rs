@@ -231,7 +231,7 @@ pub(crate) fn fit_inflection_cubic_from(
             .map(|(_, x)| *x)
             .collect(),
     };
-    let mut best: Option<(f64, (f64, f64))> = None;
+    let mut best: Option<(f64, (f64, f64), bool)> = None;
     let residuals = |x: (f64, f64), out: &mut Vec<f64>| table.residuals(make(x), &tr, out);
     let domain = |x: (f64, f64)| x.0 < 1.0;
     let feasible = |x: (f64, f64)| x.0 > 0.0 && x.0 < 1.0 && x.1.is_finite() && monotone(x);
@@ -269,6 +269,7 @@ pub(crate) fn fit_inflection_cubic_from(
         );
         evals += r.evaluations;
         let (mut cost, mut x, h) = (r.value, r.x, r.step);
+        let converged = r.converged;
         // The compass stalls where the optimum lies on the monotone boundary and the
         // boundary runs between its directions: walk along it.
         if h > 0.0 {
@@ -280,10 +281,10 @@ pub(crate) fn fit_inflection_cubic_from(
             }
         }
         if best.is_none_or(|b| cost < b.0) {
-            best = Some((cost, x));
+            best = Some((cost, x, converged));
         }
     }
-    let Some((_, x)) = best else {
+    let Some((_, x, converged)) = best else {
         return Err(Error::NoSegment(
             "no rational cubic of the inflection-end family has monotone curvature for this segment"
                 .into(),
@@ -322,6 +323,7 @@ pub(crate) fn fit_inflection_cubic_from(
             max_error: max,
             monotone,
             evaluations: evals,
+            converged,
             curve,
         },
         x,

@@ -132,6 +132,10 @@ pub struct RationalCubicFit {
     pub monotone: bool,
     /// Objective evaluations spent.
     pub evaluations: usize,
+    /// The final local refinement met its stopping test. False: it stopped at its
+    /// iteration limit, still descending (a valley floor that falls very slowly): the
+    /// returned cubic is valid and proven, but may be short of the optimum.
+    pub converged: bool,
 }
 
 /// The §4 rational cubic for (f0, f1) in (0, 1)².
@@ -1184,6 +1188,12 @@ const TABLE_INTERVALS: usize = 256;
 /// about a fifth fewer evaluations.
 const MODEL_MARGIN: f64 = 1.5;
 
+/// The finish's stopping test: a step gaining less than this fraction of the mean square
+/// (half of it in the rms) ends it, converged. On 1000 random shapes 990 finishes meet it
+/// within their 8 iterations (849 meet 1e-12); the other 10 are still descending a valley
+/// floor and say so ([`RationalCubicFit::converged`]).
+const FINISH_PROGRESS: f64 = 1e-9;
+
 /// Least rms error (relative to the length) the fit's report takes from the LAC table
 /// rather than from the exact LAC. Measured on 1000 random shapes of the sweep's
 /// distribution: above it the two reports' rms and max agree to 5e-6 relative; from 1e-9 to
@@ -1558,7 +1568,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
     let was_monotone = prob.is_monotone(f0, f1);
     let feasible = |a: f64, b: f64| !was_monotone || prob.is_monotone(a, b);
     let fine = Samples::gauss(24);
-    let ((p0, p1), pc, e, _) = refine_with(
+    let ((p0, p1), pc, e, converged) = refine_with(
         &prob,
         (f0, f1),
         &fine,
@@ -1566,6 +1576,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
         &feasible,
         LmOptions {
             abandon_after: 8,
+            rel_progress: FINISH_PROGRESS,
             ..LM_FULL
         },
         true,
@@ -1613,6 +1624,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
         max_error,
         monotone: true,
         evaluations: evals,
+        converged: converged && pc.is_finite(),
     })
 }
 
@@ -1689,6 +1701,41 @@ mod tests {
         println!("{by_table} reports by the table (worst relative difference {worst:.1e}), {exact} exact");
         assert!(by_table > 100 && exact > 0, "{by_table} {exact}");
         assert!(worst < 1e-5, "{worst:e}");
+    }
+
+    #[test]
+    fn fits_say_whether_their_refinement_converged() {
+        let opts = ApproxOptions::default();
+        let (mut n, mut converged) = (0, 0);
+        for seg in crate::samples::random_lac_segments(150, 37) {
+            if let Ok(fit) = fit_rational_cubic(&seg, &opts) {
+                n += 1;
+                converged += fit.converged as usize;
+            }
+        }
+        assert!(converged * 100 >= 95 * n, "{converged} of {n}");
+        // A hold-out case (seed 3 of the sweep) whose valley floor falls so slowly that the
+        // refinement stops still descending (today 1.7 times the exhaustive optimum's rms,
+        // 1.17e-4 at (0.955, 0.172)): either the fit reaches the optimum or it says it did
+        // not converge.
+        let (td, phi, alpha) = (
+            0.23259112843136198f64,
+            0.21922045004695223f64,
+            0.6614311511971014,
+        );
+        let d = phi.sin() / (td - phi).sin();
+        let tri = [
+            Point::ZERO,
+            Point::new(1.0, 0.0),
+            Point::new(1.0 + d * td.cos(), d * td.sin()),
+        ];
+        let fit = fit_rational_cubic(&LacSegment::new(alpha, tri).unwrap(), &opts).unwrap();
+        assert!(
+            fit.rms < 1.18e-4 || !fit.converged,
+            "{} {}",
+            fit.rms,
+            fit.converged
+        );
     }
 
     #[test]
