@@ -2027,6 +2027,7 @@ fn fit_slot_alpha(
             f_tol: 1e-8 * scale,
             x_tol: 1e-4,
             max_evaluations: 150,
+            ..Default::default()
         },
     );
     if m.value.partial_cmp(&scale) != Some(std::cmp::Ordering::Less) {

@@ -12,8 +12,9 @@
 //!
 //! [`nelder_mead`] minimises a function of a few variables (the simplex method of Nelder and
 //! Mead with the standard coefficients: reflection 1, expansion 2, contraction 1/2, shrink
-//! 1/2). It stops when the simplex's spread of values is below `f_tol` (absolute) and its
-//! extent below `x_tol`, or after `max_evaluations`; the returned [`Minimum`] says which.
+//! 1/2). It stops when the simplex's spread of values is below `f_tol + f_rel_tol |best|`
+//! and its extent below `x_tol`, or its extent below `collapse` whatever the values, or
+//! after `max_evaluations`; the returned [`Minimum`] says which.
 //! Infeasible points are the caller's to map to a large value (`f64::INFINITY` works: such
 //! vertices are always replaced first).
 
@@ -22,10 +23,16 @@ pub mod least_squares;
 /// Stopping rules of [`nelder_mead`].
 #[derive(Clone, Copy, Debug)]
 pub struct Options {
-    /// Stop when the simplex's values differ by less than this.
+    /// Stop when the simplex's values differ by at most this plus `f_rel_tol` times the
+    /// best value's magnitude,
     pub f_tol: f64,
-    /// ... and its vertices by less than this in every coordinate.
+    /// (see `f_tol`)
+    pub f_rel_tol: f64,
+    /// ... and its vertices by at most this in every coordinate.
     pub x_tol: f64,
+    /// Stop (converged) when the vertices differ by at most this in every coordinate,
+    /// whatever their values: the simplex has collapsed to rounding.
+    pub collapse: f64,
     /// Most function evaluations.
     pub max_evaluations: usize,
 }
@@ -34,7 +41,9 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             f_tol: 1e-12,
+            f_rel_tol: 0.0,
             x_tol: 1e-8,
+            collapse: 0.0,
             max_evaluations: 2000,
         }
     }
@@ -71,11 +80,13 @@ pub fn nelder_mead(
             v
         }
     };
-    let mut simplex: Vec<(Vec<f64>, f64)> = Vec::with_capacity(n + 1);
+    // Vertices on the stack up to 4 variables (the library's uses have 2 or 3).
+    type Vertex = smallvec::SmallVec<[f64; 4]>;
+    let mut simplex: Vec<(Vertex, f64)> = Vec::with_capacity(n + 1);
     let v0 = eval(x0, &mut evals);
-    simplex.push((x0.to_vec(), v0));
+    simplex.push((Vertex::from_slice(x0), v0));
     for i in 0..n {
-        let mut x = x0.to_vec();
+        let mut x = Vertex::from_slice(x0);
         x[i] += step[i];
         let v = eval(&x, &mut evals);
         simplex.push((x, v));
@@ -92,14 +103,16 @@ pub fn nelder_mead(
                     .fold(0.0, f64::max)
             })
             .fold(0.0, f64::max);
-        if (worst - best).abs() <= opts.f_tol && extent <= opts.x_tol {
+        if (worst - best).abs() <= opts.f_tol + opts.f_rel_tol * best.abs() && extent <= opts.x_tol
+            || extent <= opts.collapse
+        {
             converged = true;
             break;
         }
-        let centroid: Vec<f64> = (0..n)
+        let centroid: Vertex = (0..n)
             .map(|i| simplex[..n].iter().map(|s| s.0[i]).sum::<f64>() / n as f64)
             .collect();
-        let along = |t: f64| -> Vec<f64> {
+        let along = |t: f64| -> Vertex {
             (0..n)
                 .map(|i| centroid[i] + t * (simplex[n].0[i] - centroid[i]))
                 .collect()
@@ -131,7 +144,7 @@ pub fn nelder_mead(
     simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
     let (x, value) = simplex.swap_remove(0);
     Minimum {
-        x,
+        x: x.to_vec(),
         value,
         evaluations: evals,
         converged,
