@@ -149,15 +149,16 @@ pub fn suggest_handles(c: &crate::Bezier, tolerance: f64) -> Option<HandleSugges
     }
     let (a, b, _) = best?;
     // Towards the current handles in (ln a, ln b) while it stays monotone.
-    let (mut inside, mut outside) = (1.0f64, 0.0f64); // fraction of the way from (1,1)
-    for _ in 0..30 {
-        let m = 0.5 * (inside + outside);
-        if monotone(a.powf(m), b.powf(m)) {
-            inside = m;
-        } else {
-            outside = m;
-        }
-    }
+    // (`inside`: the fraction of the way from (1, 1).)
+    let inside = crate::solve::bisect_by(
+        |m| monotone(a.powf(m), b.powf(m)).then_some(()),
+        1.0,
+        0.0,
+        |x, y| 0.5 * (x + y),
+        |_, _| false,
+        30,
+    )
+    .inside;
     let (a, b) = (a.powf(inside), b.powf(inside));
     let curve = make(a, b)?;
     if !curve.is_curvature_monotone().unwrap_or(false) {

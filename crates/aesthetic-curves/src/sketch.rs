@@ -370,18 +370,17 @@ struct Slot {
 
 /// Parameters where the curve turns by `turn` (in [0, total]) from `ua`, by bisection.
 fn u_at_turn(track: &Track, ua: f64, ub: f64, target: f64) -> f64 {
-    let (mut lo, mut hi) = (ua, ub);
     let total = track.angle_between(ua, ub);
     let sgn = total.signum();
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if sgn * track.angle_between(ua, mid) < target {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
+    let b = crate::solve::bisect_by(
+        |mid| (sgn * track.angle_between(ua, mid) < target).then_some(()),
+        ua,
+        ub,
+        |a, b| 0.5 * (a + b),
+        |_, _| false,
+        60,
+    );
+    0.5 * (b.inside + b.outside)
 }
 
 /// Step 2: the cuts of the B-spline.

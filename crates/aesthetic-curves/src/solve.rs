@@ -10,6 +10,10 @@
 //! pattern search in two variables that keeps to a feasible set; [`along_boundary`]
 //! follows the boundary of a feasible set in two variables when the minimum lies on it.
 //!
+//! [`bisect_by`] bisects a bracket on a yes/no test (the longest piece that meets a
+//! tolerance, the parameter where a condition starts to hold), carrying the last passing
+//! test's value.
+//!
 //! [`nelder_mead`] minimises a function of a few variables (the simplex method of Nelder and
 //! Mead with the standard coefficients: reflection 1, expansion 2, contraction 1/2, shrink
 //! 1/2). It stops when the simplex's spread of values is below `f_tol + f_rel_tol |best|`
@@ -514,6 +518,7 @@ pub fn along_boundary(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::SQRT_2;
 
     #[test]
     fn newton_1d_converges_refuses_and_stops_as_it_says() {
@@ -640,6 +645,54 @@ mod tests {
     }
 
     #[test]
+    fn bisection_keeps_its_bracket_and_says_how_it_ended() {
+        // √2 from below (the test passes for x² <= 2), the value carried along.
+        let b = bisect_by(
+            |x| (x * x <= 2.0).then_some(x * x),
+            1.0,
+            2.0,
+            |a, b| 0.5 * (a + b),
+            |a, b| (b - a).abs() <= 1e-12,
+            100,
+        );
+        assert!(b.converged && b.inside <= SQRT_2 && b.outside >= SQRT_2);
+        assert!((b.inside - SQRT_2).abs() <= 1e-12 && b.value == Some(b.inside * b.inside));
+        // The bracket the other way round, in a scale (geometric means), to a ratio.
+        let b = bisect_by(
+            |x| (x >= 1e-3).then_some(()),
+            1.0,
+            1e-9,
+            |a, b| (a * b).sqrt(),
+            |a, b| a / b <= 1.01,
+            100,
+        );
+        assert!(
+            b.converged && b.inside >= 1e-3 && b.outside < 1e-3 && b.inside / b.outside <= 1.01
+        );
+        // The iteration limit, and a test that never passes (no value).
+        let b = bisect_by(
+            |_| None::<()>,
+            0.0,
+            1.0,
+            |a, b| 0.5 * (a + b),
+            |_, _| false,
+            5,
+        );
+        assert!(!b.converged && b.iterations == 5 && b.value.is_none());
+        assert_eq!((b.inside, b.outside), (0.0, 1.0 / 32.0));
+        // A bracket exhausted in floating point ends, converged.
+        let b = bisect_by(
+            |_| Some(()),
+            0.0,
+            1.0,
+            |a, b| 0.5 * (a + b),
+            |_, _| false,
+            10_000,
+        );
+        assert!(b.converged && b.iterations < 1100);
+    }
+
+    #[test]
     fn infeasible_points_are_avoided() {
         // Minimum of (x - 2)² on x < 1 is at the boundary; beyond it the function is infinite.
         let mut f = |x: &[f64]| {
@@ -652,4 +705,63 @@ mod tests {
         let m = nelder_mead(&mut f, &[0.0], &[0.3], Options::default());
         assert!(m.x[0] < 1.0 && m.x[0] > 0.999, "{m:?}");
     }
+}
+
+/// The result of [`bisect_by`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bisection<T> {
+    /// The end of the final bracket where the test passes (the start's `inside` if no
+    /// tested point passed).
+    pub inside: f64,
+    /// The end where it fails.
+    pub outside: f64,
+    /// The test's value at `inside`, if `inside` was tested (None: no tested point passed).
+    pub value: Option<T>,
+    /// Tests made.
+    pub iterations: usize,
+    /// `done` held (or the bracket could not be split further in floating point); false:
+    /// `max_iterations` ran out first.
+    pub converged: bool,
+}
+
+/// Bisection on a test: `test(inside)` is taken to pass and `test(outside)` to fail (either
+/// may be the larger end); the point `split(inside, outside)` between them (the mean, or
+/// the geometric mean for a bracket in a scale) replaces the end of its outcome, until
+/// `done(inside, outside)` or `max_iterations` tests. `test` returns `Some(value)` to pass.
+pub fn bisect_by<T>(
+    mut test: impl FnMut(f64) -> Option<T>,
+    inside: f64,
+    outside: f64,
+    split: impl Fn(f64, f64) -> f64,
+    done: impl Fn(f64, f64) -> bool,
+    max_iterations: usize,
+) -> Bisection<T> {
+    let mut out = Bisection {
+        inside,
+        outside,
+        value: None,
+        iterations: 0,
+        converged: false,
+    };
+    while out.iterations < max_iterations {
+        if done(out.inside, out.outside) {
+            out.converged = true;
+            return out;
+        }
+        let mid = split(out.inside, out.outside);
+        if mid == out.inside || mid == out.outside || !mid.is_finite() {
+            out.converged = true;
+            return out;
+        }
+        out.iterations += 1;
+        match test(mid) {
+            Some(v) => {
+                out.inside = mid;
+                out.value = Some(v);
+            }
+            None => out.outside = mid,
+        }
+    }
+    out.converged = done(out.inside, out.outside);
+    out
 }

@@ -69,19 +69,15 @@ pub fn fit_rational_spline(
         }
         // Longest feasible end by bisection on the turning angle (feasibility shrinks with
         // length), down to 1e-3 of the remaining turn.
-        let (mut lo, mut hi) = (a, td);
-        let mut best: Option<(f64, RationalCubicFit)> = None;
-        while hi - lo > 1e-3 * (td - a) {
-            let mid = 0.5 * (lo + hi);
-            match try_piece(a, mid) {
-                Some(f) => {
-                    lo = mid;
-                    best = Some((mid, f));
-                }
-                None => hi = mid,
-            }
-        }
-        let Some((b, f)) = best else {
+        let found = crate::solve::bisect_by(
+            |mid| try_piece(a, mid),
+            a,
+            td,
+            |x, y| 0.5 * (x + y),
+            |x, y| y - x <= 1e-3 * (td - a),
+            64,
+        );
+        let Some((b, f)) = found.value.map(|f| (found.inside, f)) else {
             return Err(Error::NoSegment(format!(
                 "no rational cubic piece from turning angle {a:.6} meets tolerance {tolerance:e}"
             )));
@@ -157,7 +153,7 @@ pub fn fit_inflection_spline(
     // The whole turn fails; descend by factors of 8, then bisect in ln τ between the last
     // failure and the first success.
     let mut hi = seg.theta_d;
-    let (mut lo, mut best) = loop {
+    let (lo, first) = loop {
         let tau = hi / 8.0;
         if tau < 1e-9 * seg.theta_d {
             return Err(Error::NoSegment(format!(
@@ -169,17 +165,15 @@ pub fn fit_inflection_spline(
         }
         hi = tau;
     };
-    while hi / lo > 1.25 {
-        let mid = (lo * hi).sqrt();
-        match try_head(mid) {
-            Some(f) => {
-                lo = mid;
-                best = f;
-            }
-            None => hi = mid,
-        }
-    }
-    let (head, tail, head_fit) = best;
+    let found = crate::solve::bisect_by(
+        try_head,
+        lo,
+        hi,
+        |x, y| (x * y).sqrt(),
+        |x, y| y / x <= 1.25,
+        64,
+    );
+    let (head, tail, head_fit) = found.value.unwrap_or(first);
     let rest = fit_rational_spline(&tail, tolerance, max_pieces - 1, opts)?;
     // The tail's pieces with their lengths (its knots are arc-length fractions).
     let lt = tail.arc_length()?;
