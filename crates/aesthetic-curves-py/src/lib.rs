@@ -1,0 +1,1038 @@
+//! Python bindings of the `aesthetic-curves` library: the extension module
+//! `aesthetic_curves._native`, re-exported by the Python package `aesthetic_curves`.
+//!
+//! Every class wraps a library type and calls it directly (no JSON protocol, no process).
+//! Points go in as an `(n, 2)` float64 NumPy array (or a sequence of pairs) and come out as
+//! NumPy arrays; the library's errors become exceptions under one base class,
+//! `AestheticCurvesError`, with the library's messages. Long fits release the GIL.
+
+use ac::approx::ApproxOptions;
+use ac::monotone::CurvatureMonotone;
+use ac::{Curve, PlanarCurve, Point};
+use aesthetic_curves as ac;
+use numpy::ndarray::Array2;
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
+    PyUntypedArrayMethods,
+};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyException, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+
+create_exception!(
+    _native,
+    AestheticCurvesError,
+    PyException,
+    "Base class of every error the library reports."
+);
+create_exception!(
+    _native,
+    InvalidInputError,
+    AestheticCurvesError,
+    "An argument is out of range or malformed (the message names it)."
+);
+create_exception!(
+    _native,
+    DegenerateError,
+    AestheticCurvesError,
+    "Degenerate geometry: coincident points, a vanishing derivative, a zero-length chord."
+);
+create_exception!(
+    _native,
+    NoSegmentError,
+    AestheticCurvesError,
+    "No curve of the requested kind exists for this input."
+);
+create_exception!(
+    _native,
+    NoConvergenceError,
+    AestheticCurvesError,
+    "A solver did not converge, or a result overflows float64."
+);
+create_exception!(
+    _native,
+    DeadlineError,
+    AestheticCurvesError,
+    "The work ran past its deadline."
+);
+
+/// The library's error as the matching Python exception (same message).
+fn err(e: ac::Error) -> PyErr {
+    let msg = e.to_string();
+    match e {
+        ac::Error::InvalidInput { .. } => InvalidInputError::new_err(msg),
+        ac::Error::Degenerate(_) => DegenerateError::new_err(msg),
+        ac::Error::NoSegment(_) => NoSegmentError::new_err(msg),
+        ac::Error::NoConvergence(_) => NoConvergenceError::new_err(msg),
+        ac::Error::Timeout(_) => DeadlineError::new_err(msg),
+    }
+}
+
+/// Points from an `(n, 2)` float64 array or a sequence of pairs; anything else is refused
+/// with a message that names the argument, the expected shape and what was given.
+fn points_arg(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<Point>> {
+    if let Ok(a) = obj.extract::<PyReadonlyArray2<'_, f64>>() {
+        let shape = a.shape();
+        if shape[1] != 2 {
+            return Err(PyValueError::new_err(format!(
+                "{name}: expected an array of shape (n, 2), got ({}, {})",
+                shape[0], shape[1]
+            )));
+        }
+        let v = a.as_array();
+        return Ok(v
+            .rows()
+            .into_iter()
+            .map(|r| Point::new(r[0], r[1]))
+            .collect());
+    }
+    if obj.hasattr("dtype")? && obj.hasattr("shape")? {
+        let dtype = obj.getattr("dtype")?.str()?.to_string();
+        let shape = obj.getattr("shape")?.str()?.to_string();
+        return Err(PyTypeError::new_err(format!(
+            "{name}: expected a float64 array of shape (n, 2), got dtype {dtype} and shape {shape} \
+             (convert with numpy.asarray(x, dtype=float))"
+        )));
+    }
+    match obj.extract::<Vec<(f64, f64)>>() {
+        Ok(v) => Ok(v.into_iter().map(|(x, y)| Point::new(x, y)).collect()),
+        Err(_) => Err(PyTypeError::new_err(format!(
+            "{name}: expected a float64 array of shape (n, 2) or a sequence of (x, y) pairs"
+        ))),
+    }
+}
+
+/// A 1-D float64 array or sequence of numbers.
+fn numbers_arg(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+    if let Ok(a) = obj.extract::<PyReadonlyArray1<'_, f64>>() {
+        return Ok(a.as_array().to_vec());
+    }
+    if obj.hasattr("dtype")? && obj.hasattr("shape")? {
+        let dtype = obj.getattr("dtype")?.str()?.to_string();
+        let shape = obj.getattr("shape")?.str()?.to_string();
+        return Err(PyTypeError::new_err(format!(
+            "{name}: expected a 1-D float64 array, got dtype {dtype} and shape {shape}"
+        )));
+    }
+    obj.extract::<Vec<f64>>().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "{name}: expected a 1-D float64 array or a sequence of numbers"
+        ))
+    })
+}
+
+fn three(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<[Point; 3]> {
+    let p = points_arg(name, obj)?;
+    p.try_into().map_err(|p: Vec<Point>| {
+        PyValueError::new_err(format!("{name}: expected 3 points, got {}", p.len()))
+    })
+}
+
+fn points_array<'py>(py: Python<'py>, pts: &[Point]) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = pts.iter().flat_map(|p| [p.x, p.y]).collect();
+    Array2::from_shape_vec((pts.len(), 2), flat)
+        .expect("n x 2")
+        .into_pyarray(py)
+}
+
+fn vecs_array<'py>(py: Python<'py>, v: &[ac::Vec2]) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = v.iter().flat_map(|p| [p.x, p.y]).collect();
+    Array2::from_shape_vec((v.len(), 2), flat)
+        .expect("n x 2")
+        .into_pyarray(py)
+}
+
+/// A float or a 1-D array of parameters: the values of `f` at them, as a float or an array
+/// (points: a (2,) or (n, 2) array).
+enum Params {
+    One(f64),
+    Many(Vec<f64>),
+}
+
+fn params_arg(obj: &Bound<'_, PyAny>) -> PyResult<Params> {
+    if let Ok(t) = obj.extract::<f64>() {
+        return Ok(Params::One(t));
+    }
+    numbers_arg("t", obj).map(Params::Many)
+}
+
+fn eval_points<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    f: impl Fn(f64) -> Point,
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match params_arg(t)? {
+        Params::One(t) => {
+            let p = f(t);
+            vec![p.x, p.y].into_pyarray(py).into_any()
+        }
+        Params::Many(ts) => {
+            let pts: Vec<Point> = ts.iter().map(|&t| f(t)).collect();
+            points_array(py, &pts).into_any()
+        }
+    })
+}
+
+fn eval_numbers<'py>(
+    py: Python<'py>,
+    t: &Bound<'py, PyAny>,
+    f: impl Fn(f64) -> f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match params_arg(t)? {
+        Params::One(t) => f(t).into_pyobject(py)?.into_any(),
+        Params::Many(ts) => ts
+            .iter()
+            .map(|&t| f(t))
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+            .into_any(),
+    })
+}
+
+/// Samples of a curve: points, unit tangents and signed curvature, as arrays.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+struct Samples {
+    /// The points, an (n, 2) array.
+    points: Py<PyArray2<f64>>,
+    /// Unit tangents, an (n, 2) array.
+    tangents: Py<PyArray2<f64>>,
+    /// Signed curvature (positive turning left), an (n,) array.
+    kappa: Py<PyArray1<f64>>,
+}
+
+#[pymethods]
+impl Samples {
+    /// The curvature comb: the points and the tips of the comb's teeth, which stand on the
+    /// curve's normal with length `scale * kappa` (on the side the curve turns to).
+    #[pyo3(signature = (scale))]
+    fn comb<'py>(
+        &self,
+        py: Python<'py>,
+        scale: f64,
+    ) -> (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>) {
+        let p = self.points.bind(py).readonly();
+        let t = self.tangents.bind(py).readonly();
+        let k = self.kappa.bind(py).readonly();
+        let (p, t, k) = (p.as_array(), t.as_array(), k.as_array());
+        let n = k.len();
+        let mut tips = Vec::with_capacity(2 * n);
+        for i in 0..n {
+            // The left normal (-ty, tx) times kappa points to the centre of curvature.
+            let s = scale * k[i];
+            tips.push(p[[i, 0]] - t[[i, 1]] * s);
+            tips.push(p[[i, 1]] + t[[i, 0]] * s);
+        }
+        (
+            self.points.bind(py).clone(),
+            Array2::from_shape_vec((n, 2), tips)
+                .expect("n x 2")
+                .into_pyarray(py),
+        )
+    }
+
+    fn __len__(&self, py: Python<'_>) -> usize {
+        self.kappa.bind(py).len()
+    }
+}
+
+fn samples_of(py: Python<'_>, c: &dyn Curve, n: usize) -> PyResult<Samples> {
+    let pts = c.curve_points(n).map_err(err)?;
+    let points: Vec<Point> = pts.iter().map(|q| q.p).collect();
+    let tangents: Vec<ac::Vec2> = pts.iter().map(|q| q.tangent).collect();
+    let kappa: Vec<f64> = pts.iter().map(|q| q.kappa).collect();
+    Ok(Samples {
+        points: points_array(py, &points).unbind(),
+        tangents: vecs_array(py, &tangents).unbind(),
+        kappa: kappa.into_pyarray(py).unbind(),
+    })
+}
+
+/// The exact test's report.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+struct MonotoneReport {
+    /// Curvature monotone along the whole curve (proven).
+    monotone: bool,
+    /// "increasing", "decreasing", "constant", or None when not monotone.
+    trend: Option<String>,
+    /// Parameters of the curvature extrema inside (0, 1), an (m,) array.
+    extrema: Py<PyArray1<f64>>,
+    /// Degree of the Bernstein polynomial the test examines.
+    test_degree: usize,
+}
+
+#[pymethods]
+impl MonotoneReport {
+    fn __repr__(&self, py: Python<'_>) -> String {
+        format!(
+            "MonotoneReport(monotone={}, trend={}, extrema={}, test_degree={})",
+            if self.monotone { "True" } else { "False" },
+            self.trend
+                .as_ref()
+                .map_or("None".to_string(), |t| format!("'{t}'")),
+            self.extrema.bind(py).len(),
+            self.test_degree
+        )
+    }
+}
+
+fn report(py: Python<'_>, r: ac::MonotoneReport) -> MonotoneReport {
+    MonotoneReport {
+        monotone: r.monotone,
+        trend: r.trend.map(|t| t.as_str().to_string()),
+        extrema: r.extrema.into_pyarray(py).unbind(),
+        test_degree: r.test_degree,
+    }
+}
+
+/// A polynomial Bézier curve of any degree.
+#[pyclass(module = "aesthetic_curves._native", frozen)]
+#[derive(Clone)]
+struct Bezier {
+    inner: ac::Bezier,
+}
+
+/// A rational Bézier curve (positive weights).
+#[pyclass(module = "aesthetic_curves._native", frozen)]
+#[derive(Clone)]
+struct RationalBezier {
+    inner: ac::RationalBezier,
+}
+
+/// The methods every Bézier type shares (same names as the Rust API).
+macro_rules! bezier_methods {
+    ($ty:ident, { $($extra:tt)* }) => {
+        #[pymethods]
+        impl $ty {
+            $($extra)*
+            /// The control points, an (n + 1, 2) array.
+            #[getter]
+            fn points<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+                points_array(py, self.inner.points())
+            }
+            /// The degree.
+            #[getter]
+            fn degree(&self) -> usize {
+                self.inner.degree()
+            }
+            /// The point at `t` (a float: a (2,) array; an array of n: an (n, 2) array).
+            fn eval<'py>(
+                &self,
+                py: Python<'py>,
+                t: &Bound<'py, PyAny>,
+            ) -> PyResult<Bound<'py, PyAny>> {
+                eval_points(py, t, |t| self.inner.eval(t))
+            }
+            /// Signed curvature at `t` (a float or an array).
+            fn kappa<'py>(
+                &self,
+                py: Python<'py>,
+                t: &Bound<'py, PyAny>,
+            ) -> PyResult<Bound<'py, PyAny>> {
+                eval_numbers(py, t, |t| self.inner.kappa(t))
+            }
+            /// dκ/ds at `t` (a float or an array).
+            fn dkappa_ds<'py>(
+                &self,
+                py: Python<'py>,
+                t: &Bound<'py, PyAny>,
+            ) -> PyResult<Bound<'py, PyAny>> {
+                eval_numbers(py, t, |t| self.inner.dkappa_ds(t))
+            }
+            /// The exact test's verdict alone (fast: stops at the first proof).
+            fn is_curvature_monotone(&self) -> PyResult<bool> {
+                self.inner.is_curvature_monotone().map_err(err)
+            }
+            /// The exact test with the curvature extrema located.
+            fn curvature_monotone(&self, py: Python<'_>) -> PyResult<MonotoneReport> {
+                Ok(report(py, self.inner.curvature_monotone().map_err(err)?))
+            }
+            /// The sampling test with `samples` divisions: (monotone, trend or None).
+            fn curvature_monotone_sampled(
+                &self,
+                samples: usize,
+            ) -> PyResult<(bool, Option<String>)> {
+                let r = self
+                    .inner
+                    .curvature_monotone_sampled(samples)
+                    .map_err(err)?;
+                Ok((r.monotone, r.trend.map(|t| t.as_str().to_string())))
+            }
+            /// `n >= 2` samples (points, unit tangents, signed curvature) at uniform t.
+            fn sample(&self, py: Python<'_>, n: usize) -> PyResult<Samples> {
+                samples_of(py, &self.inner, n)
+            }
+            /// Arc length.
+            fn arc_length(&self) -> PyResult<f64> {
+                Curve::arc_length(&self.inner).map_err(err)
+            }
+            /// Signed curvature at both ends.
+            fn end_curvatures(&self) -> PyResult<(f64, f64)> {
+                Curve::end_curvatures(&self.inner).map_err(err)
+            }
+            /// SVG path data of the curve (cubic Béziers within `accuracy`).
+            #[pyo3(signature = (accuracy=1e-3))]
+            fn to_svg_path(&self, accuracy: f64) -> PyResult<String> {
+                Ok(Curve::to_bezpath(&self.inner, accuracy)
+                    .map_err(err)?
+                    .to_svg())
+            }
+            /// The curve as a one-span NURBS.
+            fn to_nurbs(&self) -> Nurbs {
+                Nurbs {
+                    inner: ac::Nurbs::from_bezier(&rational_of(&self.inner)),
+                }
+            }
+            fn __repr__(&self) -> String {
+                format!(
+                    "{}(degree={}, points={:?})",
+                    stringify!($ty),
+                    self.inner.degree(),
+                    self.inner
+                        .points()
+                        .iter()
+                        .map(|p| (p.x, p.y))
+                        .collect::<Vec<_>>()
+                )
+            }
+        }
+    };
+}
+
+trait AsRational {
+    fn as_rational(&self) -> ac::RationalBezier;
+}
+impl AsRational for ac::Bezier {
+    fn as_rational(&self) -> ac::RationalBezier {
+        self.to_rational()
+    }
+}
+impl AsRational for ac::RationalBezier {
+    fn as_rational(&self) -> ac::RationalBezier {
+        self.clone()
+    }
+}
+fn rational_of(c: &impl AsRational) -> ac::RationalBezier {
+    c.as_rational()
+}
+
+bezier_methods!(Bezier, {
+    #[new]
+    fn new(points: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let p = points_arg("points", points)?;
+        Ok(Bezier {
+            inner: ac::Bezier::new(p).map_err(err)?,
+        })
+    }
+});
+
+bezier_methods!(RationalBezier, {
+    #[new]
+    fn new(points: &Bound<'_, PyAny>, weights: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let p = points_arg("points", points)?;
+        let w = numbers_arg("weights", weights)?;
+        Ok(RationalBezier {
+            inner: ac::RationalBezier::new(p, w).map_err(err)?,
+        })
+    }
+    /// The weights, an (n + 1,) array.
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.weights().to_vec().into_pyarray(py)
+    }
+});
+
+/// The exact verdicts of many polynomial Bézier curves of one degree: `control` is an
+/// (m, n + 1, 2) float64 array; returns an (m,) bool array (a degenerate curve: False).
+#[pyfunction]
+fn are_curvature_monotone<'py>(
+    py: Python<'py>,
+    control: numpy::PyReadonlyArray3<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<bool>>> {
+    let a = control.as_array();
+    let s = a.shape();
+    if s[1] < 2 || s[2] != 2 {
+        return Err(PyValueError::new_err(format!(
+            "control: expected an array of shape (m, n + 1, 2) with n >= 1, got ({}, {}, {})",
+            s[0], s[1], s[2]
+        )));
+    }
+    let curves: Vec<Vec<Point>> = a
+        .outer_iter()
+        .map(|c| {
+            c.rows()
+                .into_iter()
+                .map(|r| Point::new(r[0], r[1]))
+                .collect()
+        })
+        .collect();
+    let out: Vec<bool> = py.detach(|| {
+        curves
+            .into_iter()
+            .map(|p| {
+                ac::Bezier::new(p)
+                    .and_then(|b| b.is_curvature_monotone())
+                    .unwrap_or(false)
+            })
+            .collect()
+    });
+    Ok(out.into_pyarray(py))
+}
+
+/// A NURBS curve (the form every exporter writes).
+#[pyclass(module = "aesthetic_curves._native", frozen)]
+#[derive(Clone)]
+struct Nurbs {
+    inner: ac::Nurbs,
+}
+
+#[pymethods]
+impl Nurbs {
+    /// The degree.
+    #[getter]
+    fn degree(&self) -> usize {
+        self.inner.degree
+    }
+    /// The knot vector, an array.
+    #[getter]
+    fn knots<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.knots.clone().into_pyarray(py)
+    }
+    /// The control points, an (m, 2) array.
+    #[getter]
+    fn control_points<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        points_array(py, &self.inner.control_points)
+    }
+    /// The weights, an (m,) array.
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.weights.clone().into_pyarray(py)
+    }
+    /// The parameter domain (first and last knot of the curve).
+    fn domain(&self) -> (f64, f64) {
+        self.inner.domain()
+    }
+    /// The point at `u` (a float or an array) in the domain.
+    fn eval<'py>(&self, py: Python<'py>, u: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        eval_points(py, u, |u| self.inner.eval(u))
+    }
+    /// The rational Bézier spans.
+    fn bezier_spans(&self) -> Vec<RationalBezier> {
+        self.inner
+            .bezier_spans()
+            .unwrap_or_default()
+            .into_iter()
+            .map(|inner| RationalBezier { inner })
+            .collect()
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "Nurbs(degree={}, control_points={}, knots={})",
+            self.inner.degree,
+            self.inner.control_points.len(),
+            self.inner.knots.len()
+        )
+    }
+}
+
+/// The best curvature-monotone rational cubic of a LAC segment (G2 at both ends).
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+struct RationalCubicFit {
+    /// The rational cubic.
+    curve: RationalBezier,
+    /// Handle length at the start over the triangle's first side.
+    f0: f64,
+    /// Handle length at the end over the triangle's second side.
+    f1: f64,
+    /// Root mean square distance to the segment over its arc length.
+    rms: f64,
+    /// Largest distance over the arc length.
+    max_error: f64,
+    /// Proven curvature-monotone by the exact test.
+    monotone: bool,
+    /// The final local refinement met its stopping test.
+    converged: bool,
+    /// Objective evaluations spent.
+    evaluations: usize,
+}
+
+#[pymethods]
+impl RationalCubicFit {
+    fn __repr__(&self) -> String {
+        format!(
+            "RationalCubicFit(f0={}, f1={}, rms={:e}, max_error={:e}, converged={})",
+            self.f0,
+            self.f1,
+            self.rms,
+            self.max_error,
+            if self.converged { "True" } else { "False" }
+        )
+    }
+}
+
+fn fit_of(f: ac::approx::RationalCubicFit) -> RationalCubicFit {
+    RationalCubicFit {
+        curve: RationalBezier { inner: f.curve },
+        f0: f.f0,
+        f1: f.f1,
+        rms: f.rms,
+        max_error: f.max_error,
+        monotone: f.monotone,
+        converged: f.converged,
+        evaluations: f.evaluations,
+    }
+}
+
+/// A rational cubic spline (pieces joined G2) approximating a segment within a tolerance.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+struct RationalSpline {
+    /// The spline as one NURBS.
+    nurbs: Nurbs,
+    /// The pieces, each with its own fit report.
+    pieces: Vec<Py<RationalCubicFit>>,
+    /// Largest distance to the segment over all pieces, in input units.
+    max_error: f64,
+}
+
+fn spline_of(py: Python<'_>, s: ac::approx::RationalSpline) -> PyResult<RationalSpline> {
+    Ok(RationalSpline {
+        nurbs: Nurbs { inner: s.nurbs },
+        pieces: s
+            .pieces
+            .into_iter()
+            .map(|f| Py::new(py, fit_of(f)))
+            .collect::<PyResult<_>>()?,
+        max_error: s.max_error,
+    })
+}
+
+/// Points, unit tangents and radii of curvature.
+type TurningArrays<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<f64>>,
+);
+
+/// A log-aesthetic curve segment of shape `alpha` in a control triangle (its ends and the
+/// intersection of its end tangents).
+#[pyclass(module = "aesthetic_curves._native", frozen)]
+#[derive(Clone)]
+struct LacSegment {
+    inner: ac::LacSegment,
+}
+
+#[pymethods]
+impl LacSegment {
+    #[new]
+    fn new(alpha: f64, control: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let c = three("control", control)?;
+        Ok(LacSegment {
+            inner: ac::LacSegment::new(alpha, c).map_err(err)?,
+        })
+    }
+    /// Whether a segment of shape `alpha` exists in the triangle `control`.
+    #[staticmethod]
+    fn exists(alpha: f64, control: &Bound<'_, PyAny>) -> PyResult<bool> {
+        ac::LacSegment::exists(alpha, three("control", control)?).map_err(err)
+    }
+    /// The largest base angle at the high-curvature end for which a segment of shape
+    /// `alpha` turning by `theta_d` exists.
+    #[staticmethod]
+    fn theta_lim(alpha: f64, theta_d: f64) -> PyResult<f64> {
+        ac::LacSegment::theta_lim(alpha, theta_d).map_err(err)
+    }
+    /// The shape parameter α.
+    #[getter]
+    fn alpha(&self) -> f64 {
+        self.inner.alpha()
+    }
+    /// The turning angle (radians).
+    #[getter]
+    fn theta_d(&self) -> f64 {
+        self.inner.theta_d()
+    }
+    /// The control triangle, a (3, 2) array.
+    #[getter]
+    fn control<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        points_array(py, &self.inner.control())
+    }
+    /// Arc length.
+    fn arc_length(&self) -> PyResult<f64> {
+        self.inner.arc_length().map_err(err)
+    }
+    /// Signed curvature at both ends.
+    fn end_curvatures(&self) -> PyResult<(f64, f64)> {
+        self.inner.end_curvatures().map_err(err)
+    }
+    /// `n >= 2` samples evenly spaced in tangent angle: points, unit tangents, curvature.
+    fn sample(&self, py: Python<'_>, n: usize) -> PyResult<Samples> {
+        samples_of(py, &self.inner, n)
+    }
+    /// Points, unit tangents and radii of curvature at turning angles `taus` from the start.
+    fn eval_turning<'py>(
+        &self,
+        py: Python<'py>,
+        taus: &Bound<'py, PyAny>,
+    ) -> PyResult<TurningArrays<'py>> {
+        let t = numbers_arg("taus", taus)?;
+        let s = self.inner.eval_turning(&t).map_err(err)?;
+        Ok((
+            points_array(py, &s.points),
+            vecs_array(py, &s.tangents),
+            s.radii.into_pyarray(py),
+        ))
+    }
+    /// The best curvature-monotone rational cubic (G2 at both ends; global optimisation).
+    fn rational_approx(&self, py: Python<'_>) -> PyResult<RationalCubicFit> {
+        let seg = self.inner.clone();
+        let f = py
+            .detach(move || ac::approx::fit_rational_cubic(&seg, &ApproxOptions::default()))
+            .map_err(err)?;
+        Ok(fit_of(f))
+    }
+    /// The fewest rational cubics (G2 joints) within `tolerance` (input units).
+    #[pyo3(signature = (tolerance, max_pieces=64))]
+    fn rational_spline(
+        &self,
+        py: Python<'_>,
+        tolerance: f64,
+        max_pieces: usize,
+    ) -> PyResult<RationalSpline> {
+        let seg = self.inner.clone();
+        let s = py
+            .detach(move || {
+                ac::approx::fit_rational_spline(
+                    &seg,
+                    tolerance,
+                    max_pieces,
+                    &ApproxOptions::default(),
+                )
+            })
+            .map_err(err)?;
+        spline_of(py, s)
+    }
+    /// SVG path data (cubic Béziers within `accuracy`, input units).
+    #[pyo3(signature = (accuracy=1e-3))]
+    fn to_svg_path(&self, accuracy: f64) -> PyResult<String> {
+        Ok(self.inner.to_bezpath(accuracy).map_err(err)?.to_svg())
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "LacSegment(alpha={}, theta_d={})",
+            self.inner.alpha(),
+            self.inner.theta_d()
+        )
+    }
+}
+
+/// A log-aesthetic segment with an inflection end (zero curvature at `control[0]`).
+#[pyclass(module = "aesthetic_curves._native", frozen)]
+#[derive(Clone)]
+struct LacInflectionSegment {
+    inner: ac::LacInflectionSegment,
+}
+
+#[pymethods]
+impl LacInflectionSegment {
+    #[new]
+    fn new(control: &Bound<'_, PyAny>) -> PyResult<Self> {
+        Ok(LacInflectionSegment {
+            inner: ac::LacInflectionSegment::new(three("control", control)?).map_err(err)?,
+        })
+    }
+    /// The shape parameter α (negative) the triangle determines.
+    #[getter]
+    fn alpha(&self) -> f64 {
+        self.inner.alpha()
+    }
+    /// The turning angle (radians).
+    #[getter]
+    fn theta_d(&self) -> f64 {
+        self.inner.theta_d()
+    }
+    /// The control triangle, a (3, 2) array.
+    #[getter]
+    fn control<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        points_array(py, &self.inner.control())
+    }
+    /// Arc length.
+    fn arc_length(&self) -> f64 {
+        self.inner.arc_length()
+    }
+    /// Signed curvature at both ends (0 at the inflection end).
+    fn end_curvatures(&self) -> PyResult<(f64, f64)> {
+        Curve::end_curvatures(&self.inner).map_err(err)
+    }
+    /// `n >= 2` samples evenly spaced in tangent angle: points, unit tangents, curvature.
+    fn sample(&self, py: Python<'_>, n: usize) -> PyResult<Samples> {
+        samples_of(py, &self.inner, n)
+    }
+    /// The best curvature-monotone rational cubic with zero curvature at the inflection end.
+    fn rational_approx(&self, py: Python<'_>) -> PyResult<RationalCubicFit> {
+        let seg = self.inner.clone();
+        let f = py
+            .detach(move || ac::approx::fit_inflection_cubic(&seg, &ApproxOptions::default()))
+            .map_err(err)?;
+        Ok(fit_of(f))
+    }
+    /// Rational cubics (G2 joints) within `tolerance` (input units).
+    #[pyo3(signature = (tolerance, max_pieces=64))]
+    fn rational_spline(
+        &self,
+        py: Python<'_>,
+        tolerance: f64,
+        max_pieces: usize,
+    ) -> PyResult<RationalSpline> {
+        let seg = self.inner.clone();
+        let s = py
+            .detach(move || {
+                ac::approx::fit_inflection_spline(
+                    &seg,
+                    tolerance,
+                    max_pieces,
+                    &ApproxOptions::default(),
+                )
+            })
+            .map_err(err)?;
+        spline_of(py, s)
+    }
+    /// SVG path data (cubic Béziers within `accuracy`, input units).
+    #[pyo3(signature = (accuracy=1e-3))]
+    fn to_svg_path(&self, accuracy: f64) -> PyResult<String> {
+        Ok(self.inner.to_bezpath(accuracy).map_err(err)?.to_svg())
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "LacInflectionSegment(alpha={}, theta_d={})",
+            self.inner.alpha(),
+            self.inner.theta_d()
+        )
+    }
+}
+
+/// The pseudo-elastic spline through points (Hermite cubics minimising the pseudo-energy).
+#[pyclass(module = "aesthetic_curves._native", frozen)]
+struct PseudoSpline {
+    inner: ac::pseudo_spline::PseudoSpline,
+}
+
+#[pymethods]
+impl PseudoSpline {
+    /// Tangent angle at each input point (radians), an array.
+    #[getter]
+    fn tangent_angles<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.tangent_angles.clone().into_pyarray(py)
+    }
+    /// Total length.
+    #[getter]
+    fn length(&self) -> f64 {
+        self.inner.length
+    }
+    /// Signed area between the curve and its chords (closed: the enclosed area).
+    #[getter]
+    fn area(&self) -> f64 {
+        self.inner.area
+    }
+    /// The pseudo-energy.
+    #[getter]
+    fn energy(&self) -> f64 {
+        self.inner.energy
+    }
+    /// The spans as cubic Béziers.
+    fn beziers(&self) -> PyResult<Vec<Bezier>> {
+        self.inner
+            .segments
+            .iter()
+            .map(|s| s.to_bezier().map(|inner| Bezier { inner }).map_err(err))
+            .collect()
+    }
+    /// `per_span >= 2` samples per span, the spans' shared ends once.
+    fn sample(&self, py: Python<'_>, per_span: usize) -> PyResult<Samples> {
+        let mut pts = Vec::new();
+        for (i, s) in self.inner.segments.iter().enumerate() {
+            let b = s.to_bezier().map_err(err)?;
+            let mut q = b.curve_points(per_span).map_err(err)?;
+            if i > 0 {
+                q.remove(0);
+            }
+            pts.extend(q);
+        }
+        let points: Vec<Point> = pts.iter().map(|q| q.p).collect();
+        let tangents: Vec<ac::Vec2> = pts.iter().map(|q| q.tangent).collect();
+        let kappa: Vec<f64> = pts.iter().map(|q| q.kappa).collect();
+        Ok(Samples {
+            points: points_array(py, &points).unbind(),
+            tangents: vecs_array(py, &tangents).unbind(),
+            kappa: kappa.into_pyarray(py).unbind(),
+        })
+    }
+    /// The spline as one NURBS (cubic spans joined at the input points).
+    fn to_nurbs(&self) -> PyResult<Nurbs> {
+        let spans: Vec<ac::RationalBezier> = self
+            .inner
+            .segments
+            .iter()
+            .map(|s| s.to_bezier().map(|b| b.to_rational()))
+            .collect::<ac::Result<_>>()
+            .map_err(err)?;
+        Ok(Nurbs {
+            inner: ac::Nurbs::from_beziers(&spans).map_err(err)?,
+        })
+    }
+    fn __len__(&self) -> usize {
+        self.inner.segments.len()
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "PseudoSpline(spans={}, length={}, energy={})",
+            self.inner.segments.len(),
+            self.inner.length,
+            self.inner.energy
+        )
+    }
+}
+
+/// The pseudo-elastic spline through `points` (open, or `closed`); `mode` "table" (fast,
+/// from the shipped tables) or "exact" (minimised per span, about a second per point).
+#[pyfunction]
+#[pyo3(signature = (points, closed=false, mode="table"))]
+fn pseudo_elastic(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    closed: bool,
+    mode: &str,
+) -> PyResult<PseudoSpline> {
+    let p = points_arg("points", points)?;
+    let mode = match mode {
+        "table" => ac::pseudo_spline::Mode::Table,
+        "exact" => ac::pseudo_spline::Mode::Exact,
+        _ => {
+            return Err(InvalidInputError::new_err(format!(
+                "invalid input: mode: must be \"table\" or \"exact\", got {mode:?}"
+            )))
+        }
+    };
+    let inner = py
+        .detach(move || ac::pseudo_spline::pseudo_elastic(&p, closed, mode))
+        .map_err(err)?;
+    Ok(PseudoSpline { inner })
+}
+
+/// One LAC segment fitted to a point sequence.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+struct LacFit {
+    /// The segment.
+    segment: LacSegment,
+    /// Its α.
+    alpha: f64,
+    /// Root mean square distance from the points to the segment.
+    rms_deviation: f64,
+    /// Largest distance.
+    max_deviation: f64,
+    /// The fit met its stopping test.
+    converged: bool,
+}
+
+/// The LAC segment nearest to `points` (an ordered sequence of at least 6), with α fitted
+/// or fixed.
+#[pyfunction]
+#[pyo3(signature = (points, alpha=None))]
+fn fit_lac(py: Python<'_>, points: &Bound<'_, PyAny>, alpha: Option<f64>) -> PyResult<LacFit> {
+    let p = points_arg("points", points)?;
+    let opts = ac::lac_fit::LacFitOptions {
+        alpha,
+        ..Default::default()
+    };
+    let f = py
+        .detach(move || ac::lac_fit::fit_lac(&p, opts))
+        .map_err(err)?;
+    Ok(LacFit {
+        segment: LacSegment { inner: f.segment },
+        alpha: f.alpha,
+        rms_deviation: f.rms_deviation,
+        max_deviation: f.max_deviation,
+        converged: f.converged,
+    })
+}
+
+/// Pen input to a G2 curve of LAC pieces, each delivered as a rational cubic.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+struct Sketch {
+    /// The delivered curve, one NURBS of the pieces' rational cubics.
+    nurbs: Nurbs,
+    /// Each piece's rational cubic.
+    pieces: Vec<RationalBezier>,
+    /// Each piece's α.
+    alphas: Vec<f64>,
+    /// Largest distance from an input point to the delivered curve.
+    max_deviation: f64,
+    /// Root mean square of those distances.
+    rms_deviation: f64,
+    /// Largest relative curvature jump at a joint.
+    max_curvature_jump: f64,
+    /// Every joint is G2 to the fairing's tolerance.
+    g2: bool,
+    /// Every piece's rational cubic is proven curvature-monotone.
+    all_monotone: bool,
+    /// The fairing reached its tolerance.
+    converged: bool,
+}
+
+/// Fit a pen stroke (`points`, in drawing order) with LAC pieces joined G2, within
+/// `tolerance` (input units).
+#[pyfunction]
+#[pyo3(signature = (points, tolerance))]
+fn fit_sketch(py: Python<'_>, points: &Bound<'_, PyAny>, tolerance: f64) -> PyResult<Sketch> {
+    let p = points_arg("points", points)?;
+    let opts = ac::sketch::SketchOptions::with_tolerance(tolerance);
+    let s = py
+        .detach(move || ac::sketch::fit_sketch(&p, &opts))
+        .map_err(err)?;
+    let spans: Vec<ac::RationalBezier> = s.pieces.iter().map(|p| p.rational.clone()).collect();
+    Ok(Sketch {
+        nurbs: Nurbs {
+            inner: ac::Nurbs::from_beziers(&spans).map_err(err)?,
+        },
+        pieces: spans
+            .into_iter()
+            .map(|inner| RationalBezier { inner })
+            .collect(),
+        alphas: s.pieces.iter().map(|p| p.alpha).collect(),
+        max_deviation: s.max_deviation,
+        rms_deviation: s.rms_deviation,
+        max_curvature_jump: s.max_curvature_jump,
+        g2: s.g2,
+        all_monotone: s.all_monotone,
+        converged: s.fairing.converged,
+    })
+}
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add(
+        "AestheticCurvesError",
+        py.get_type::<AestheticCurvesError>(),
+    )?;
+    m.add("InvalidInputError", py.get_type::<InvalidInputError>())?;
+    m.add("DegenerateError", py.get_type::<DegenerateError>())?;
+    m.add("NoSegmentError", py.get_type::<NoSegmentError>())?;
+    m.add("NoConvergenceError", py.get_type::<NoConvergenceError>())?;
+    m.add("DeadlineError", py.get_type::<DeadlineError>())?;
+    m.add_class::<Samples>()?;
+    m.add_class::<MonotoneReport>()?;
+    m.add_class::<Bezier>()?;
+    m.add_class::<RationalBezier>()?;
+    m.add_class::<Nurbs>()?;
+    m.add_class::<RationalCubicFit>()?;
+    m.add_class::<RationalSpline>()?;
+    m.add_class::<LacSegment>()?;
+    m.add_class::<LacInflectionSegment>()?;
+    m.add_class::<PseudoSpline>()?;
+    m.add_class::<LacFit>()?;
+    m.add_class::<Sketch>()?;
+    m.add_function(wrap_pyfunction!(are_curvature_monotone, m)?)?;
+    m.add_function(wrap_pyfunction!(pseudo_elastic, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_lac, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_sketch, m)?)?;
+    Ok(())
+}
