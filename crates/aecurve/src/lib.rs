@@ -5,7 +5,8 @@ pub mod batch;
 pub mod bench;
 pub mod bench_targets;
 pub mod editor;
-pub mod export;
+/// The exports live in their own crate (shared with the Python package).
+pub use aesthetic_curves_export as export;
 pub mod outline_io;
 pub mod plot;
 pub mod protocol;

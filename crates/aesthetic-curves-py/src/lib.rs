@@ -298,11 +298,120 @@ struct RationalBezier {
     inner: ac::RationalBezier,
 }
 
+/// The NURBS written in `format` ("dxf": bytes; "step", "iges", "svg": text), into the file
+/// `path` (then None) or returned.
+fn export(
+    py: Python<'_>,
+    c: &ac::Nurbs,
+    format: &str,
+    path: Option<std::path::PathBuf>,
+    name: &str,
+    tolerance: f64,
+) -> PyResult<Option<Py<PyAny>>> {
+    use aesthetic_curves_export as ex;
+    ex::check_exportable(c).map_err(|e| InvalidInputError::new_err(format!("{e:#}")))?;
+    let bytes: Vec<u8> = match format {
+        "dxf" => ex::dxf_bytes(c).map_err(|e| NoConvergenceError::new_err(format!("{e:#}")))?,
+        "step" => ex::step_text(c, name).into_bytes(),
+        "iges" => ex::iges_text(c, name).into_bytes(),
+        "svg" => {
+            if !(tolerance.is_finite() && tolerance > 0.0) {
+                return Err(InvalidInputError::new_err(
+                    "invalid input: tolerance: must be a positive number",
+                ));
+            }
+            let comb: Vec<(Point, ac::Vec2, f64)> = c
+                .bezier_spans()
+                .unwrap_or_default()
+                .iter()
+                .flat_map(|s| s.curve_points(40).unwrap_or_default())
+                .map(|q| (q.p, q.normal(), q.kappa))
+                .collect();
+            ex::svg_document(c, tolerance, &comb, name)
+                .ok_or_else(|| DegenerateError::new_err("degenerate: the curve has no spans"))?
+                .into_bytes()
+        }
+        _ => unreachable!(),
+    };
+    match path {
+        Some(p) => {
+            std::fs::write(&p, &bytes).map_err(|e| {
+                pyo3::exceptions::PyOSError::new_err(format!("writing {}: {e}", p.display()))
+            })?;
+            Ok(None)
+        }
+        None if format == "dxf" => Ok(Some(
+            pyo3::types::PyBytes::new(py, &bytes).into_any().unbind(),
+        )),
+        None => Ok(Some(
+            String::from_utf8(bytes)
+                .expect("text formats are UTF-8")
+                .into_pyobject(py)?
+                .into_any()
+                .unbind(),
+        )),
+    }
+}
+
+/// A `#[pymethods]` block with `to_dxf`, `to_step`, `to_iges` and `to_svg` added (the class's
+/// `nurbs_of(&self)` gives its NURBS; pyo3 expands no macro inside the block itself).
+macro_rules! pymethods_with_exports {
+    ($ty:ident { $($items:tt)* }) => {
+        #[pymethods]
+        impl $ty {
+            $($items)*
+
+        /// A DXF drawing (R2000) with the curve as one rational SPLINE: bytes, or None
+        /// when written to `path`.
+        #[pyo3(signature = (path=None))]
+        fn to_dxf(
+            &self,
+            py: Python<'_>,
+            path: Option<std::path::PathBuf>,
+        ) -> PyResult<Option<Py<PyAny>>> {
+            export(py, &self.nurbs_of()?, "dxf", path, "", 0.0)
+        }
+        /// A STEP file (AP214 geometry: a rational B-spline curve) named `name`: text, or
+        /// None when written to `path`.
+        #[pyo3(signature = (path=None, name="curve"))]
+        fn to_step(
+            &self,
+            py: Python<'_>,
+            path: Option<std::path::PathBuf>,
+            name: &str,
+        ) -> PyResult<Option<Py<PyAny>>> {
+            export(py, &self.nurbs_of()?, "step", path, name, 0.0)
+        }
+        /// An IGES file (entity 126, rational B-spline curve): text, or None when written.
+        #[pyo3(signature = (path=None, name="curve"))]
+        fn to_iges(
+            &self,
+            py: Python<'_>,
+            path: Option<std::path::PathBuf>,
+            name: &str,
+        ) -> PyResult<Option<Py<PyAny>>> {
+            export(py, &self.nurbs_of()?, "iges", path, name, 0.0)
+        }
+        /// An SVG picture of the curve (cubic Béziers within `tolerance`) with its
+        /// curvature comb: text, or None when written to `path`.
+        #[pyo3(signature = (path=None, tolerance=1e-3, caption="curve"))]
+        fn to_svg(
+            &self,
+            py: Python<'_>,
+            path: Option<std::path::PathBuf>,
+            tolerance: f64,
+            caption: &str,
+        ) -> PyResult<Option<Py<PyAny>>> {
+            export(py, &self.nurbs_of()?, "svg", path, caption, tolerance)
+        }
+        }
+    };
+}
+
 /// The methods every Bézier type shares (same names as the Rust API).
 macro_rules! bezier_methods {
     ($ty:ident, { $($extra:tt)* }) => {
-        #[pymethods]
-        impl $ty {
+        pymethods_with_exports!($ty {
             $($extra)*
             /// The control points, an (n + 1, 2) array.
             #[getter]
@@ -382,6 +491,7 @@ macro_rules! bezier_methods {
                     inner: ac::Nurbs::from_bezier(&rational_of(&self.inner)),
                 }
             }
+
             fn __repr__(&self) -> String {
                 format!(
                     "{}(degree={}, points={:?})",
@@ -394,7 +504,7 @@ macro_rules! bezier_methods {
                         .collect::<Vec<_>>()
                 )
             }
-        }
+        });
     };
 }
 
@@ -485,8 +595,7 @@ struct Nurbs {
     inner: ac::Nurbs,
 }
 
-#[pymethods]
-impl Nurbs {
+pymethods_with_exports!(Nurbs {
     /// The degree.
     #[getter]
     fn degree(&self) -> usize {
@@ -515,6 +624,8 @@ impl Nurbs {
     fn eval<'py>(&self, py: Python<'py>, u: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         eval_points(py, u, |u| self.inner.eval(u))
     }
+
+
     /// The rational Bézier spans.
     fn bezier_spans(&self) -> Vec<RationalBezier> {
         self.inner
@@ -532,7 +643,7 @@ impl Nurbs {
             self.inner.knots.len()
         )
     }
-}
+});
 
 /// The best curvature-monotone rational cubic of a LAC segment (G2 at both ends).
 #[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
@@ -555,8 +666,9 @@ struct RationalCubicFit {
     evaluations: usize,
 }
 
-#[pymethods]
-impl RationalCubicFit {
+pymethods_with_exports!(RationalCubicFit {
+
+
     fn __repr__(&self) -> String {
         format!(
             "RationalCubicFit(f0={}, f1={}, rms={:e}, max_error={:e}, converged={})",
@@ -567,7 +679,7 @@ impl RationalCubicFit {
             if self.converged { "True" } else { "False" }
         )
     }
-}
+});
 
 fn fit_of(f: ac::approx::RationalCubicFit) -> RationalCubicFit {
     RationalCubicFit {
@@ -620,8 +732,7 @@ struct LacSegment {
     inner: ac::LacSegment,
 }
 
-#[pymethods]
-impl LacSegment {
+pymethods_with_exports!(LacSegment {
     #[new]
     fn new(alpha: f64, control: &Bound<'_, PyAny>) -> PyResult<Self> {
         let c = three("control", control)?;
@@ -715,6 +826,20 @@ impl LacSegment {
     fn to_svg_path(&self, accuracy: f64) -> PyResult<String> {
         Ok(self.inner.to_bezpath(accuracy).map_err(err)?.to_svg())
     }
+    /// The segment as a NURBS: its best rational cubic, or with `tolerance` (input units)
+    /// the fewest rational cubics within it. The exports (`to_dxf`, `to_step`, `to_iges`,
+    /// `to_svg`) write the best rational cubic.
+    #[pyo3(signature = (tolerance=None))]
+    fn to_nurbs(&self, py: Python<'_>, tolerance: Option<f64>) -> PyResult<Nurbs> {
+        match tolerance {
+            None => Ok(Nurbs {
+                inner: self.nurbs_of()?,
+            }),
+            Some(t) => Ok(self.rational_spline(py, t, 64)?.nurbs),
+        }
+    }
+
+
     fn __repr__(&self) -> String {
         format!(
             "LacSegment(alpha={}, theta_d={})",
@@ -722,7 +847,7 @@ impl LacSegment {
             self.inner.theta_d()
         )
     }
-}
+});
 
 /// A log-aesthetic segment with an inflection end (zero curvature at `control[0]`).
 #[pyclass(module = "aesthetic_curves._native", frozen)]
@@ -731,8 +856,7 @@ struct LacInflectionSegment {
     inner: ac::LacInflectionSegment,
 }
 
-#[pymethods]
-impl LacInflectionSegment {
+pymethods_with_exports!(LacInflectionSegment {
     #[new]
     fn new(control: &Bound<'_, PyAny>) -> PyResult<Self> {
         Ok(LacInflectionSegment {
@@ -800,6 +924,19 @@ impl LacInflectionSegment {
     fn to_svg_path(&self, accuracy: f64) -> PyResult<String> {
         Ok(self.inner.to_bezpath(accuracy).map_err(err)?.to_svg())
     }
+    /// The segment as a NURBS: its best rational cubic, or with `tolerance` (input units)
+    /// rational cubics within it. The exports write the best rational cubic.
+    #[pyo3(signature = (tolerance=None))]
+    fn to_nurbs(&self, py: Python<'_>, tolerance: Option<f64>) -> PyResult<Nurbs> {
+        match tolerance {
+            None => Ok(Nurbs {
+                inner: self.nurbs_of()?,
+            }),
+            Some(t) => Ok(self.rational_spline(py, t, 64)?.nurbs),
+        }
+    }
+
+
     fn __repr__(&self) -> String {
         format!(
             "LacInflectionSegment(alpha={}, theta_d={})",
@@ -807,7 +944,7 @@ impl LacInflectionSegment {
             self.inner.theta_d()
         )
     }
-}
+});
 
 /// The pseudo-elastic spline through points (Hermite cubics minimising the pseudo-energy).
 #[pyclass(module = "aesthetic_curves._native", frozen)]
@@ -815,8 +952,7 @@ struct PseudoSpline {
     inner: ac::pseudo_spline::PseudoSpline,
 }
 
-#[pymethods]
-impl PseudoSpline {
+pymethods_with_exports!(PseudoSpline {
     /// Tangent angle at each input point (radians), an array.
     #[getter]
     fn tangent_angles<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
@@ -867,17 +1003,11 @@ impl PseudoSpline {
     }
     /// The spline as one NURBS (cubic spans joined at the input points).
     fn to_nurbs(&self) -> PyResult<Nurbs> {
-        let spans: Vec<ac::RationalBezier> = self
-            .inner
-            .segments
-            .iter()
-            .map(|s| s.to_bezier().map(|b| b.to_rational()))
-            .collect::<ac::Result<_>>()
-            .map_err(err)?;
         Ok(Nurbs {
-            inner: ac::Nurbs::from_beziers(&spans).map_err(err)?,
+            inner: self.nurbs_of()?,
         })
     }
+
     fn __len__(&self) -> usize {
         self.inner.segments.len()
     }
@@ -889,7 +1019,7 @@ impl PseudoSpline {
             self.inner.energy
         )
     }
-}
+});
 
 /// The pseudo-elastic spline through `points` (open, or `closed`); `mode` "table" (fast,
 /// from the shipped tables) or "exact" (minimised per span, about a second per point).
@@ -1005,6 +1135,67 @@ fn fit_sketch(py: Python<'_>, points: &Bound<'_, PyAny>, tolerance: f64) -> PyRe
         converged: s.fairing.converged,
     })
 }
+
+impl Bezier {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(ac::Nurbs::from_bezier(&self.inner.to_rational()))
+    }
+}
+impl RationalBezier {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(ac::Nurbs::from_bezier(&self.inner))
+    }
+}
+impl Nurbs {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(self.inner.clone())
+    }
+}
+impl RationalCubicFit {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(ac::Nurbs::from_bezier(&self.curve.inner))
+    }
+}
+impl RationalSpline {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(self.nurbs.inner.clone())
+    }
+}
+impl Sketch {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(self.nurbs.inner.clone())
+    }
+}
+impl PseudoSpline {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        let spans: Vec<ac::RationalBezier> = self
+            .inner
+            .segments
+            .iter()
+            .map(|s| s.to_bezier().map(|b| b.to_rational()))
+            .collect::<ac::Result<_>>()
+            .map_err(err)?;
+        ac::Nurbs::from_beziers(&spans).map_err(err)
+    }
+}
+impl LacSegment {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        let f =
+            ac::approx::fit_rational_cubic(&self.inner, &ApproxOptions::default()).map_err(err)?;
+        Ok(ac::Nurbs::from_bezier(&f.curve))
+    }
+}
+impl LacInflectionSegment {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        let f = ac::approx::fit_inflection_cubic(&self.inner, &ApproxOptions::default())
+            .map_err(err)?;
+        Ok(ac::Nurbs::from_bezier(&f.curve))
+    }
+}
+
+pymethods_with_exports!(RationalSpline {});
+
+pymethods_with_exports!(Sketch {});
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -376,3 +376,48 @@ def test_the_example_script_runs(tmp_path):
     assert "sketch: 4 pieces" in out and "G2 True, every piece monotone True" in out
     svg = (tmp_path / "prius-ps_3.svg").read_text()
     assert svg.startswith("<svg") and svg.count("<line") > 200
+
+
+def every_curve():
+    seg = ac.LacSegment(0.5, TRIANGLE)
+    return {
+        "Bezier": ac.Bezier([(0, 0), (1, 0), (2, 1), (3, 3)]),
+        "RationalBezier": ac.RationalBezier([(2, 0), (2, 2), (0, 2)], [1.0, math.sqrt(0.5), 1.0]),
+        "Nurbs": ac.Bezier([(0, 0), (1, 0), (2, 1)]).to_nurbs(),
+        "LacSegment": seg,
+        "LacInflectionSegment": ac.LacInflectionSegment([(0, 0), (6, 0), (9, 5)]),
+        "RationalCubicFit": seg.rational_approx(),
+        "RationalSpline": seg.rational_spline(1e-6),
+        "PseudoSpline": ac.pseudo_elastic([(0, 0), (1, 1), (2, 0), (3, 1)]),
+        "Sketch": ac.fit_sketch(ac.LacSegment(2.0, TRIANGLE).sample(80).points, 0.05),
+    }
+
+
+def test_every_curve_exports_dxf_step_iges_and_svg(tmp_path):
+    for name, c in every_curve().items():
+        dxf = c.to_dxf()
+        assert isinstance(dxf, bytes) and b"SPLINE" in dxf, name
+        step = c.to_step(name="key line")
+        assert "RATIONAL_B_SPLINE_CURVE" in step and "key line" in step, name
+        assert c.to_iges().splitlines()[0].endswith("S      1"), name
+        svg = c.to_svg(caption=name)
+        assert svg.startswith("<svg") and f"<title>{name}</title>" in svg, name
+        assert c.to_dxf(tmp_path / f"{name}.dxf") is None
+        # (The header carries the time of writing: the same drawing, not the same bytes.)
+        written = (tmp_path / f"{name}.dxf").read_bytes()
+        assert written.count(b"SPLINE") == dxf.count(b"SPLINE") and abs(len(written) - len(dxf)) < 64
+    with pytest.raises(ac.InvalidInputError, match="tolerance"):
+        ac.Bezier([(0, 0), (1, 0), (2, 1)]).to_svg(tolerance=0.0)
+    with pytest.raises(OSError):
+        ac.Bezier([(0, 0), (1, 0), (2, 1)]).to_step(tmp_path / "missing" / "c.step")
+
+
+def test_dxf_export_reads_back_in_ezdxf(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    fit = ac.LacSegment(-1.0, TRIANGLE).rational_approx()
+    fit.to_dxf(tmp_path / "c.dxf")
+    (spline,) = ezdxf.readfile(tmp_path / "c.dxf").modelspace().query("SPLINE")
+    pts = np.array([tuple(p)[:2] for p in spline.control_points])
+    assert np.allclose(pts, fit.curve.points, rtol=0, atol=1e-12)
+    assert np.allclose(list(spline.weights), fit.curve.weights, rtol=1e-15)
+    assert spline.dxf.degree == 3

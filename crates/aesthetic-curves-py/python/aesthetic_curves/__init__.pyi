@@ -1,3 +1,4 @@
+import os
 from typing import Any, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -44,6 +45,14 @@ class Nurbs:
     def domain(self) -> Tuple[float, float]: ...
     def eval(self, u: Params) -> npt.NDArray[np.float64]: ...
     def bezier_spans(self) -> list[RationalBezier]: ...
+    def to_dxf(self, path: Optional[Union[str, "os.PathLike[str]"]] = None) -> Optional[bytes]:
+        """A DXF drawing with the curve as one rational SPLINE (None when written to path)."""
+    def to_step(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """A STEP file with the curve as a rational B-spline (None when written to path)."""
+    def to_iges(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """An IGES file (entity 126) with the curve (None when written to path)."""
+    def to_svg(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, tolerance: float = 1e-3, caption: str = "curve") -> Optional[str]:
+        """An SVG picture of the curve and its curvature comb (None when written to path)."""
 
 class Bezier:
     """A polynomial Bézier curve of any degree."""
@@ -64,6 +73,14 @@ class Bezier:
     def end_curvatures(self) -> Tuple[float, float]: ...
     def to_svg_path(self, accuracy: float = 1e-3) -> str: ...
     def to_nurbs(self) -> Nurbs: ...
+    def to_dxf(self, path: Optional[Union[str, "os.PathLike[str]"]] = None) -> Optional[bytes]:
+        """A DXF drawing with the curve as one rational SPLINE (None when written to path)."""
+    def to_step(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """A STEP file with the curve as a rational B-spline (None when written to path)."""
+    def to_iges(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """An IGES file (entity 126) with the curve (None when written to path)."""
+    def to_svg(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, tolerance: float = 1e-3, caption: str = "curve") -> Optional[str]:
+        """An SVG picture of the curve and its curvature comb (None when written to path)."""
 
 class RationalBezier:
     """A rational Bézier curve (positive weights)."""
@@ -86,6 +103,14 @@ class RationalBezier:
     def end_curvatures(self) -> Tuple[float, float]: ...
     def to_svg_path(self, accuracy: float = 1e-3) -> str: ...
     def to_nurbs(self) -> Nurbs: ...
+    def to_dxf(self, path: Optional[Union[str, "os.PathLike[str]"]] = None) -> Optional[bytes]:
+        """A DXF drawing with the curve as one rational SPLINE (None when written to path)."""
+    def to_step(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """A STEP file with the curve as a rational B-spline (None when written to path)."""
+    def to_iges(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """An IGES file (entity 126) with the curve (None when written to path)."""
+    def to_svg(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, tolerance: float = 1e-3, caption: str = "curve") -> Optional[str]:
+        """An SVG picture of the curve and its curvature comb (None when written to path)."""
 
 def are_curvature_monotone(control: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
     """Exact verdicts of many Bézier curves: ``control`` has shape (m, n + 1, 2)."""
@@ -99,11 +124,27 @@ class RationalCubicFit:
     monotone: bool
     converged: bool
     evaluations: int
+    def to_dxf(self, path: Optional[Union[str, "os.PathLike[str]"]] = None) -> Optional[bytes]:
+        """A DXF drawing with the curve as one rational SPLINE (None when written to path)."""
+    def to_step(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """A STEP file with the curve as a rational B-spline (None when written to path)."""
+    def to_iges(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """An IGES file (entity 126) with the curve (None when written to path)."""
+    def to_svg(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, tolerance: float = 1e-3, caption: str = "curve") -> Optional[str]:
+        """An SVG picture of the curve and its curvature comb (None when written to path)."""
 
 class RationalSpline:
     nurbs: Nurbs
     pieces: list[RationalCubicFit]
     max_error: float
+    def to_dxf(self, path: Optional[Union[str, "os.PathLike[str]"]] = None) -> Optional[bytes]:
+        """A DXF drawing with the curve as one rational SPLINE (None when written to path)."""
+    def to_step(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """A STEP file with the curve as a rational B-spline (None when written to path)."""
+    def to_iges(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """An IGES file (entity 126) with the curve (None when written to path)."""
+    def to_svg(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, tolerance: float = 1e-3, caption: str = "curve") -> Optional[str]:
+        """An SVG picture of the curve and its curvature comb (None when written to path)."""
 
 class LacSegment:
     """A log-aesthetic curve segment of shape alpha in a control triangle."""
@@ -126,6 +167,15 @@ class LacSegment:
     def rational_approx(self) -> RationalCubicFit: ...
     def rational_spline(self, tolerance: float, max_pieces: int = 64) -> RationalSpline: ...
     def to_svg_path(self, accuracy: float = 1e-3) -> str: ...
+    def to_nurbs(self, tolerance: Optional[float] = None) -> Nurbs: ...
+    def to_dxf(self, path: Optional[Union[str, "os.PathLike[str]"]] = None) -> Optional[bytes]:
+        """A DXF drawing with the curve as one rational SPLINE (None when written to path)."""
+    def to_step(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """A STEP file with the curve as a rational B-spline (None when written to path)."""
+    def to_iges(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """An IGES file (entity 126) with the curve (None when written to path)."""
+    def to_svg(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, tolerance: float = 1e-3, caption: str = "curve") -> Optional[str]:
+        """An SVG picture of the curve and its curvature comb (None when written to path)."""
 
 class LacInflectionSegment:
     """A log-aesthetic segment with zero curvature at control[0]."""
@@ -143,6 +193,15 @@ class LacInflectionSegment:
     def rational_approx(self) -> RationalCubicFit: ...
     def rational_spline(self, tolerance: float, max_pieces: int = 64) -> RationalSpline: ...
     def to_svg_path(self, accuracy: float = 1e-3) -> str: ...
+    def to_nurbs(self, tolerance: Optional[float] = None) -> Nurbs: ...
+    def to_dxf(self, path: Optional[Union[str, "os.PathLike[str]"]] = None) -> Optional[bytes]:
+        """A DXF drawing with the curve as one rational SPLINE (None when written to path)."""
+    def to_step(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """A STEP file with the curve as a rational B-spline (None when written to path)."""
+    def to_iges(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """An IGES file (entity 126) with the curve (None when written to path)."""
+    def to_svg(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, tolerance: float = 1e-3, caption: str = "curve") -> Optional[str]:
+        """An SVG picture of the curve and its curvature comb (None when written to path)."""
 
 class PseudoSpline:
     @property
@@ -156,6 +215,14 @@ class PseudoSpline:
     def beziers(self) -> list[Bezier]: ...
     def sample(self, per_span: int) -> Samples: ...
     def to_nurbs(self) -> Nurbs: ...
+    def to_dxf(self, path: Optional[Union[str, "os.PathLike[str]"]] = None) -> Optional[bytes]:
+        """A DXF drawing with the curve as one rational SPLINE (None when written to path)."""
+    def to_step(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """A STEP file with the curve as a rational B-spline (None when written to path)."""
+    def to_iges(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """An IGES file (entity 126) with the curve (None when written to path)."""
+    def to_svg(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, tolerance: float = 1e-3, caption: str = "curve") -> Optional[str]:
+        """An SVG picture of the curve and its curvature comb (None when written to path)."""
     def __len__(self) -> int: ...
 
 def pseudo_elastic(points: Points, closed: bool = False, mode: str = "table") -> PseudoSpline: ...
@@ -179,6 +246,14 @@ class Sketch:
     g2: bool
     all_monotone: bool
     converged: bool
+    def to_dxf(self, path: Optional[Union[str, "os.PathLike[str]"]] = None) -> Optional[bytes]:
+        """A DXF drawing with the curve as one rational SPLINE (None when written to path)."""
+    def to_step(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """A STEP file with the curve as a rational B-spline (None when written to path)."""
+    def to_iges(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, name: str = "curve") -> Optional[str]:
+        """An IGES file (entity 126) with the curve (None when written to path)."""
+    def to_svg(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, tolerance: float = 1e-3, caption: str = "curve") -> Optional[str]:
+        """An SVG picture of the curve and its curvature comb (None when written to path)."""
 
 def fit_sketch(points: Points, tolerance: float) -> Sketch: ...
 def plot_comb(curve: Any, ax: Any = None, samples: int = 200, scale: Optional[float] = None, **line_kwargs: Any) -> Any: ...
