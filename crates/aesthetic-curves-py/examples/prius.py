@@ -1,7 +1,8 @@
 """The Prius key line (Graiff Zurita, Kajiwara & Miura 2023, MIT licence; the repository's
 crates/aesthetic-curves-data/data/prius): a measured line fitted by one LAC segment and by
 a G2 chain of LAC pieces, each delivered as a curvature-monotone rational cubic; the
-result drawn with its curvature comb and written as SVG.
+result drawn with its curvature comb (SVG, and PNG with matplotlib) and exported for CAD
+(DXF, STEP).
 
     python examples/prius.py [out-dir]
 """
@@ -64,10 +65,19 @@ svg = (
     f'<polyline fill="none" stroke="#777" stroke-width="{0.003 * w:.4f}" '
     f'points="{line(tips)}" />'
     f'<polyline fill="none" stroke="#1f5fa8" stroke-width="{0.006 * w:.4f}" '
-    f'points="{line(pts)}" /></svg>'
+    f'points="{line(pts)}" />'
+    f'<text font-family="sans-serif" font-size="{0.032 * w:.4f}">'
+    f'<tspan x="{0.2 * pad:.4f}" y="{0.35 * pad:.4f}">Prius key line ps_3 (blue): {len(sketch.pieces)} LAC pieces, G2,</tspan>'
+    f'<tspan x="{0.2 * pad:.4f}" y="{0.5 * pad + 0.045 * w:.4f}">max deviation {sketch.max_deviation:.3f} mm; '
+    f"grey: curvature comb</tspan></text></svg>"
 )
 (out / "prius-ps_3.svg").write_text(svg)
 print(f"wrote {out / 'prius-ps_3.svg'}")
+
+# %% The delivered curve for CAD: one rational NURBS, as DXF (SPLINE) and STEP.
+sketch.to_dxf(out / "prius-ps_3.dxf")
+sketch.to_step(out / "prius-ps_3.step", name="Prius key line ps_3")
+print(f"wrote {out / 'prius-ps_3.dxf'} and {out / 'prius-ps_3.step'}")
 
 # %% The same with matplotlib, when it is installed.
 try:

@@ -376,6 +376,8 @@ def test_the_example_script_runs(tmp_path):
     assert "sketch: 4 pieces" in out and "G2 True, every piece monotone True" in out
     svg = (tmp_path / "prius-ps_3.svg").read_text()
     assert svg.startswith("<svg") and svg.count("<line") > 200
+    assert b"SPLINE" in (tmp_path / "prius-ps_3.dxf").read_bytes()
+    assert "RATIONAL_B_SPLINE_CURVE" in (tmp_path / "prius-ps_3.step").read_text()
 
 
 def every_curve():
