@@ -724,6 +724,101 @@ type TurningArrays<'py> = (
     Bound<'py, PyArray1<f64>>,
 );
 
+/// The methods both LAC segment types share (`$cubic` and `$spline`: their fits in
+/// `approx`), plus `$extra`.
+macro_rules! lac_methods {
+    ($ty:ident, $cubic:ident, $spline:ident, { $($extra:tt)* }) => {
+        impl $ty {
+            fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+                let f = ac::approx::$cubic(&self.inner, &ApproxOptions::default()).map_err(err)?;
+                Ok(ac::Nurbs::from_bezier(&f.curve))
+            }
+        }
+
+        pymethods_with_exports!($ty {
+            $($extra)*
+            /// The shape parameter α.
+            #[getter]
+            fn alpha(&self) -> f64 {
+                self.inner.alpha()
+            }
+            /// The turning angle (radians).
+            #[getter]
+            fn theta_d(&self) -> f64 {
+                self.inner.theta_d()
+            }
+            /// The control triangle, a (3, 2) array.
+            #[getter]
+            fn control<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+                points_array(py, &self.inner.control())
+            }
+            /// Arc length.
+            fn arc_length(&self) -> PyResult<f64> {
+                Curve::arc_length(&self.inner).map_err(err)
+            }
+            /// Signed curvature at both ends (0 at an inflection end).
+            fn end_curvatures(&self) -> PyResult<(f64, f64)> {
+                Curve::end_curvatures(&self.inner).map_err(err)
+            }
+            /// `n >= 2` samples evenly spaced in tangent angle: points, unit tangents,
+            /// curvature.
+            fn sample(&self, py: Python<'_>, n: usize) -> PyResult<Samples> {
+                samples_of(py, &self.inner, n)
+            }
+            /// The best curvature-monotone rational cubic (G2 at both ends, zero curvature
+            /// at an inflection end; global optimisation).
+            fn rational_approx(&self, py: Python<'_>) -> PyResult<RationalCubicFit> {
+                let seg = self.inner.clone();
+                let f = py
+                    .detach(move || ac::approx::$cubic(&seg, &ApproxOptions::default()))
+                    .map_err(err)?;
+                Ok(fit_of(f))
+            }
+            /// Rational cubics (G2 joints) within `tolerance` (input units).
+            #[pyo3(signature = (tolerance, max_pieces=64))]
+            fn rational_spline(
+                &self,
+                py: Python<'_>,
+                tolerance: f64,
+                max_pieces: usize,
+            ) -> PyResult<RationalSpline> {
+                let seg = self.inner.clone();
+                let s = py
+                    .detach(move || {
+                        ac::approx::$spline(&seg, tolerance, max_pieces, &ApproxOptions::default())
+                    })
+                    .map_err(err)?;
+                spline_of(py, s)
+            }
+            /// SVG path data (cubic Béziers within `accuracy`, input units).
+            #[pyo3(signature = (accuracy=1e-3))]
+            fn to_svg_path(&self, accuracy: f64) -> PyResult<String> {
+                Ok(self.inner.to_bezpath(accuracy).map_err(err)?.to_svg())
+            }
+            /// The segment as a NURBS: its best rational cubic, or with `tolerance` (input
+            /// units) rational cubics within it. The exports (`to_dxf`, `to_step`,
+            /// `to_iges`, `to_svg`) write the best rational cubic.
+            #[pyo3(signature = (tolerance=None))]
+            fn to_nurbs(&self, py: Python<'_>, tolerance: Option<f64>) -> PyResult<Nurbs> {
+                match tolerance {
+                    None => Ok(Nurbs {
+                        inner: self.nurbs_of()?,
+                    }),
+                    Some(t) => Ok(self.rational_spline(py, t, 64)?.nurbs),
+                }
+            }
+            fn __repr__(&self) -> String {
+                format!(
+                    "{}(alpha={}, theta_d={})",
+                    stringify!($ty),
+                    self.inner.alpha(),
+                    self.inner.theta_d()
+                )
+            }
+        });
+    };
+}
+
 /// A log-aesthetic curve segment of shape `alpha` in a control triangle (its ends and the
 /// intersection of its end tangents).
 #[pyclass(module = "aesthetic_curves._native", frozen)]
@@ -732,7 +827,7 @@ struct LacSegment {
     inner: ac::LacSegment,
 }
 
-pymethods_with_exports!(LacSegment {
+lac_methods!(LacSegment, fit_rational_cubic, fit_rational_spline, {
     #[new]
     fn new(alpha: f64, control: &Bound<'_, PyAny>) -> PyResult<Self> {
         let c = three("control", control)?;
@@ -751,33 +846,6 @@ pymethods_with_exports!(LacSegment {
     fn theta_lim(alpha: f64, theta_d: f64) -> PyResult<f64> {
         ac::LacSegment::theta_lim(alpha, theta_d).map_err(err)
     }
-    /// The shape parameter α.
-    #[getter]
-    fn alpha(&self) -> f64 {
-        self.inner.alpha()
-    }
-    /// The turning angle (radians).
-    #[getter]
-    fn theta_d(&self) -> f64 {
-        self.inner.theta_d()
-    }
-    /// The control triangle, a (3, 2) array.
-    #[getter]
-    fn control<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        points_array(py, &self.inner.control())
-    }
-    /// Arc length.
-    fn arc_length(&self) -> PyResult<f64> {
-        self.inner.arc_length().map_err(err)
-    }
-    /// Signed curvature at both ends.
-    fn end_curvatures(&self) -> PyResult<(f64, f64)> {
-        self.inner.end_curvatures().map_err(err)
-    }
-    /// `n >= 2` samples evenly spaced in tangent angle: points, unit tangents, curvature.
-    fn sample(&self, py: Python<'_>, n: usize) -> PyResult<Samples> {
-        samples_of(py, &self.inner, n)
-    }
     /// Points, unit tangents and radii of curvature at turning angles `taus` from the start.
     fn eval_turning<'py>(
         &self,
@@ -792,61 +860,6 @@ pymethods_with_exports!(LacSegment {
             s.radii.into_pyarray(py),
         ))
     }
-    /// The best curvature-monotone rational cubic (G2 at both ends; global optimisation).
-    fn rational_approx(&self, py: Python<'_>) -> PyResult<RationalCubicFit> {
-        let seg = self.inner.clone();
-        let f = py
-            .detach(move || ac::approx::fit_rational_cubic(&seg, &ApproxOptions::default()))
-            .map_err(err)?;
-        Ok(fit_of(f))
-    }
-    /// The fewest rational cubics (G2 joints) within `tolerance` (input units).
-    #[pyo3(signature = (tolerance, max_pieces=64))]
-    fn rational_spline(
-        &self,
-        py: Python<'_>,
-        tolerance: f64,
-        max_pieces: usize,
-    ) -> PyResult<RationalSpline> {
-        let seg = self.inner.clone();
-        let s = py
-            .detach(move || {
-                ac::approx::fit_rational_spline(
-                    &seg,
-                    tolerance,
-                    max_pieces,
-                    &ApproxOptions::default(),
-                )
-            })
-            .map_err(err)?;
-        spline_of(py, s)
-    }
-    /// SVG path data (cubic Béziers within `accuracy`, input units).
-    #[pyo3(signature = (accuracy=1e-3))]
-    fn to_svg_path(&self, accuracy: f64) -> PyResult<String> {
-        Ok(self.inner.to_bezpath(accuracy).map_err(err)?.to_svg())
-    }
-    /// The segment as a NURBS: its best rational cubic, or with `tolerance` (input units)
-    /// the fewest rational cubics within it. The exports (`to_dxf`, `to_step`, `to_iges`,
-    /// `to_svg`) write the best rational cubic.
-    #[pyo3(signature = (tolerance=None))]
-    fn to_nurbs(&self, py: Python<'_>, tolerance: Option<f64>) -> PyResult<Nurbs> {
-        match tolerance {
-            None => Ok(Nurbs {
-                inner: self.nurbs_of()?,
-            }),
-            Some(t) => Ok(self.rational_spline(py, t, 64)?.nurbs),
-        }
-    }
-
-
-    fn __repr__(&self) -> String {
-        format!(
-            "LacSegment(alpha={}, theta_d={})",
-            self.inner.alpha(),
-            self.inner.theta_d()
-        )
-    }
 });
 
 /// A log-aesthetic segment with an inflection end (zero curvature at `control[0]`).
@@ -856,95 +869,19 @@ struct LacInflectionSegment {
     inner: ac::LacInflectionSegment,
 }
 
-pymethods_with_exports!(LacInflectionSegment {
-    #[new]
-    fn new(control: &Bound<'_, PyAny>) -> PyResult<Self> {
-        Ok(LacInflectionSegment {
-            inner: ac::LacInflectionSegment::new(three("control", control)?).map_err(err)?,
-        })
-    }
-    /// The shape parameter α (negative) the triangle determines.
-    #[getter]
-    fn alpha(&self) -> f64 {
-        self.inner.alpha()
-    }
-    /// The turning angle (radians).
-    #[getter]
-    fn theta_d(&self) -> f64 {
-        self.inner.theta_d()
-    }
-    /// The control triangle, a (3, 2) array.
-    #[getter]
-    fn control<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        points_array(py, &self.inner.control())
-    }
-    /// Arc length.
-    fn arc_length(&self) -> f64 {
-        self.inner.arc_length()
-    }
-    /// Signed curvature at both ends (0 at the inflection end).
-    fn end_curvatures(&self) -> PyResult<(f64, f64)> {
-        Curve::end_curvatures(&self.inner).map_err(err)
-    }
-    /// `n >= 2` samples evenly spaced in tangent angle: points, unit tangents, curvature.
-    fn sample(&self, py: Python<'_>, n: usize) -> PyResult<Samples> {
-        samples_of(py, &self.inner, n)
-    }
-    /// The best curvature-monotone rational cubic with zero curvature at the inflection end.
-    fn rational_approx(&self, py: Python<'_>) -> PyResult<RationalCubicFit> {
-        let seg = self.inner.clone();
-        let f = py
-            .detach(move || ac::approx::fit_inflection_cubic(&seg, &ApproxOptions::default()))
-            .map_err(err)?;
-        Ok(fit_of(f))
-    }
-    /// Rational cubics (G2 joints) within `tolerance` (input units).
-    #[pyo3(signature = (tolerance, max_pieces=64))]
-    fn rational_spline(
-        &self,
-        py: Python<'_>,
-        tolerance: f64,
-        max_pieces: usize,
-    ) -> PyResult<RationalSpline> {
-        let seg = self.inner.clone();
-        let s = py
-            .detach(move || {
-                ac::approx::fit_inflection_spline(
-                    &seg,
-                    tolerance,
-                    max_pieces,
-                    &ApproxOptions::default(),
-                )
+lac_methods!(
+    LacInflectionSegment,
+    fit_inflection_cubic,
+    fit_inflection_spline,
+    {
+        #[new]
+        fn new(control: &Bound<'_, PyAny>) -> PyResult<Self> {
+            Ok(LacInflectionSegment {
+                inner: ac::LacInflectionSegment::new(three("control", control)?).map_err(err)?,
             })
-            .map_err(err)?;
-        spline_of(py, s)
-    }
-    /// SVG path data (cubic Béziers within `accuracy`, input units).
-    #[pyo3(signature = (accuracy=1e-3))]
-    fn to_svg_path(&self, accuracy: f64) -> PyResult<String> {
-        Ok(self.inner.to_bezpath(accuracy).map_err(err)?.to_svg())
-    }
-    /// The segment as a NURBS: its best rational cubic, or with `tolerance` (input units)
-    /// rational cubics within it. The exports write the best rational cubic.
-    #[pyo3(signature = (tolerance=None))]
-    fn to_nurbs(&self, py: Python<'_>, tolerance: Option<f64>) -> PyResult<Nurbs> {
-        match tolerance {
-            None => Ok(Nurbs {
-                inner: self.nurbs_of()?,
-            }),
-            Some(t) => Ok(self.rational_spline(py, t, 64)?.nurbs),
         }
     }
-
-
-    fn __repr__(&self) -> String {
-        format!(
-            "LacInflectionSegment(alpha={}, theta_d={})",
-            self.inner.alpha(),
-            self.inner.theta_d()
-        )
-    }
-});
+);
 
 /// The pseudo-elastic spline through points (Hermite cubics minimising the pseudo-energy).
 #[pyclass(module = "aesthetic_curves._native", frozen)]
@@ -1176,20 +1113,6 @@ impl PseudoSpline {
             .collect::<ac::Result<_>>()
             .map_err(err)?;
         ac::Nurbs::from_beziers(&spans).map_err(err)
-    }
-}
-impl LacSegment {
-    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
-        let f =
-            ac::approx::fit_rational_cubic(&self.inner, &ApproxOptions::default()).map_err(err)?;
-        Ok(ac::Nurbs::from_bezier(&f.curve))
-    }
-}
-impl LacInflectionSegment {
-    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
-        let f = ac::approx::fit_inflection_cubic(&self.inner, &ApproxOptions::default())
-            .map_err(err)?;
-        Ok(ac::Nurbs::from_bezier(&f.curve))
     }
 }
 

@@ -10,6 +10,7 @@ import math
 import os
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from pathlib import Path
@@ -423,3 +424,20 @@ def test_dxf_export_reads_back_in_ezdxf(tmp_path):
     assert np.allclose(pts, fit.curve.points, rtol=0, atol=1e-12)
     assert np.allclose(list(spline.weights), fit.curve.weights, rtol=1e-15)
     assert spline.dxf.degree == 3
+
+
+def test_the_type_stubs_match_the_module():
+    # mypy's stubtest compares the stubs with the compiled module (every name, every
+    # signature); then the example type-checks against them.
+    pytest.importorskip("mypy")
+    r = subprocess.run(
+        [sys.executable, "-m", "mypy.stubtest", "--ignore-disjoint-bases", "aesthetic_curves"],
+        capture_output=True, text=True, cwd=tempfile.gettempdir(),
+    )
+    assert r.returncode == 0, r.stdout + r.stderr
+    example = Path(__file__).resolve().parents[1] / "examples" / "prius.py"
+    r = subprocess.run(
+        [sys.executable, "-m", "mypy", "--no-incremental", str(example)],
+        capture_output=True, text=True, cwd=tempfile.gettempdir(),
+    )
+    assert r.returncode == 0, r.stdout + r.stderr
