@@ -721,7 +721,7 @@ fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let mut out = sketch_json(&sk, tolerance);
     if let Some(n) = draw {
         let curve = sk.as_curve();
-        let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&curve.0)?;
+        let nurbs = curve.to_nurbs()?;
         out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
     }
     Ok(out)
@@ -1029,8 +1029,7 @@ fn spline_pseudo_elastic(obj: &Map<String, Value>) -> Result<Value, ProtoError> 
     let mut out = spline_json(&s, mode);
     if let Some(n) = draw {
         let curve = s.as_curve()?;
-        let rational: Vec<RationalBezier> = curve.0.iter().map(|b| b.to_rational()).collect();
-        let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&rational)?;
+        let nurbs = curve.to_nurbs()?;
         out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
     }
     Ok(out)

@@ -912,31 +912,19 @@ pymethods_with_exports!(PseudoSpline {
     }
     /// The spans as cubic Béziers.
     fn beziers(&self) -> PyResult<Vec<Bezier>> {
-        self.inner
-            .segments
-            .iter()
-            .map(|s| s.to_bezier().map(|inner| Bezier { inner }).map_err(err))
-            .collect()
+        Ok(self
+            .inner
+            .as_curve()
+            .map_err(err)?
+            .0
+            .into_iter()
+            .map(|inner| Bezier { inner })
+            .collect())
     }
-    /// `per_span >= 2` samples per span, the spans' shared ends once.
-    fn sample(&self, py: Python<'_>, per_span: usize) -> PyResult<Samples> {
-        let mut pts = Vec::new();
-        for (i, s) in self.inner.segments.iter().enumerate() {
-            let b = s.to_bezier().map_err(err)?;
-            let mut q = b.curve_points(per_span).map_err(err)?;
-            if i > 0 {
-                q.remove(0);
-            }
-            pts.extend(q);
-        }
-        let points: Vec<Point> = pts.iter().map(|q| q.p).collect();
-        let tangents: Vec<ac::Vec2> = pts.iter().map(|q| q.tangent).collect();
-        let kappa: Vec<f64> = pts.iter().map(|q| q.kappa).collect();
-        Ok(Samples {
-            points: points_array(py, &points).unbind(),
-            tangents: vecs_array(py, &tangents).unbind(),
-            kappa: kappa.into_pyarray(py).unbind(),
-        })
+    /// `n >= 2` samples per span (points, unit tangents, signed curvature), the spans'
+    /// shared ends once.
+    fn sample(&self, py: Python<'_>, n: usize) -> PyResult<Samples> {
+        samples_of(py, &self.inner.as_curve().map_err(err)?, n)
     }
     /// The spline as one NURBS (cubic spans joined at the input points).
     fn to_nurbs(&self) -> PyResult<Nurbs> {
@@ -1054,12 +1042,13 @@ fn fit_sketch(py: Python<'_>, points: &Bound<'_, PyAny>, tolerance: f64) -> PyRe
     let s = py
         .detach(move || ac::sketch::fit_sketch(&p, &opts))
         .map_err(err)?;
-    let spans: Vec<ac::RationalBezier> = s.pieces.iter().map(|p| p.rational.clone()).collect();
+    let curve = s.as_curve();
     Ok(Sketch {
         nurbs: Nurbs {
-            inner: ac::Nurbs::from_beziers(&spans).map_err(err)?,
+            inner: curve.to_nurbs().map_err(err)?,
         },
-        pieces: spans
+        pieces: curve
+            .0
             .into_iter()
             .map(|inner| RationalBezier { inner })
             .collect(),
@@ -1105,14 +1094,10 @@ impl Sketch {
 }
 impl PseudoSpline {
     fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
-        let spans: Vec<ac::RationalBezier> = self
-            .inner
-            .segments
-            .iter()
-            .map(|s| s.to_bezier().map(|b| b.to_rational()))
-            .collect::<ac::Result<_>>()
-            .map_err(err)?;
-        ac::Nurbs::from_beziers(&spans).map_err(err)
+        self.inner
+            .as_curve()
+            .and_then(|c| c.to_nurbs())
+            .map_err(err)
     }
 }
 

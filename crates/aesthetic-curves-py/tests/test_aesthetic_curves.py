@@ -291,8 +291,8 @@ def test_pseudo_elastic_circle_and_its_pieces():
     pts = np.stack([np.cos(th), np.sin(th)], axis=1)
     sp = ac.pseudo_elastic(pts, closed=True)
     assert abs(sp.length - 2 * np.pi) < 1e-3 and abs(abs(sp.area) - np.pi) < 1e-3
-    s = sp.sample(9)
-    assert np.allclose(np.hypot(*s.points.T), 1.0, atol=2e-4)
+    s = sp.sample(10)
+    assert len(s) == 24 * 9 + 1 and np.allclose(np.hypot(*s.points.T), 1.0, atol=2e-4)
     assert len(sp.beziers()) == 24
     n = sp.to_nurbs()
     assert np.allclose(n.eval(n.domain()[0]), pts[0], atol=1e-12)

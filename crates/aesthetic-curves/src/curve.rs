@@ -289,6 +289,21 @@ impl<C: Curve> Curve for Pieces<C> {
     }
 }
 
+impl Pieces<RationalBezier> {
+    /// The pieces joined into one NURBS ([`Nurbs::from_beziers`]: span i on [i, i + 1]).
+    pub fn to_nurbs(&self) -> Result<Nurbs> {
+        Nurbs::from_beziers(&self.0)
+    }
+}
+
+impl Pieces<Bezier> {
+    /// The pieces, as rational Béziers of unit weights, joined into one NURBS.
+    pub fn to_nurbs(&self) -> Result<Nurbs> {
+        let rational: Vec<RationalBezier> = self.0.iter().map(|b| b.to_rational()).collect();
+        Nurbs::from_beziers(&rational)
+    }
+}
+
 impl Nurbs {
     /// The curve's Bézier spans as [`Pieces`] (the [`Curve`] of a NURBS); an error when it
     /// has none (a knot vector without interior spans).

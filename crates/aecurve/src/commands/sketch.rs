@@ -63,9 +63,7 @@ pub(crate) fn sketch(
             );
         }
     }
-    let curves: Vec<aesthetic_curves::RationalBezier> =
-        sk.pieces.iter().map(|p| p.rational.clone()).collect();
-    let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&curves)?;
+    let nurbs = sk.as_curve().to_nurbs()?;
     let comb = plot::curve_samples(&sk.as_curve(), 61)?;
     write_curvature_plot(
         curvature_plot,

@@ -67,12 +67,7 @@ pub(crate) fn spline(
         if closed {
             polygon.push(pts[0]);
         }
-        let cubics: Vec<aesthetic_curves::RationalBezier> = s
-            .segments
-            .iter()
-            .map(|g| g.to_bezier().map(|b| b.to_rational()))
-            .collect::<Result<_, _>>()?;
-        let nurbs = aesthetic_curves::nurbs::Nurbs::from_beziers(&cubics)?;
+        let nurbs = s.as_curve()?.to_nurbs()?;
         write_curve_outputs(
             output,
             "pseudo_elastic_spline",
