@@ -640,7 +640,7 @@ fn smoothing_fit_spans(
     };
     let singular = || Error::NoConvergence("smoothing spline: singular system".into());
     // Bracket: the least smoothing must be within the deviation, then bisect log λ.
-    let (mut lo, mut hi) = (-10.0f64, 8.0f64);
+    let (mut lo, hi) = (-10.0f64, 8.0f64);
     let eqs = normal(&params);
     let s_lo = solve(&eqs, 10f64.powf(lo)).ok_or_else(singular)?;
     let (d_lo, _) = worst(&s_lo, &params)?;
@@ -653,18 +653,31 @@ fn smoothing_fit_spans(
         best = s_hi;
         lo = hi;
     } else {
-        for _ in 0..24 {
-            if hi - lo < 0.05 {
-                break;
-            }
-            let mid = 0.5 * (lo + hi);
-            let s = solve(&eqs, 10f64.powf(mid)).ok_or_else(singular)?;
-            if worst(&s, &params)?.0 <= max_deviation {
-                lo = mid;
-                best = s;
-            } else {
-                hi = mid;
-            }
+        // (A failure inside the test ends the search as an error, as before.)
+        let mut failure = None;
+        let found = crate::solve::bisect_by(
+            |mid| {
+                let s = solve(&eqs, 10f64.powf(mid)).ok_or_else(singular);
+                match s.and_then(|s| worst(&s, &params).map(|w| (w.0, s))) {
+                    Ok((d, s)) => (d <= max_deviation).then_some(s),
+                    Err(e) => {
+                        failure.get_or_insert(e);
+                        None
+                    }
+                }
+            },
+            lo,
+            hi,
+            |a, b| 0.5 * (a + b),
+            |a, b| b - a < 0.05,
+            24,
+        );
+        if let Some(e) = failure {
+            return Err(e);
+        }
+        lo = found.inside;
+        if let Some(s) = found.value {
+            best = s;
         }
     }
     // Parameter correction at the chosen λ (foot points replace chord length); λ steps
