@@ -306,21 +306,9 @@ pub fn curve_with_comb(
     comb_svg(&samples, control, &marks, caption)
 }
 
-/// A sample of a curve for the comb: point, unit left normal, signed curvature.
-pub type CombSample = (aesthetic_curves::Point, aesthetic_curves::Vec2, f64);
-
-/// Comb samples of any curve of the library ([`aesthetic_curves::Curve`]): `n` points per
-/// piece with the exact tangent and curvature.
-pub fn curve_samples(
-    curve: &dyn aesthetic_curves::Curve,
-    n: usize,
-) -> aesthetic_curves::Result<Vec<CombSample>> {
-    Ok(curve
-        .curve_points(n)?
-        .into_iter()
-        .map(|q| (q.p, q.normal(), q.kappa))
-        .collect())
-}
+/// Comb samples (point, unit left normal, signed curvature), shared with the exports' SVG
+/// document and the Python package.
+pub use crate::export::{curve_samples, CombSample};
 
 /// The curve (as comb samples), its control polygon, its curvature comb and circled marks.
 /// Input units are unnamed; see [`comb_svg_in`].

@@ -385,15 +385,26 @@ pub fn svg_path_data(c: &Nurbs, tol: f64) -> Option<String> {
     Some(d)
 }
 
+/// A sample of a curve for the comb: point, unit left normal, signed curvature.
+pub type CombSample = (Point, aesthetic_curves::Vec2, f64);
+
+/// Comb samples of any curve of the library ([`aesthetic_curves::Curve`]): `n` points per
+/// piece with the exact tangent and curvature.
+pub fn curve_samples(
+    curve: &dyn aesthetic_curves::Curve,
+    n: usize,
+) -> aesthetic_curves::Result<Vec<CombSample>> {
+    Ok(curve
+        .curve_points(n)?
+        .into_iter()
+        .map(|q| (q.p, q.normal(), q.kappa))
+        .collect())
+}
+
 /// An SVG document whose path is the curve (cubic Béziers within `tol`, in the curve's own
 /// coordinates: a group transform flips y for display), with the curve's curvature comb
-/// (`comb`: point, unit left normal, signed curvature) drawn in the same coordinates.
-pub fn svg_document(
-    c: &Nurbs,
-    tol: f64,
-    comb: &[(Point, aesthetic_curves::Vec2, f64)],
-    caption: &str,
-) -> Option<String> {
+/// (`comb`: [`curve_samples`]) drawn in the same coordinates.
+pub fn svg_document(c: &Nurbs, tol: f64, comb: &[CombSample], caption: &str) -> Option<String> {
     let d = svg_path_data(c, tol)?;
     let size = c.size().max(1e-300);
     let kmax = comb.iter().map(|s| s.2.abs()).fold(0.0, f64::max);

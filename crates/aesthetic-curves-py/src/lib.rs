@@ -128,18 +128,24 @@ fn three(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<[Point; 3]> {
     })
 }
 
-fn points_array<'py>(py: Python<'py>, pts: &[Point]) -> Bound<'py, PyArray2<f64>> {
-    let flat: Vec<f64> = pts.iter().flat_map(|p| [p.x, p.y]).collect();
-    Array2::from_shape_vec((pts.len(), 2), flat)
+/// An (n, 2) array of x, y pairs.
+fn xy_array<'py>(
+    py: Python<'py>,
+    xy: impl ExactSizeIterator<Item = [f64; 2]>,
+) -> Bound<'py, PyArray2<f64>> {
+    let n = xy.len();
+    let flat: Vec<f64> = xy.flatten().collect();
+    Array2::from_shape_vec((n, 2), flat)
         .expect("n x 2")
         .into_pyarray(py)
 }
 
+fn points_array<'py>(py: Python<'py>, pts: &[Point]) -> Bound<'py, PyArray2<f64>> {
+    xy_array(py, pts.iter().map(|p| [p.x, p.y]))
+}
+
 fn vecs_array<'py>(py: Python<'py>, v: &[ac::Vec2]) -> Bound<'py, PyArray2<f64>> {
-    let flat: Vec<f64> = v.iter().flat_map(|p| [p.x, p.y]).collect();
-    Array2::from_shape_vec((v.len(), 2), flat)
-        .expect("n x 2")
-        .into_pyarray(py)
+    xy_array(py, v.iter().map(|p| [p.x, p.y]))
 }
 
 /// A float or a 1-D array of parameters: the values of `f` at them, as a float or an array
@@ -237,13 +243,15 @@ impl Samples {
 
 fn samples_of(py: Python<'_>, c: &dyn Curve, n: usize) -> PyResult<Samples> {
     let pts = c.curve_points(n).map_err(err)?;
-    let points: Vec<Point> = pts.iter().map(|q| q.p).collect();
-    let tangents: Vec<ac::Vec2> = pts.iter().map(|q| q.tangent).collect();
-    let kappa: Vec<f64> = pts.iter().map(|q| q.kappa).collect();
     Ok(Samples {
-        points: points_array(py, &points).unbind(),
-        tangents: vecs_array(py, &tangents).unbind(),
-        kappa: kappa.into_pyarray(py).unbind(),
+        points: xy_array(py, pts.iter().map(|q| [q.p.x, q.p.y])).unbind(),
+        tangents: xy_array(py, pts.iter().map(|q| [q.tangent.x, q.tangent.y])).unbind(),
+        kappa: pts
+            .iter()
+            .map(|q| q.kappa)
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+            .unbind(),
     })
 }
 
@@ -298,12 +306,21 @@ struct RationalBezier {
     inner: ac::RationalBezier,
 }
 
-/// The NURBS written in `format` ("dxf": bytes; "step", "iges", "svg": text), into the file
-/// `path` (then None) or returned.
+/// The file formats of [`export`].
+#[derive(Clone, Copy, PartialEq)]
+enum Format {
+    Dxf,
+    Step,
+    Iges,
+    Svg,
+}
+
+/// The NURBS written in `format` (DXF: bytes; STEP, IGES, SVG: text), into the file `path`
+/// (then None) or returned.
 fn export(
     py: Python<'_>,
     c: &ac::Nurbs,
-    format: &str,
+    format: Format,
     path: Option<std::path::PathBuf>,
     name: &str,
     tolerance: f64,
@@ -311,27 +328,23 @@ fn export(
     use aesthetic_curves_export as ex;
     ex::check_exportable(c).map_err(|e| InvalidInputError::new_err(format!("{e:#}")))?;
     let bytes: Vec<u8> = match format {
-        "dxf" => ex::dxf_bytes(c).map_err(|e| NoConvergenceError::new_err(format!("{e:#}")))?,
-        "step" => ex::step_text(c, name).into_bytes(),
-        "iges" => ex::iges_text(c, name).into_bytes(),
-        "svg" => {
+        Format::Dxf => {
+            ex::dxf_bytes(c).map_err(|e| NoConvergenceError::new_err(format!("{e:#}")))?
+        }
+        Format::Step => ex::step_text(c, name).into_bytes(),
+        Format::Iges => ex::iges_text(c, name).into_bytes(),
+        Format::Svg => {
             if !(tolerance.is_finite() && tolerance > 0.0) {
                 return Err(InvalidInputError::new_err(
                     "invalid input: tolerance: must be a positive number",
                 ));
             }
-            let comb: Vec<(Point, ac::Vec2, f64)> = c
-                .bezier_spans()
-                .unwrap_or_default()
-                .iter()
-                .flat_map(|s| s.curve_points(40).unwrap_or_default())
-                .map(|q| (q.p, q.normal(), q.kappa))
-                .collect();
+            let spans = c.as_curve().map_err(err)?;
+            let comb = ex::curve_samples(&spans, 40).map_err(err)?;
             ex::svg_document(c, tolerance, &comb, name)
                 .ok_or_else(|| DegenerateError::new_err("degenerate: the curve has no spans"))?
                 .into_bytes()
         }
-        _ => unreachable!(),
     };
     match path {
         Some(p) => {
@@ -340,7 +353,7 @@ fn export(
             })?;
             Ok(None)
         }
-        None if format == "dxf" => Ok(Some(
+        None if format == Format::Dxf => Ok(Some(
             pyo3::types::PyBytes::new(py, &bytes).into_any().unbind(),
         )),
         None => Ok(Some(
@@ -369,7 +382,7 @@ macro_rules! pymethods_with_exports {
             py: Python<'_>,
             path: Option<std::path::PathBuf>,
         ) -> PyResult<Option<Py<PyAny>>> {
-            export(py, &self.nurbs_of()?, "dxf", path, "", 0.0)
+            export(py, &self.nurbs_of()?, Format::Dxf, path, "", 0.0)
         }
         /// A STEP file (AP214 geometry: a rational B-spline curve) named `name`: text, or
         /// None when written to `path`.
@@ -380,7 +393,7 @@ macro_rules! pymethods_with_exports {
             path: Option<std::path::PathBuf>,
             name: &str,
         ) -> PyResult<Option<Py<PyAny>>> {
-            export(py, &self.nurbs_of()?, "step", path, name, 0.0)
+            export(py, &self.nurbs_of()?, Format::Step, path, name, 0.0)
         }
         /// An IGES file (entity 126, rational B-spline curve): text, or None when written.
         #[pyo3(signature = (path=None, name="curve"))]
@@ -390,7 +403,7 @@ macro_rules! pymethods_with_exports {
             path: Option<std::path::PathBuf>,
             name: &str,
         ) -> PyResult<Option<Py<PyAny>>> {
-            export(py, &self.nurbs_of()?, "iges", path, name, 0.0)
+            export(py, &self.nurbs_of()?, Format::Iges, path, name, 0.0)
         }
         /// An SVG picture of the curve (cubic Béziers within `tolerance`) with its
         /// curvature comb: text, or None when written to `path`.
@@ -402,7 +415,7 @@ macro_rules! pymethods_with_exports {
             tolerance: f64,
             caption: &str,
         ) -> PyResult<Option<Py<PyAny>>> {
-            export(py, &self.nurbs_of()?, "svg", path, caption, tolerance)
+            export(py, &self.nurbs_of()?, Format::Svg, path, caption, tolerance)
         }
         }
     };
