@@ -175,10 +175,7 @@ pub fn approximation_error(
     let sign = turn_sign(seg);
     let mut pts = Vec::with_capacity(n);
     let mut taus = Vec::with_capacity(n);
-    let cubic: Option<[(f64, f64, f64); 4]> = (curve.degree() == 3).then(|| {
-        let (b, w) = (curve.points(), curve.weights());
-        std::array::from_fn(|i| (b[i].x * w[i], b[i].y * w[i], w[i]))
-    });
+    let cubic = (curve.degree() == 3).then(|| homogeneous(curve.points(), curve.weights()));
     for i in 0..n {
         let t = i as f64 / (n - 1) as f64;
         let (p, d1) = match &cubic {
@@ -192,17 +189,26 @@ pub fn approximation_error(
         taus.push(turning(d0, d1, sign));
     }
     let lac = seg.points_at_turning(&taus)?;
-    let mut sum = 0.0;
-    let mut max = 0.0f64;
-    for (a, b) in pts.iter().zip(&lac) {
-        let e = (*a - *b).hypot() / len;
-        sum += e * e;
-        max = max.max(e);
+    Ok(ApproximationError::of(
+        pts.iter().zip(&lac).map(|(a, b)| (*a - *b).hypot() / len),
+    ))
+}
+
+impl ApproximationError {
+    /// Rms and maximum of the distances.
+    fn of(distances: impl ExactSizeIterator<Item = f64>) -> ApproximationError {
+        let n = distances.len();
+        let (sum, max) = distances.fold((0.0, 0.0f64), |(s, m), e| (s + e * e, m.max(e)));
+        ApproximationError {
+            rms: (sum / n as f64).sqrt(),
+            max,
+        }
     }
-    Ok(ApproximationError {
-        rms: (sum / n as f64).sqrt(),
-        max,
-    })
+}
+
+/// The homogeneous control points (w x, w y, w) of a rational cubic.
+fn homogeneous(b: &[Point], w: &[f64]) -> [(f64, f64, f64); 4] {
+    std::array::from_fn(|i| (b[i].x * w[i], b[i].y * w[i], w[i]))
 }
 
 /// Quintic Hermite interpolation between two table nodes (values, first and second
@@ -552,7 +558,7 @@ impl<'a> Problem<'a> {
     fn residuals(&self, f0: f64, f1: f64, smp: &Samples, out: &mut Vec<f64>) -> Option<()> {
         let ts = &smp.t;
         let (b, w) = self.cubic(f0, f1)?;
-        let h: [(f64, f64, f64); 4] = std::array::from_fn(|i| (b[i].x * w[i], b[i].y * w[i], w[i]));
+        let h = homogeneous(&b, &w);
         out.clear();
         let mut pts = Vec::new();
         let mut taus = Vec::new();
@@ -618,7 +624,7 @@ impl<'a> Problem<'a> {
             [-w[3] * cross01 / a1, 2.0 * w[3] / f1],
         );
         type H = [(f64, f64, f64); 4];
-        let h: H = std::array::from_fn(|i| (b[i].x * w[i], b[i].y * w[i], w[i]));
+        let h: H = homogeneous(&b, &w);
         let hom = |p: Point, dw: f64| (p.x * dw, p.y * dw, dw);
         let dh: [H; 2] = [
             [
@@ -691,21 +697,12 @@ impl<'a> Problem<'a> {
     /// table instead of the exact LAC: the same samples and the same correspondence, no
     /// integration (a third of the time).
     fn table_report(&self, curve: &RationalBezier, n: usize) -> ApproximationError {
-        let (b, w) = (curve.points(), curve.weights());
-        let h: [(f64, f64, f64); 4] = std::array::from_fn(|i| (b[i].x * w[i], b[i].y * w[i], w[i]));
-        let (mut sum, mut max, mut k) = (0.0, 0.0f64, usize::MAX);
-        for i in 0..n {
-            let t = i as f64 / (n - 1) as f64;
-            let (p, tangent) = cubic_point_tangent(&h, t);
-            let q = self.lac_at_dir(tangent, &mut k);
-            let e = (p - q).hypot() / self.len;
-            sum += e * e;
-            max = max.max(e);
-        }
-        ApproximationError {
-            rms: (sum / n as f64).sqrt(),
-            max,
-        }
+        let h = homogeneous(curve.points(), curve.weights());
+        let mut k = usize::MAX;
+        ApproximationError::of((0..n).map(|i| {
+            let (p, tangent) = cubic_point_tangent(&h, i as f64 / (n - 1) as f64);
+            (p - self.lac_at_dir(tangent, &mut k)).hypot() / self.len
+        }))
     }
 
     /// Weighted mean square residual (infinite for an invalid (f0, f1)).
