@@ -274,11 +274,11 @@ fn exhaustive(seg: &LacSegment) -> (f64, f64, f64) {
 
 /// A hold-out check (slow: about a second per case per core): cases the optimiser was never
 /// tuned on, from another seed (`AECURVE_SWEEP_SEED`, default 1; `AECURVE_SWEEP_CASES`,
-/// default 200), each against the exhaustive search. Measured (session 13, 300 cases per
-/// seed): seed 1, 2 miss by 2.4 and 2.8 %; seeds 7 and 11, none; seed 3, 1 by 73 %; seed 5,
-/// 2 by 3 % and 22 %. The misses lie in long valleys whose floors hold several minima or
-/// descend very slowly (module documentation of `approx`). The bound: at most 1 % of the
-/// cases miss the 1 % band, and none by more than 5 %; seeds 3 and 5 fail it (known, open).
+/// default 200), each against the exhaustive search. Measured, 300 cases per seed: seeds
+/// 1, 3, 5, 7 and 11 had five misses (by 2.4 % to 73 %, in long valleys) until the fit
+/// walked valley floors (`approx/valley.rs`), none since; seeds 13 and 17, first run after
+/// that change, none. The bound: every case within 1 % of the exhaustive optimum (it was:
+/// at most 1 % of the cases outside, none by more than 5 %).
 #[test]
 #[ignore = "slow hold-out sweep on fresh cases"]
 fn fresh_cases_near_the_exhaustive_optimum() {
@@ -331,7 +331,27 @@ fn fresh_cases_near_the_exhaustive_optimum() {
                             fit.rms
                         )
                     }),
-                Ok(fit) => Some(format!("{label}: rms {:e}, exhaustive found none", fit.rms)),
+                // The exhaustive grid's first cell centre is 1/320 from the square's edges:
+                // a monotone region thinner than that (one seed-13 case: f0 = 0.0003) is
+                // found by the fit alone. Its verdict, checked here by dense sampling, is the
+                // judge.
+                Ok(fit) => {
+                    let sampled = fit.curve.curvature_monotone_sampled(20_000);
+                    match sampled {
+                        Ok(r) if r.monotone => {
+                            println!(
+                                "  {label}: rms {:e} at ({:.5}, {:.5}), monotone by dense \
+                                 sampling; the exhaustive grid found none",
+                                fit.rms, fit.f0, fit.f1
+                            );
+                            None
+                        }
+                        _ => Some(format!(
+                            "{label}: rms {:e}, exhaustive found none and sampling disagrees",
+                            fit.rms
+                        )),
+                    }
+                }
                 Err(_) if !best.is_finite() => None,
                 Err(e) => Some(format!("{label}: {e}")),
             }
@@ -343,8 +363,8 @@ fn fresh_cases_near_the_exhaustive_optimum() {
     }
     let worst = worst.into_inner() as f64 * 1e-6;
     assert!(
-        failures.len() * 100 <= count && worst <= 1.05,
-        "{} of {count} cases miss by more than 1 % (worst ratio {worst:.4})",
+        failures.is_empty(),
+        "{} of {count} cases miss the 1 % band (worst ratio {worst:.4})",
         failures.len()
     );
 }
