@@ -18,7 +18,7 @@
 //!    (convex hull property);
 //! 2. the strict signs show exactly one variation and the zero-within-noise coefficients sit
 //!    only between the two runs: exactly one sign change (Descartes' rule for the Bernstein
-//!    basis); the root is refined by the Illinois method ([`crate::roots::illinois`]) to
+//!    basis); the root is refined by the Illinois method ([`crate::solve::roots::illinois`]) to
 //!    `1e-15` in t;
 //! 3. otherwise split at 1/2 (de Casteljau) and recurse, to a depth limit; a piece that is
 //!    still undecided there is a piece where the polynomial is zero within rounding
@@ -484,11 +484,11 @@ pub fn classify(c: &[f64], noise: &[f64]) -> Classified {
 }
 
 /// Refine the single sign change of `c` on [0, 1] (c(0) and c(1) of opposite strict sign)
-/// with [`crate::roots::illinois`]. It cannot fail: the bracket straddles the change and
+/// with [`crate::solve::roots::illinois`]. It cannot fail: the bracket straddles the change and
 /// every fourth step bisects, so 400 steps reach the tolerance.
 fn refine_root(c: &[f64]) -> f64 {
     let (f0, f1) = (c[0], c[c.len() - 1]);
-    crate::roots::illinois(|x| Ok(de_casteljau(c, x)), (0.0, f0), (1.0, f1), 1e-15, 400)
+    crate::solve::roots::illinois(|x| Ok(de_casteljau(c, x)), (0.0, f0), (1.0, f1), 1e-15, 400)
         .unwrap_or(0.5)
 }
 
@@ -616,30 +616,32 @@ fn sign_changes(pieces: &[SignPiece], c: &[f64]) -> Vec<f64> {
     out
 }
 
-/// A sign change of the polynomial's values in [lo, hi] when the ends differ in sign.
-fn bisect_values(c: &[f64], mut lo: f64, mut hi: f64) -> Option<f64> {
+/// A sign change of the polynomial's values in [lo, hi] when the ends differ in sign: the
+/// solver layer's bisection on "the value has the sign of the value at lo" (an exact zero
+/// ends it there), to the resolution of f64.
+fn bisect_values(c: &[f64], lo: f64, hi: f64) -> Option<f64> {
     let flo = de_casteljau(c, lo);
     let fhi = de_casteljau(c, hi);
     let prod = flo * fhi;
     if prod.is_nan() || prod >= 0.0 {
         return None;
     }
-    for _ in 0..80 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        let v = de_casteljau(c, mid);
-        if v == 0.0 {
-            return Some(mid);
-        }
-        if (v > 0.0) == (flo > 0.0) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Some(0.5 * (lo + hi))
+    let zero = std::cell::Cell::new(None);
+    let b = crate::solve::bisect_by(
+        |t| {
+            let v = de_casteljau(c, t);
+            if v == 0.0 {
+                zero.set(Some(t));
+            }
+            (v != 0.0 && (v > 0.0) == (flo > 0.0)).then_some(())
+        },
+        lo,
+        hi,
+        |a, b| 0.5 * (a + b),
+        |_, _| zero.get().is_some(),
+        80,
+    );
+    Some(zero.get().unwrap_or(0.5 * (b.inside + b.outside)))
 }
 
 /// Real roots of odd multiplicity in (0, 1) of a polynomial given exactly (noise bounds

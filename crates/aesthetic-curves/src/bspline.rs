@@ -324,54 +324,43 @@ impl Spans {
         )
     }
 
-    /// Distance from `q` to the curve near parameter `u0` and the foot's parameter (Newton on
-    /// the squared distance, moving across spans, safeguarded by the distance decreasing).
+    /// Point, first and second derivative at the global parameter u.
+    fn at_u(&self, u: f64) -> (Vec2, Vec2, Vec2) {
+        let i = self.locate(u);
+        let w = self.breaks[i + 1] - self.breaks[i];
+        let t = ((u - self.breaks[i]) / w).clamp(0.0, 1.0);
+        let (p, d1, d2) = self.at(i, t);
+        (p, d1 / w, d2 / (w * w))
+    }
+
+    /// Distance from `q` to the curve near parameter `u0` and the foot's parameter: the
+    /// solver layer's safeguarded Newton ([`crate::solve::newton_min_1d`]) on the squared
+    /// distance in the global parameter, so its steps cross spans; a step is kept only where
+    /// the distance falls.
     fn project_near(&self, q: Point, u0: f64) -> (f64, f64) {
         let q = q.to_vec2();
-        let n = self.coef.len();
-        let (lo, hi) = (self.breaks[0], self.breaks[n]);
-        let mut i = self.locate(u0);
-        let width = |i: usize| self.breaks[i + 1] - self.breaks[i];
-        let mut t = ((u0 - self.breaks[i]) / width(i)).clamp(0.0, 1.0);
-        let (p, _, _) = self.at(i, t);
-        let mut best = (p - q).hypot();
-        for _ in 0..12 {
-            let (p, d1, d2) = self.at(i, t);
+        let (lo, hi) = (self.breaks[0], self.breaks[self.coef.len()]);
+        let step = |u: f64| {
+            let (p, d1, d2) = self.at_u(u);
             let r = p - q;
             let g = r.dot(d1);
             let gg = d1.hypot2() + r.dot(d2);
-            let step = if gg > 0.0 {
+            Some(if gg > 0.0 {
                 -g / gg
             } else {
                 -g / d1.hypot2().max(1e-300)
-            };
-            // In the global parameter, then back to a span.
-            let mut h = step * width(i);
-            let u = self.breaks[i] + t * width(i);
-            // Converged: the step is below what changes the distance in f64.
-            if h.abs() <= 1e-12 * (hi - lo) {
-                break;
-            }
-            let mut moved = false;
-            for _ in 0..8 {
-                let nu = (u + h).clamp(lo, hi);
-                let ni = self.locate(nu);
-                let nt = ((nu - self.breaks[ni]) / width(ni)).clamp(0.0, 1.0);
-                let nd = (self.at(ni, nt).0 - q).hypot();
-                if nd < best {
-                    moved = (nu - u).abs() > 1e-15 * (hi - lo);
-                    best = nd;
-                    i = ni;
-                    t = nt;
-                    break;
-                }
-                h *= 0.5;
-            }
-            if !moved {
-                break;
-            }
-        }
-        (best, self.breaks[i] + t * width(i))
+            })
+        };
+        let opts = crate::solve::NewtonMin1d {
+            max_iterations: 12,
+            max_halvings: 8,
+            // Below this the step no longer changes the distance in f64.
+            x_tol: 1e-12 * (hi - lo),
+            min_move: 1e-15 * (hi - lo),
+            bounds: (lo, hi),
+        };
+        let m = crate::solve::newton_min_1d(step, |u| (self.at_u(u).0 - q).hypot(), u0, &opts);
+        (m.value, m.x)
     }
 }
 

@@ -103,11 +103,12 @@
 //! - [`quadrature`]: adaptive Gauss–Kronrod quadrature.
 //! - [`region`]: where a control point may go and keep a property (LAC existence,
 //!   curvature monotonicity), on a grid: the shaded regions of an editor.
-//! - [`roots`]: bracketed root finding (Illinois) shared by the solvers.
 //! - [`samples`]: reproducible random curve sets for benchmarks and tests.
 //! - [`sketch`]: pen input to a G2 curve of log-aesthetic pieces (as rational cubics).
-//! - [`solve`]: minimisers: Nelder–Mead (reports whether it converged), Brent's method in
-//!   one variable, and a walk along the boundary of a feasible set.
+//! - [`solve`]: the solver layer, every solver with options and a report of how it ended:
+//!   Levenberg–Marquardt, root finding (`solve::roots`), Newton in one variable,
+//!   Nelder–Mead, Brent's method, the compass search, a walk along the boundary of a
+//!   feasible set, bisection on a yes/no test.
 //!
 //! Points and vectors are [`kurbo::Point`] and [`kurbo::Vec2`]; angles are radians; signed
 //! curvature is positive where the curve turns counter-clockwise (kurbo's curvature has
@@ -136,7 +137,6 @@ pub mod pseudo_spline;
 pub mod pseudo_table;
 pub mod quadrature;
 pub mod region;
-pub mod roots;
 pub mod samples;
 pub mod sketch;
 pub mod solve;

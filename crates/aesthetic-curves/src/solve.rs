@@ -1,5 +1,8 @@
 //! The solver layer: minimisers with options and a report of how they ended.
 //!
+//! [`roots`]: bracketed root finding (Illinois, Brent from guesses, a bracketed Newton that
+//! reports whether it converged).
+//!
 //! [`least_squares`]: Levenberg–Marquardt for small nonlinear least-squares problems (the
 //! rational-cubic fit and the single-LAC fit), with a [`least_squares::Stop`] reason.
 //!
@@ -23,6 +26,7 @@
 //! vertices are always replaced first).
 
 pub mod least_squares;
+pub mod roots;
 
 /// Stopping rules of [`nelder_mead`].
 #[derive(Clone, Copy, Debug)]
@@ -320,6 +324,85 @@ pub fn newton_1d(mut update: impl FnMut(f64) -> Option<f64>, x0: f64, opts: &New
     }
 }
 
+/// Stopping rules of [`newton_min_1d`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonMin1d {
+    /// Most Newton steps.
+    pub max_iterations: usize,
+    /// Halvings of a step that does not lower the value before the run ends.
+    pub max_halvings: usize,
+    /// Converged when the Newton step is at most this long.
+    pub x_tol: f64,
+    /// ... or an accepted step moved at most this far.
+    pub min_move: f64,
+    /// The domain of x: every trial point is clamped into it.
+    pub bounds: (f64, f64),
+}
+
+/// The result of [`newton_min_1d`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Min1d {
+    /// The best point found.
+    pub x: f64,
+    /// The value there.
+    pub value: f64,
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// [`Stop1d::Converged`]: a short step, a short accepted move, or no halving lowered
+    /// the value (a minimum to the resolution of the value); [`Stop1d::Refused`]: the step
+    /// function could not go on; or the iteration limit.
+    pub stop: Stop1d,
+}
+
+/// Newton's method for a minimum in one variable, safeguarded by descent: from `x0` (clamped
+/// into the bounds), `step(x)` proposes a move (for a minimum of f, `-f'/f''`; any descent
+/// direction where f'' <= 0), which is halved until `value` falls, at most `max_halvings`
+/// times. The foot-point projection of [`crate::bspline`], whose steps cross spans.
+pub fn newton_min_1d(
+    mut step: impl FnMut(f64) -> Option<f64>,
+    mut value: impl FnMut(f64) -> f64,
+    x0: f64,
+    opts: &NewtonMin1d,
+) -> Min1d {
+    let (lo, hi) = opts.bounds;
+    let mut x = x0.clamp(lo, hi);
+    let mut v = value(x);
+    for i in 0..opts.max_iterations {
+        let done = |x: f64, v: f64, iterations: usize, stop: Stop1d| Min1d {
+            x,
+            value: v,
+            iterations,
+            stop,
+        };
+        let Some(mut h) = step(x).filter(|h| h.is_finite()) else {
+            return done(x, v, i, Stop1d::Refused);
+        };
+        if h.abs() <= opts.x_tol {
+            return done(x, v, i, Stop1d::Converged);
+        }
+        let mut moved = false;
+        for _ in 0..opts.max_halvings {
+            let nx = (x + h).clamp(lo, hi);
+            let nv = value(nx);
+            if nv < v {
+                moved = (nx - x).abs() > opts.min_move;
+                (x, v) = (nx, nv);
+                break;
+            }
+            h *= 0.5;
+        }
+        if !moved {
+            return done(x, v, i + 1, Stop1d::Converged);
+        }
+    }
+    Min1d {
+        x,
+        value: v,
+        iterations: opts.max_iterations,
+        stop: Stop1d::IterationLimit,
+    }
+}
+
 /// The result of [`compass_search`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Compass {
@@ -519,6 +602,43 @@ pub fn along_boundary(
 mod tests {
     use super::*;
     use std::f64::consts::SQRT_2;
+
+    #[test]
+    fn newton_min_1d_finds_a_minimum_and_says_how_it_ended() {
+        // f(x) = x^4 - 3x^2 + x: minima near -1.30 and 1.13, f'' < 0 near 0.
+        let f = |x: f64| x.powi(4) - 3.0 * x * x + x;
+        let step = |x: f64| {
+            let (g, gg) = (4.0 * x.powi(3) - 6.0 * x + 1.0, 12.0 * x * x - 6.0);
+            Some(if gg > 0.0 { -g / gg } else { -g.signum() * 0.5 })
+        };
+        let opts = NewtonMin1d {
+            max_iterations: 50,
+            max_halvings: 30,
+            x_tol: 1e-13,
+            min_move: 0.0,
+            bounds: (-3.0, 3.0),
+        };
+        // From 0.5 and from 0.1 (f'' < 0 at both: the fallback step, downhill) to the
+        // minimum on each side (the roots of 4x³ - 6x + 1, by Newton in f64).
+        let m = newton_min_1d(step, f, 0.5, &opts);
+        assert!(
+            m.stop == Stop1d::Converged && (m.x - 1.130_901_122_629_986).abs() < 1e-10,
+            "{m:?}"
+        );
+        let left = newton_min_1d(step, f, 0.1, &opts);
+        assert!((left.x + 1.300_839_565_941_577).abs() < 1e-10, "{left:?}");
+        assert_eq!(m.value, f(m.x));
+        // A step function that gives up, and a limit too short to converge.
+        let r = newton_min_1d(|_| None, f, 0.1, &opts);
+        assert_eq!((r.stop, r.x), (Stop1d::Refused, 0.1));
+        let short = NewtonMin1d {
+            max_iterations: 1,
+            ..opts
+        };
+        let s = newton_min_1d(step, f, 2.9, &short);
+        assert_eq!(s.stop, Stop1d::IterationLimit);
+        assert!(s.value < f(2.9));
+    }
 
     #[test]
     fn newton_1d_converges_refuses_and_stops_as_it_says() {

@@ -2,7 +2,7 @@
 
 use super::{triangle_angles, LacSegment, Polyline, Similarity, TriangleAngles, TurningSamples};
 use crate::error::{Error, Result};
-use crate::roots::illinois;
+use crate::solve::roots::illinois;
 use kurbo::{Point, Vec2};
 
 /// A log-aesthetic segment with an inflection point at its start (docs/math.md §3.2; S4 §2.2):

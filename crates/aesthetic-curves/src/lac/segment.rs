@@ -4,7 +4,7 @@
 use super::{cdiv, cmul, triangle_angles, Similarity, TriangleAngles};
 use super::{LacStandard, Polyline, TurningSamples, MAX_ABS_ALPHA};
 use crate::error::{Error, Result};
-use crate::roots::brent;
+use crate::solve::roots::brent;
 use kurbo::{Point, Vec2};
 
 /// A log-aesthetic segment fitted into a control triangle (docs/math.md §3.1; Yoshida & Saito
@@ -149,7 +149,7 @@ impl LacSegment {
     ///    Newton from the straight line between the circle and the limit in a variable in
     ///    which φ is nearly linear there. 2 to 5 chords.
     /// 3. If Newton does not converge in its budget (α in [0, 1) near θ_d, extreme shapes):
-    ///    Brent's method ([`crate::roots::brent`]) from the Taylor guess and the line.
+    ///    Brent's method ([`crate::solve::roots::brent`]) from the Taylor guess and the line.
     pub fn solve_lambda(alpha: f64, theta_d: f64, phi: f64) -> Result<f64> {
         Ok(Self::solve_lambda_chord(alpha, theta_d, phi)?.0)
     }
@@ -294,7 +294,7 @@ impl LacSegment {
         Ok((l, None))
     }
 
-    /// The fast path of the Λ solve: Newton's method ([`crate::roots::newton`]) on the base
+    /// The fast path of the Λ solve: Newton's method ([`crate::solve::roots::newton`]) on the base
     /// angle, its Λ derivative riding on the chord's quadrature
     /// ([`LacStandard::integral_dlambda`]), from the Taylor guess, in z = (1 - Λ/Λ_max)^p1
     /// for α < 0 or α > 1 (where φ is nearly linear up to the limit) and in Λ for
@@ -358,7 +358,7 @@ impl LacSegment {
             let slope = chord.cross(d) / chord.hypot2();
             Ok((chord.y.atan2(chord.x) - ta - phi, slope * dl, (l, chord, d)))
         };
-        let root = crate::roots::newton(
+        let root = crate::solve::roots::newton(
             f,
             x0,
             (lo, hi),
