@@ -833,10 +833,6 @@ fn rotate(v: Vec2, a: f64) -> Vec2 {
     Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
 }
 
-fn sum_sq(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum()
-}
-
 fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
@@ -859,25 +855,6 @@ fn difference_column(
     }
 }
 
-/// The fairing's line search: the first of `lam`, `lam/2`, ... (30 halvings) whose trial
-/// (its state and mismatches; `None` where the pieces cannot be built) lowers the sum of
-/// squared mismatches below `cur` (a joint that cannot match does not stop the others).
-fn backtrack<T>(
-    mut lam: f64,
-    cur: f64,
-    mut trial: impl FnMut(f64) -> Option<(T, Vec<f64>)>,
-) -> Option<(T, Vec<f64>)> {
-    for _ in 0..30 {
-        if let Some((state, d)) = trial(lam) {
-            if sum_sq(&d) < cur {
-                return Some((state, d));
-            }
-        }
-        lam *= 0.5;
-    }
-    None
-}
-
 /// Step 4: G2 fairing by Newton on the active joints' tangent angles.
 fn fair(
     slots: &[Slot],
@@ -886,7 +863,7 @@ fn fair(
     opts: &SketchOptions,
 ) -> Result<(Vec<Built>, FairingReport)> {
     let m = slots.len();
-    let mut built = build_all(slots, pts, dirs)?;
+    let built = build_all(slots, pts, dirs)?;
     // Joints where both sides are inflection ends have zero curvature on both sides; every
     // other joint (an inflection cut whose piece could not be an inflection piece too) is
     // faired.
@@ -912,18 +889,13 @@ fn fair(
     // largest curvature, a step that blows one free end up into a hook (a triangle at the
     // edge of its existence region) would shrink every relative mismatch and be accepted.
     let scale = curvature_scale(&built);
-    let mut d = mismatches(&built, &active, scale);
+    let d = mismatches(&built, &active, scale);
     let initial = max_abs(&d);
-    let mut report = FairingReport {
-        iterations: 0,
-        initial_jump: initial,
-        final_jump: initial,
-        converged: initial <= opts.g2_tolerance,
-    };
     let na = active.len();
-    while !report.converged && report.iterations < opts.max_fairing_iterations {
-        crate::deadline::check()?;
-        report.iterations += 1;
+    let tol = opts.g2_tolerance;
+    // Newton on the active joints' tangent angles (the solver layer's damped Newton); the
+    // state is the tangent directions and the pieces built on them.
+    let direction = |(dirs, built): &(Vec<Vec2>, Vec<Built>), d: &[f64]| {
         // Finite-difference Jacobian: joint k's angle moves pieces active[k]-1 and active[k].
         // Central difference; one-sided where a side leaves the admissible set. The columns
         // are independent: computed in parallel (the same numbers in any order).
@@ -938,7 +910,7 @@ fn fair(
                 Some(mismatches(&b2, &active, scale))
             };
             let h = 1e-6;
-            difference_column(at(h), at(-h), &d, h)
+            difference_column(at(h), at(-h), d, h)
         };
         let columns: Vec<Option<Vec<f64>>> = if na >= 4 {
             active.par_iter().map(|&j| column(j)).collect()
@@ -946,53 +918,51 @@ fn fair(
             active.iter().map(|&j| column(j)).collect()
         };
         let mut jac = DMatrix::<f64>::zeros(na, na);
-        let mut jac_ok = true;
         for (k, c) in columns.into_iter().enumerate() {
-            match c {
-                Some(c) => {
-                    for (r, v) in c.into_iter().enumerate() {
-                        jac[(r, k)] = v;
-                    }
-                }
-                None => {
-                    jac_ok = false;
-                    break;
-                }
+            for (r, v) in c?.into_iter().enumerate() {
+                jac[(r, k)] = v;
             }
         }
-        let step = if jac_ok {
-            jac.lu()
-                .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))
-        } else {
-            None
-        };
-        let Some(step) = step else {
-            break;
-        };
+        let step = jac
+            .lu()
+            .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))?;
         let big = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let lam = if big > 0.3 { 0.3 / big } else { 1.0 };
-        let found = backtrack(lam, sum_sq(&d), |lam| {
-            let mut trial = dirs.to_vec();
-            for (k, &j) in active.iter().enumerate() {
-                trial[j] = rotate(dirs[j], lam * step[k]);
-            }
-            let b2 = build_all(slots, pts, &trial).ok()?;
-            let d2 = mismatches(&b2, &active, scale);
-            Some(((trial, b2), d2))
-        });
-        let accepted = found.is_some();
-        if let Some(((trial, b2), d2)) = found {
-            dirs.copy_from_slice(&trial);
-            built = b2;
-            d = d2;
+        Some((step.iter().copied().collect::<Vec<f64>>(), lam))
+    };
+    let trial = |(dirs, _): &(Vec<Vec2>, Vec<Built>), step: &[f64], lam: f64| {
+        let mut trial = dirs.to_vec();
+        for (k, &j) in active.iter().enumerate() {
+            trial[j] = rotate(dirs[j], lam * step[k]);
         }
-        // Converged by the measure of the final report: over the build's own curvature.
-        report.final_jump = max_abs(&mismatches(&built, &active, curvature_scale(&built)));
-        report.converged = report.final_jump <= opts.g2_tolerance;
-        if !accepted {
-            break;
-        }
-    }
+        let b2 = build_all(slots, pts, &trial).ok()?;
+        let d2 = mismatches(&b2, &active, scale);
+        Some(((trial, b2), d2))
+    };
+    // Converged by the measure of the final report: over the build's own curvature.
+    let own = |built: &[Built]| max_abs(&mismatches(built, &active, curvature_scale(built)));
+    let converged = |(_, built): &(Vec<Vec2>, Vec<Built>), _: &[f64]| own(built) <= tol;
+    let newton = crate::solve::DampedNewton {
+        max_iterations: opts.max_fairing_iterations,
+        halvings: 30,
+    };
+    let run = crate::solve::damped_newton(
+        (dirs.to_vec(), built),
+        d,
+        direction,
+        trial,
+        converged,
+        &newton,
+    )?;
+    let (new_dirs, mut built) = run.state;
+    dirs.copy_from_slice(&new_dirs);
+    let final_jump = own(&built);
+    let mut report = FairingReport {
+        iterations: run.iterations,
+        initial_jump: initial,
+        final_jump,
+        converged: final_jump <= tol,
+    };
     if !report.converged {
         free_alphas(
             slots,
@@ -1068,12 +1038,8 @@ fn free_alphas(
         }
     }
     let nx = na + free.len();
-    let mut d = d0;
-    let mut iterations = 0;
-    while iterations < opts.max_fairing_iterations {
-        crate::deadline::check()?;
-        iterations += 1;
-        report.iterations += 1;
+    type State = (Vec<Vec2>, Vec<Slot>, Vec<Built>);
+    let direction = |(dirs, local, built): &State, d: &[f64]| {
         // Columns: the active joints' tangent angles, then the free pieces' α.
         let column = |c: usize| -> Vec<f64> {
             let at = |h: f64| -> Option<Vec<f64>> {
@@ -1104,7 +1070,7 @@ fn free_alphas(
             };
             let h = if c < na { 1e-6 } else { 1e-5 };
             // An unknown that can move neither way does not move.
-            difference_column(at(h), at(-h), &d, h).unwrap_or_else(|| vec![0.0; na])
+            difference_column(at(h), at(-h), d, h).unwrap_or_else(|| vec![0.0; na])
         };
         let columns: Vec<Vec<f64>> = (0..nx).into_par_iter().map(column).collect();
         let mut jac = DMatrix::<f64>::zeros(na, nx);
@@ -1117,12 +1083,9 @@ fn free_alphas(
         // Minimum-norm step in the weighted unknowns: x = Jᵀ (J Jᵀ + μ I)⁻¹ (-d).
         let jjt = &jac * jac.transpose();
         let mu = 1e-12 * jjt.trace().max(f64::MIN_POSITIVE);
-        let Some(y) = (jjt + DMatrix::identity(na, na) * mu)
+        let y = (jjt + DMatrix::identity(na, na) * mu)
             .lu()
-            .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))
-        else {
-            return Ok(());
-        };
+            .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))?;
         let mut step = jac.transpose() * y;
         for c in na..nx {
             step[c] *= ALPHA_WEIGHT.sqrt();
@@ -1132,60 +1095,70 @@ fn free_alphas(
         let lam = 1.0f64
             .min(0.3 / big_angle.max(1e-300))
             .min(1.0 / big_alpha.max(1e-300));
-        let found = backtrack(lam, sum_sq(&d), |lam| {
-            let mut trial = dirs.to_vec();
-            for (k, &j) in active.iter().enumerate() {
-                trial[j] = rotate(dirs[j], lam * step[k]);
-            }
-            let mut tl = local.clone();
-            for (k, &i) in free.iter().enumerate() {
-                let a = tl[i].alpha.unwrap_or(1.0) + lam * step[na + k];
-                tl[i].alpha = Some(a.clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1));
-            }
-            let b2 = build_all(&tl, pts, &trial).ok()?;
-            let d2 = mismatches(&b2, active, scale);
-            Some(((trial, tl, b2), d2))
-        });
-        let accepted = found.is_some();
-        if let Some(((trial, tl, b2), d2)) = found {
-            dirs.copy_from_slice(&trial);
-            local = tl;
-            *built = b2;
-            d = d2;
+        Some((step.iter().copied().collect::<Vec<f64>>(), lam))
+    };
+    let trial = |(dirs, local, _): &State, step: &[f64], lam: f64| {
+        let mut trial = dirs.to_vec();
+        for (k, &j) in active.iter().enumerate() {
+            trial[j] = rotate(dirs[j], lam * step[k]);
         }
-        report.final_jump = max_abs(&mismatches(built, active, curvature_scale(built)));
-        report.converged = report.final_jump <= tol;
-        if report.converged || !accepted {
-            break;
+        let mut tl = local.clone();
+        for (k, &i) in free.iter().enumerate() {
+            let a = tl[i].alpha.unwrap_or(1.0) + lam * step[na + k];
+            tl[i].alpha = Some(a.clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1));
         }
-    }
+        let b2 = build_all(&tl, pts, &trial).ok()?;
+        let d2 = mismatches(&b2, active, scale);
+        Some(((trial, tl, b2), d2))
+    };
+    let own = |built: &[Built]| max_abs(&mismatches(built, active, curvature_scale(built)));
+    let converged = |(_, _, built): &State, _: &[f64]| own(built) <= tol;
+    let newton = crate::solve::DampedNewton {
+        max_iterations: opts.max_fairing_iterations,
+        halvings: 30,
+    };
+    let run = crate::solve::damped_newton(
+        (dirs.to_vec(), local, std::mem::take(built)),
+        d0,
+        direction,
+        trial,
+        converged,
+        &newton,
+    )?;
+    report.iterations += run.iterations;
+    let (new_dirs, _, new_built) = run.state;
+    dirs.copy_from_slice(&new_dirs);
+    *built = new_built;
+    report.final_jump = own(built);
+    report.converged = report.final_jump <= tol;
     Ok(())
 }
 
 /// Distance from `q` to a rational cubic and the foot's parameter: the nearest of `n`
 /// samples, then safeguarded Newton.
 fn project(c: &RationalBezier, q: Point, samples: &[(f64, Point)]) -> (f64, f64) {
-    let (mut t, mut best) = samples
+    let (t0, _) = samples
         .iter()
         .map(|(t, p)| (*t, (*p - q).hypot()))
         .min_by(|a, b| a.1.total_cmp(&b.1))
-        .unwrap();
-    for _ in 0..20 {
+        .unwrap_or((0.5, f64::INFINITY));
+    // Newton on the squared distance, a step kept only where the distance falls (no
+    // halving: from the nearest sample the first step that does not help ends it).
+    let step = |t: f64| {
         let d = c.derivs(t);
         let r = c.eval(t) - q;
         let gg = d.d1.hypot2() + r.dot(d.d2);
-        if gg <= 0.0 {
-            break;
-        }
-        let nt = (t - r.dot(d.d1) / gg).clamp(0.0, 1.0);
-        let nd = (c.eval(nt) - q).hypot();
-        if nd >= best {
-            break;
-        }
-        best = nd;
-        t = nt;
-    }
-    (best, t)
+        (gg > 0.0).then(|| -r.dot(d.d1) / gg)
+    };
+    let opts = crate::solve::NewtonMin1d {
+        max_iterations: 20,
+        max_halvings: 1,
+        x_tol: 0.0,
+        min_move: 0.0,
+        bounds: (0.0, 1.0),
+    };
+    let m = crate::solve::newton_min_1d(step, |t| (c.eval(t) - q).hypot(), t0, &opts);
+    (m.value, m.x)
 }
 
 /// Fit a G2 curve of LAC pieces (as rational cubics) to an ordered point sequence (see the

@@ -159,6 +159,39 @@ pub fn nelder_mead(
     }
 }
 
+/// Golden-section search for a minimum of `f` on [lo, hi]: `iterations` steps after the
+/// first two interior points (each shrinks the bracket by 0.618). Returns the better
+/// interior point and its value. For a function too costly or too rough for Brent's
+/// parabolic steps (the rational-cubic fit's valley profile, itself a minimisation).
+pub fn golden_section(
+    f: &mut dyn FnMut(f64) -> f64,
+    mut lo: f64,
+    mut hi: f64,
+    iterations: usize,
+) -> (f64, f64) {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (hi - r * (hi - lo), lo + r * (hi - lo));
+    let (mut fa, mut fb) = (f(a), f(b));
+    for _ in 0..iterations {
+        if fa < fb {
+            hi = b;
+            (b, fb) = (a, fa);
+            a = hi - r * (hi - lo);
+            fa = f(a);
+        } else {
+            lo = a;
+            (a, fa) = (b, fb);
+            b = lo + r * (hi - lo);
+            fb = f(b);
+        }
+    }
+    if fa < fb {
+        (a, fa)
+    } else {
+        (b, fb)
+    }
+}
+
 /// Brent's minimisation of `f` on [lo, hi] to `tol` (golden sections with parabolic
 /// steps; Brent 1973, "Algorithms for minimization without derivatives", ch. 5). Returns
 /// the minimiser and its value: a local minimum, the global one for a unimodal `f`.
@@ -403,6 +436,99 @@ pub fn newton_min_1d(
     }
 }
 
+/// Limits of [`damped_newton`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DampedNewton {
+    /// Most Newton steps.
+    pub max_iterations: usize,
+    /// Halvings of a step's length before the line search gives up.
+    pub halvings: usize,
+}
+
+/// Why [`damped_newton`] stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SystemStop {
+    /// The caller's test of convergence held.
+    Converged,
+    /// `max_iterations` ran out first.
+    IterationLimit,
+    /// No step was found (a Jacobian that could not be formed or solved).
+    NoStep,
+    /// No length of the step lowered the sum of squared residuals.
+    NoDescent,
+}
+
+/// The result of [`damped_newton`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct System<S> {
+    /// The last accepted state.
+    pub state: S,
+    /// Its residuals.
+    pub residuals: Vec<f64>,
+    /// Newton steps tried.
+    pub iterations: usize,
+    /// Why the run ended.
+    pub stop: SystemStop,
+}
+
+/// Damped Newton (or Gauss–Newton) for a system of equations over an opaque state: until
+/// `converged(state, residuals)`, `direction(state, residuals)` gives a step and its first
+/// length (the caller solves its own Jacobian: square, minimum-norm, weighted), and
+/// `trial(state, step, length)` builds the state moved by that length of the step with its
+/// residuals (`None` where it cannot be built); the first of the length, its half, ... (at
+/// most `halvings` tries) that lowers the sum of squared residuals is taken. It checks the
+/// thread's deadline ([`crate::deadline`]) every step and never runs past its limits. The
+/// sketch's G2 fairing, in the joints' tangent angles and then with free α.
+pub fn damped_newton<S>(
+    state: S,
+    residuals: Vec<f64>,
+    mut direction: impl FnMut(&S, &[f64]) -> Option<(Vec<f64>, f64)>,
+    mut trial: impl FnMut(&S, &[f64], f64) -> Option<(S, Vec<f64>)>,
+    mut converged: impl FnMut(&S, &[f64]) -> bool,
+    opts: &DampedNewton,
+) -> crate::error::Result<System<S>> {
+    let sum_sq = |r: &[f64]| r.iter().map(|x| x * x).sum::<f64>();
+    let mut out = System {
+        state,
+        residuals,
+        iterations: 0,
+        stop: SystemStop::IterationLimit,
+    };
+    loop {
+        if converged(&out.state, &out.residuals) {
+            out.stop = SystemStop::Converged;
+            return Ok(out);
+        }
+        if out.iterations >= opts.max_iterations {
+            out.stop = SystemStop::IterationLimit;
+            return Ok(out);
+        }
+        crate::deadline::check()?;
+        out.iterations += 1;
+        let Some((step, mut length)) = direction(&out.state, &out.residuals) else {
+            out.stop = SystemStop::NoStep;
+            return Ok(out);
+        };
+        let current = sum_sq(&out.residuals);
+        let mut found = None;
+        for _ in 0..opts.halvings {
+            if let Some((s, r)) = trial(&out.state, &step, length) {
+                if sum_sq(&r) < current {
+                    found = Some((s, r));
+                    break;
+                }
+            }
+            length *= 0.5;
+        }
+        let Some((s, r)) = found else {
+            out.stop = SystemStop::NoDescent;
+            return Ok(out);
+        };
+        out.state = s;
+        out.residuals = r;
+    }
+}
+
 /// The result of [`compass_search`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Compass {
@@ -602,6 +728,60 @@ pub fn along_boundary(
 mod tests {
     use super::*;
     use std::f64::consts::SQRT_2;
+
+    #[test]
+    fn golden_section_shrinks_onto_the_minimum() {
+        let mut calls = 0;
+        let mut f = |x: f64| {
+            calls += 1;
+            (x - 0.3).powi(2)
+        };
+        let (x, v) = golden_section(&mut f, 0.0, 1.0, 40);
+        assert!((x - 0.3).abs() < 1e-7 && v < 1e-13, "{x} {v}");
+        assert_eq!(calls, 42);
+    }
+
+    #[test]
+    fn damped_newton_solves_a_system_and_says_how_it_ended() {
+        // x² + y² = 4, x y = 1 from (2, 0.3): the root (1.9319, 0.5176).
+        let res = |x: &[f64; 2]| vec![x[0] * x[0] + x[1] * x[1] - 4.0, x[0] * x[1] - 1.0];
+        let direction = |x: &[f64; 2], r: &[f64]| {
+            let (a, b, c, d) = (2.0 * x[0], 2.0 * x[1], x[1], x[0]);
+            let det = a * d - b * c;
+            (det != 0.0).then(|| {
+                let s = vec![-(d * r[0] - b * r[1]) / det, -(-c * r[0] + a * r[1]) / det];
+                (s, 1.0)
+            })
+        };
+        let trial = |x: &[f64; 2], s: &[f64], l: f64| {
+            let y = [x[0] + l * s[0], x[1] + l * s[1]];
+            Some((y, res(&y)))
+        };
+        let small = |_: &[f64; 2], r: &[f64]| r.iter().all(|v| v.abs() < 1e-13);
+        let opts = DampedNewton {
+            max_iterations: 30,
+            halvings: 30,
+        };
+        let x0 = [2.0, 0.3];
+        let sys = damped_newton(x0, res(&x0), direction, trial, small, &opts).unwrap();
+        let root = (2.0 + 3f64.sqrt()).sqrt();
+        assert_eq!(sys.stop, SystemStop::Converged);
+        assert!((sys.state[0] - root).abs() < 1e-12 && (sys.state[1] - 1.0 / root).abs() < 1e-12);
+        // Out of iterations, without a direction, without descent.
+        let one = DampedNewton {
+            max_iterations: 1,
+            ..opts
+        };
+        let r = damped_newton(x0, res(&x0), direction, trial, small, &one).unwrap();
+        assert_eq!((r.stop, r.iterations), (SystemStop::IterationLimit, 1));
+        let none = |_: &[f64; 2], _: &[f64]| None;
+        let r = damped_newton(x0, res(&x0), none, trial, small, &opts).unwrap();
+        assert_eq!((r.stop, r.state), (SystemStop::NoStep, x0));
+        let uphill =
+            |x: &[f64; 2], r: &[f64]| direction(x, r).map(|(s, l)| (vec![-s[0], -s[1]], l));
+        let r = damped_newton(x0, res(&x0), uphill, trial, small, &opts).unwrap();
+        assert_eq!(r.stop, SystemStop::NoDescent);
+    }
 
     #[test]
     fn newton_min_1d_finds_a_minimum_and_says_how_it_ended() {
