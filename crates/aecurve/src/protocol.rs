@@ -6,7 +6,7 @@
 //! result is NaN or infinite (checked once more before a response leaves).
 
 use aesthetic_curves::monotone::CurvatureMonotone;
-use aesthetic_curves::{Bezier, Error, Point, RationalBezier};
+use aesthetic_curves::{Bezier, Curve, Error, Point, RationalBezier};
 use serde_json::{json, Map, Value};
 
 /// Largest number of divisions the sampling test accepts from a request.
@@ -721,7 +721,7 @@ fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let mut out = sketch_json(&sk, tolerance);
     if let Some(n) = draw {
         let curve = sk.as_curve();
-        let nurbs = curve.to_nurbs()?;
+        let nurbs = curve.to_nurbs(0.0)?;
         out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
     }
     Ok(out)
@@ -1029,7 +1029,7 @@ fn spline_pseudo_elastic(obj: &Map<String, Value>) -> Result<Value, ProtoError> 
     let mut out = spline_json(&s, mode);
     if let Some(n) = draw {
         let curve = s.as_curve()?;
-        let nurbs = curve.to_nurbs()?;
+        let nurbs = curve.to_nurbs(0.0)?;
         out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
     }
     Ok(out)

@@ -1058,7 +1058,7 @@ fn fit_sketch(py: Python<'_>, points: &Bound<'_, PyAny>, tolerance: f64) -> PyRe
     let curve = s.as_curve();
     Ok(Sketch {
         nurbs: Nurbs {
-            inner: curve.to_nurbs().map_err(err)?,
+            inner: curve.to_nurbs(0.0).map_err(err)?,
         },
         pieces: curve
             .0
@@ -1109,7 +1109,7 @@ impl PseudoSpline {
     fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
         self.inner
             .as_curve()
-            .and_then(|c| c.to_nurbs())
+            .and_then(|c| c.to_nurbs(0.0))
             .map_err(err)
     }
 }

@@ -6,7 +6,9 @@
 //! starts and ends ([`Curve::ends`]), its signed curvature there
 //! ([`Curve::end_curvatures`]), its arc length ([`Curve::arc_length`]), points with unit
 //! tangent and signed curvature along it ([`Curve::curve_points`]: what a curvature comb or
-//! a curvature plot draws), and cubic Béziers within an accuracy ([`Curve::to_bezpath`]).
+//! a curvature plot draws), cubic Béziers within an accuracy ([`Curve::to_bezpath`]), and
+//! one NURBS for CAD, exact where the curve is rational and within an accuracy otherwise
+//! ([`Curve::to_nurbs`]).
 //! A piecewise curve (NURBS, spline, sketch) answers for all its pieces in order.
 //!
 //! Signed curvature is positive where the curve turns counter-clockwise (kurbo's has the
@@ -56,7 +58,16 @@ pub trait Curve {
     /// Cubic Béziers within `accuracy` of the curve (exact for polynomial pieces of degree 3
     /// or less).
     fn to_bezpath(&self, accuracy: f64) -> Result<BezPath>;
+    /// The curve as one NURBS (what CAD exports write): exact for the rational types
+    /// (Béziers, NURBS, the spline, a sketch: `accuracy` unused); for a log-aesthetic
+    /// segment, G2 rational cubics within `accuracy` (largest distance, in the curve's
+    /// units), each proven curvature-monotone ([`crate::approx::fit_rational_spline`], at
+    /// most [`MAX_NURBS_PIECES`] of them).
+    fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs>;
 }
+
+/// Most rational cubics a log-aesthetic segment's [`Curve::to_nurbs`] uses.
+pub const MAX_NURBS_PIECES: usize = 64;
 
 fn check_n(n: usize) -> Result<()> {
     if n < 2 {
@@ -122,9 +133,10 @@ fn bezier_length(c: &impl PlanarCurve, polygon: &[Point]) -> Result<f64> {
     Ok(v.x)
 }
 
-/// The [`Curve`] of a Bézier type (points from [`PlanarCurve`]; `$path`: its `to_bezpath`).
+/// The [`Curve`] of a Bézier type (points from [`PlanarCurve`]; `$path`: its `to_bezpath`;
+/// `$rational`: the curve as a rational Bézier).
 macro_rules! bezier_curve {
-    ($ty:ty, $path:expr) => {
+    ($ty:ty, $path:expr, $rational:expr) => {
         impl Curve for $ty {
             fn ends(&self) -> Result<(Point, Point)> {
                 let p = self.points();
@@ -143,19 +155,31 @@ macro_rules! bezier_curve {
                 let path: fn(&$ty, f64) -> Result<BezPath> = $path;
                 path(self, accuracy)
             }
+            fn to_nurbs(&self, _accuracy: f64) -> Result<Nurbs> {
+                let rational: fn(&$ty) -> RationalBezier = $rational;
+                Ok(Nurbs::from_bezier(&rational(self)))
+            }
         }
     };
 }
 
 // Exact for degree 3 or less; kurbo's curve fitting above.
-bezier_curve!(Bezier, |c, accuracy| {
-    if c.degree() <= 3 {
-        Bezier::to_bezpath(std::slice::from_ref(c))
-    } else {
-        crate::bezpath::fit_planar(c, accuracy)
-    }
-});
-bezier_curve!(RationalBezier, RationalBezier::to_bezpath);
+bezier_curve!(
+    Bezier,
+    |c, accuracy| {
+        if c.degree() <= 3 {
+            Bezier::to_bezpath(std::slice::from_ref(c))
+        } else {
+            crate::bezpath::fit_planar(c, accuracy)
+        }
+    },
+    Bezier::to_rational
+);
+bezier_curve!(
+    RationalBezier,
+    RationalBezier::to_bezpath,
+    RationalBezier::clone
+);
 
 /// Unit tangents at turning angles `taus` from a start direction `d0`, turning with `sign`.
 fn turned(d0: Vec2, sign: f64, taus: impl Iterator<Item = f64>) -> Vec<Vec2> {
@@ -206,6 +230,10 @@ impl Curve for LacSegment {
     fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
         LacSegment::to_bezpath(self, accuracy)
     }
+    fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs> {
+        let opts = crate::approx::ApproxOptions::default();
+        Ok(crate::approx::fit_rational_spline(self, accuracy, MAX_NURBS_PIECES, &opts)?.nurbs)
+    }
 }
 
 impl Curve for LacInflectionSegment {
@@ -225,6 +253,10 @@ impl Curve for LacInflectionSegment {
     }
     fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
         LacInflectionSegment::to_bezpath(self, accuracy)
+    }
+    fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs> {
+        let opts = crate::approx::ApproxOptions::default();
+        Ok(crate::approx::fit_inflection_spline(self, accuracy, MAX_NURBS_PIECES, &opts)?.nurbs)
     }
 }
 
@@ -287,20 +319,14 @@ impl<C: Curve> Curve for Pieces<C> {
     fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
         pieces_path(&self.0, accuracy)
     }
-}
-
-impl Pieces<RationalBezier> {
-    /// The pieces joined into one NURBS ([`Nurbs::from_beziers`]: span i on [i, i + 1]).
-    pub fn to_nurbs(&self) -> Result<Nurbs> {
-        Nurbs::from_beziers(&self.0)
-    }
-}
-
-impl Pieces<Bezier> {
-    /// The pieces, as rational Béziers of unit weights, joined into one NURBS.
-    pub fn to_nurbs(&self) -> Result<Nurbs> {
-        let rational: Vec<RationalBezier> = self.0.iter().map(|b| b.to_rational()).collect();
-        Nurbs::from_beziers(&rational)
+    /// Every piece's rational Bézier spans joined into one NURBS ([`Nurbs::from_beziers`]:
+    /// span i on [i, i + 1]), the one join of pieces in the library.
+    fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs> {
+        let mut spans: Vec<RationalBezier> = Vec::with_capacity(self.0.len());
+        for piece in &self.0 {
+            spans.extend(piece.to_nurbs(accuracy)?.as_curve()?.0);
+        }
+        Nurbs::from_beziers(&spans)
     }
 }
 
@@ -375,6 +401,66 @@ mod tests {
                 assert!((q.normal() + r / 2.0).hypot() < 1e-9);
             }
         }
+    }
+
+    #[test]
+    fn every_type_becomes_one_nurbs() {
+        // Exact types: the NURBS traces the same points (at the same parameter for one
+        // piece; span i on [i, i + 1] for pieces).
+        let quartic = Bezier::new(vec![
+            p(0.0, 0.0),
+            p(1.0, 2.0),
+            p(3.0, 2.5),
+            p(4.0, 0.5),
+            p(6.0, 1.0),
+        ])
+        .unwrap();
+        let n = quartic.to_nurbs(0.0).unwrap();
+        for i in 0..=10 {
+            let t = i as f64 / 10.0;
+            assert!((n.eval(t) - quartic.eval(t)).hypot() < 1e-12, "{t}");
+        }
+        let spline = crate::pseudo_spline::pseudo_elastic(
+            &[p(0.0, 0.0), p(2.0, 1.0), p(4.0, 0.0), p(6.0, 2.0)],
+            false,
+            crate::pseudo_spline::Mode::Table,
+        )
+        .unwrap()
+        .as_curve()
+        .unwrap();
+        let joined = spline.to_nurbs(0.0).unwrap();
+        assert_eq!(joined.domain(), (0.0, 3.0));
+        for (i, piece) in spline.0.iter().enumerate() {
+            for t in [0.0, 0.3, 0.8] {
+                let d = (joined.eval(i as f64 + t) - piece.eval(t)).hypot();
+                assert!(d < 1e-12, "piece {i} at {t}: {d:e}");
+            }
+        }
+        // A LAC segment: rational cubics within the accuracy (the distance from each NURBS
+        // point to a dense polyline of the segment, whose chords sag less than 1e-7).
+        let seg = LacSegment::new(-1.0, [p(0.0, 0.0), p(10.0, 0.0), p(16.0, 9.0)]).unwrap();
+        let dense: Vec<Point> = seg.sample(20_001).unwrap().points;
+        let near = |q: Point| {
+            dense
+                .windows(2)
+                .map(|w| {
+                    use kurbo::ParamCurveNearest;
+                    kurbo::Line::new(w[0], w[1])
+                        .nearest(q, 1e-12)
+                        .distance_sq
+                        .sqrt()
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        for accuracy in [1e-2, 1e-5] {
+            let nurbs = seg.to_nurbs(accuracy).unwrap();
+            let (lo, hi) = nurbs.domain();
+            let worst = (0..=400)
+                .map(|i| near(nurbs.eval(lo + (hi - lo) * i as f64 / 400.0)))
+                .fold(0.0, f64::max);
+            assert!(worst <= accuracy + 1e-7, "{accuracy:e}: {worst:e}");
+        }
+        assert!(seg.to_nurbs(0.0).is_err() && seg.to_nurbs(f64::NAN).is_err());
     }
 
     #[test]

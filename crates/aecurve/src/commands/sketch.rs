@@ -2,6 +2,7 @@
 
 use crate::commands::{write_curvature_plot, write_curve_outputs};
 use aecurve::plot;
+use aesthetic_curves::Curve;
 use anyhow::Result;
 use std::path::PathBuf;
 
@@ -63,7 +64,7 @@ pub(crate) fn sketch(
             );
         }
     }
-    let nurbs = sk.as_curve().to_nurbs()?;
+    let nurbs = sk.as_curve().to_nurbs(0.0)?;
     let comb = plot::curve_samples(&sk.as_curve(), 61)?;
     write_curvature_plot(
         curvature_plot,

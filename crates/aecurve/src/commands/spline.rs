@@ -2,6 +2,7 @@
 
 use crate::commands::{write_curvature_plot, write_curve_outputs};
 use aecurve::plot;
+use aesthetic_curves::Curve;
 use anyhow::Result;
 use std::path::PathBuf;
 
@@ -67,7 +68,7 @@ pub(crate) fn spline(
         if closed {
             polygon.push(pts[0]);
         }
-        let nurbs = s.as_curve()?.to_nurbs()?;
+        let nurbs = s.as_curve()?.to_nurbs(0.0)?;
         write_curve_outputs(
             output,
             "pseudo_elastic_spline",
