@@ -1,6 +1,6 @@
 //! The error of the §4 rational cubic over the whole (f0, f1) square (S3 Fig. 3 and 5).
 
-use super::{Problem, Samples};
+use super::problem::{Problem, Samples};
 use crate::error::{Error, Result};
 use crate::lac::LacSegment;
 

@@ -1,7 +1,9 @@
 //! One rational cubic for a segment with an inflection end: zero curvature at the
 //! inflection, G2 at the other end, proven monotone curvature.
 
-use super::{levenberg_marquardt, turning, ApproxOptions, RationalCubicFit, Samples, LM_FULL};
+use super::problem::{turning, Samples};
+use super::search::{levenberg_marquardt, LM_FULL};
+use super::{ApproxOptions, RationalCubicFit};
 use crate::bezier::{PlanarCurve, RationalBezier};
 use crate::error::{Error, Result};
 use crate::lac::LacInflectionSegment;

@@ -9,7 +9,7 @@
 //! it, with a step that grows while the prediction holds. [`across_valley`] samples the
 //! profile across the valley for a twin valley running beside it.
 
-use super::{Problem, Samples};
+use super::problem::{Problem, Samples};
 use crate::solve::least_squares::{levenberg_marquardt, LmOptions};
 
 /// The Gauss–Newton matrix `JᵀJ` (entries a, b, c of `[[a, b], [b, c]]`) at `x`, by forward
@@ -243,7 +243,8 @@ pub(super) fn across_valley(
 
 #[cfg(test)]
 mod tests {
-    use super::super::{refine, Problem, Samples};
+    use super::super::problem::{Problem, Samples};
+    use super::super::search::refine;
     use super::*;
     use crate::lac::LacSegment;
     use kurbo::Point;
