@@ -2134,6 +2134,114 @@ mod tests {
         assert!((curve_distance(&samples, Point::ZERO) - 1.0).abs() < 1e-3);
     }
 
+    #[test]
+    fn a_triangle_needs_tangents_that_meet_ahead() {
+        let (a, b) = (Point::new(0.0, 0.0), Point::new(10.0, 0.0));
+        let up = Vec2::from_angle(0.5);
+        let down = Vec2::from_angle(-0.5);
+        let t = triangle(a, up, b, down).expect("the tangents meet above the chord");
+        assert!(
+            (t[1] - Point::new(5.0, 5.0 * 0.5f64.tan())).hypot() < 1e-12,
+            "{t:?}"
+        );
+        assert!(triangle(a, up, b, up).is_none(), "parallel tangents");
+        assert!(triangle(a, up, b, -down).is_none(), "apex behind the end");
+    }
+
+    /// Two LAC pieces through (0, 0), (10, 3), (20, 0) (α 1 and -1) with the tangents given
+    /// by their angles at the three points.
+    fn two_pieces(angles: [f64; 3]) -> (Vec<Slot>, Vec<Point>, Vec<Vec2>) {
+        let slot = |alpha: f64, cut_a: Cut, cut_b: Cut| Slot {
+            ua: 0.0,
+            ub: 1.0,
+            cut_a,
+            cut_b,
+            alpha: Some(alpha),
+            fitted: true,
+            dir_a: None,
+            dir_b: None,
+        };
+        let slots = vec![
+            slot(1.0, Cut::End, Cut::Other),
+            slot(-1.0, Cut::Other, Cut::End),
+        ];
+        let pts = vec![
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 3.0),
+            Point::new(20.0, 0.0),
+        ];
+        (
+            slots,
+            pts,
+            angles.iter().map(|a| Vec2::from_angle(*a)).collect(),
+        )
+    }
+
+    #[test]
+    fn fairing_matches_the_curvature_at_a_joint_and_keeps_the_ends() {
+        let (slots, pts, mut dirs) = two_pieces([0.5, 0.15, -0.6]);
+        let ends = (dirs[0], dirs[2]);
+        let opts = SketchOptions::with_tolerance(0.1);
+        let before = build_all(&slots, &pts, &dirs).unwrap();
+        let jump = |b: &[Built]| (b[1].kappa.0 - b[0].kappa.1).abs() / curvature_scale(b);
+        assert!(
+            jump(&before) > 0.01,
+            "the start is not G2: {}",
+            jump(&before)
+        );
+        let (built, report) = fair(&slots, &pts, &mut dirs, &opts).unwrap();
+        assert!(report.converged && report.iterations >= 1, "{report:?}");
+        assert!(report.final_jump <= opts.g2_tolerance, "{report:?}");
+        assert!((report.initial_jump - jump(&before)).abs() < 1e-12);
+        // The report is the built pieces' own mismatch; only the joint's tangent moved.
+        assert!((jump(&built) - report.final_jump).abs() < 1e-15);
+        assert_eq!((dirs[0], dirs[2]), ends);
+        assert!(dirs[1].cross(Vec2::from_angle(0.15)).abs() > 1e-6);
+    }
+
+    #[test]
+    fn fairing_that_cannot_move_says_so() {
+        // No iteration allowed: the report says the jump is still there.
+        let (slots, pts, mut dirs) = two_pieces([0.5, 0.15, -0.6]);
+        let opts = SketchOptions {
+            max_fairing_iterations: 0,
+            ..SketchOptions::with_tolerance(0.1)
+        };
+        let start = dirs.clone();
+        let (_, report) = fair(&slots, &pts, &mut dirs, &opts).unwrap();
+        assert!(!report.converged && report.final_jump > 0.01, "{report:?}");
+        assert_eq!(dirs[1], start[1]);
+    }
+
+    #[test]
+    fn projection_onto_a_rational_cubic_finds_the_foot() {
+        // A quarter circle of radius 2 as a rational cubic (degree-elevated conic).
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let conic = RationalBezier::new(
+            vec![
+                Point::new(2.0, 0.0),
+                Point::new(2.0, 2.0),
+                Point::new(0.0, 2.0),
+            ],
+            vec![1.0, s, 1.0],
+        )
+        .unwrap();
+        let c = conic.elevate().unwrap();
+        let samples: Vec<(f64, Point)> = (0..=8)
+            .map(|i| {
+                let t = i as f64 / 8.0;
+                (t, c.eval(t))
+            })
+            .collect();
+        for angle in [0.2f64, 0.7, 1.3] {
+            let q = Point::new(3.0 * angle.cos(), 3.0 * angle.sin());
+            let (d, t) = project(&c, q, &samples);
+            assert!((d - 1.0).abs() < 1e-12, "{angle}: {d}");
+            let foot = c.eval(t);
+            assert!((foot.y.atan2(foot.x) - angle).abs() < 1e-9, "{angle}: {t}");
+        }
+    }
+
     /// Distance to the chords alone, for comparison.
     fn polyline_like(poly: &[Point], q: Point) -> f64 {
         poly.windows(2)
