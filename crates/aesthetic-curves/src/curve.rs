@@ -4,7 +4,10 @@
 //!
 //! Every implementation answers the same questions with the same names: where the curve
 //! starts and ends ([`Curve::ends`]), its signed curvature there
-//! ([`Curve::end_curvatures`]), its arc length ([`Curve::arc_length`]), points with unit
+//! ([`Curve::end_curvatures`]), its arc length ([`Curve::arc_length`]), the point, first and
+//! second derivatives, signed curvature and dκ/ds at a value of its parameter
+//! ([`Curve::at`] over [`Curve::domain`]: t for a Bézier, the arc length for a
+//! log-aesthetic segment, piece index plus the piece's own parameter for pieces), points with unit
 //! tangent and signed curvature along it ([`Curve::curve_points`]: what a curvature comb or
 //! a curvature plot draws), cubic Béziers within an accuracy ([`Curve::to_bezpath`]), and
 //! one NURBS for CAD, exact where the curve is rational and within an accuracy otherwise
@@ -36,6 +39,22 @@ pub struct CurvePoint {
     pub kappa: f64,
 }
 
+/// A curve at one value of its parameter ([`Curve::at`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurveEval {
+    /// The point.
+    pub p: Point,
+    /// First derivative with respect to the curve's parameter.
+    pub d1: Vec2,
+    /// Second derivative.
+    pub d2: Vec2,
+    /// Signed curvature (positive: turning counter-clockwise); where the parameterisation
+    /// stops (a zero first derivative), the limit from 1e-7 inside.
+    pub kappa: f64,
+    /// The derivative of the curvature in arc length (the same limit).
+    pub dkappa_ds: f64,
+}
+
 impl CurvePoint {
     /// The unit left normal (the tangent turned by +90°): where the curve bends for κ > 0.
     pub fn normal(&self) -> Vec2 {
@@ -58,6 +77,13 @@ pub trait Curve {
     /// Cubic Béziers within `accuracy` of the curve (exact for polynomial pieces of degree 3
     /// or less).
     fn to_bezpath(&self, accuracy: f64) -> Result<BezPath>;
+    /// The interval of the curve's parameter ([`Curve::at`]): [0, 1] for a Bézier curve,
+    /// the arc length [0, L] for a log-aesthetic segment (from `control[0]`), [0, n] for
+    /// n pieces (piece i on [i, i + 1], in its own parameter scaled to unit length).
+    fn domain(&self) -> Result<(f64, f64)>;
+    /// The curve at parameter `u` (finite; clamped into [`Curve::domain`]): point, first and
+    /// second derivative, signed curvature and its arc-length derivative.
+    fn at(&self, u: f64) -> Result<CurveEval>;
     /// The curve as one NURBS (what CAD exports write): exact for the rational types
     /// (Béziers, NURBS, the spline, a sketch: `accuracy` unused); for a log-aesthetic
     /// segment, G2 rational cubics within `accuracy` (largest distance, in the curve's
@@ -68,6 +94,25 @@ pub trait Curve {
 
 /// Most rational cubics a log-aesthetic segment's [`Curve::to_nurbs`] uses.
 pub const MAX_NURBS_PIECES: usize = 64;
+
+/// `u` clamped into `domain` (an error when it is not finite).
+fn parameter(u: f64, domain: (f64, f64)) -> Result<f64> {
+    if !u.is_finite() {
+        return Err(Error::invalid("u", "the parameter must be finite"));
+    }
+    Ok(u.clamp(domain.0, domain.1))
+}
+
+/// A log-aesthetic point at an arc length, with the derivatives of that parameter.
+fn arc_eval(q: crate::lac::ArcPoint) -> CurveEval {
+    CurveEval {
+        p: q.p,
+        d1: q.tangent,
+        d2: q.tangent.turn_90() * q.kappa,
+        kappa: q.kappa,
+        dkappa_ds: q.dkappa_ds,
+    }
+}
 
 fn check_n(n: usize) -> Result<()> {
     if n < 2 {
@@ -155,6 +200,21 @@ macro_rules! bezier_curve {
                 let path: fn(&$ty, f64) -> Result<BezPath> = $path;
                 path(self, accuracy)
             }
+            fn domain(&self) -> Result<(f64, f64)> {
+                Ok((0.0, 1.0))
+            }
+            fn at(&self, u: f64) -> Result<CurveEval> {
+                let t = parameter(u, (0.0, 1.0))?;
+                let d = self.derivs(t);
+                let r = regular(self, t)?;
+                Ok(CurveEval {
+                    p: d.p,
+                    d1: d.d1,
+                    d2: d.d2,
+                    kappa: r.kappa(),
+                    dkappa_ds: r.dkappa_ds(),
+                })
+            }
             fn to_nurbs(&self, _accuracy: f64) -> Result<Nurbs> {
                 let rational: fn(&$ty) -> RationalBezier = $rational;
                 Ok(Nurbs::from_bezier(&rational(self)))
@@ -230,6 +290,14 @@ impl Curve for LacSegment {
     fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
         LacSegment::to_bezpath(self, accuracy)
     }
+    fn domain(&self) -> Result<(f64, f64)> {
+        Ok((0.0, LacSegment::arc_length(self)?))
+    }
+    fn at(&self, u: f64) -> Result<CurveEval> {
+        Ok(arc_eval(
+            self.at_arc_length(parameter(u, (0.0, f64::INFINITY))?)?,
+        ))
+    }
     fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs> {
         let opts = crate::approx::ApproxOptions::default();
         Ok(crate::approx::fit_rational_spline(self, accuracy, MAX_NURBS_PIECES, &opts)?.nurbs)
@@ -253,6 +321,14 @@ impl Curve for LacInflectionSegment {
     }
     fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
         LacInflectionSegment::to_bezpath(self, accuracy)
+    }
+    fn domain(&self) -> Result<(f64, f64)> {
+        Ok((0.0, LacInflectionSegment::arc_length(self)))
+    }
+    fn at(&self, u: f64) -> Result<CurveEval> {
+        Ok(arc_eval(
+            self.at_arc_length(parameter(u, (0.0, f64::INFINITY))?)?,
+        ))
     }
     fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs> {
         let opts = crate::approx::ApproxOptions::default();
@@ -318,6 +394,25 @@ impl<C: Curve> Curve for Pieces<C> {
     }
     fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
         pieces_path(&self.0, accuracy)
+    }
+    fn domain(&self) -> Result<(f64, f64)> {
+        first_last(&self.0)?;
+        Ok((0.0, self.0.len() as f64))
+    }
+    /// Piece `i = floor(u)` (the last for u = n) at its own parameter `a + (u - i)(b - a)`
+    /// over its domain [a, b]; the derivatives scaled by `b - a` to the unit interval.
+    fn at(&self, u: f64) -> Result<CurveEval> {
+        let u = parameter(u, self.domain()?)?;
+        let i = (u.floor() as usize).min(self.0.len() - 1);
+        let piece = &self.0[i];
+        let (a, b) = piece.domain()?;
+        let w = b - a;
+        let e = piece.at(a + (u - i as f64) * w)?;
+        Ok(CurveEval {
+            d1: e.d1 * w,
+            d2: e.d2 * (w * w),
+            ..e
+        })
     }
     /// Every piece's rational Bézier spans joined into one NURBS ([`Nurbs::from_beziers`]:
     /// span i on [i, i + 1]), the one join of pieces in the library.
@@ -400,6 +495,67 @@ mod tests {
                 assert!((q.tangent - r.turn_90() / 2.0).hypot() < 1e-9, "{q:?}");
                 assert!((q.normal() + r / 2.0).hypot() < 1e-9);
             }
+        }
+    }
+
+    #[test]
+    fn every_type_answers_at_a_parameter() {
+        // The quarter circle of radius 2 again: at every parameter the point is on the
+        // circle, κ = 1/2, dκ/ds = 0, the first derivative along the tangent, and the
+        // second derivative's normal part |d1|² κ.
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let arc = RationalBezier::new(
+            vec![p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)],
+            vec![1.0, s, 1.0],
+        )
+        .unwrap();
+        let lac = LacSegment::new(0.0, [p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)]).unwrap();
+        let next = RationalBezier::new(
+            vec![p(0.0, 2.0), p(-2.0, 2.0), p(-2.0, 0.0)],
+            vec![1.0, s, 1.0],
+        )
+        .unwrap();
+        let two = Pieces(vec![arc.clone(), next]);
+        let curves: [&dyn Curve; 3] = [&arc, &lac, &two];
+        for c in curves {
+            let (lo, hi) = c.domain().unwrap();
+            for k in 0..=12 {
+                let u = lo + (hi - lo) * k as f64 / 12.0;
+                let e = c.at(u).unwrap();
+                let r = e.p.to_vec2();
+                assert!((r.hypot() - 2.0).abs() < 1e-12, "{u}: {e:?}");
+                assert!(
+                    (e.kappa - 0.5).abs() < 1e-10 && e.dkappa_ds.abs() < 1e-9,
+                    "{e:?}"
+                );
+                assert!(r.dot(e.d1).abs() < 1e-9 * e.d1.hypot(), "{e:?}");
+                let normal = e.d1.turn_90() / e.d1.hypot();
+                assert!(
+                    (e.d2.dot(normal) - e.d1.hypot2() * 0.5).abs() < 1e-9,
+                    "{e:?}"
+                );
+            }
+            assert!(c.at(f64::NAN).is_err());
+            assert_eq!(c.at(hi + 5.0).unwrap(), c.at(hi).unwrap());
+        }
+        // The arc length is the LAC's parameter: unit first derivative.
+        assert!((lac.at(1.0).unwrap().d1.hypot() - 1.0).abs() < 1e-14);
+        // Pieces: the first derivative in the scaled parameter, against differences.
+        let spline = crate::pseudo_spline::pseudo_elastic(
+            &[p(0.0, 0.0), p(2.0, 1.0), p(4.0, 0.0), p(6.0, 2.0)],
+            false,
+            crate::pseudo_spline::Mode::Table,
+        )
+        .unwrap()
+        .as_curve()
+        .unwrap();
+        for u in [0.4, 1.5, 2.9] {
+            let e = spline.at(u).unwrap();
+            let h = 1e-6;
+            let fd = (spline.at(u + h).unwrap().p - spline.at(u - h).unwrap().p) / (2.0 * h);
+            assert!((fd - e.d1).hypot() < 1e-6 * e.d1.hypot(), "{u}");
+            let fd2 = (spline.at(u + h).unwrap().d1 - spline.at(u - h).unwrap().d1) / (2.0 * h);
+            assert!((fd2 - e.d2).hypot() < 1e-5 * e.d2.hypot().max(1.0), "{u}");
         }
     }
 

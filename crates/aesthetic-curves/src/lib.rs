@@ -142,9 +142,9 @@ pub mod sketch;
 pub mod solve;
 
 pub use bezier::{Bezier, PlanarCurve, RationalBezier};
-pub use curve::{Curve, CurvePoint, Pieces};
+pub use curve::{Curve, CurveEval, CurvePoint, Pieces};
 pub use error::{Error, Result};
 pub use kurbo::{Point, Vec2};
-pub use lac::{LacInflectionSegment, LacSegment, LacStandard, Polyline, TurningSamples};
+pub use lac::{ArcPoint, LacInflectionSegment, LacSegment, LacStandard, Polyline, TurningSamples};
 pub use monotone::{CurvatureMonotone, MonotoneReport, SampledReport, Trend};
 pub use nurbs::Nurbs;

@@ -1,6 +1,8 @@
 //! A log-aesthetic segment with an inflection point at its start.
 
-use super::{triangle_angles, LacSegment, Polyline, Similarity, TriangleAngles, TurningSamples};
+use super::{
+    triangle_angles, ArcPoint, LacSegment, Polyline, Similarity, TriangleAngles, TurningSamples,
+};
 use crate::error::{Error, Result};
 use crate::solve::roots::illinois;
 use kurbo::{Point, Vec2};
@@ -222,6 +224,28 @@ impl LacInflectionSegment {
     pub fn end_curvature(&self) -> f64 {
         let r = self.r();
         self.turn_sign() * self.theta_d.powf(1.0 - r) / (r * self.scale())
+    }
+
+    /// The segment at arc length `s` from the inflection end (clamped into [0, length]):
+    /// in standard form the tangent angle is `θ = s^q`, the curvature `q s^(q-1)` and its
+    /// derivative `q (q-1) s^(q-2)`, which is infinite at the inflection for α < -1 (q < 2:
+    /// the curvature rises there faster than linearly).
+    pub fn at_arc_length(&self, s: f64) -> Result<ArcPoint> {
+        if !s.is_finite() {
+            return Err(Error::invalid("s", "must be finite"));
+        }
+        let c = self.scale();
+        let q = 1.0 / self.r();
+        let s_std = (s / c).clamp(0.0, self.theta_d.powf(self.r()));
+        let theta = s_std.powf(q).min(self.theta_d);
+        let at = self.eval_turning(&[theta])?;
+        let sign = self.turn_sign();
+        Ok(ArcPoint {
+            p: at.points[0],
+            tangent: at.tangents[0],
+            kappa: sign * q * s_std.powf(q - 1.0) / c,
+            dkappa_ds: sign * q * (q - 1.0) * s_std.powf(q - 2.0) / (c * c),
+        })
     }
 
     /// Points, unit tangents and radii of curvature (infinite at τ = 0) at turning angles τ

@@ -47,6 +47,22 @@ pub struct Polyline {
     pub kappa: Vec<f64>,
 }
 
+/// A point of a log-aesthetic segment at an arc length: what `at_arc_length` of
+/// [`LacSegment`] and [`LacInflectionSegment`] returns. With the arc length as the
+/// parameter, the first derivative is `tangent`, the second `kappa` times the tangent
+/// turned by +90°, the third `dkappa_ds` times that less `kappa²` times the tangent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArcPoint {
+    /// The point.
+    pub p: Point,
+    /// The unit tangent, in the direction from `control[0]` to `control[2]`.
+    pub tangent: Vec2,
+    /// Signed curvature (positive: turning counter-clockwise), in input units.
+    pub kappa: f64,
+    /// Its derivative in arc length, in input units.
+    pub dkappa_ds: f64,
+}
+
 /// Points at given turning angles with their tangents: what `eval_turning` of
 /// [`LacSegment`] and [`LacInflectionSegment`] returns.
 #[derive(Clone, Debug, PartialEq)]
@@ -183,6 +199,121 @@ mod tests {
 
     fn rel(a: Point, re: f64, im: f64) -> f64 {
         ((a.x - re).powi(2) + (a.y - im).powi(2)).sqrt() / (re * re + im * im).sqrt()
+    }
+
+    #[test]
+    fn theta_at_arc_length_inverts_the_arc_length() {
+        for alpha in [-3.0, -1.0, 0.0, 1e-9, 0.5, 1.0 - 1e-9, 1.0, 2.0, 5.0] {
+            for lambda in [0.0, 0.3, 2.0] {
+                let c = LacStandard::new(alpha, lambda).unwrap();
+                for theta in [-1.0, -0.2, 0.0, 0.1, 0.7, 1.5] {
+                    if !c.in_domain(theta) {
+                        continue;
+                    }
+                    let Ok(s) = c.arc_length(theta) else { continue };
+                    let back = c.theta_at_arc_length(s).unwrap();
+                    assert!(
+                        (back - theta).abs() <= 1e-12 * (1.0 + theta.abs()),
+                        "alpha {alpha} lambda {lambda} theta {theta}: {back}"
+                    );
+                }
+            }
+        }
+        // Beyond the end of the curve, and not a number.
+        let c = LacStandard::new(-1.0, 1.0).unwrap();
+        assert!(c.theta_at_arc_length(1.0).is_err() && c.theta_at_arc_length(f64::NAN).is_err());
+    }
+
+    /// Checks of `at_arc_length` against identities: the arc length from the start to the
+    /// point's turning angle is `s` (the closed-form length of a sub-segment), dκ/ds is the
+    /// derivative of κ (central differences), and the logarithmic curvature graph
+    /// `ln(ρ ds/dρ)` against `ln ρ` is a line of slope α.
+    fn check_arc_points(at: &dyn Fn(f64) -> ArcPoint, len: f64, alpha: f64) {
+        let mut lcg: Vec<(f64, f64)> = Vec::new();
+        for k in 1..20 {
+            let s = len * k as f64 / 20.0;
+            let q = at(s);
+            let h = 1e-5 * len;
+            let fd = (at(s + h).kappa - at(s - h).kappa) / (2.0 * h);
+            assert!(
+                (fd - q.dkappa_ds).abs() <= 1e-6 * q.dkappa_ds.abs().max(q.kappa.abs() / len),
+                "s {s}: {fd:e} vs {:e}",
+                q.dkappa_ds
+            );
+            assert!((q.tangent.hypot() - 1.0).abs() < 1e-14);
+            let rho = 1.0 / q.kappa.abs();
+            let drho = -q.dkappa_ds * q.kappa.signum() * rho * rho;
+            lcg.push((rho.ln(), (rho / drho.abs()).ln()));
+        }
+        let c0 = lcg[0].1 - alpha * lcg[0].0;
+        for (x, y) in &lcg {
+            assert!(
+                (y - alpha * x - c0).abs() < 1e-9,
+                "alpha {alpha}: {x} {y} {c0}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_segment_at_an_arc_length() {
+        let tri = [
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 0.0),
+            Point::new(16.0, 9.0),
+        ];
+        for alpha in [-2.0, 0.0, 0.5, 1.0, 3.0] {
+            for control in [tri, [tri[2], tri[1], tri[0]]] {
+                let seg = LacSegment::new(alpha, control).unwrap();
+                let len = seg.arc_length().unwrap();
+                let start = control[1] - control[0];
+                let at = |s: f64| seg.at_arc_length(s).unwrap();
+                check_arc_points(&at, len, alpha);
+                // The length from the start to the point's turning angle is s.
+                for s in [0.3 * len, 0.77 * len] {
+                    let q = at(s);
+                    let tau = start.cross(q.tangent).atan2(start.dot(q.tangent)).abs();
+                    let part = seg.sub_segment(0.0, tau).unwrap().arc_length().unwrap();
+                    assert!(
+                        (part - s).abs() < 1e-11 * len,
+                        "alpha {alpha}: {part} vs {s}"
+                    );
+                    let on = seg.eval_turning(&[tau]).unwrap().points[0];
+                    assert!((on - q.p).hypot() < 1e-11 * len);
+                }
+                // The ends, and the clamp.
+                let (k0, k1) = seg.end_curvatures().unwrap();
+                assert!((at(0.0).kappa - k0).abs() < 1e-12 * k0.abs());
+                assert!((at(len).kappa - k1).abs() < 1e-12 * k1.abs());
+                assert_eq!(at(2.0 * len).p, at(len).p);
+                assert!(seg.at_arc_length(f64::NAN).is_err());
+                // Reversal: the same point, curvature of the other sign, the same dκ/ds.
+                let rev = LacSegment::new(alpha, [control[2], control[1], control[0]]).unwrap();
+                for s in [0.1 * len, 0.6 * len] {
+                    let (a, b) = (at(s), rev.at_arc_length(len - s).unwrap());
+                    assert!((a.p - b.p).hypot() < 1e-11 * len);
+                    assert!((a.kappa + b.kappa).abs() < 1e-10 * a.kappa.abs());
+                    assert!((a.dkappa_ds - b.dkappa_ds).abs() < 1e-9 * a.dkappa_ds.abs());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_inflection_segment_at_an_arc_length() {
+        let tri = [
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 0.0),
+            Point::new(12.0, 3.0),
+        ];
+        let seg = LacInflectionSegment::new(tri).unwrap();
+        let len = seg.arc_length();
+        let at = |s: f64| seg.at_arc_length(s).unwrap();
+        check_arc_points(&at, len, seg.alpha());
+        assert_eq!(at(0.0).kappa, 0.0);
+        assert_eq!(at(0.0).p, tri[0]);
+        let k1 = seg.end_curvature();
+        assert!((at(len).kappa - k1).abs() < 1e-12 * k1.abs());
+        assert!((at(len).p - tri[2]).hypot() < 1e-12);
     }
 
     #[test]

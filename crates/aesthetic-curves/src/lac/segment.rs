@@ -2,7 +2,7 @@
 //! sub-segments, projection.
 
 use super::{cdiv, cmul, triangle_angles, Similarity, TriangleAngles};
-use super::{LacStandard, Polyline, TurningSamples, MAX_ABS_ALPHA};
+use super::{ArcPoint, LacStandard, Polyline, TurningSamples, MAX_ABS_ALPHA};
 use crate::error::{Error, Result};
 use crate::solve::roots::brent;
 use kurbo::{Point, Vec2};
@@ -558,6 +558,41 @@ impl LacSegment {
         } else {
             self.interval.0 + tau
         }
+    }
+
+    /// The segment at arc length `s` from `control[0]` (clamped into [0, length]): point,
+    /// unit tangent, signed curvature and dκ/ds, the last in closed form from the standard
+    /// form's `dρ/ds = Λ ρ^(1-α)` (the straight logarithmic curvature graph), the point at
+    /// the standard θ of that length ([`LacStandard::theta_at_arc_length`]).
+    pub fn at_arc_length(&self, s: f64) -> Result<ArcPoint> {
+        if !s.is_finite() {
+            return Err(Error::invalid("s", "must be finite"));
+        }
+        let c = self.scale();
+        let (a, b) = self.interval;
+        let (sa, sb) = (self.standard.arc_length(a)?, self.standard.arc_length(b)?);
+        let s = s.clamp(0.0, (sb - sa) * c);
+        let target = if self.reversed {
+            sb - s / c
+        } else {
+            sa + s / c
+        };
+        let theta = self.standard.theta_at_arc_length(target)?.clamp(a, b);
+        let tau = if self.reversed { b - theta } else { theta - a };
+        let at = self.eval_turning(&[tau])?;
+        let (p, tangent, radius) = (at.points[0], at.tangents[0], at.radii[0]);
+        let sign = self.turn_sign();
+        // dρ/ds along the segment: ρ grows away from the standard start (high curvature).
+        let rho_std = self.standard.rho(theta)?;
+        let alpha = self.standard.alpha();
+        let drho = self.standard.lambda() * rho_std.powf(1.0 - alpha);
+        let drho = if self.reversed { -drho } else { drho };
+        Ok(ArcPoint {
+            p,
+            tangent,
+            kappa: sign / radius,
+            dkappa_ds: -sign * drho / (radius * radius),
+        })
     }
 
     /// Points, unit tangents and radii of curvature at turning angles τ measured from

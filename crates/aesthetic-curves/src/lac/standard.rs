@@ -201,6 +201,30 @@ impl LacStandard {
         )
     }
 
+    /// The θ at signed arc length `s` from θ = 0: the inverse of [`Self::arc_length`] in
+    /// closed form, `θ = L · expm1(x)/x` with `L = ln(1 + αΛs)/(αΛ)` and `x = (α-1)Λ L`
+    /// (every special case, α = 0, α = 1, Λ = 0, is a limit of it, taken without
+    /// cancellation). Errors: `s` not finite, or beyond the end of the curve
+    /// (`1 + αΛs <= 0`: the length to an inflection or to infinite curvature).
+    pub fn theta_at_arc_length(&self, s: f64) -> Result<f64> {
+        let (a, l) = (self.alpha, self.lambda);
+        let y = a * l * s;
+        if !s.is_finite() || y <= -1.0 {
+            return Err(Error::invalid(
+                "s",
+                format!("arc length {s} is not on the curve (1 + alpha lambda s must be > 0)"),
+            ));
+        }
+        let big_l = if y == 0.0 { s } else { y.ln_1p() / y * s };
+        let x = (a - 1.0) * l * big_l;
+        let theta = if x == 0.0 {
+            big_l
+        } else {
+            big_l * (x.exp_m1() / x)
+        };
+        finite_or_err(theta, theta)
+    }
+
     /// The point P(θ).
     pub fn eval(&self, theta: f64) -> Result<Point> {
         Ok(self.integral(0.0, theta)?.to_point())
