@@ -1,5 +1,6 @@
-//! Small SVG plots: line charts (the timing comparison) and curves with their control polygon
-//! and curvature comb. Plain SVG text, no fonts needed to write it.
+//! SVG plots: line charts (curvature plots, the LCG, the timing comparison) drawn by
+//! `plotters` with the shipped DejaVu Sans measuring the text; curves with their control
+//! polygon and curvature comb, and the S3 error map, written as SVG directly.
 
 use crate::protocol::AnyBezier;
 use std::fmt::Write;
@@ -61,25 +62,6 @@ fn esc(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-fn nice_ticks(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    let span = (hi - lo).max(1e-300);
-    let raw = span / n as f64;
-    let mag = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0]
-        .iter()
-        .map(|m| m * mag)
-        .find(|s| span / s <= n as f64)
-        .unwrap_or(10.0 * mag);
-    let start = (lo / step).ceil() * step;
-    let mut v = Vec::new();
-    let mut t = start;
-    while t <= hi + 1e-9 * step {
-        v.push(if t.abs() < 1e-12 * step { 0.0 } else { t });
-        t += step;
-    }
-    v
-}
-
 fn fmt_tick(v: f64) -> String {
     if v == 0.0 {
         "0".into()
@@ -129,10 +111,58 @@ fn chart(
     log_y: bool,
     y_from_zero: bool,
 ) -> String {
+    let mut out = String::new();
+    if let Err(e) = draw_chart(&mut out, title, xlabel, ylabel, series, log_y, y_from_zero) {
+        // Drawing into a string cannot fail on finite data; say so in the picture if it does.
+        return format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"80\"><text x=\"10\" \
+             y=\"40\" font-family=\"sans-serif\">chart failed: {}</text></svg>\n",
+            esc(&e.to_string())
+        );
+    }
+    out
+}
+
+/// Register the shipped DejaVu Sans as plotters' "sans-serif" (its text is measured with it).
+fn register_chart_font() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // The font is the crate's own: a failure here is a broken build, seen by every test.
+        let _ =
+            plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, FONT);
+    });
+}
+
+/// An "#rrggbb" colour for plotters.
+fn rgb(hex: &str) -> plotters::style::RGBColor {
+    let v = u32::from_str_radix(hex.trim_start_matches('#'), 16).unwrap_or(0);
+    plotters::style::RGBColor((v >> 16) as u8, (v >> 8) as u8, v as u8)
+}
+
+/// The chart of [`chart`], drawn by plotters: title and subtitle lines on top, the plot with
+/// its mesh, and the legend to the right of it.
+#[allow(clippy::too_many_arguments)]
+fn draw_chart(
+    out: &mut String,
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[Series],
+    log_y: bool,
+    y_from_zero: bool,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use plotters::prelude::*;
+    use plotters::style::text_anchor::{HPos, Pos, VPos};
+    register_chart_font();
+    let mut svg = String::new();
     let mut lines = title.lines();
     let (title, subtitle) = (lines.next().unwrap_or(""), lines.collect::<Vec<_>>());
-    let (w, h) = (720.0, 460.0 + 16.0 * subtitle.len() as f64);
-    let (l, r, t, b) = (80.0, 190.0, 50.0 + 16.0 * subtitle.len() as f64, 60.0);
+    // Drawn K times larger than shown: plotters places everything on whole pixels, which
+    // at the shown size puts visible steps into a slowly sloping line.
+    const K: u32 = 4;
+    let k = K as i32;
+    let (w, h) = (720 * K, (460 + 16 * subtitle.len() as u32) * K);
+    let top = (50 + 16 * subtitle.len() as u32) * K;
     let ty = |y: f64| if log_y { y.max(1e-300).log10() } else { y };
     let all: Vec<(f64, f64)> = series
         .iter()
@@ -167,129 +197,119 @@ fn chart(
         };
         y1 += pad;
     }
-    let px = |x: f64| l + (x - x0) / (x1 - x0) * (w - l - r);
-    let py = |y: f64| h - b - (y - y0) / (y1 - y0) * (h - t - b);
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="13">
-<rect width="100%" height="100%" fill="white"/>
-<text x="{}" y="28" text-anchor="middle" font-size="16">{}</text>
-"#,
-        (l + w - r) / 2.0,
-        esc(title)
-    );
-    for (i, line) in subtitle.iter().enumerate() {
-        let _ = writeln!(
-            s,
-            r##"<text x="{}" y="{}" text-anchor="middle" font-size="11" fill="#444">{}</text>"##,
-            w / 2.0,
-            46.0 + 16.0 * i as f64,
-            esc(line)
-        );
-    }
-    let yt: Vec<f64> = if log_y {
-        (y0 as i64..=y1 as i64).map(|e| e as f64).collect()
-    } else {
-        nice_ticks(y0, y1, 6)
-    };
-    for v in yt {
-        let y = py(v);
-        let label = if log_y {
-            fmt_tick(10f64.powf(v))
-        } else {
-            fmt_tick(v)
-        };
-        let _ = writeln!(
-            s,
-            r##"<line x1="{l}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#ddd"/><text x="{:.1}" y="{:.1}" text-anchor="end">{label}</text>"##,
-            w - r,
-            l - 6.0,
-            y + 4.0
-        );
-    }
-    let integer_x = all.iter().all(|p| p.0.fract() == 0.0);
-    for v in nice_ticks(x0, x1, 8)
-        .into_iter()
-        .filter(|v| !integer_x || v.fract() == 0.0)
     {
-        let x = px(v);
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x:.1}" y1="{t}" x2="{x:.1}" y2="{:.1}" stroke="#eee"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-            h - b,
-            h - b + 18.0,
-            fmt_tick(v)
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<rect x="{l}" y="{t}" width="{:.1}" height="{:.1}" fill="none" stroke="#333"/>
-<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>
-<text transform="translate(20,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"##,
-        w - l - r,
-        h - t - b,
-        (l + w - r) / 2.0,
-        h - 15.0,
-        esc(xlabel),
-        (t + h - b) / 2.0,
-        esc(ylabel)
-    );
-    for (i, se) in series.iter().enumerate() {
-        let pts: Vec<String> = se
-            .points
-            .iter()
-            .filter(|p| p.0.is_finite() && ty(p.1).is_finite())
-            .map(|&(x, y)| format!("{:.2},{:.2}", px(x), py(ty(y))))
-            .collect();
-        let dash = if se.dashed {
-            r#" stroke-dasharray="6 4""#
+        let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let centre = ((w as i32 - 190 * k + 80 * k) / 2, 0);
+        let middle = Pos::new(HPos::Center, VPos::Center);
+        root.draw(&Text::new(
+            title.to_string(),
+            (centre.0, 24 * k),
+            ("sans-serif", 20 * k).into_font().color(&BLACK).pos(middle),
+        ))?;
+        for (i, line) in subtitle.iter().enumerate() {
+            root.draw(&Text::new(
+                line.to_string(),
+                (w as i32 / 2, (44 + 16 * i as i32) * k),
+                ("sans-serif", 14 * k)
+                    .into_font()
+                    .color(&RGBColor(0x44, 0x44, 0x44))
+                    .pos(middle),
+            ))?;
+        }
+        let (plot, legend) = root.split_horizontally(w - 190 * K);
+        let mut chart = ChartBuilder::on(&plot)
+            .margin_top(top - 10 * K)
+            .margin_right(10 * K)
+            .margin_bottom(10 * K)
+            .x_label_area_size(40 * K)
+            .y_label_area_size(70 * K)
+            .build_cartesian_2d(x0..x1, y0..y1)?;
+        let integer_x = all.iter().all(|p| p.0.fract() == 0.0);
+        let x_ticks = if integer_x {
+            ((x1 - x0).round() as usize + 1).min(8)
         } else {
-            ""
+            8
         };
-        if se.line {
-            let _ = writeln!(
-                s,
-                r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="2"{dash}/>"#,
-                pts.join(" "),
-                se.color
-            );
+        let y_ticks = if log_y { (y1 - y0) as usize + 1 } else { 6 };
+        let y_fmt = |v: &f64| {
+            if log_y {
+                fmt_tick(10f64.powf(*v))
+            } else {
+                fmt_tick(*v)
+            }
+        };
+        chart
+            .configure_mesh()
+            .x_labels(x_ticks)
+            .y_labels(y_ticks)
+            .x_label_formatter(&|v| fmt_tick(*v))
+            .y_label_formatter(&y_fmt)
+            .x_desc(xlabel)
+            .y_desc(ylabel)
+            .label_style(("sans-serif", 16 * k))
+            .axis_desc_style(("sans-serif", 16 * k))
+            .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd).stroke_width(K))
+            .light_line_style(WHITE)
+            .axis_style(RGBColor(0x33, 0x33, 0x33).stroke_width(K))
+            .set_tick_mark_size(LabelAreaPosition::Left, 5 * k)
+            .set_tick_mark_size(LabelAreaPosition::Bottom, 5 * k)
+            .draw()?;
+        for se in series {
+            let colour = rgb(se.color);
+            let pts: Vec<(f64, f64)> = se
+                .points
+                .iter()
+                .map(|&(x, y)| (x, ty(y)))
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .collect();
+            if se.line && se.dashed {
+                chart.draw_series(DashedLineSeries::new(
+                    pts.clone(),
+                    6 * k,
+                    4 * k,
+                    colour.stroke_width(2 * K),
+                ))?;
+            } else if se.line {
+                chart.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2 * K)))?;
+            }
+            if se.markers {
+                chart.draw_series(
+                    pts.iter()
+                        .map(|&p| Circle::new(p, 3.5 * K as f64, colour.filled())),
+                )?;
+            }
         }
-        for p in pts.iter().filter(|_| se.markers) {
-            let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
-            let _ = writeln!(
-                s,
-                r#"<circle cx="{x}" cy="{y}" r="3.5" fill="{}"/>"#,
-                se.color
-            );
+        // The legend: a sample of each series' line or dot, then its name.
+        for (i, se) in series.iter().enumerate() {
+            let colour = rgb(se.color);
+            let y = top as i32 + (20 + 22 * i as i32) * k;
+            if se.line && se.dashed {
+                for (a, b) in [(15, 21), (25, 31), (35, 40)] {
+                    let dash = vec![(a * k, y), (b * k, y)];
+                    legend.draw(&PathElement::new(dash, colour.stroke_width(2 * K)))?;
+                }
+            } else if se.line {
+                let sample = vec![(15 * k, y), (40 * k, y)];
+                legend.draw(&PathElement::new(sample, colour.stroke_width(2 * K)))?;
+            } else {
+                legend.draw(&Circle::new((27 * k, y), 3.5 * K as f64, colour.filled()))?;
+            }
+            legend.draw(&Text::new(
+                se.name.clone(),
+                (47 * k, y),
+                ("sans-serif", 16 * k)
+                    .into_font()
+                    .color(&BLACK)
+                    .pos(Pos::new(HPos::Left, VPos::Center)),
+            ))?;
         }
-        let ly = t + 20.0 + 22.0 * i as f64;
-        let lx = w - r + 15.0;
-        if se.line {
-            let _ = writeln!(
-                s,
-                r#"<line x1="{lx}" y1="{ly}" x2="{}" y2="{ly}" stroke="{}" stroke-width="2"{dash}/>"#,
-                lx + 25.0,
-                se.color,
-            );
-        } else {
-            let _ = writeln!(
-                s,
-                r#"<circle cx="{}" cy="{ly}" r="3.5" fill="{}"/>"#,
-                lx + 12.5,
-                se.color,
-            );
-        }
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}">{}</text>"#,
-            lx + 32.0,
-            ly + 4.0,
-            esc(&se.name)
-        );
+        root.present()?;
     }
-    s.push_str("</svg>\n");
-    s
+    // Shown at a quarter of the drawing's size.
+    let shown = format!("width=\"{}\" height=\"{}\"", w / K, h / K);
+    *out = svg.replacen(&format!("width=\"{w}\" height=\"{h}\""), &shown, 1);
+    Ok(())
 }
 
 /// The curve, its control polygon and its curvature comb (normals scaled by curvature),
