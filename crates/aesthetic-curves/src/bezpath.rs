@@ -52,9 +52,7 @@ fn fit(eval: impl Fn(f64) -> Result<(Point, Vec2)>, accuracy: f64) -> Result<Bez
             .map(|i| eval(i as f64 / 16.0).map(|(p, _)| (p - a).hypot()))
             .try_fold(0.0f64, |m, d| d.map(|d| m.max(d)))?,
     );
-    if !(accuracy.is_finite() && accuracy > 0.0) {
-        return Err(Error::invalid("accuracy", "must be a positive number"));
-    }
+    Error::check_positive("accuracy", accuracy)?;
     if accuracy < 1e-9 * size {
         return Err(Error::invalid(
             "accuracy",

@@ -377,9 +377,7 @@ fn project_all(s: &BSpline, pts: &[Point], params: &[f64]) -> Result<Vec<(f64, f
 /// The points without consecutive duplicates, after checking the tolerance (positive) and
 /// the points (finite, at least 4 distinct: fewer is `degenerate`).
 fn distinct_points(points: &[Point], tolerance: f64) -> Result<Vec<Point>> {
-    if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(Error::invalid("tolerance", "must be a positive number"));
-    }
+    Error::check_positive("tolerance", tolerance)?;
     if let Some(i) = points.iter().position(|p| !p.is_finite()) {
         return Err(Error::invalid(format!("points[{i}]"), "must be finite"));
     }

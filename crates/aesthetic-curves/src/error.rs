@@ -50,6 +50,16 @@ impl Error {
             message: message.into(),
         }
     }
+
+    /// `Ok` for a finite `value > 0`, else [`Error::InvalidInput`] naming `field` (a
+    /// tolerance, an accuracy).
+    pub fn check_positive(field: &str, value: f64) -> Result<()> {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(Error::invalid(field, "must be a positive number"))
+        }
+    }
 }
 
 /// The library's result type.

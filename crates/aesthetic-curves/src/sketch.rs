@@ -1190,9 +1190,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             points.len()
         )));
     }
-    if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
-        return Err(Error::invalid("tolerance", "must be a positive number"));
-    }
+    Error::check_positive("tolerance", opts.tolerance)?;
     if !(opts.max_turn > 0.1 && opts.max_turn < 3.0) {
         return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
     }

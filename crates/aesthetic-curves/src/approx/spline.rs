@@ -41,9 +41,7 @@ pub fn fit_rational_spline(
     max_pieces: usize,
     opts: &ApproxOptions,
 ) -> Result<RationalSpline> {
-    if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(Error::invalid("tolerance", "must be a positive number"));
-    }
+    Error::check_positive("tolerance", tolerance)?;
     if max_pieces == 0 || max_pieces > 1000 {
         return Err(Error::invalid("max_pieces", "must be 1 to 1000"));
     }
@@ -133,9 +131,7 @@ pub fn fit_inflection_spline(
     max_pieces: usize,
     opts: &ApproxOptions,
 ) -> Result<RationalSpline> {
-    if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(Error::invalid("tolerance", "must be a positive number"));
-    }
+    Error::check_positive("tolerance", tolerance)?;
     if !(2..=1000).contains(&max_pieces) {
         return Err(Error::invalid("max_pieces", "must be 2 to 1000"));
     }
