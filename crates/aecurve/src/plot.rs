@@ -95,24 +95,41 @@ pub fn line_chart(
     series: &[Series],
     log_y: bool,
 ) -> String {
-    chart(title, xlabel, ylabel, series, log_y, true)
+    let axes = Axes {
+        title,
+        xlabel,
+        ylabel,
+        log_y,
+        y_from_zero: true,
+    };
+    chart(&axes, series)
 }
 
 /// Like [`line_chart`], the y range fitted to the data (no forced zero).
 pub fn fitted_chart(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> String {
-    chart(title, xlabel, ylabel, series, false, false)
+    let axes = Axes {
+        title,
+        xlabel,
+        ylabel,
+        log_y: false,
+        y_from_zero: false,
+    };
+    chart(&axes, series)
 }
 
-fn chart(
-    title: &str,
-    xlabel: &str,
-    ylabel: &str,
-    series: &[Series],
+/// The frame of a chart: title (its further lines are subtitles), axis labels, log10 y
+/// (decade ticks), and whether an all-positive y range starts at zero.
+struct Axes<'a> {
+    title: &'a str,
+    xlabel: &'a str,
+    ylabel: &'a str,
     log_y: bool,
     y_from_zero: bool,
-) -> String {
+}
+
+fn chart(axes: &Axes, series: &[Series]) -> String {
     let mut out = String::new();
-    if let Err(e) = draw_chart(&mut out, title, xlabel, ylabel, series, log_y, y_from_zero) {
+    if let Err(e) = draw_chart(&mut out, axes, series) {
         // Drawing into a string cannot fail on finite data; say so in the picture if it does.
         return format!(
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"80\"><text x=\"10\" \
@@ -141,16 +158,18 @@ fn rgb(hex: &str) -> plotters::style::RGBColor {
 
 /// The chart of [`chart`], drawn by plotters: title and subtitle lines on top, the plot with
 /// its mesh, and the legend to the right of it.
-#[allow(clippy::too_many_arguments)]
 fn draw_chart(
     out: &mut String,
-    title: &str,
-    xlabel: &str,
-    ylabel: &str,
+    axes: &Axes,
     series: &[Series],
-    log_y: bool,
-    y_from_zero: bool,
 ) -> Result<(), Box<dyn std::error::Error>> {
+    let Axes {
+        title,
+        xlabel,
+        ylabel,
+        log_y,
+        y_from_zero,
+    } = *axes;
     use plotters::prelude::*;
     use plotters::style::text_anchor::{HPos, Pos, VPos};
     register_chart_font();

@@ -459,18 +459,24 @@ mod tests {
         Point::new(x, y)
     }
 
+    /// The quarter circle of radius 2 about the origin from (2, 0) to (0, 2), as a rational
+    /// quadratic and as a LAC segment (α = 0 in the isosceles triangle: Λ = 0, an arc).
+    fn quarter_circle() -> (RationalBezier, LacSegment) {
+        let arc = RationalBezier::new(
+            vec![p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)],
+            vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0],
+        )
+        .unwrap();
+        let lac = LacSegment::new(0.0, [p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)]).unwrap();
+        (arc, lac)
+    }
+
     #[test]
     fn every_type_answers_alike_on_a_circle() {
         // The same quarter circle of radius 2 as a rational quadratic, its NURBS, and a LAC
         // segment with α = 0 in the isosceles triangle (Λ = 0: a circular arc): curvature
         // 1/2 everywhere, length π, tangents along the circle.
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        let arc = RationalBezier::new(
-            vec![p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)],
-            vec![1.0, s, 1.0],
-        )
-        .unwrap();
-        let lac = LacSegment::new(0.0, [p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)]).unwrap();
+        let (arc, lac) = quarter_circle();
         let nurbs = Nurbs::from_beziers(std::slice::from_ref(&arc))
             .unwrap()
             .as_curve()
@@ -503,16 +509,10 @@ mod tests {
         // The quarter circle of radius 2 again: at every parameter the point is on the
         // circle, κ = 1/2, dκ/ds = 0, the first derivative along the tangent, and the
         // second derivative's normal part |d1|² κ.
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        let arc = RationalBezier::new(
-            vec![p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)],
-            vec![1.0, s, 1.0],
-        )
-        .unwrap();
-        let lac = LacSegment::new(0.0, [p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)]).unwrap();
+        let (arc, lac) = quarter_circle();
         let next = RationalBezier::new(
             vec![p(0.0, 2.0), p(-2.0, 2.0), p(-2.0, 0.0)],
-            vec![1.0, s, 1.0],
+            vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0],
         )
         .unwrap();
         let two = Pieces(vec![arc.clone(), next]);
