@@ -273,68 +273,58 @@ fn turning_points(
         .collect()
 }
 
-impl Curve for LacSegment {
-    fn ends(&self) -> Result<(Point, Point)> {
-        Ok((self.control[0], self.control[2]))
-    }
-    fn end_curvatures(&self) -> Result<(f64, f64)> {
-        LacSegment::end_curvatures(self)
-    }
-    fn arc_length(&self) -> Result<f64> {
-        LacSegment::arc_length(self)
-    }
-    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
-        check_n(n)?;
-        Ok(turning_points(&self.control, self.theta_d, self.sample(n)?))
-    }
-    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
-        LacSegment::to_bezpath(self, accuracy)
-    }
-    fn domain(&self) -> Result<(f64, f64)> {
-        Ok((0.0, LacSegment::arc_length(self)?))
-    }
-    fn at(&self, u: f64) -> Result<CurveEval> {
-        Ok(arc_eval(
-            self.at_arc_length(parameter(u, (0.0, f64::INFINITY))?)?,
-        ))
-    }
-    fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs> {
-        let opts = crate::approx::ApproxOptions::default();
-        Ok(crate::approx::fit_rational_spline(self, accuracy, MAX_NURBS_PIECES, &opts)?.nurbs)
-    }
+/// The [`Curve`] of a log-aesthetic type (both have `control`, `theta_d`, `sample`,
+/// `at_arc_length` and `to_bezpath`): `$ends` its end curvatures, `$length` its arc length,
+/// `$spline` its rational spline within a tolerance.
+macro_rules! lac_curve {
+    ($ty:ty, $ends:expr, $length:expr, $spline:path) => {
+        impl Curve for $ty {
+            fn ends(&self) -> Result<(Point, Point)> {
+                Ok((self.control[0], self.control[2]))
+            }
+            fn end_curvatures(&self) -> Result<(f64, f64)> {
+                let ends: fn(&$ty) -> Result<(f64, f64)> = $ends;
+                ends(self)
+            }
+            fn arc_length(&self) -> Result<f64> {
+                let length: fn(&$ty) -> Result<f64> = $length;
+                length(self)
+            }
+            fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
+                check_n(n)?;
+                Ok(turning_points(&self.control, self.theta_d, self.sample(n)?))
+            }
+            fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
+                <$ty>::to_bezpath(self, accuracy)
+            }
+            fn domain(&self) -> Result<(f64, f64)> {
+                Ok((0.0, Curve::arc_length(self)?))
+            }
+            fn at(&self, u: f64) -> Result<CurveEval> {
+                let s = parameter(u, (0.0, f64::INFINITY))?;
+                Ok(arc_eval(self.at_arc_length(s)?))
+            }
+            fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs> {
+                let opts = crate::approx::ApproxOptions::default();
+                Ok($spline(self, accuracy, MAX_NURBS_PIECES, &opts)?.nurbs)
+            }
+        }
+    };
 }
 
-impl Curve for LacInflectionSegment {
-    fn ends(&self) -> Result<(Point, Point)> {
-        Ok((self.control[0], self.control[2]))
-    }
-    /// 0 at the inflection end.
-    fn end_curvatures(&self) -> Result<(f64, f64)> {
-        Ok((0.0, self.end_curvature()))
-    }
-    fn arc_length(&self) -> Result<f64> {
-        Ok(LacInflectionSegment::arc_length(self))
-    }
-    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
-        check_n(n)?;
-        Ok(turning_points(&self.control, self.theta_d, self.sample(n)?))
-    }
-    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
-        LacInflectionSegment::to_bezpath(self, accuracy)
-    }
-    fn domain(&self) -> Result<(f64, f64)> {
-        Ok((0.0, LacInflectionSegment::arc_length(self)))
-    }
-    fn at(&self, u: f64) -> Result<CurveEval> {
-        Ok(arc_eval(
-            self.at_arc_length(parameter(u, (0.0, f64::INFINITY))?)?,
-        ))
-    }
-    fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs> {
-        let opts = crate::approx::ApproxOptions::default();
-        Ok(crate::approx::fit_inflection_spline(self, accuracy, MAX_NURBS_PIECES, &opts)?.nurbs)
-    }
-}
+lac_curve!(
+    LacSegment,
+    LacSegment::end_curvatures,
+    LacSegment::arc_length,
+    crate::approx::fit_rational_spline
+);
+// 0 at the inflection end.
+lac_curve!(
+    LacInflectionSegment,
+    |s| Ok((0.0, s.end_curvature())),
+    |s| Ok(LacInflectionSegment::arc_length(s)),
+    crate::approx::fit_inflection_spline
+);
 
 /// The [`Curve`] answers of consecutive pieces.
 fn pieces_points<C: Curve>(pieces: &[C], n: usize) -> Result<Vec<CurvePoint>> {
