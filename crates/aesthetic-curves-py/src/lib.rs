@@ -255,6 +255,56 @@ fn samples_of(py: Python<'_>, c: &dyn Curve, n: usize) -> PyResult<Samples> {
     })
 }
 
+/// A curve at values of its parameter ([`Curve::at`]): one row per parameter.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+struct CurveAt {
+    /// The points, an (n, 2) array.
+    points: Py<PyArray2<f64>>,
+    /// First derivatives with respect to the parameter, an (n, 2) array.
+    d1: Py<PyArray2<f64>>,
+    /// Second derivatives, an (n, 2) array.
+    d2: Py<PyArray2<f64>>,
+    /// Signed curvature, an (n,) array.
+    kappa: Py<PyArray1<f64>>,
+    /// dκ/ds, an (n,) array.
+    dkappa_ds: Py<PyArray1<f64>>,
+}
+
+#[pymethods]
+impl CurveAt {
+    fn __len__(&self, py: Python<'_>) -> usize {
+        self.kappa.bind(py).len()
+    }
+}
+
+/// [`Curve::at`] at a float or an array of parameters.
+fn curve_at(py: Python<'_>, c: &dyn Curve, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+    let us = match params_arg(u)? {
+        Params::One(u) => vec![u],
+        Params::Many(us) => us,
+    };
+    let at: Vec<ac::CurveEval> = us
+        .iter()
+        .map(|&u| c.at(u))
+        .collect::<Result<_, _>>()
+        .map_err(err)?;
+    let xy = |f: fn(&ac::CurveEval) -> [f64; 2]| xy_array(py, at.iter().map(f)).unbind();
+    let nums = |f: fn(&ac::CurveEval) -> f64| {
+        at.iter()
+            .map(f)
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
+            .unbind()
+    };
+    Ok(CurveAt {
+        points: xy(|e| [e.p.x, e.p.y]),
+        d1: xy(|e| [e.d1.x, e.d1.y]),
+        d2: xy(|e| [e.d2.x, e.d2.y]),
+        kappa: nums(|e| e.kappa),
+        dkappa_ds: nums(|e| e.dkappa_ds),
+    })
+}
+
 /// The exact test's report.
 #[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
 struct MonotoneReport {
@@ -435,6 +485,15 @@ macro_rules! bezier_methods {
             #[getter]
             fn degree(&self) -> usize {
                 self.inner.degree()
+            }
+            /// The parameter interval of `at`: (0, 1).
+            fn domain(&self) -> PyResult<(f64, f64)> {
+                Curve::domain(&self.inner).map_err(err)
+            }
+            /// Point, first and second derivatives, curvature and dκ/ds at `t` (a float or
+            /// an array; clamped into the domain).
+            fn at(&self, py: Python<'_>, t: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+                curve_at(py, &self.inner, t)
             }
             /// The point at `t` (a float: a (2,) array; an array of n: an (n, 2) array).
             fn eval<'py>(
@@ -764,6 +823,16 @@ macro_rules! lac_methods {
             #[getter]
             fn control<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
                 points_array(py, &self.inner.control())
+            }
+            /// The parameter interval of `at`: the arc length, (0, length).
+            fn domain(&self) -> PyResult<(f64, f64)> {
+                Curve::domain(&self.inner).map_err(err)
+            }
+            /// Point, unit tangent (the first derivative in arc length), second derivative,
+            /// curvature and dκ/ds (closed form) at arc length `s` from the first control
+            /// point (a float or an array; clamped into the domain).
+            fn at(&self, py: Python<'_>, s: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+                curve_at(py, &self.inner, s)
             }
             /// Arc length.
             fn arc_length(&self) -> PyResult<f64> {
@@ -1132,6 +1201,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DeadlineError", py.get_type::<DeadlineError>())?;
     m.add_class::<Samples>()?;
     m.add_class::<MonotoneReport>()?;
+    m.add_class::<CurveAt>()?;
     m.add_class::<Bezier>()?;
     m.add_class::<RationalBezier>()?;
     m.add_class::<Nurbs>()?;

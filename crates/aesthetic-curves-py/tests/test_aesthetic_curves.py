@@ -219,6 +219,39 @@ def test_lac_segment_similarity_and_reversal():
     assert abs(back.arc_length() - seg.arc_length()) < 1e-12 * seg.arc_length()
 
 
+def test_at_a_parameter_bezier_and_lac():
+    # A Bézier: at(t) agrees with eval, kappa and dkappa_ds at the same t.
+    b = ac.Bezier([(0, 0), (1, 2), (3, 2.5), (4, 0.5)])
+    assert b.domain() == (0.0, 1.0)
+    t = np.linspace(0, 1, 9)
+    e = b.at(t)
+    assert len(e) == 9 and e.points.shape == (9, 2) and e.d2.shape == (9, 2)
+    assert np.allclose(e.points, b.eval(t), rtol=0, atol=1e-12)
+    assert np.allclose(e.kappa, b.kappa(t), rtol=1e-12, atol=0)
+    assert np.allclose(e.dkappa_ds, b.dkappa_ds(t), rtol=1e-12, atol=0)
+    # A LAC segment in arc length: unit first derivative, the ends' curvatures, dκ/ds the
+    # derivative of κ, and the logarithmic curvature graph a line of slope alpha.
+    alpha = -1.5
+    seg = ac.LacSegment(alpha, TRIANGLE)
+    lo, hi = seg.domain()
+    assert lo == 0.0 and abs(hi - seg.arc_length()) < 1e-12
+    s = np.linspace(0.05, 0.95, 19) * hi
+    e = seg.at(s)
+    assert np.allclose(np.hypot(e.d1[:, 0], e.d1[:, 1]), 1.0, atol=1e-14)
+    k0, k1 = seg.end_curvatures()
+    ends = seg.at(np.array([0.0, hi]))
+    assert np.allclose(ends.kappa, [k0, k1], rtol=1e-12, atol=0)
+    h = 1e-5 * hi
+    fd = (seg.at(s + h).kappa - seg.at(s - h).kappa) / (2 * h)
+    assert np.allclose(fd, e.dkappa_ds, rtol=1e-6, atol=0)
+    rho = 1 / np.abs(e.kappa)
+    drho = np.abs(e.dkappa_ds) * rho * rho
+    y = np.log(rho / drho) - alpha * np.log(rho)
+    assert np.ptp(y) < 1e-9
+    with pytest.raises(ac.InvalidInputError):
+        seg.at(float("nan"))
+
+
 def test_lac_segment_turning_samples_and_existence():
     seg = ac.LacSegment(-1.0, TRIANGLE)
     taus = np.linspace(0, seg.theta_d, 11)

@@ -9,6 +9,7 @@ error the library reports is an :class:`AestheticCurvesError` (subclasses name t
 from ._native import (
     AestheticCurvesError,
     Bezier,
+    CurveAt,
     DeadlineError,
     DegenerateError,
     InvalidInputError,
@@ -34,6 +35,7 @@ from ._native import (
 __all__ = [
     "AestheticCurvesError",
     "Bezier",
+    "CurveAt",
     "DeadlineError",
     "DegenerateError",
     "InvalidInputError",
