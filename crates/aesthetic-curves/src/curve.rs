@@ -449,6 +449,18 @@ mod tests {
         Point::new(x, y)
     }
 
+    /// The pseudo-elastic spline through four points, as its three cubic pieces.
+    fn four_point_spline() -> Pieces<Bezier> {
+        crate::pseudo_spline::pseudo_elastic(
+            &[p(0.0, 0.0), p(2.0, 1.0), p(4.0, 0.0), p(6.0, 2.0)],
+            false,
+            crate::pseudo_spline::Mode::Table,
+        )
+        .unwrap()
+        .as_curve()
+        .unwrap()
+    }
+
     /// The quarter circle of radius 2 about the origin from (2, 0) to (0, 2), as a rational
     /// quadratic and as a LAC segment (α = 0 in the isosceles triangle: Λ = 0, an arc).
     fn quarter_circle() -> (RationalBezier, LacSegment) {
@@ -531,14 +543,7 @@ mod tests {
         // The arc length is the LAC's parameter: unit first derivative.
         assert!((lac.at(1.0).unwrap().d1.hypot() - 1.0).abs() < 1e-14);
         // Pieces: the first derivative in the scaled parameter, against differences.
-        let spline = crate::pseudo_spline::pseudo_elastic(
-            &[p(0.0, 0.0), p(2.0, 1.0), p(4.0, 0.0), p(6.0, 2.0)],
-            false,
-            crate::pseudo_spline::Mode::Table,
-        )
-        .unwrap()
-        .as_curve()
-        .unwrap();
+        let spline = four_point_spline();
         for u in [0.4, 1.5, 2.9] {
             let e = spline.at(u).unwrap();
             let h = 1e-6;
@@ -566,14 +571,7 @@ mod tests {
             let t = i as f64 / 10.0;
             assert!((n.eval(t) - quartic.eval(t)).hypot() < 1e-12, "{t}");
         }
-        let spline = crate::pseudo_spline::pseudo_elastic(
-            &[p(0.0, 0.0), p(2.0, 1.0), p(4.0, 0.0), p(6.0, 2.0)],
-            false,
-            crate::pseudo_spline::Mode::Table,
-        )
-        .unwrap()
-        .as_curve()
-        .unwrap();
+        let spline = four_point_spline();
         let joined = spline.to_nurbs(0.0).unwrap();
         assert_eq!(joined.domain(), (0.0, 3.0));
         for (i, piece) in spline.0.iter().enumerate() {
