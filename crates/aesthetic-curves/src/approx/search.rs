@@ -537,16 +537,17 @@ pub(super) fn walk_best_valley(
     let Some(&(x, c)) = minima.first() else {
         return;
     };
-    if !c.is_finite() {
+    if !c.is_finite() || (best_converged && c >= HAIRLINE_COST) {
         return;
     }
-    let hairline = |evals: &mut usize| {
-        c < HAIRLINE_COST && valley::condition(prob, x, ts, evals) > HAIRLINE_CONDITION
+    // The Gauss–Newton matrix decides a hairline and gives the walk its first direction.
+    let Some(gn) = valley::gauss_newton(prob, x, ts, evals) else {
+        return;
     };
-    if best_converged && !hairline(evals) {
+    if best_converged && valley::condition(gn) <= HAIRLINE_CONDITION {
         return;
     }
-    let Some((y, _)) = valley::along_valley(prob, x, c, ts, evals) else {
+    let Some((y, _)) = valley::along_valley(prob, x, c, gn, ts, evals) else {
         return;
     };
     let lm = LmOptions {

@@ -14,7 +14,7 @@ use crate::solve::least_squares::{levenberg_marquardt, LmOptions};
 
 /// The Gauss–Newton matrix `JᵀJ` (entries a, b, c of `[[a, b], [b, c]]`) at `x`, by forward
 /// differences; `None` where a residual vector cannot be evaluated.
-fn gauss_newton(
+pub(super) fn gauss_newton(
     prob: &Problem,
     x: (f64, f64),
     ts: &Samples,
@@ -40,12 +40,9 @@ fn gauss_newton(
     Some((a, b, c))
 }
 
-/// The condition number of the Gauss–Newton matrix at `x` (infinite where it cannot be
-/// evaluated or is singular).
-pub(super) fn condition(prob: &Problem, x: (f64, f64), ts: &Samples, evals: &mut usize) -> f64 {
-    let Some((a, b, c)) = gauss_newton(prob, x, ts, evals) else {
-        return f64::INFINITY;
-    };
+/// The condition number of a Gauss–Newton matrix ([`gauss_newton`]; infinite where it is
+/// singular).
+pub(super) fn condition((a, b, c): (f64, f64, f64)) -> f64 {
     let (trace, det) = (a + c, a * c - b * b);
     let large = 0.5 * trace + (0.25 * trace * trace - det).max(0.0).sqrt();
     let small = det / large;
@@ -120,7 +117,8 @@ struct Stand {
     cost: f64,
 }
 
-/// Walk the floor of the valley through the minimum `x` (cost `c`) both ways, and return
+/// Walk the floor of the valley through the minimum `x` (cost `c`, Gauss–Newton matrix `gn`
+/// there: [`gauss_newton`]) both ways, and return
 /// the lowest floor point found if it is lower than `c` (a start for a local refinement
 /// into another minimum of the same valley). A step that rises after a descent may have
 /// stepped over a dip: the walk goes back two points and resumes with a quarter of the
@@ -129,11 +127,11 @@ pub(super) fn along_valley(
     prob: &Problem,
     x: (f64, f64),
     c: f64,
+    gn: (f64, f64, f64),
     ts: &Samples,
     evals: &mut usize,
 ) -> Option<((f64, f64), f64)> {
-    let m = gauss_newton(prob, x, ts, evals)?;
-    let across = principal(m);
+    let across = principal(gn);
     let mut best = (x, c);
     for sign in [1.0, -1.0] {
         let start = Stand {
@@ -267,7 +265,8 @@ mod tests {
         let no = |_: f64, _: f64| true;
         let (x, c, _) = refine(&prob, from, &ts, 60, &no, f64::INFINITY, true);
         let mut evals = 0;
-        let (y, cy) = along_valley(&prob, x, c, &ts, &mut evals).expect("a lower floor point");
+        let gn = gauss_newton(&prob, x, &ts, &mut evals).unwrap();
+        let (y, cy) = along_valley(&prob, x, c, gn, &ts, &mut evals).expect("a lower floor point");
         assert!(cy < c && evals < 2000, "{cy:e} {c:e} {evals}");
         let (z, _, _) = refine(&prob, y, &ts, 60, &no, f64::INFINITY, true);
         let curve = super::super::construct(seg, z.0, z.1).unwrap();
@@ -304,7 +303,10 @@ mod tests {
             let prob = Problem::new(seg, 256).unwrap();
             let (x, c, _) = refine(&prob, from, &ts, 60, &no, f64::INFINITY, true);
             let mut evals = 0;
-            (condition(&prob, x, &ts, &mut evals), c)
+            (
+                condition(gauss_newton(&prob, x, &ts, &mut evals).unwrap()),
+                c,
+            )
         };
         let (k, c) = at_minimum(
             &segment(4.2647562654737055, 0.9802422818642444, 0.5164440164445387),
@@ -316,6 +318,8 @@ mod tests {
         let round = segment(-1.0, 1.2, 0.7);
         let prob = Problem::new(&round, 256).unwrap();
         let mut evals = 0;
-        assert_eq!(condition(&prob, (2.0, 0.5), &ts, &mut evals), f64::INFINITY);
+        // No matrix outside the square; a singular one has an infinite condition.
+        assert!(gauss_newton(&prob, (2.0, 0.5), &ts, &mut evals).is_none());
+        assert_eq!(condition((1.0, 1.0, 1.0)), f64::INFINITY);
     }
 }
