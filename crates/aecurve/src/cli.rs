@@ -41,17 +41,8 @@ pub(crate) enum Cmd {
         /// Divisions of the sampling test (1 to 10,000,000).
         #[arg(long, default_value_t = 100, value_parser = count::<1, 10_000_000>)]
         samples: usize,
-        /// Print the protocol's JSON result instead of text.
-        #[arg(long)]
-        json: bool,
-        /// Write the curve: .svg (the curve as cubic Béziers within 1e-6 of its size, in its
-        /// own coordinates, with its comb), .png (picture with the comb), .dxf/.step/.iges/
-        /// .json exact; repeatable.
-        #[arg(short, long)]
-        output: Vec<PathBuf>,
-        /// Also write the curve's curvature against arc length (.svg or .png).
-        #[arg(long)]
-        curvature_plot: Option<PathBuf>,
+        #[command(flatten)]
+        out: CurveOutput,
     },
     /// A log-aesthetic segment in a control triangle: summary, and the curve with its
     /// curvature comb (SVG) with -o.
@@ -73,17 +64,8 @@ pub(crate) enum Cmd {
         /// Samples along the curve (2 to 1,000,000).
         #[arg(long, default_value_t = 65, value_parser = count::<2, 1_000_000>)]
         samples: usize,
-        /// Print the protocol's JSON result.
-        #[arg(long)]
-        json: bool,
-        /// Write the segment: .png (picture with its comb); .svg (as cubic Béziers, with its
-        /// comb), .dxf/.step/.iges/.json as rational cubics within 1e-7 of its size (G2,
-        /// distance reported; also for an inflection end); repeatable.
-        #[arg(short, long)]
-        output: Vec<PathBuf>,
-        /// Also write the curve's curvature against arc length (.svg or .png).
-        #[arg(long)]
-        curvature_plot: Option<PathBuf>,
+        #[command(flatten)]
+        out: CurveOutput,
     },
     /// The logarithmic curvature graph and alpha: of a point sequence (--points or
     /// --input), of a LAC segment (--alpha and --control) or of a Bézier curve (--bezier).
@@ -125,14 +107,8 @@ pub(crate) enum Cmd {
         /// Largest distance to the LAC (input units): as many G2-joined pieces as needed.
         #[arg(long, allow_hyphen_values = true, value_parser = positive)]
         tolerance: Option<f64>,
-        /// Print the protocol's JSON result.
-        #[arg(long)]
-        json: bool,
-        /// Write the curve (repeatable; by extension): .dxf, .step/.stp, .iges/.igs, .json
-        /// (exact rational geometry), .svg (cubic Béziers within 1e-6 of the size, with the
-        /// curvature comb), .png (picture).
-        #[arg(short, long)]
-        output: Vec<PathBuf>,
+        #[command(flatten)]
+        out: CurveOutput,
         /// Write the error map over (f0, f1) with the monotone region (S3 Fig. 3 and 5).
         #[arg(long)]
         map: Option<PathBuf>,
@@ -151,16 +127,8 @@ pub(crate) enum Cmd {
         /// Segment values from the shipped tables (fast) or by direct minimisation.
         #[arg(long, default_value = "table", value_parser = ["table", "exact"])]
         mode: String,
-        /// Print the protocol's JSON result.
-        #[arg(long)]
-        json: bool,
-        /// Write the curve: .svg (its cubics with the comb), .png (with the points), .dxf,
-        /// .step, .iges, .json (exact); repeatable.
-        #[arg(short, long)]
-        output: Vec<PathBuf>,
-        /// Also write the curve's curvature against arc length (.svg or .png).
-        #[arg(long)]
-        curvature_plot: Option<PathBuf>,
+        #[command(flatten)]
+        out: CurveOutput,
     },
     /// Pen input to a G2 aesthetic curve (S4 §3): B-spline, pieces at inflections and
     /// curvature maxima, one LAC segment per piece, G2 fairing, one rational cubic per
@@ -173,17 +141,8 @@ pub(crate) enum Cmd {
         /// box diagonal).
         #[arg(long, allow_hyphen_values = true, value_parser = positive)]
         tolerance: Option<f64>,
-        /// Print the protocol's JSON result.
-        #[arg(long)]
-        json: bool,
-        /// Write the curve: .svg (cubic Béziers within 1e-6 of its size, with its comb), .png
-        /// (input, result, joints and comb), .dxf, .step, .iges, .json (exact rational
-        /// geometry); repeatable.
-        #[arg(short, long)]
-        output: Vec<PathBuf>,
-        /// Also write the curve's curvature against arc length (.svg or .png).
-        #[arg(long)]
-        curvature_plot: Option<PathBuf>,
+        #[command(flatten)]
+        out: CurveOutput,
     },
     /// Benchmarks.
     Bench {
@@ -285,6 +244,25 @@ pub(crate) fn parse_timeout(s: &str) -> Result<f64, String> {
     } else {
         Err(format!("{v} s is outside 0.1 to 600 s"))
     }
+}
+
+/// The outputs of every command that makes one curve (`monotone`, `lac`, `approx`,
+/// `spline`, `sketch`), written by [`crate::commands::CurveOutput::write`].
+#[derive(clap::Args)]
+pub(crate) struct CurveOutput {
+    /// Print the protocol's JSON result instead of the summary.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Write the curve, by extension (repeatable): .svg (cubic Béziers within 1e-6 of its
+    /// size, in its own coordinates, with its curvature comb); .png (a picture with the comb
+    /// and the control polygon or input points); .dxf, .step/.stp, .iges/.igs, .json
+    /// (rational geometry: exact for Bézier curves, splines and sketches; a LAC segment as
+    /// G2 rational cubics within 1e-7 of its size, each proven monotone).
+    #[arg(short, long)]
+    pub(crate) output: Vec<PathBuf>,
+    /// Also write the curve's curvature against arc length (.svg or .png).
+    #[arg(long)]
+    pub(crate) curvature_plot: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]

@@ -11,6 +11,7 @@ pub mod outline_io;
 pub mod plot;
 pub mod protocol;
 pub mod report;
+pub mod summary;
 
 /// Parse `"x,y x,y ..."` (whitespace or `;` between points) into points.
 pub fn parse_points(s: &str) -> anyhow::Result<Vec<aesthetic_curves::Point>> {

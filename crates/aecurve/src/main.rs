@@ -13,7 +13,7 @@ mod gallery;
 use cli::{BenchCmd, Cli, Cmd, TargetArgs};
 use commands::approx::approx;
 use commands::demo::demo;
-use commands::lac::{lac, lac_inflection};
+use commands::lac::lac;
 use commands::lcg::{lcg, LcgSource};
 use commands::monotone::monotone;
 use commands::sketch::sketch;
@@ -49,42 +49,32 @@ fn main() {
 
 /// Every file path a command will write (its `-o`, `--map`, `--curvature-plot`).
 fn output_paths(cli: &Cli) -> Vec<&std::path::Path> {
-    let mut out: Vec<&std::path::Path> = Vec::new();
+    let mut paths: Vec<&std::path::Path> = Vec::new();
+    if let Some(out) = curve_output(&cli.cmd) {
+        paths.extend(out.paths());
+    }
     match &cli.cmd {
-        Cmd::Monotone {
-            output,
-            curvature_plot,
-            ..
-        }
-        | Cmd::Lac {
-            output,
-            curvature_plot,
-            ..
-        }
-        | Cmd::Spline {
-            output,
-            curvature_plot,
-            ..
-        }
-        | Cmd::Sketch {
-            output,
-            curvature_plot,
-            ..
-        } => {
-            out.extend(output.iter().map(|p| p.as_path()));
-            out.extend(curvature_plot.iter().map(|p| p.as_path()));
-        }
-        Cmd::Lcg { output, .. } => out.extend(output.iter().map(|p| p.as_path())),
-        Cmd::Approx { output, map, .. } => {
-            out.extend(output.iter().map(|p| p.as_path()));
-            out.extend(map.iter().map(|p| p.as_path()));
-        }
+        Cmd::Lcg { output, .. } => paths.extend(output.iter().map(|p| p.as_path())),
+        Cmd::Approx { map, .. } => paths.extend(map.iter().map(|p| p.as_path())),
         Cmd::Bench {
             what: BenchCmd::Monotone { output, .. },
-        } => out.extend(output.iter().map(|p| p.as_path())),
+        } => paths.extend(output.iter().map(|p| p.as_path())),
+        Cmd::Check { output, .. } => paths.extend(output.iter().map(|p| p.as_path())),
         _ => {}
     }
-    out
+    paths
+}
+
+/// The curve outputs of a command that makes one curve.
+fn curve_output(cmd: &Cmd) -> Option<&cli::CurveOutput> {
+    match cmd {
+        Cmd::Monotone { out, .. }
+        | Cmd::Lac { out, .. }
+        | Cmd::Approx { out, .. }
+        | Cmd::Spline { out, .. }
+        | Cmd::Sketch { out, .. } => Some(out),
+        _ => None,
+    }
 }
 
 /// `aecurve bench lac | approx | spline`: the table, or JSON.
@@ -103,36 +93,12 @@ fn bench_targets(group: aecurve::bench_targets::Group, args: &TargetArgs) {
 
 fn run() -> Result<()> {
     let cli = Cli::parse();
-    if let Cmd::Monotone { curvature_plot, .. }
-    | Cmd::Lac { curvature_plot, .. }
-    | Cmd::Spline { curvature_plot, .. }
-    | Cmd::Sketch { curvature_plot, .. } = &cli.cmd
-    {
-        plot::check_picture_paths(curvature_plot.as_slice())?;
+    if let Some(out) = curve_output(&cli.cmd) {
+        out.check()?;
     }
     match &cli.cmd {
         Cmd::Lcg { output, .. } => plot::check_picture_paths(output)?,
-        Cmd::Lac { output, .. }
-        | Cmd::Monotone { output, .. }
-        | Cmd::Approx { output, .. }
-        | Cmd::Sketch { output, .. }
-        | Cmd::Spline { output, .. } => {
-            for p in output {
-                let ext = aecurve::export::extension(p).unwrap_or_default();
-                if !aecurve::export::CURVE_FORMATS.contains(&ext.as_str())
-                    && plot::check_picture_paths(std::slice::from_ref(p)).is_err()
-                {
-                    anyhow::bail!(
-                        "{}: unknown format (use .svg, .png, .{})",
-                        p.display(),
-                        aecurve::export::CURVE_FORMATS.join(", .")
-                    );
-                }
-            }
-            if let Cmd::Approx { map, .. } = &cli.cmd {
-                plot::check_picture_paths(map.as_slice())?;
-            }
-        }
+        Cmd::Approx { map, .. } => plot::check_picture_paths(map.as_slice())?,
         Cmd::Bench {
             what: BenchCmd::Monotone { output, .. },
         } => plot::check_picture_paths(output.as_slice())?,
@@ -156,18 +122,8 @@ fn run() -> Result<()> {
             weights,
             method,
             samples,
-            json,
-            output,
-            curvature_plot,
-        } => monotone(
-            &points,
-            weights.as_deref(),
-            method,
-            samples,
-            json,
-            &output,
-            curvature_plot.as_deref(),
-        )?,
+            out,
+        } => monotone(&points, weights.as_deref(), method, samples, &out)?,
         Cmd::Bench {
             what:
                 BenchCmd::Monotone {
@@ -235,62 +191,30 @@ fn run() -> Result<()> {
         )?,
         Cmd::Lac {
             alpha,
-            inflection,
             control,
             samples,
-            json,
-            output,
-            curvature_plot,
-        } => match (alpha, inflection) {
-            (Some(a), false) => lac(
-                a,
-                &control,
-                samples,
-                json,
-                &output,
-                curvature_plot.as_deref(),
-            )?,
-            _ => lac_inflection(&control, samples, json, &output, curvature_plot.as_deref())?,
-        },
+            out,
+            ..
+        } => lac(alpha, &control, samples, &out)?,
         Cmd::Spline {
             input,
             closed,
             mode,
-            json,
-            output,
-            curvature_plot,
-        } => spline(
-            &input,
-            closed,
-            &mode,
-            json,
-            &output,
-            curvature_plot.as_deref(),
-        )?,
+            out,
+        } => spline(&input, closed, &mode, &out)?,
         Cmd::Sketch {
             input,
             tolerance,
-            json,
-            output,
-            curvature_plot,
-        } => sketch(&input, tolerance, json, &output, curvature_plot.as_deref())?,
+            out,
+        } => sketch(&input, tolerance, &out)?,
         Cmd::Approx {
             alpha,
             control,
             tolerance,
-            json,
-            output,
+            out,
             map,
             map_cells,
-        } => approx(
-            alpha,
-            &control,
-            tolerance,
-            json,
-            &output,
-            map.as_deref(),
-            map_cells,
-        )?,
+        } => approx(alpha, &control, tolerance, &out, map.as_deref(), map_cells)?,
         Cmd::Lcg {
             points,
             input,

@@ -443,20 +443,15 @@ pub fn lac_segment_json(
     seg: &aesthetic_curves::lac::LacSegment,
     samples: usize,
 ) -> Result<Value, aesthetic_curves::Error> {
-    let aesthetic_curves::Polyline {
-        points,
-        kappa: curvature,
-    } = seg.sample(samples)?;
     let (k0, k1) = seg.end_curvatures()?;
-    Ok(json!({
+    let fields = json!({
         "lambda": seg.lambda(),
         "theta_d": seg.theta_d(),
         "arc_length": seg.arc_length()?,
         "curvature_start": k0,
         "curvature_end": k1,
-        "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
-        "curvature": curvature,
-    }))
+    });
+    Ok(with_samples(fields, seg.sample(samples)?))
 }
 
 /// The base result of `lac.inflection_segment` (also `aecurve lac --inflection --json`).
@@ -464,18 +459,20 @@ pub fn lac_inflection_json(
     seg: &aesthetic_curves::lac::LacInflectionSegment,
     samples: usize,
 ) -> Result<Value, aesthetic_curves::Error> {
-    let aesthetic_curves::Polyline {
-        points,
-        kappa: curvature,
-    } = seg.sample(samples)?;
-    Ok(json!({
+    let fields = json!({
         "alpha": seg.alpha(),
         "theta_d": seg.theta_d(),
         "arc_length": seg.arc_length(),
-        "curvature_end": curvature[curvature.len() - 1],
-        "points": points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
-        "curvature": curvature,
-    }))
+        "curvature_end": seg.end_curvature(),
+    });
+    Ok(with_samples(fields, seg.sample(samples)?))
+}
+
+/// `fields` with a sampling's `points` and their `curvature`.
+fn with_samples(mut fields: Value, samples: aesthetic_curves::Polyline) -> Value {
+    fields["points"] = samples.points.iter().map(|p| [p.x, p.y]).collect();
+    fields["curvature"] = samples.kappa.into();
+    fields
 }
 
 fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
@@ -1060,14 +1057,20 @@ fn lcg_estimate(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         aesthetic_curves::lcg::MIN_POINTS,
         MAX_LCG_POINTS,
     )?;
-    let fit = aesthetic_curves::lcg::estimate_from_points(&points)?;
-    Ok(json!({
+    Ok(lcg_json(&aesthetic_curves::lcg::estimate_from_points(
+        &points,
+    )?))
+}
+
+/// The result of `lcg.estimate` (also `aecurve lcg --json`): the fitted line and the graph.
+pub fn lcg_json(fit: &aesthetic_curves::lcg::LcgFit) -> Value {
+    json!({
         "alpha": fit.alpha,
         "r_squared": fit.r_squared,
         "intercept": fit.intercept,
         "rms_residual": fit.rms_residual,
         "graph": fit.graph.iter().map(|p| [p.log_rho, p.log_rho_ds_drho]).collect::<Vec<_>>(),
-    }))
+    })
 }
 
 fn first_non_finite(v: &Value, path: String) -> Option<String> {

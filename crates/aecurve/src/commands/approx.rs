@@ -1,17 +1,16 @@
 //! `aecurve approx`: one rational cubic (or a G2 rational spline within a tolerance) per
 //! LAC segment, with the S3 error map.
 
-use crate::commands::{control_triangle, write_curve_outputs};
+use crate::cli::CurveOutput;
+use crate::commands::control_triangle;
 use aecurve::plot;
 use anyhow::Result;
-use std::path::PathBuf;
 
 pub(crate) fn approx(
     alpha: f64,
     control: &str,
     tolerance: Option<f64>,
-    json: bool,
-    output: &[PathBuf],
+    out: &CurveOutput,
     map: Option<&std::path::Path>,
     map_cells: usize,
 ) -> Result<()> {
@@ -32,7 +31,7 @@ pub(crate) fn approx(
         .transpose()
         .map_err(kinded)?;
     let r = &aecurve::protocol::rational_approx_json(&seg, &fit, spline.as_ref())?;
-    if json {
+    if out.json {
         println!("{r}");
     } else {
         let len = seg.arc_length()?;
@@ -75,8 +74,7 @@ pub(crate) fn approx(
         "rational cubic for LAC alpha = {alpha}: rms {:.2e}, max {:.2e}",
         fit.rms, fit.max_error
     );
-    write_curve_outputs(
-        output,
+    out.write(
         "lac_rational",
         &mut || Ok(nurbs.clone()),
         &comb,

@@ -1,137 +1,141 @@
 //! `aecurve lac` and `aecurve lac --inflection`: a log-aesthetic segment (or one with an
 //! inflection end) from its control triangle, with plots and exports.
 
-use crate::commands::{control_triangle, write_curvature_plot, write_curve_outputs};
+use crate::cli::CurveOutput;
+use crate::commands::control_triangle;
 use aecurve::plot;
+use aesthetic_curves::approx::{self, ApproxOptions, RationalSpline};
+use aesthetic_curves::lac::{LacInflectionSegment, LacSegment};
+use aesthetic_curves::Curve;
 use anyhow::Result;
-use std::path::PathBuf;
 
+/// The two kinds of segment the command makes.
+enum Segment {
+    Lac(LacSegment),
+    Inflection(LacInflectionSegment),
+}
+
+impl Segment {
+    fn as_curve(&self) -> &dyn Curve {
+        match self {
+            Segment::Lac(s) => s,
+            Segment::Inflection(s) => s,
+        }
+    }
+
+    /// The protocol's result (`lac.segment` or `lac.inflection_segment`).
+    fn json(&self, samples: usize) -> Result<serde_json::Value> {
+        Ok(match self {
+            Segment::Lac(s) => aecurve::protocol::lac_segment_json(s, samples)?,
+            Segment::Inflection(s) => aecurve::protocol::lac_inflection_json(s, samples)?,
+        })
+    }
+
+    /// The summary's lines.
+    fn summary(&self) -> Result<String> {
+        Ok(match self {
+            Segment::Lac(s) => {
+                let (k0, k1) = s.end_curvatures()?;
+                format!(
+                    "log-aesthetic segment, alpha = {}\n  turning angle  {:.6} deg\n  \
+                     lambda         {:.12}\n  arc length     {:.9}\n  \
+                     curvature      {k0:.9} at the start, {k1:.9} at the end\n  \
+                     high-curvature end at {}\n",
+                    s.standard().alpha(),
+                    s.theta_d().to_degrees(),
+                    s.lambda(),
+                    s.arc_length()?,
+                    if s.reversed() {
+                        "the end point"
+                    } else {
+                        "the start point"
+                    }
+                )
+            }
+            Segment::Inflection(s) => format!(
+                "log-aesthetic segment with an inflection at the start point\n  \
+                 alpha          {:.10}\n  turning angle  {:.6} deg\n  arc length     {:.9}\n  \
+                 curvature      0 at the start, {:.9} at the end\n",
+                s.alpha(),
+                s.theta_d().to_degrees(),
+                s.arc_length(),
+                s.end_curvature()
+            ),
+        })
+    }
+
+    fn caption(&self) -> String {
+        match self {
+            Segment::Lac(s) => format!(
+                "LAC alpha = {}, lambda = {:.6}",
+                s.standard().alpha(),
+                s.lambda()
+            ),
+            Segment::Inflection(s) => {
+                format!("LAC with an inflection end, alpha = {:.6}", s.alpha())
+            }
+        }
+    }
+
+    /// Rational cubics within `tolerance`, G2 at the joints, every piece's curvature proven
+    /// monotone: a LAC segment has no exact rational form. With an inflection end, the first
+    /// cubic has zero curvature there and the rest is an ordinary LAC segment.
+    fn rational_spline(&self, tolerance: f64) -> aesthetic_curves::Result<RationalSpline> {
+        let opts = ApproxOptions::default();
+        match self {
+            Segment::Lac(s) => approx::fit_rational_spline(s, tolerance, 64, &opts),
+            Segment::Inflection(s) => approx::fit_inflection_spline(s, tolerance, 64, &opts),
+        }
+    }
+}
+
+/// `aecurve lac`: with `alpha`, a LAC segment; without, the segment with an inflection at
+/// the first control point (α < 0 from the triangle).
 pub(crate) fn lac(
-    alpha: f64,
+    alpha: Option<f64>,
     control: &str,
     samples: usize,
-    json: bool,
-    output: &[PathBuf],
-    curvature_plot: Option<&std::path::Path>,
+    out: &CurveOutput,
 ) -> Result<()> {
     let pts = control_triangle(control)?;
-    let seg = aesthetic_curves::lac::LacSegment::new(alpha, pts)?;
-    let (k0, k1) = seg.end_curvatures()?;
-    if json {
-        println!(
-            "{}",
-            aecurve::protocol::lac_segment_json(&seg, samples.max(2))?
-        );
+    let samples = samples.max(2);
+    let seg = match alpha {
+        Some(a) => Segment::Lac(LacSegment::new(a, pts)?),
+        None => Segment::Inflection(LacInflectionSegment::new(pts)?),
+    };
+    if out.json {
+        println!("{}", seg.json(samples)?);
     } else {
-        println!("log-aesthetic segment, alpha = {alpha}");
-        println!("  turning angle  {:.6} deg", seg.theta_d().to_degrees());
-        println!("  lambda         {:.12}", seg.lambda());
-        println!("  arc length     {:.9}", seg.arc_length()?);
-        println!("  curvature      {k0:.9} at the start, {k1:.9} at the end");
-        println!(
-            "  high-curvature end at {}",
-            if seg.reversed() {
-                "the end point"
+        print!("{}", seg.summary()?);
+    }
+    let caption = seg.caption();
+    let comb = plot::curve_samples(seg.as_curve(), samples)?;
+    // CAD formats get the segment as rational cubics within 1e-7 of its triangle's size:
+    // the exact rational geometry of that approximation, reported on stderr.
+    let tolerance = 1e-7
+        * pts
+            .iter()
+            .map(|p| (*p - pts[0]).hypot())
+            .fold(0.0, f64::max);
+    let mut cad = || {
+        let sp = seg.rational_spline(tolerance)?;
+        eprintln!(
+            "as {} rational cubic(s), max distance {:.2e} from the segment, curvature {}",
+            sp.pieces.len(),
+            sp.max_error,
+            if sp.pieces.iter().all(|p| p.monotone) {
+                "monotone in every piece (proven)"
             } else {
-                "the start point"
+                "NOT monotone in every piece"
             }
         );
-    }
-    let caption = format!("LAC alpha = {alpha}, lambda = {:.6}", seg.lambda());
-    let samples = plot::curve_samples(&seg, samples.max(2))?;
-    // CAD formats get the segment as rational cubics within 1e-7 of its size (a LAC segment
-    // has no exact rational form): the exact rational geometry of that approximation.
-    let cad = || {
-        cad_nurbs(aesthetic_curves::approx::fit_rational_spline(
-            &seg,
-            cad_tolerance(&pts),
-            64,
-            &aesthetic_curves::approx::ApproxOptions::default(),
-        )?)
+        Ok(sp.nurbs)
     };
-    write_segment_outputs(output, curvature_plot, &samples, &pts, &caption, &cad)
-}
-
-/// The CAD tolerance of a segment: 1e-7 of its triangle's size.
-fn cad_tolerance(pts: &[aesthetic_curves::Point; 3]) -> f64 {
-    1e-7 * pts
-        .iter()
-        .map(|p| (*p - pts[0]).hypot())
-        .fold(0.0, f64::max)
-}
-
-/// A segment's rational cubics as one NURBS for the CAD formats, reported on stderr.
-fn cad_nurbs(
-    sp: aesthetic_curves::approx::RationalSpline,
-) -> Result<aesthetic_curves::nurbs::Nurbs> {
-    eprintln!(
-        "as {} rational cubic(s), max distance {:.2e} from the segment, curvature {}",
-        sp.pieces.len(),
-        sp.max_error,
-        if sp.pieces.iter().all(|p| p.monotone) {
-            "monotone in every piece (proven)"
-        } else {
-            "NOT monotone in every piece"
-        }
-    );
-    Ok(sp.nurbs)
-}
-
-/// `-o` for a LAC segment command: pictures (.svg, .png) of the segment with its comb; CAD
-/// formats and .json through `cad` (built once, only when asked for).
-pub(crate) fn write_segment_outputs(
-    output: &[PathBuf],
-    curvature_plot: Option<&std::path::Path>,
-    samples: &[plot::CombSample],
-    control: &[aesthetic_curves::Point],
-    caption: &str,
-    cad: &dyn Fn() -> Result<aesthetic_curves::nurbs::Nurbs>,
-) -> Result<()> {
-    write_curvature_plot(curvature_plot, samples, caption)?;
-    write_curve_outputs(
-        output,
+    out.write(
         "log_aesthetic_segment",
-        &mut || cad(),
-        samples,
-        caption,
-        &mut || Ok(plot::comb_svg(samples, control, &[], caption)),
+        &mut cad,
+        &comb,
+        &caption,
+        &mut || Ok(plot::comb_svg(&comb, &pts, &[], &caption)),
     )
-}
-
-pub(crate) fn lac_inflection(
-    control: &str,
-    samples: usize,
-    json: bool,
-    output: &[PathBuf],
-    curvature_plot: Option<&std::path::Path>,
-) -> Result<()> {
-    let pts = control_triangle(control)?;
-    let seg = aesthetic_curves::lac::LacInflectionSegment::new(pts)?;
-    let k1 = seg.end_curvature();
-    if json {
-        println!(
-            "{}",
-            aecurve::protocol::lac_inflection_json(&seg, samples.max(2))?
-        );
-    } else {
-        println!("log-aesthetic segment with an inflection at the start point");
-        println!("  alpha          {:.10}", seg.alpha());
-        println!("  turning angle  {:.6} deg", seg.theta_d().to_degrees());
-        println!("  arc length     {:.9}", seg.arc_length());
-        println!("  curvature      0 at the start, {k1:.9} at the end");
-    }
-    let caption = format!("LAC with an inflection end, alpha = {:.6}", seg.alpha());
-    let samples = plot::curve_samples(&seg, samples.max(2))?;
-    // CAD formats: rational cubics within 1e-7 of the size, as for a LAC segment: next to the
-    // inflection one cubic with zero curvature there, then the rest (an ordinary LAC
-    // segment); G2 at the joints, every piece's curvature proven monotone.
-    let cad = || {
-        cad_nurbs(aesthetic_curves::approx::fit_inflection_spline(
-            &seg,
-            cad_tolerance(&pts),
-            64,
-            &aesthetic_curves::approx::ApproxOptions::default(),
-        )?)
-    };
-    write_segment_outputs(output, curvature_plot, &samples, &pts, &caption, &cad)
 }

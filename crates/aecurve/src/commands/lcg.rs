@@ -28,12 +28,7 @@ pub(crate) fn lcg(source: LcgSource, json: bool, output: &[PathBuf]) -> Result<(
         ),
     };
     if json {
-        println!(
-            "{}",
-            serde_json::json!({"alpha": fit.alpha, "r_squared": fit.r_squared,
-                "intercept": fit.intercept, "rms_residual": fit.rms_residual,
-                "graph": fit.graph.iter().map(|p| [p.log_rho, p.log_rho_ds_drho]).collect::<Vec<_>>()})
-        );
+        println!("{}", aecurve::protocol::lcg_json(&fit));
     } else {
         println!("logarithmic curvature graph of {what}");
         println!("  alpha (slope)  {:.9}", fit.alpha);

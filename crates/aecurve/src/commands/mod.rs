@@ -12,7 +12,7 @@ pub(crate) mod spline;
 
 use aecurve::plot;
 use anyhow::Result;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// `--control`: the three points of a control triangle, "x,y x,y x,y".
 pub(crate) fn control_triangle(control: &str) -> Result<[aesthetic_curves::Point; 3]> {
@@ -26,16 +26,79 @@ pub(crate) fn control_triangle(control: &str) -> Result<[aesthetic_curves::Point
     Ok([pts[0], pts[1], pts[2]])
 }
 
-/// `--curvature-plot`: curvature against arc length (chord sums of the samples) of a curve,
-/// written to `path` if given.
-pub(crate) fn write_curvature_plot(
-    path: Option<&std::path::Path>,
-    samples: &[plot::CombSample],
-    title: &str,
-) -> Result<()> {
-    let Some(path) = path else {
-        return Ok(());
-    };
+impl crate::cli::CurveOutput {
+    /// Every file this will write.
+    pub(crate) fn paths(&self) -> impl Iterator<Item = &Path> {
+        self.output
+            .iter()
+            .chain(self.curvature_plot.iter())
+            .map(PathBuf::as_path)
+    }
+
+    /// Refuses an unknown format before any work: `-o` takes a CAD format, .svg or .png;
+    /// `--curvature-plot` a picture.
+    pub(crate) fn check(&self) -> Result<()> {
+        plot::check_picture_paths(self.curvature_plot.as_slice())?;
+        for p in &self.output {
+            let ext = aecurve::export::extension(p).unwrap_or_default();
+            if !aecurve::export::CURVE_FORMATS.contains(&ext.as_str())
+                && plot::check_picture_paths(std::slice::from_ref(p)).is_err()
+            {
+                anyhow::bail!(
+                    "{}: unknown format (use .svg, .png, .{})",
+                    p.display(),
+                    aecurve::export::CURVE_FORMATS.join(", .")
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes `--curvature-plot` (curvature against arc length, chord sums of the comb's
+    /// samples, titled `caption`) and every `-o`, by its extension: the CAD formats
+    /// ([`aecurve::export::CURVE_FORMATS`]) get the curve as the entity `entity`; SVG gets
+    /// the curve itself (cubic Béziers within 1e-6 of its size, in its own coordinates) with
+    /// its curvature comb; a PNG gets `picture()`, an SVG drawing. The curve is built once,
+    /// on first need (some commands approximate it for CAD).
+    pub(crate) fn write(
+        &self,
+        entity: &str,
+        curve: &mut dyn FnMut() -> Result<aesthetic_curves::nurbs::Nurbs>,
+        comb: &[plot::CombSample],
+        caption: &str,
+        picture: &mut dyn FnMut() -> Result<String>,
+    ) -> Result<()> {
+        use anyhow::Context;
+        if let Some(path) = &self.curvature_plot {
+            write_curvature_plot(path, comb, caption)?;
+        }
+        let mut built = None;
+        for path in &self.output {
+            let ext = aecurve::export::extension(path).unwrap_or_default();
+            if ext == "svg" || aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
+                if built.is_none() {
+                    built = Some(curve()?);
+                }
+                let c = built.as_ref().expect("built above");
+                if ext == "svg" {
+                    let doc = aecurve::export::svg_document(c, 1e-6 * c.size(), comb, caption)
+                        .context("the curve has no Bézier spans")?;
+                    std::fs::write(path, doc)
+                        .with_context(|| format!("writing {}", path.display()))?;
+                } else {
+                    aecurve::export::write_curve(path, c, entity)?;
+                }
+            } else {
+                plot::write_picture(path, &picture()?)?;
+            }
+            eprintln!("wrote {}", path.display());
+        }
+        Ok(())
+    }
+}
+
+/// Curvature against arc length (chord sums of the samples) of a curve.
+fn write_curvature_plot(path: &Path, samples: &[plot::CombSample], title: &str) -> Result<()> {
     let mut s = 0.0;
     let mut pts = Vec::with_capacity(samples.len());
     for (i, (p, _, k)) in samples.iter().enumerate() {
@@ -51,49 +114,12 @@ pub(crate) fn write_curvature_plot(
     plot::write_picture(
         path,
         &plot::fitted_chart(
-            title,
+            &format!("curvature: {title}"),
             "arc length (input units)",
             "curvature (1 / input unit)",
             &[series],
         ),
     )?;
     eprintln!("wrote {}", path.display());
-    Ok(())
-}
-
-/// Every `-o` of a command that makes a curve, by its extension: the CAD formats
-/// ([`aecurve::export::CURVE_FORMATS`]) get the curve as the entity `entity`; SVG gets the
-/// curve itself (cubic Béziers within 1e-6 of its size, in its own coordinates) with its
-/// curvature comb; any other picture (PNG) gets `picture()`, an SVG drawing. The curve is
-/// built once, on first need (some commands approximate it for CAD).
-pub(crate) fn write_curve_outputs(
-    output: &[PathBuf],
-    entity: &str,
-    curve: &mut dyn FnMut() -> Result<aesthetic_curves::nurbs::Nurbs>,
-    comb: &[plot::CombSample],
-    caption: &str,
-    picture: &mut dyn FnMut() -> Result<String>,
-) -> Result<()> {
-    use anyhow::Context;
-    let mut built = None;
-    for path in output {
-        let ext = aecurve::export::extension(path).unwrap_or_default();
-        if ext == "svg" || aecurve::export::CURVE_FORMATS.contains(&ext.as_str()) {
-            if built.is_none() {
-                built = Some(curve()?);
-            }
-            let c = built.as_ref().expect("built above");
-            if ext == "svg" {
-                let doc = aecurve::export::svg_document(c, 1e-6 * c.size(), comb, caption)
-                    .context("the curve has no Bézier spans")?;
-                std::fs::write(path, doc).with_context(|| format!("writing {}", path.display()))?;
-            } else {
-                aecurve::export::write_curve(path, c, entity)?;
-            }
-        } else {
-            plot::write_picture(path, &picture()?)?;
-        }
-        eprintln!("wrote {}", path.display());
-    }
     Ok(())
 }

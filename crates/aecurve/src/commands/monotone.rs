@@ -1,23 +1,21 @@
 //! `aecurve monotone`: the exact curvature-monotonicity test of a Bézier curve (and the
 //! sampling test beside it), with plots and exports.
 
+use crate::cli::CurveOutput;
 use crate::cli::Method;
-use crate::commands::{write_curvature_plot, write_curve_outputs};
 use aecurve::protocol::AnyBezier;
 use aecurve::{parse_numbers, parse_points, plot};
 use anyhow::{Context, Result};
 use std::io::Write;
-use std::path::PathBuf;
 
 pub(crate) fn monotone(
     points: &str,
     weights: Option<&str>,
     method: Method,
     samples: usize,
-    json: bool,
-    output: &[PathBuf],
-    curvature_plot: Option<&std::path::Path>,
+    out_files: &CurveOutput,
 ) -> Result<()> {
+    let json = out_files.json;
     let pts = parse_points(points).context("--points")?;
     let w = weights
         .map(parse_numbers)
@@ -93,11 +91,9 @@ pub(crate) fn monotone(
         }
     }
     let comb = plot::curve_samples(curve.as_curve(), 201)?;
-    write_curvature_plot(curvature_plot, &comb, "curvature of the Bézier curve")?;
-    let caption = format!("{kind} degree {degree}: curvature comb");
+    let caption = format!("{kind} Bézier curve of degree {degree}");
     let weights = w.clone().unwrap_or_else(|| vec![1.0; pts.len()]);
-    write_curve_outputs(
-        output,
+    out_files.write(
         "bezier",
         &mut || {
             let rb = aesthetic_curves::RationalBezier::new(pts.clone(), weights.clone())?;

@@ -1,18 +1,15 @@
 //! `aecurve spline`: the pseudo-elastic spline through points (S2).
 
-use crate::commands::{write_curvature_plot, write_curve_outputs};
+use crate::cli::CurveOutput;
 use aecurve::plot;
 use aesthetic_curves::Curve;
 use anyhow::Result;
-use std::path::PathBuf;
 
 pub(crate) fn spline(
     input: &std::path::Path,
     closed: bool,
     mode: &str,
-    json: bool,
-    output: &[PathBuf],
-    curvature_plot: Option<&std::path::Path>,
+    out: &CurveOutput,
 ) -> Result<()> {
     let pts = aecurve::read_points_file(input)?;
     // The command line writes files, not a JSON answer in memory: table mode takes up to a
@@ -33,7 +30,7 @@ pub(crate) fn spline(
         aecurve::protocol::spline_mode(mode),
     )?;
     let r = &aecurve::protocol::spline_json(&s, mode);
-    if json {
+    if out.json {
         println!("{r}");
     } else {
         println!(
@@ -56,21 +53,15 @@ pub(crate) fn spline(
             r["energy"].as_f64().unwrap_or(f64::NAN)
         );
     }
-    if !output.is_empty() || curvature_plot.is_some() {
+    if out.paths().next().is_some() {
         let samples = plot::curve_samples(&s.as_curve()?, 41)?;
         let caption = format!("pseudo-elastic spline: length {:.6}", s.length);
-        write_curvature_plot(
-            curvature_plot,
-            &samples,
-            "curvature of the pseudo-elastic spline",
-        )?;
         let mut polygon = pts.clone();
         if closed {
             polygon.push(pts[0]);
         }
         let nurbs = s.as_curve()?.to_nurbs(0.0)?;
-        write_curve_outputs(
-            output,
+        out.write(
             "pseudo_elastic_spline",
             &mut || Ok(nurbs.clone()),
             &samples,

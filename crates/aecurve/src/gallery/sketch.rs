@@ -86,38 +86,25 @@ pub(crate) fn sketch_gallery(out: &std::path::Path) -> Result<String> {
                 &kappa_s,
             ),
         )?;
+        let sum = aecurve::summary::sketch(&sk, tol, unit);
         html += &format!(
-            "<h3>{name}</h3><p>{caption} {} pieces in {ms:.0} ms; largest deviation {:.4} {unit} \
-             (tolerance {:.4} {unit}); largest curvature jump {:.1e} of the largest curvature ({}); \
-             {}; {} inflections and {} curvature extrema.</p>\n<figure><img src=\"{name}.svg\" alt=\"{name}\"></figure>\n\
+            "<h3>{name}</h3><p>{caption} {} in {ms:.0} ms; {}; {}.</p>\n\
+             <figure><img src=\"{name}.svg\" alt=\"{name}\"></figure>\n\
              <figure><img src=\"{name}-curvature.svg\" alt=\"curvature\"><figcaption>Curvature \
              against arc length: monotone on each piece, continuous at the joints.\
-             </figcaption></figure>\n<table border=\"1\" cellpadding=\"4\"><tr><th>piece</th>\
-             <th>kind</th><th>alpha</th><th>curvature at start (1/{unit})</th><th>at end (1/{unit})</th>\
-             <th>monotone (exact test)</th></tr>\n",
-            sk.pieces.len(),
-            sk.max_deviation,
-            tol,
-            sk.max_curvature_jump,
-            if sk.g2 { "G2" } else { "not G2" },
-            if sk.all_monotone {
-                "every piece curvature-monotone"
-            } else {
-                "NOT every piece curvature-monotone"
-            },
-            sk.inflections,
-            sk.curvature_extrema
+             </figcaption></figure>\n<table border=\"1\" cellpadding=\"4\"><tr>",
+            sum.headline, sum.details, sum.fairing
         );
-        for (i, p) in sk.pieces.iter().enumerate() {
-            html += &format!(
-                "<tr><td>{i}</td><td>{}</td><td>{:.4}{}</td><td>{:+.4e}</td><td>{:+.4e}</td><td>{}</td></tr>\n",
-                p.kind.as_str(),
-                p.alpha,
-                if p.alpha_at_bound { " (at its bound)" } else { "" },
-                p.end_curvatures.0,
-                p.end_curvatures.1,
-                p.monotone
-            );
+        for head in aecurve::summary::sketch_columns(unit) {
+            html += &format!("<th>{head}</th>");
+        }
+        html += "</tr>\n";
+        for row in &sum.rows {
+            html += "<tr>";
+            for cell in row {
+                html += &format!("<td>{cell}</td>");
+            }
+            html += "</tr>\n";
         }
         html += "</table>\n";
     }
