@@ -28,6 +28,15 @@ impl PriusLine {
         parse_xy(self.csv)
     }
 
+    /// The points of the line, in order, as any point type made from `(x, y)` (such as
+    /// `aesthetic_curves::Point`).
+    pub fn points_as<P: From<(f64, f64)>>(&self) -> Vec<P> {
+        self.points()
+            .into_iter()
+            .map(|[x, y]| P::from((x, y)))
+            .collect()
+    }
+
     /// A parameter of the published fit: `output = false` for the start ("Guess"), `true`
     /// for the optimised result ("Output"). `None` if the file has no such row.
     pub fn published(&self, key: &str, output: bool) -> Option<f64> {

@@ -59,11 +59,7 @@ fn bench_lac_fit(c: &mut Criterion) {
     use aesthetic_curves::lac_fit::{fit_lac, LacFitOptions};
     let mut g = c.benchmark_group("lac_fit");
     g.sample_size(10);
-    let prius: Vec<Point> = aesthetic_curves_data::PRIUS[0]
-        .points()
-        .into_iter()
-        .map(|[x, y]| Point::new(x, y))
-        .collect();
+    let prius: Vec<Point> = aesthetic_curves_data::PRIUS[0].points_as::<Point>();
     g.bench_function("prius_ps_1", |b| {
         b.iter(|| fit_lac(black_box(&prius), LacFitOptions::default()).unwrap())
     });

@@ -48,11 +48,7 @@ fn bench(c: &mut Criterion) {
     }
     // The measured Prius key lines at 0.3 mm (issue target: under 50 ms each).
     for line in &aesthetic_curves_data::PRIUS {
-        let pts: Vec<Point> = line
-            .points()
-            .into_iter()
-            .map(|[x, y]| Point::new(x, y))
-            .collect();
+        let pts: Vec<Point> = line.points_as::<Point>();
         let opts = SketchOptions::with_tolerance(0.3);
         g.bench_function(format!("prius_{}", line.name), |b| {
             b.iter(|| fit_sketch(&pts, &opts).unwrap())

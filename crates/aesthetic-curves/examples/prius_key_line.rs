@@ -10,11 +10,7 @@ use aesthetic_curves::Point;
 
 fn main() -> aesthetic_curves::Result<()> {
     let line = &aesthetic_curves_data::PRIUS[2];
-    let pts: Vec<Point> = line
-        .points()
-        .into_iter()
-        .map(|[x, y]| Point::new(x, y))
-        .collect();
+    let pts: Vec<Point> = line.points_as::<Point>();
     let t0 = std::time::Instant::now();
     let sketch = fit_sketch(&pts, &SketchOptions::with_tolerance(0.3))?;
     println!(

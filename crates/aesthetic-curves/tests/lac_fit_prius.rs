@@ -5,11 +5,7 @@ use aesthetic_curves::lac_fit::{fit_lac, LacFitObjective, LacFitOptions, LacFitS
 use aesthetic_curves::Point;
 
 fn points(i: usize) -> Vec<Point> {
-    aesthetic_curves_data::PRIUS[i - 1]
-        .points()
-        .into_iter()
-        .map(|[x, y]| Point::new(x, y))
-        .collect()
+    aesthetic_curves_data::PRIUS[i - 1].points_as::<Point>()
 }
 
 /// Nearest distance from each point to a polyline (every chord: no assumption that the

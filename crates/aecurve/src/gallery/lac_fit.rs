@@ -19,11 +19,7 @@ pub(crate) fn lac_fit_gallery(out: &std::path::Path) -> Result<String> {
     let mut at_bound = 0;
     let (mut ours, mut theirs): (Vec<plot::Series>, Vec<plot::Series>) = (vec![], vec![]);
     for (i, line) in aesthetic_curves_data::PRIUS.iter().enumerate() {
-        let pts: Vec<Point> = line
-            .points()
-            .into_iter()
-            .map(|[x, y]| Point::new(x, y))
-            .collect();
+        let pts: Vec<Point> = line.points_as::<Point>();
         let t0 = std::time::Instant::now();
         let fit = fit_lac(&pts, LacFitOptions::default())?;
         let ms = t0.elapsed().as_secs_f64() * 1e3;
