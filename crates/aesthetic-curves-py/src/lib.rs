@@ -277,17 +277,26 @@ impl CurveAt {
     }
 }
 
-/// [`Curve::at`] at a float or an array of parameters.
-fn curve_at(py: Python<'_>, c: &dyn Curve, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
-    let us = match params_arg(u)? {
+/// A float or an array of parameters, as a list.
+fn params_list(u: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+    Ok(match params_arg(u)? {
         Params::One(u) => vec![u],
         Params::Many(us) => us,
-    };
-    let at: Vec<ac::CurveEval> = us
+    })
+}
+
+/// [`Curve::at`] at a float or an array of parameters.
+fn curve_at(py: Python<'_>, c: &dyn Curve, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+    let at: Vec<ac::CurveEval> = params_list(u)?
         .iter()
         .map(|&u| c.at(u))
         .collect::<Result<_, _>>()
         .map_err(err)?;
+    curve_at_of(py, at)
+}
+
+/// The rows of a [`CurveAt`].
+fn curve_at_of(py: Python<'_>, at: Vec<ac::CurveEval>) -> PyResult<CurveAt> {
     let xy = |f: fn(&ac::CurveEval) -> [f64; 2]| xy_array(py, at.iter().map(f)).unbind();
     let nums = |f: fn(&ac::CurveEval) -> f64| {
         at.iter()
@@ -692,6 +701,12 @@ pymethods_with_exports!(Nurbs {
     fn domain(&self) -> (f64, f64) {
         self.inner.domain()
     }
+    /// Point, first and second derivatives (in the knot parameter), curvature and dκ/ds at
+    /// `u` (a float or an array; clamped into the domain).
+    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+        let us = params_list(u)?;
+        curve_at_of(py, self.inner.at_many(&us).map_err(err)?)
+    }
     /// The point at `u` (a float or an array) in the domain.
     fn eval<'py>(&self, py: Python<'py>, u: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         eval_points(py, u, |u| self.inner.eval(u))
@@ -992,6 +1007,15 @@ pymethods_with_exports!(PseudoSpline {
     fn energy(&self) -> f64 {
         self.inner.energy
     }
+    /// The parameter interval of `at`: (0, n) for n spans (span i on [i, i + 1]).
+    fn domain(&self) -> PyResult<(f64, f64)> {
+        self.inner.as_curve().and_then(|c| c.domain()).map_err(err)
+    }
+    /// Point, first and second derivatives, curvature and dκ/ds at `u` (a float or an
+    /// array; span `floor(u)` at its own t = u - floor(u); clamped into the domain).
+    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+        curve_at(py, &self.inner.as_curve().map_err(err)?, u)
+    }
     /// The spans as cubic Béziers.
     fn beziers(&self) -> PyResult<Vec<Bezier>> {
         Ok(self
@@ -1185,7 +1209,18 @@ impl PseudoSpline {
 
 pymethods_with_exports!(RationalSpline {});
 
-pymethods_with_exports!(Sketch {});
+pymethods_with_exports!(Sketch {
+    /// The parameter interval of `at`: (0, n) for n pieces (piece i on [i, i + 1]).
+    fn domain(&self) -> (f64, f64) {
+        (0.0, self.pieces.len() as f64)
+    }
+    /// Point, first and second derivatives, curvature and dκ/ds at `u` (a float or an
+    /// array; piece `floor(u)` at its own t = u - floor(u); clamped into the domain).
+    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+        let pieces = ac::Pieces(self.pieces.iter().map(|p| p.inner.clone()).collect());
+        curve_at(py, &pieces, u)
+    }
+});
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -252,6 +252,39 @@ def test_at_a_parameter_bezier_and_lac():
         seg.at(float("nan"))
 
 
+def test_at_a_parameter_nurbs_spline_and_sketch():
+    # A pseudo-elastic spline: span i on [i, i + 1], at(i + t) is span i's Bézier at t.
+    sp = ac.pseudo_elastic([(0, 0), (2, 1), (4, 0), (6, 2)])
+    assert sp.domain() == (0.0, 3.0)
+    spans = sp.beziers()
+    for i, t in [(0, 0.3), (1, 0.0), (2, 0.75), (2, 1.0)]:
+        e = sp.at(i + t)
+        assert np.allclose(e.points[0], spans[i].eval(t), rtol=0, atol=1e-12)
+        assert abs(e.kappa[0] - spans[i].kappa(t)) < 1e-12 * max(1.0, abs(e.kappa[0]))
+    # Its NURBS in the knot parameter: points agree with de Boor (eval), the first
+    # derivative with differences of eval, and curvature with the spline's.
+    n = sp.to_nurbs()
+    lo, hi = n.domain()
+    u = np.linspace(lo, hi, 13)[1:-1] + 1e-3
+    e = n.at(u)
+    assert np.allclose(e.points, n.eval(u), rtol=0, atol=1e-12)
+    h = 1e-6 * (hi - lo)
+    fd = (n.eval(u + h) - n.eval(u - h)) / (2 * h)
+    assert np.allclose(fd, e.d1, rtol=1e-5, atol=1e-7)
+    k = (e.d1[:, 0] * e.d2[:, 1] - e.d1[:, 1] * e.d2[:, 0]) / np.hypot(*e.d1.T) ** 3
+    assert np.allclose(k, e.kappa, rtol=1e-9, atol=1e-12)
+    # A sketch: piece i on [i, i + 1], each piece's rational cubic at its own t.
+    t = np.linspace(0, 1, 200)
+    sk = ac.fit_sketch(np.column_stack([100 * t, 30 * np.sin(3 * t)]), 0.5)
+    assert sk.domain() == (0.0, float(len(sk.pieces)))
+    for i, piece in enumerate(sk.pieces):
+        e = sk.at(np.array([i + 0.0, i + 0.5]))
+        assert np.allclose(e.points, piece.eval(np.array([0.0, 0.5])), rtol=0, atol=1e-9)
+        assert np.allclose(e.kappa, piece.kappa(np.array([0.0, 0.5])), rtol=1e-9, atol=1e-12)
+    with pytest.raises(ac.InvalidInputError):
+        n.at(float("inf"))
+
+
 def test_lac_segment_turning_samples_and_existence():
     seg = ac.LacSegment(-1.0, TRIANGLE)
     taus = np.linspace(0, seg.theta_d, 11)

@@ -416,13 +416,90 @@ impl<C: Curve> Curve for Pieces<C> {
 }
 
 impl Nurbs {
-    /// The curve's Bézier spans as [`Pieces`] (the [`Curve`] of a NURBS); an error when it
-    /// has none (a knot vector without interior spans).
+    /// The curve's Bézier spans as [`Pieces`] (span i on [i, i + 1]); an error when it has
+    /// none (a knot vector without interior spans). Its [`Curve`] impl answers in the knot
+    /// parameter instead.
     pub fn as_curve(&self) -> Result<Pieces<RationalBezier>> {
         match self.bezier_spans() {
             Some(s) if !s.is_empty() => Ok(Pieces(s)),
             _ => Err(Error::Degenerate("the NURBS has no Bézier spans".into())),
         }
+    }
+
+    /// The distinct knots of the curve's domain, in order: Bézier span i of
+    /// [`Nurbs::as_curve`] lies over `[breaks[i], breaks[i + 1]]`.
+    pub fn span_breaks(&self) -> Vec<f64> {
+        let (lo, hi) = (
+            self.knots[self.degree],
+            self.knots[self.control_points.len()],
+        );
+        let mut breaks: Vec<f64> = Vec::new();
+        for &k in &self.knots {
+            if (lo..=hi).contains(&k) && breaks.last() != Some(&k) {
+                breaks.push(k);
+            }
+        }
+        breaks
+    }
+
+    /// [`Curve::at`] at many knot parameters, the Bézier spans computed once (one call of
+    /// `at` computes them for its one parameter).
+    pub fn at_many(&self, us: &[f64]) -> Result<Vec<CurveEval>> {
+        let spans = self.as_curve()?;
+        let breaks = self.span_breaks();
+        if breaks.len() != spans.0.len() + 1 {
+            return Err(Error::Degenerate(
+                "the NURBS's spans do not match its knots".into(),
+            ));
+        }
+        let domain = (breaks[0], breaks[breaks.len() - 1]);
+        us.iter()
+            .map(|&u| {
+                let u = parameter(u, domain)?;
+                // The span with breaks[i] <= u < breaks[i + 1] (the last for u at the end).
+                let i = breaks[1..breaks.len() - 1].partition_point(|&b| b <= u);
+                let w = breaks[i + 1] - breaks[i];
+                let e = spans.0[i].at((u - breaks[i]) / w)?;
+                Ok(CurveEval {
+                    d1: e.d1 / w,
+                    d2: e.d2 / (w * w),
+                    ..e
+                })
+            })
+            .collect()
+    }
+}
+
+/// A NURBS in its knot parameter: [`Curve::domain`] is the knots' interval
+/// `[knots[p], knots[n]]`; [`Curve::at`] evaluates the Bézier span under `u`.
+impl Curve for Nurbs {
+    fn ends(&self) -> Result<(Point, Point)> {
+        self.as_curve()?.ends()
+    }
+    fn end_curvatures(&self) -> Result<(f64, f64)> {
+        self.as_curve()?.end_curvatures()
+    }
+    fn arc_length(&self) -> Result<f64> {
+        self.as_curve()?.arc_length()
+    }
+    fn curve_points(&self, n: usize) -> Result<Vec<CurvePoint>> {
+        self.as_curve()?.curve_points(n)
+    }
+    fn to_bezpath(&self, accuracy: f64) -> Result<BezPath> {
+        self.as_curve()?.to_bezpath(accuracy)
+    }
+    fn domain(&self) -> Result<(f64, f64)> {
+        let b = self.span_breaks();
+        match (b.first(), b.last()) {
+            (Some(&lo), Some(&hi)) if hi > lo => Ok((lo, hi)),
+            _ => Err(Error::Degenerate("the NURBS has no Bézier spans".into())),
+        }
+    }
+    fn at(&self, u: f64) -> Result<CurveEval> {
+        Ok(self.at_many(&[u])?[0])
+    }
+    fn to_nurbs(&self, _accuracy: f64) -> Result<Nurbs> {
+        Ok(self.clone())
     }
 }
 
@@ -444,6 +521,57 @@ impl Sketch {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_nurbs_answers_in_its_knot_parameter() {
+        // Two rational cubic spans over uneven knots [2, 2.5] and [2.5, 5].
+        let a = RationalBezier::new(
+            vec![p(0.0, 0.0), p(1.0, 1.0), p(2.0, 1.0), p(3.0, 0.0)],
+            vec![1.0, 0.8, 1.3, 1.0],
+        )
+        .unwrap();
+        let b = RationalBezier::new(
+            vec![p(3.0, 0.0), p(4.0, -1.0), p(5.0, 0.5), p(6.0, 2.0)],
+            vec![1.0, 1.2, 0.9, 1.0],
+        )
+        .unwrap();
+        let mut n = Nurbs::from_beziers(&[a, b]).unwrap();
+        for k in &mut n.knots {
+            *k = 2.0
+                + if *k <= 1.0 {
+                    0.5 * *k
+                } else {
+                    0.5 + 2.5 * (*k - 1.0)
+                };
+        }
+        assert_eq!(n.span_breaks(), vec![2.0, 2.5, 5.0]);
+        assert_eq!(Curve::domain(&n).unwrap(), (2.0, 5.0));
+        let h = 1e-5;
+        for u in [2.0, 2.1, 2.4999, 2.5, 3.7, 5.0] {
+            let e = n.at(u).unwrap();
+            // The point is de Boor's, independently of the spans.
+            assert!((e.p - n.eval(u)).hypot() < 1e-12, "u = {u}");
+            // The derivatives are the knot parameter's (central differences inside a span).
+            let (lo, hi) = if u < 2.5 { (2.0, 2.5) } else { (2.5, 5.0) };
+            let (u0, u1) = ((u - h).max(lo), (u + h).min(hi));
+            let d = (n.at(u1).unwrap().p - n.at(u0).unwrap().p) / (u1 - u0);
+            assert!(
+                (d - e.d1).hypot() < 1e-4 * e.d1.hypot(),
+                "u = {u}: {d:?} {:?}",
+                e.d1
+            );
+            let d2 = (n.at(u1).unwrap().d1 - n.at(u0).unwrap().d1) / (u1 - u0);
+            assert!(
+                (d2 - e.d2).hypot() < 1e-4 * e.d2.hypot().max(1.0),
+                "u = {u}"
+            );
+            // Curvature does not depend on the parameter.
+            let k = e.d1.cross(e.d2) / e.d1.hypot().powi(3);
+            assert!((k - e.kappa).abs() < 1e-9 * k.abs().max(1.0));
+        }
+        assert_eq!(n.to_nurbs(0.0).unwrap(), n);
+        assert!(n.at(f64::NAN).is_err());
+    }
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)
