@@ -693,7 +693,7 @@ pub fn write_picture(path: &std::path::Path, svg: &str) -> anyhow::Result<()> {
 }
 
 /// A colour for `v` in [0, 1] on a perceptual blue-green-yellow ramp (viridis, 5 stops).
-fn ramp(v: f64) -> String {
+fn ramp(v: f64) -> plotters::style::RGBColor {
     const STOPS: [(f64, f64, f64); 5] = [
         (68.0, 1.0, 84.0),
         (59.0, 82.0, 139.0),
@@ -710,12 +710,23 @@ fn ramp(v: f64) -> String {
     let i = (x as usize).min(3);
     let f = x - i as f64;
     let (a, b) = (STOPS[i], STOPS[i + 1]);
-    format!(
-        "rgb({:.0},{:.0},{:.0})",
-        a.0 + (b.0 - a.0) * f,
-        a.1 + (b.1 - a.1) * f,
-        a.2 + (b.2 - a.2) * f
-    )
+    let mix = |p: f64, q: f64| (p + (q - p) * f).round() as u8;
+    plotters::style::RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+/// The hatching of the rectangle `[x0, x1] × [y0, y1]` (in data units of a square chart):
+/// the pieces inside it of the lines x + y = k·gap, so that the hatching of neighbouring
+/// rectangles runs on without a seam.
+fn hatch_lines(x0: f64, x1: f64, y0: f64, y1: f64, gap: f64) -> Vec<[(f64, f64); 2]> {
+    let first = ((x0 + y0) / gap).ceil() as i64;
+    let last = ((x1 + y1) / gap).floor() as i64;
+    (first..=last)
+        .filter_map(|k| {
+            let c = k as f64 * gap;
+            let (xa, xb) = ((c - y1).max(x0), (c - y0).min(x1));
+            (xb > xa).then_some([(xa, c - xa), (xb, c - xb)])
+        })
+        .collect()
 }
 
 /// S3 Fig. 3 and 5 in one picture: log10 of the rms error over (f0, f1) as colour, the
@@ -725,112 +736,207 @@ pub fn error_map_svg(
     chosen: (f64, f64),
     caption: &str,
 ) -> String {
+    let mut out = String::new();
+    if let Err(e) = draw_error_map(&mut out, map, chosen, caption) {
+        return format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"80\"><text x=\"10\" \
+             y=\"40\" font-family=\"sans-serif\">chart failed: {}</text></svg>\n",
+            esc(&e.to_string())
+        );
+    }
+    out
+}
+
+fn draw_error_map(
+    out: &mut String,
+    map: &aesthetic_curves::approx::ErrorMap,
+    chosen: (f64, f64),
+    caption: &str,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use plotters::prelude::*;
+    use plotters::style::text_anchor::{HPos, Pos, VPos};
+    register_chart_font();
     let n = map.n;
-    let (w, h) = (700.0, 560.0);
-    let (l, t, size) = (70.0, 50.0, 440.0);
-    let cell = size / n as f64;
     let logs: Vec<f64> = map.rms.iter().map(|r| r.max(1e-300).log10()).collect();
     let finite: Vec<f64> = logs.iter().copied().filter(|v| v.is_finite()).collect();
-    let lo = finite.iter().copied().fold(f64::INFINITY, f64::min).floor();
-    let hi = finite
-        .iter()
-        .copied()
-        .fold(f64::NEG_INFINITY, f64::max)
-        .ceil()
-        .max(lo + 1.0);
-    let mut s = format!(
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="13">
-<rect width="100%" height="100%" fill="white"/>
-<defs><pattern id="hatch" width="6" height="6" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="6" height="6" fill="#bbb" fill-opacity="0.55"/><line x1="0" y1="0" x2="0" y2="6" stroke="#555" stroke-width="1.5"/></pattern></defs>
-<text x="{}" y="28" text-anchor="middle" font-size="15">{}</text>
-"##,
-        l + size / 2.0,
-        esc(caption)
-    );
-    for i in 0..n {
+    // Whole decades around the values (a power of ten computed as 1e-5 - 1 ulp still counts
+    // as 1e-5); -1 to 0 when no cell has a cubic.
+    let (lo, hi) = if finite.is_empty() {
+        (-1.0, 0.0)
+    } else {
+        let lo = (finite.iter().copied().fold(f64::INFINITY, f64::min) + 1e-9).floor();
+        let hi = (finite.iter().copied().fold(f64::NEG_INFINITY, f64::max) - 1e-9).ceil();
+        (lo, hi.max(lo + 1.0))
+    };
+    // Drawn K times larger than shown, as the line charts.
+    const K: u32 = 4;
+    let k = K as i32;
+    let (w, h) = (700 * K, 560 * K);
+    let (size, top, left) = (440 * k, 50 * k, 70 * k);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let font = |px: i32| ("sans-serif", px * k).into_font().color(&BLACK);
+        let middle = Pos::new(HPos::Center, VPos::Center);
+        root.draw(&Text::new(
+            caption.to_string(),
+            (left + size / 2, 24 * k),
+            font(17).pos(middle),
+        ))?;
+        let area = root.margin(top as u32, (h as i32 - top - size - 60 * k) as u32, 0, 0);
+        let (plot, _) = area.split_horizontally((left + size + 20 * k) as u32);
+        // The colour bar's corner, in the picture.
+        let (ox, oy) = (left + size + 20 * k, top);
+        let mut chart = ChartBuilder::on(&plot)
+            .margin_left((left - 60 * k) as u32)
+            .margin_right(20 * k as u32)
+            .y_label_area_size(60 * K)
+            .x_label_area_size(60 * K)
+            .build_cartesian_2d(0f64..1f64, 0f64..1f64)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_labels(6)
+            .y_labels(6)
+            .x_label_formatter(&|v| format!("{v:.1}"))
+            .y_label_formatter(&|v| format!("{v:.1}"))
+            .label_style(("sans-serif", 14 * k))
+            .axis_style(RGBColor(0x33, 0x33, 0x33).stroke_width(K))
+            .set_tick_mark_size(LabelAreaPosition::Left, 5 * k)
+            .draw()?;
+        let cell = 1.0 / n as f64;
+        // One shown pixel of overlap, so that no background shows between cells.
+        let over = 1.0 / (size as f64 / K as f64);
+        chart.draw_series((0..n * n).map(|c| {
+            let (i, j) = (c / n, c % n);
+            let (x, y) = (i as f64 * cell, j as f64 * cell);
+            Rectangle::new(
+                [
+                    (x, y),
+                    ((x + cell + over).min(1.0), (y + cell + over).min(1.0)),
+                ],
+                ramp((logs[c] - lo) / (hi - lo)).filled(),
+            )
+        }))?;
+        // The hatching, drawn per run of non-monotone cells along f0 (cell (i, j) is
+        // f0 = i / n, f1 = j / n).
+        // 6 px between the lines, as shown.
+        let gap = 6.0 * std::f64::consts::SQRT_2 / (size as f64 / K as f64);
+        let shade = RGBAColor(0xbb, 0xbb, 0xbb, 0.55);
+        let hatch = RGBColor(0x55, 0x55, 0x55).stroke_width(3 * K / 2);
         for j in 0..n {
-            let k = i * n + j;
-            let (x, y) = (l + i as f64 * cell, t + size - (j + 1) as f64 * cell);
-            let _ = writeln!(
-                s,
-                r#"<rect x="{x:.2}" y="{y:.2}" width="{:.2}" height="{:.2}" fill="{}"/>"#,
-                cell + 0.3,
-                cell + 0.3,
-                ramp((logs[k] - lo) / (hi - lo))
-            );
-            if !map.monotone[k] {
-                let _ = writeln!(
-                    s,
-                    r#"<rect x="{x:.2}" y="{y:.2}" width="{:.2}" height="{:.2}" fill="url(#hatch)"/>"#,
-                    cell + 0.3,
-                    cell + 0.3
-                );
+            let mut i = 0;
+            while i < n {
+                if map.monotone[i * n + j] {
+                    i += 1;
+                    continue;
+                }
+                let start = i;
+                while i < n && !map.monotone[i * n + j] {
+                    i += 1;
+                }
+                let (x0, x1) = (start as f64 * cell, i as f64 * cell);
+                let (y0, y1) = (j as f64 * cell, (j + 1) as f64 * cell);
+                chart.draw_series(std::iter::once(Rectangle::new(
+                    [(x0, y0), (x1, y1)],
+                    shade.filled(),
+                )))?;
+                chart.draw_series(
+                    hatch_lines(x0, x1, y0, y1, gap)
+                        .into_iter()
+                        .map(|seg| PathElement::new(seg.to_vec(), hatch)),
+                )?;
             }
         }
+        // The frame, the optimum (ring and cross) and the axis names.
+        chart.draw_series(std::iter::once(Rectangle::new(
+            [(0.0, 0.0), (1.0, 1.0)],
+            RGBColor(0x33, 0x33, 0x33).stroke_width(K),
+        )))?;
+        let red = RGBColor(0xe3, 0x1a, 0x1c);
+        let arm = 11.0 / (size as f64 / K as f64);
+        let (cx, cy) = chosen;
+        chart.draw_series(std::iter::once(Circle::new(
+            (cx, cy),
+            7 * k,
+            red.stroke_width(5 * K / 2),
+        )))?;
+        for seg in [
+            [(cx - arm, cy), (cx + arm, cy)],
+            [(cx, cy - arm), (cx, cy + arm)],
+        ] {
+            chart.draw_series(std::iter::once(PathElement::new(
+                seg.to_vec(),
+                red.stroke_width(2 * K),
+            )))?;
+        }
+        let (px, py) = chart.backend_coord(&(0.5, 0.0));
+        root.draw(&Text::new(
+            "f0".to_string(),
+            (px, py + 22 * k),
+            font(14).pos(Pos::new(HPos::Center, VPos::Top)),
+        ))?;
+        let (_, py) = chart.backend_coord(&(0.0, 0.5));
+        let (x_axis, _) = chart.backend_coord(&(0.0, 0.0));
+        root.draw(&Text::new(
+            "f1".to_string(),
+            (x_axis - 45 * k, py),
+            font(14).pos(middle),
+        ))?;
+        // The colour bar (decades of the rms) and the hatching's key.
+        let (bx, bw) = (ox + 10 * k, 18 * k);
+        for c in 0..100 {
+            let (y0, y1) = (size * c / 100, size * (c + 1) / 100 + k);
+            root.draw(&Rectangle::new(
+                [(bx, oy + size - y1), (bx + bw, oy + size - y0)],
+                ramp(c as f64 / 99.0).filled(),
+            ))?;
+        }
+        let steps = (hi - lo) as i64;
+        for e in 0..=steps {
+            let y = oy + size - (size as f64 * e as f64 / steps as f64).round() as i32;
+            root.draw(&Text::new(
+                format!("1e{}", lo as i64 + e),
+                (bx + bw + 5 * k, y),
+                font(13).pos(Pos::new(HPos::Left, VPos::Center)),
+            ))?;
+        }
+        root.draw(&Text::new(
+            "rms".to_string(),
+            (bx, oy - 8 * k),
+            font(13).pos(Pos::new(HPos::Left, VPos::Bottom)),
+        ))?;
+        let key = (oy + size + 26 * k, oy + size + 40 * k);
+        root.draw(&Rectangle::new(
+            [(bx, key.0), (bx + bw, key.1)],
+            shade.filled(),
+        ))?;
+        for [(x0, y0), (x1, y1)] in hatch_lines(
+            0.0,
+            bw as f64,
+            0.0,
+            (key.1 - key.0) as f64,
+            6.0 * std::f64::consts::SQRT_2 * k as f64,
+        ) {
+            root.draw(&PathElement::new(
+                vec![
+                    (bx + x0 as i32, key.1 - y0 as i32),
+                    (bx + x1 as i32, key.1 - y1 as i32),
+                ],
+                hatch,
+            ))?;
+        }
+        root.draw(&Text::new(
+            "not monotone".to_string(),
+            (bx + bw + 5 * k, (key.0 + key.1) / 2),
+            font(13).pos(Pos::new(HPos::Left, VPos::Center)),
+        ))?;
+        root.present()?;
     }
-    let _ = writeln!(
-        s,
-        r##"<rect x="{l}" y="{t}" width="{size}" height="{size}" fill="none" stroke="#333"/>"##
-    );
-    for k in 0..=5 {
-        let v = k as f64 / 5.0;
-        let x = l + v * size;
-        let y = t + size - v * size;
-        let _ = writeln!(
-            s,
-            r##"<text x="{x:.1}" y="{:.1}" text-anchor="middle">{v:.1}</text><text x="{:.1}" y="{:.1}" text-anchor="end">{v:.1}</text>"##,
-            t + size + 18.0,
-            l - 6.0,
-            y + 4.0
-        );
-    }
-    let (cx, cy) = (l + chosen.0 * size, t + size - chosen.1 * size);
-    let _ = writeln!(
-        s,
-        r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="7" fill="none" stroke="#e31a1c" stroke-width="2.5"/><line x1="{:.1}" y1="{cy:.1}" x2="{:.1}" y2="{cy:.1}" stroke="#e31a1c" stroke-width="2"/><line x1="{cx:.1}" y1="{:.1}" x2="{cx:.1}" y2="{:.1}" stroke="#e31a1c" stroke-width="2"/>
-<text x="{:.1}" y="{:.1}" text-anchor="middle">f0</text>
-<text transform="translate(22,{:.1}) rotate(-90)" text-anchor="middle">f1</text>"##,
-        cx - 11.0,
-        cx + 11.0,
-        cy - 11.0,
-        cy + 11.0,
-        l + size / 2.0,
-        t + size + 40.0,
-        t + size / 2.0
-    );
-    // Colour bar.
-    let (bx, bw) = (l + size + 30.0, 18.0);
-    for k in 0..100 {
-        let v = k as f64 / 99.0;
-        let _ = writeln!(
-            s,
-            r#"<rect x="{bx}" y="{:.2}" width="{bw}" height="{:.2}" fill="{}"/>"#,
-            t + size - (k + 1) as f64 * size / 100.0,
-            size / 100.0 + 0.3,
-            ramp(v)
-        );
-    }
-    let steps = (hi - lo) as i64;
-    for e in 0..=steps {
-        let v = e as f64 / steps as f64;
-        let _ = writeln!(
-            s,
-            r#"<text x="{:.1}" y="{:.1}">1e{}</text>"#,
-            bx + bw + 5.0,
-            t + size - v * size + 4.0,
-            lo as i64 + e
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<text x="{bx}" y="{:.1}">rms</text><rect x="{bx}" y="{:.1}" width="{bw}" height="12" fill="url(#hatch)"/><text x="{:.1}" y="{:.1}">not monotone</text>"##,
-        t - 8.0,
-        t + size + 28.0,
-        bx + bw + 5.0,
-        t + size + 38.0
-    );
-    s.push_str("</svg>\n");
-    s
+    let shown = format!("width=\"{}\" height=\"{}\"", w / K, h / K);
+    *out = svg.replacen(&format!("width=\"{w}\" height=\"{h}\""), &shown, 1);
+    Ok(())
 }
 
 /// Several curves (as polylines, equal x and y scale, y up) with a legend, and dots at
@@ -907,4 +1013,109 @@ pub fn curves_svg(caption: &str, curves: &[Series], points: &[aesthetic_curves::
     }
     s.push_str("</svg>\n");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hatching_stays_in_its_cells_and_runs_on_across_them() {
+        let gap = 0.07;
+        let left = hatch_lines(0.0, 0.5, 0.2, 0.6, gap);
+        let right = hatch_lines(0.5, 1.0, 0.2, 0.6, gap);
+        assert!(!left.is_empty() && !right.is_empty());
+        for (seg, (x0, x1)) in left
+            .iter()
+            .map(|s| (s, (0.0, 0.5)))
+            .chain(right.iter().map(|s| (s, (0.5, 1.0))))
+        {
+            let c = seg[0].0 + seg[0].1;
+            assert!((seg[1].0 + seg[1].1 - c).abs() < 1e-12, "one line: {seg:?}");
+            assert!(
+                ((c / gap) - (c / gap).round()).abs() < 1e-9,
+                "on the global grid"
+            );
+            for &(x, y) in seg {
+                assert!(
+                    (x0 - 1e-12..=x1 + 1e-12).contains(&x)
+                        && (0.2 - 1e-12..=0.6 + 1e-12).contains(&y)
+                );
+            }
+        }
+        // A line that crosses the shared side leaves the left cell where it enters the right.
+        let ends: Vec<(f64, f64)> = left
+            .iter()
+            .flat_map(|s| s.iter().copied())
+            .filter(|p| (p.0 - 0.5).abs() < 1e-12 && p.1 > 0.2 + 1e-9 && p.1 < 0.6 - 1e-9)
+            .collect();
+        assert!(!ends.is_empty());
+        for e in ends {
+            assert!(right.iter().any(|s| s
+                .iter()
+                .any(|q| (q.0 - e.0).abs() < 1e-12 && (q.1 - e.1).abs() < 1e-12)));
+        }
+    }
+
+    #[test]
+    fn the_ramp_runs_from_dark_blue_to_yellow() {
+        use plotters::style::RGBColor;
+        assert_eq!(ramp(0.0), RGBColor(68, 1, 84));
+        assert_eq!(ramp(1.0), RGBColor(253, 231, 37));
+        assert_eq!(ramp(f64::NAN), ramp(1.0));
+        assert_eq!(ramp(-3.0), ramp(0.0));
+    }
+
+    #[test]
+    fn ticks_show_enough_digits_and_no_more() {
+        assert_eq!(fmt_tick(0.0), "0");
+        assert_eq!(fmt_tick(0.25), "0.25");
+        assert_eq!(fmt_tick(3.5e-4), "3.5e-4");
+        assert_eq!(fmt_tick(12000.0), "1.2e4");
+        assert_eq!(fmt_sig(1.23456), "1.235");
+    }
+
+    #[test]
+    fn a_chart_is_shown_at_its_size_with_its_title_and_line() {
+        let mut s = Series::new("k", vec![(0.0, 1.0), (1.0, 2.0), (2.0, 1.5)], PALETTE[0]);
+        s.markers = false;
+        let svg = fitted_chart("the title", "x", "y", &[s]);
+        assert!(svg.contains("width=\"720\""), "{}", &svg[..200]);
+        assert!(svg.contains("the title") && svg.contains("<polyline"));
+    }
+
+    #[test]
+    fn the_error_map_hatches_exactly_its_non_monotone_cells() {
+        let n = 4;
+        let map = |monotone: Vec<bool>| aesthetic_curves::approx::ErrorMap {
+            n,
+            rms: (0..n * n).map(|c| 10f64.powi(-(c as i32) / 3)).collect(),
+            monotone,
+        };
+        let lines = |svg: &str| svg.matches("<polyline").count();
+        // Every cell monotone: no hatching in the map (the axes, the optimum's cross and the
+        // key's sample are lines too).
+        let all = error_map_svg(&map(vec![true; n * n]), (0.5, 0.5), "all");
+        assert!(all.contains("width=\"700\"") && all.contains("not monotone"));
+        // One cell (a quarter of the side: 110 px shown) not monotone: its hatching, lines
+        // 6 px apart at 45°, adds 2 * 110 / (6 √2) = 26 lines; the decades 1e-5 .. 1e0
+        // labelled.
+        let mut m = vec![true; n * n];
+        m[5] = false;
+        let one = error_map_svg(&map(m), (0.5, 0.5), "one");
+        let added = lines(&one) - lines(&all);
+        assert!((25..=27).contains(&added), "{added} lines of hatching");
+        for e in -5..=0 {
+            assert!(one.contains(&format!("\n1e{e}\n")), "decade {e}");
+        }
+        assert!(!one.contains("\n1e-6\n") && !one.contains("\n1e1\n"));
+        // No cell with a cubic: still a picture, with one decade.
+        let none = aesthetic_curves::approx::ErrorMap {
+            n,
+            rms: vec![f64::INFINITY; n * n],
+            monotone: vec![false; n * n],
+        };
+        let svg = error_map_svg(&none, (0.5, 0.5), "none");
+        assert!(svg.contains("\n1e-1\n") && !svg.contains("NaN") && !svg.contains("failed"));
+    }
 }

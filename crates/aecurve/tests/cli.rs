@@ -334,7 +334,10 @@ fn approx_command_gives_a_checked_cubic_and_pictures() {
     );
     assert!(sp["max_error"].as_f64().unwrap() <= 1e-9);
     let svg = std::fs::read_to_string(&map).unwrap();
-    assert!(svg.contains("hatch") && svg.matches("<rect").count() > 400);
+    // 400 cells and the colour bar; the non-monotone cells hatched (plotters draws the
+    // hatching as line pieces, and its key as text).
+    assert!(svg.matches("<rect").count() > 400);
+    assert!(svg.contains("not monotone") && svg.matches("<polyline").count() > 20);
     // Outside the existence region: no_segment, said clearly.
     let out = aecurve()
         .args(["approx", "--alpha", "-1", "--control", "0,0 1,0 1,0.3"])
