@@ -568,3 +568,88 @@ pub fn serve(port: u16, open: bool, limits: Limits) -> anyhow::Result<()> {
         }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn only_this_server_is_a_host() {
+        for h in [
+            "127.0.0.1:8731",
+            "localhost:8731",
+            "LOCALHOST:8731",
+            "[::1]:8731",
+        ] {
+            assert!(host_ok(h, 8731), "{h}");
+        }
+        for h in [
+            "127.0.0.1",
+            "127.0.0.1:8732",
+            "evil.example:8731",
+            "localhost.evil:8731",
+            "",
+        ] {
+            assert!(!host_ok(h, 8731), "{h}");
+        }
+    }
+
+    #[test]
+    fn a_grid_is_refused_with_the_field_that_is_wrong() {
+        let ok = json!({"x0": 0, "y0": 0, "x1": 2, "y1": 1, "nx": 4, "ny": 3});
+        assert!(grid_param(&ok).is_ok());
+        for (key, bad) in [
+            ("nx", json!(0)),
+            ("ny", json!(MAX_REGION_CELLS + 1)),
+            ("x1", json!("2")),
+            ("y0", Value::Null),
+        ] {
+            let mut g = ok.clone();
+            g[key] = bad;
+            let e = grid_param(&g).unwrap_err();
+            assert!(
+                e.message.contains(&format!("grid.{key}")),
+                "{key}: {}",
+                e.message
+            );
+            assert_eq!(e.kind, "invalid_input");
+        }
+    }
+
+    #[test]
+    fn a_region_answers_one_row_of_cells_per_grid_row() {
+        // Where a cubic's third control point keeps its curvature monotone.
+        let v = json!({
+            "kind": "bezier",
+            "control_points": [[0, 0], [1, 0], [2, 1], [3, 3]],
+            "index": 2,
+            "grid": {"x0": 0, "y0": -1, "x1": 3, "y1": 3, "nx": 6, "ny": 5},
+        });
+        let r = region_answer(&v).unwrap();
+        assert_eq!(r["ok"], true);
+        let rows = r["result"]["rows"].as_array().unwrap();
+        assert_eq!(rows.len(), 5);
+        assert!(rows.iter().all(|row| {
+            let s = row.as_str().unwrap();
+            s.len() == 6 && s.chars().all(|c| c == '0' || c == '1')
+        }));
+        // The given position itself, (2, 1), is in cell (4, 2): the curve there is monotone
+        // or not as the exact test says.
+        let here = aesthetic_curves::Bezier::new(vec![
+            aesthetic_curves::Point::new(0.0, 0.0),
+            aesthetic_curves::Point::new(1.0, 0.0),
+            aesthetic_curves::Point::new(2.25, 1.2),
+            aesthetic_curves::Point::new(3.0, 3.0),
+        ])
+        .unwrap();
+        use aesthetic_curves::CurvatureMonotone;
+        let want = if here.is_curvature_monotone().unwrap() {
+            '1'
+        } else {
+            '0'
+        };
+        assert_eq!(rows[2].as_str().unwrap().chars().nth(4), Some(want));
+        assert!(region_answer(&json!({"kind": "nope", "grid": v["grid"]})).is_err());
+    }
+}

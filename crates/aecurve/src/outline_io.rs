@@ -769,3 +769,107 @@ pub fn shape_json(c: &ShapeCheck) -> Value {
         })).collect::<Vec<_>>(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use aesthetic_curves::Curve;
+
+    /// Largest distance from `c` of 50 points of each piece, minus `r`, and the largest
+    /// curvature error against 1/r (counter-clockwise positive).
+    fn off_circle(pieces: &[RationalBezier], c: Point, r: f64, sign: f64) -> (f64, f64) {
+        let mut worst = (0.0f64, 0.0f64);
+        for piece in pieces {
+            for q in piece.curve_points(50).unwrap() {
+                worst.0 = worst.0.max(((q.p - c).hypot() - r).abs());
+                worst.1 = worst.1.max((q.kappa - sign / r).abs());
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn an_arc_is_exact_rational_quadratics_of_at_most_90_degrees() {
+        let c = Point::new(3.0, -2.0);
+        let pieces = arc(c, 2.5, 0.3, 1.5 * std::f64::consts::PI);
+        assert_eq!(pieces.len(), 3);
+        let (dist, kappa) = off_circle(&pieces, c, 2.5, 1.0);
+        assert!(dist < 1e-13 && kappa < 1e-12, "{dist:e} {kappa:e}");
+        // Clockwise: negative curvature.
+        let cw = arc(c, 2.5, 0.3, -0.4);
+        assert_eq!(cw.len(), 1);
+        assert!(off_circle(&cw, c, 2.5, -1.0).1 < 1e-12);
+    }
+
+    #[test]
+    fn a_bulge_is_a_line_or_an_arc_through_the_given_ends() {
+        let (p0, p1) = (Point::new(0.0, 0.0), Point::new(2.0, 0.0));
+        let line = bulge_segment(p0, p1, 0.0);
+        assert_eq!(line.len(), 1);
+        assert_eq!(line[0].degree(), 1);
+        // Bulge 1: a half circle, counter-clockwise, so below the chord from left to right.
+        let half = bulge_segment(p0, p1, 1.0);
+        assert_eq!(half.len(), 2);
+        assert_eq!(half[0].points()[0], p0);
+        assert_eq!(half[1].points()[2], p1);
+        assert!((half[0].points()[2] - Point::new(1.0, -1.0)).hypot() < 1e-12);
+        assert!(off_circle(&half, Point::new(1.0, 0.0), 1.0, 1.0).1 < 1e-12);
+    }
+
+    #[test]
+    fn svg_shapes_keep_their_ids_and_closed_contours() {
+        let svg = br#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">
+            <path id="tri" d="M 10 10 L 60 10 L 60 60 Z"/>
+            <circle id="ring" cx="50" cy="50" r="20"/></svg>"#;
+        let o = read_svg(svg).unwrap();
+        assert_eq!(o.kind, "svg");
+        let names: Vec<&str> = o.shapes.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names, ["tri", "ring"]);
+        let tri = &o.shapes[0].contours[0];
+        assert!(tri.closed);
+        assert!(tri.segments.iter().all(|s| s.degree() == 1));
+        // The circle: usvg's four cubics, within 3e-4 of the radius; their curvature, as
+        // any four-cubic circle's, varies by a few per cent about 1/20.
+        let ring = &o.shapes[1].contours[0];
+        assert!(ring.closed && ring.segments.len() == 4);
+        for seg in &ring.segments {
+            for q in seg.curve_points(20).unwrap() {
+                let r = (q.p - Point::new(50.0, 50.0)).hypot();
+                assert!((r - 20.0).abs() < 3e-4 * 20.0, "radius {r}");
+                assert!((q.kappa.abs() - 0.05).abs() < 0.03 * 0.05, "{}", q.kappa);
+            }
+        }
+        assert!(read_svg(br#"<svg xmlns="http://www.w3.org/2000/svg"/>"#).is_err());
+        assert!(read_svg(b"not svg at all").is_err());
+    }
+
+    #[test]
+    fn dxf_entities_that_meet_are_one_contour() {
+        let line = |a: (f64, f64), b: (f64, f64)| Contour {
+            segments: vec![RationalBezier::new(
+                vec![Point::new(a.0, a.1), Point::new(b.0, b.1)],
+                vec![1.0, 1.0],
+            )
+            .unwrap()],
+            closed: false,
+        };
+        // Three sides of a square, the middle one drawn against the others, and a line of
+        // another layer at the same place.
+        let shapes = chain_entities(vec![
+            ("0".into(), "A".into(), line((0.0, 0.0), (1.0, 0.0))),
+            ("0".into(), "B".into(), line((1.0, 1.0), (1.0, 0.0))),
+            ("0".into(), "C".into(), line((1.0, 1.0), (0.0, 1.0))),
+            ("walls".into(), "D".into(), line((0.0, 0.0), (1.0, 0.0))),
+        ]);
+        assert_eq!(shapes.len(), 2);
+        let chain = shapes
+            .iter()
+            .find(|s| s.contours[0].segments.len() == 3)
+            .unwrap();
+        let segs = &chain.contours[0].segments;
+        for w in segs.windows(2) {
+            assert_eq!(w[0].points()[1], w[1].points()[0], "{}", chain.name);
+        }
+        assert!(!chain.contours[0].closed);
+    }
+}

@@ -203,3 +203,28 @@ fn picture(shape: &Shape, check: &ShapeCheck, y_up: bool) -> String {
     }
     format!("<figure>{svg}<figcaption>{cap}</figcaption></figure>\n")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_report_shows_the_worst_shapes_first_and_no_more_than_asked() {
+        // A straight line (nothing to flag) and a polyline with a 1.1° kink (a near-break).
+        let svg = br#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">
+            <path id="straight" d="M 10 10 L 50 10"/>
+            <path id="kink&amp;co" d="M 0 50 L 50 50 L 100 51"/></svg>"#;
+        let o = crate::outline_io::read_svg(svg).unwrap();
+        let shapes: Vec<&Shape> = o.shapes.iter().collect();
+        let opts = crate::outline_io::options_for(&o);
+        let checked = crate::outline_io::check_shapes(&shapes, &opts, &|| {});
+        let page = outline_report("two <shapes>", false, &shapes, &checked, 10);
+        assert!(page.contains("two &lt;shapes&gt;") && !page.contains("two <shapes>"));
+        let (kink, straight) = (page.find("kink&amp;co"), page.find("straight"));
+        assert!(kink.is_some() && straight.is_some());
+        assert!(kink < straight, "the kinked path first");
+        let one = outline_report("one", false, &shapes, &checked, 1);
+        assert!(one.contains("kink&amp;co") && !one.contains("straight"));
+        assert_eq!(esc("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
+    }
+}
