@@ -206,7 +206,8 @@ macro_rules! bezier_curve {
             fn at(&self, u: f64) -> Result<CurveEval> {
                 let t = parameter(u, (0.0, 1.0))?;
                 let d = self.derivs(t);
-                let r = regular(self, t)?;
+                // Curvature from 1e-7 inside where the parameterisation stops.
+                let r = if d.is_regular() { d } else { regular(self, t)? };
                 Ok(CurveEval {
                     p: d.p,
                     d1: d.d1,
