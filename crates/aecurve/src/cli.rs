@@ -256,8 +256,9 @@ pub(crate) struct CurveOutput {
     /// Write the curve, by extension (repeatable): .svg (cubic Béziers within 1e-6 of its
     /// size, in its own coordinates, with its curvature comb); .png (a picture with the comb
     /// and the control polygon or input points); .dxf, .step/.stp, .iges/.igs, .json
-    /// (rational geometry: exact for Bézier curves, splines and sketches; a LAC segment as
-    /// G2 rational cubics within 1e-7 of its size, each proven monotone).
+    /// (the rational geometry of the command's curve, exactly: the Bézier curve, the
+    /// rational fit, the spline, the sketch; `lac` writes its segment as G2 rational cubics
+    /// within 1e-7 of its size, each proven monotone).
     #[arg(short, long)]
     pub(crate) output: Vec<PathBuf>,
     /// Also write the curve's curvature against arc length (.svg or .png).
