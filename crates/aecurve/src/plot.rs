@@ -6,6 +6,7 @@ use crate::protocol::AnyBezier;
 use std::fmt::Write;
 
 /// One line of a chart.
+#[derive(Clone)]
 pub struct Series {
     /// Legend text.
     pub name: String,
@@ -219,12 +220,34 @@ fn draw_chart(
     {
         let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
         root.fill(&WHITE)?;
-        let centre = ((w as i32 - 190 * k + 80 * k) / 2, 0);
+        // The legend's column, to the right of the plot: only where it tells something the
+        // axes do not (more than one series, or a name that the title and the y label do
+        // not already say).
+        let said = |name: &str| {
+            let name = name.to_lowercase();
+            title.to_lowercase().contains(&name) || ylabel.to_lowercase().contains(&name)
+        };
+        let show_legend = series.len() > 1 || series.iter().any(|se| !said(&se.name));
+        let legend_w = if show_legend { 190 } else { 20 };
+        let centre = ((w as i32 - legend_w * k + 80 * k) / 2, 0);
         let middle = Pos::new(HPos::Center, VPos::Center);
+        // The title at 20 px, smaller (down to 12 px) where it would not fit the picture.
+        let room = (w as i32 - 2 * (centre.0 - w as i32 / 2).abs() - 20 * k).max(1) as f64;
+        let wide = root
+            .estimate_text_size(title, &("sans-serif", 20 * k).into_text_style(&root))
+            .map_or(0.0, |(tw, _)| tw as f64);
+        let size = if wide > room {
+            (20.0 * room / wide).max(12.0)
+        } else {
+            20.0
+        };
         root.draw(&Text::new(
             title.to_string(),
             (centre.0, 24 * k),
-            ("sans-serif", 20 * k).into_font().color(&BLACK).pos(middle),
+            ("sans-serif", size * k as f64)
+                .into_font()
+                .color(&BLACK)
+                .pos(middle),
         ))?;
         for (i, line) in subtitle.iter().enumerate() {
             root.draw(&Text::new(
@@ -236,7 +259,7 @@ fn draw_chart(
                     .pos(middle),
             ))?;
         }
-        let (plot, legend) = root.split_horizontally(w - 190 * K);
+        let (plot, legend) = root.split_horizontally(w - legend_w as u32 * K);
         let mut chart = ChartBuilder::on(&plot)
             .margin_top(top - 10 * K)
             .margin_right(10 * K)
@@ -300,7 +323,7 @@ fn draw_chart(
             }
         }
         // The legend: a sample of each series' line or dot, then its name.
-        for (i, se) in series.iter().enumerate() {
+        for (i, se) in series.iter().enumerate().filter(|_| show_legend) {
             let colour = rgb(se.color);
             let y = top as i32 + (20 + 22 * i as i32) * k;
             if se.line && se.dashed {
@@ -1079,9 +1102,14 @@ mod tests {
     fn a_chart_is_shown_at_its_size_with_its_title_and_line() {
         let mut s = Series::new("k", vec![(0.0, 1.0), (1.0, 2.0), (2.0, 1.5)], PALETTE[0]);
         s.markers = false;
-        let svg = fitted_chart("the title", "x", "y", &[s]);
+        let svg = fitted_chart("the title", "x", "y", &[s.clone()]);
         assert!(svg.contains("width=\"720\""), "{}", &svg[..200]);
         assert!(svg.contains("the title") && svg.contains("<polyline"));
+        // A legend where it names something: "k" is not in the title or the y label.
+        assert!(svg.contains("\nk\n"));
+        // Not where the y label says it already.
+        let svg = fitted_chart("the title", "x", "k (1/mm)", &[s]);
+        assert!(!svg.contains("\nk\n"));
     }
 
     #[test]

@@ -114,7 +114,7 @@ fn write_curvature_plot(path: &Path, samples: &[plot::CombSample], title: &str) 
     plot::write_picture(
         path,
         &plot::fitted_chart(
-            &format!("curvature: {title}"),
+            title,
             "arc length (input units)",
             "curvature (1 / input unit)",
             &[series],
