@@ -131,14 +131,19 @@ struct Axes<'a> {
 fn chart(axes: &Axes, series: &[Series]) -> String {
     let mut out = String::new();
     if let Err(e) = draw_chart(&mut out, axes, series) {
-        // Drawing into a string cannot fail on finite data; say so in the picture if it does.
-        return format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"80\"><text x=\"10\" \
-             y=\"40\" font-family=\"sans-serif\">chart failed: {}</text></svg>\n",
-            esc(&e.to_string())
-        );
+        return failed_chart(&*e);
     }
     out
+}
+
+/// The picture of a chart that could not be drawn: drawing into a string cannot fail on
+/// finite data; the picture says so if it does.
+fn failed_chart(e: &dyn std::error::Error) -> String {
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"80\"><text x=\"10\" \
+         y=\"40\" font-family=\"sans-serif\">chart failed: {}</text></svg>\n",
+        esc(&e.to_string())
+    )
 }
 
 /// Register the shipped DejaVu Sans as plotters' "sans-serif" (its text is measured with it).
@@ -761,11 +766,7 @@ pub fn error_map_svg(
 ) -> String {
     let mut out = String::new();
     if let Err(e) = draw_error_map(&mut out, map, chosen, caption) {
-        return format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"720\" height=\"80\"><text x=\"10\" \
-             y=\"40\" font-family=\"sans-serif\">chart failed: {}</text></svg>\n",
-            esc(&e.to_string())
-        );
+        return failed_chart(&*e);
     }
     out
 }
