@@ -126,6 +126,7 @@ pub mod bspline;
 pub mod curve;
 pub mod deadline;
 pub mod error;
+pub mod exact;
 pub mod lac;
 pub mod lac_fit;
 pub mod lcg;

@@ -146,7 +146,10 @@ pub struct RationalCubicFit {
     pub rms: f64,
     /// Largest distance, divided by the LAC's arc length.
     pub max_error: f64,
-    /// Proven by the exact test (always true for a returned fit).
+    /// Proven by the exact test. Always true for a returned fit except for a circular arc
+    /// (an isosceles triangle): its f64 form is within rounding of the circle, which f64
+    /// cannot hold, and the exact test decides it as it is (usually one curvature extremum
+    /// at t = 1/2, a relative change of about 1e-16).
     pub monotone: bool,
     /// Objective evaluations spent.
     pub evaluations: usize,
@@ -393,8 +396,39 @@ const FINISH_PROGRESS: f64 = 1e-9;
 /// `the_table_report_agrees_with_the_exact_one` checks 1e-5 on other shapes.
 const REPORT_BY_TABLE_ABOVE: f64 = 1e-8;
 
+/// For an isosceles triangle (legs equal within 1e-13: the LAC is a circular arc, whatever
+/// its alpha) the family's exact arc, `f0 = f1 = 2c / (1 + 2c)`, `c = cos(θ_d / 2)`. A
+/// circle cannot be held exactly in f64 (no dyadic point but the axes' lies on a circle
+/// through dyadic points with a dyadic weight), and every symmetric curve that is not a
+/// circle has a curvature extremum at t = 1/2: so the arc's exact verdict is usually "not
+/// monotone", by a relative curvature change of about 1e-16, and `monotone` says so. None
+/// for other triangles.
+fn arc_fit(seg: &LacSegment, nr: usize) -> Result<Option<RationalCubicFit>> {
+    let [p0, p1, p2] = seg.control;
+    let (a, b) = ((p1 - p0).hypot(), (p2 - p1).hypot());
+    if (a - b).abs() > 1e-13 * (a + b) {
+        return Ok(None);
+    }
+    let c = (0.5 * seg.theta_d()).cos();
+    let f = 2.0 * c / (1.0 + 2.0 * c);
+    let curve = construct(seg, f, f)?;
+    let monotone = curve.is_curvature_monotone()?;
+    let ApproximationError { rms, max } = approximation_error(seg, &curve, nr)?;
+    Ok(Some(RationalCubicFit {
+        curve,
+        f0: f,
+        f1: f,
+        rms,
+        max_error: max,
+        monotone,
+        evaluations: 0,
+        converged: true,
+    }))
+}
+
 /// The best curvature-monotone rational cubic of the §4 family for `seg` (see the module
-/// documentation). Errors: [`Error::NoSegment`] when no candidate is curvature-monotone.
+/// documentation); for a circular arc, the arc ([`RationalCubicFit::monotone`]). Errors:
+/// [`Error::NoSegment`] when no candidate is curvature-monotone.
 pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<RationalCubicFit> {
     if opts.grid < 3 || opts.grid > 1000 || opts.grid_samples < 4 || opts.refine_samples < 4 {
         return Err(Error::invalid(
@@ -402,9 +436,12 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             "grid must be 3 to 1000 and the sample counts at least 4",
         ));
     }
+    let nr = opts.report_samples.max(200);
+    if let Some(fit) = arc_fit(seg, nr)? {
+        return Ok(fit);
+    }
     let prob = Problem::new(seg, TABLE_INTERVALS)?;
     let tr = Samples::gauss(opts.refine_samples);
-    let nr = opts.report_samples.max(200);
     let report_ts = Samples::uniform(nr);
     let mut buf = Vec::new();
     let mut evals = 0;

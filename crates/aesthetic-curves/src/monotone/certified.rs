@@ -1,0 +1,391 @@
+//! The certified verdict: dκ/ds's sign on (0, 1) decided for the exact f64 inputs.
+//!
+//! One formula, written once over [`Ring`], runs on [`Bounded`] floats (the filter) and,
+//! where those cannot decide, on big integers (the inputs are dyadic, so exactly). It works
+//! on `z`, the hodograph with its vanishing ends divided out:
+//!
+//! - the hodograph `D1` is `x'` (polynomial) or `W P' - P W'` (rational, `= W² x'`), and
+//!   `D1 = φ z` with `φ = t^r (1 - t)^s`, where `r` (`s`) counts the control points that
+//!   coincide with the first (last) one beyond it: a retracted handle. In scaled Bernstein
+//!   form dividing by `t` or `1 - t` is dropping an exact zero end coefficient;
+//! - `δ = det(z, z')`, `K_z = (2 W' δ + W δ') |z|² - 3 W δ (z·z')` (W = 1 for a polynomial
+//!   curve), and
+//!   `K̃ = t^[r>0] (1-t)^[s>0] K_z - (r (1 - t) - s t)/(...) W δ |z|²` (docs/math.md §2.4):
+//!   `dκ/ds = φ⁴ K̃ / (t^[r>0] (1-t)^[s>0] W³ |D1|⁶)` up to a positive constant, so K̃ has the
+//!   sign of dκ/ds on (0, 1). With `r = s = 0` it is the usual numerator (degree 4n - 7 for
+//!   a polynomial curve of degree n; for a rational one `W K`, from
+//!   `det(D1, D1') = W det(H, H', H'')`).
+//!
+//! The curvature is `κ = W² δ / (m n φ |z|³)` (`m` the degree of z): at a retracted end it
+//! is unbounded when δ vanishes there to a lower order than φ, finite otherwise.
+
+use super::{EndCurvature, MonotoneReport, Trend};
+use crate::error::{Error, Result};
+use crate::exact::ring::{self, Scaled};
+use crate::exact::{certified_signs, dyadic_integers, poly, Bounded, Ring, Want};
+use kurbo::Point;
+use num_bigint::BigInt;
+
+/// The curve as the formula sees it: control points, optional weights, retracted ends.
+pub(super) struct Input<'a> {
+    points: &'a [Point],
+    weights: Option<&'a [f64]>,
+    /// Control points after the first that coincide with it (`b_0 = ... = b_r`).
+    r: usize,
+    /// The same at the end.
+    s: usize,
+}
+
+impl<'a> Input<'a> {
+    /// `Err(Degenerate)` for a curve that is a single point.
+    pub(super) fn new(points: &'a [Point], weights: Option<&'a [f64]>) -> Result<Self> {
+        let n = points.len() - 1;
+        let r = points[1..].iter().take_while(|p| **p == points[0]).count();
+        if r == n {
+            return Err(Error::Degenerate(
+                "all control points coincide: the curve is a point".into(),
+            ));
+        }
+        let s = points[..n]
+            .iter()
+            .rev()
+            .take_while(|p| **p == points[n])
+            .count();
+        // Weights all equal: the polynomial curve itself.
+        let weights = weights.filter(|w| w.iter().any(|v| *v != w[0]));
+        Ok(Input {
+            points,
+            weights,
+            r,
+            s,
+        })
+    }
+
+    fn degree(&self) -> usize {
+        self.points.len() - 1
+    }
+
+    /// The weights, None for a polynomial curve (or one whose weights are all equal).
+    pub(super) fn weights(&self) -> Option<&'a [f64]> {
+        self.weights
+    }
+
+    /// The degree of K̃ (see the module docs).
+    pub(super) fn test_degree(&self) -> usize {
+        let n = self.degree();
+        let (r, s) = (self.r, self.s);
+        let (m, w) = match self.weights {
+            None => (n - 1 - r - s, 0),
+            Some(_) => (2 * n - 2 - r - s, n),
+        };
+        if m == 0 {
+            return 0;
+        }
+        w + 4 * m - 3 + usize::from(r > 0) + usize::from(s > 0)
+    }
+
+    /// Whether an end's speed vanishes.
+    pub(super) fn retracted(&self) -> bool {
+        self.r > 0 || self.s > 0
+    }
+}
+
+/// z and W over a ring, from the control points' differences `diff(j, i) = b_j - b_i` and
+/// the weights.
+struct Lifted<R> {
+    zx: Scaled<R>,
+    zy: Scaled<R>,
+    w: Option<Scaled<R>>,
+}
+
+fn binom(n: usize, k: usize) -> i64 {
+    let mut b = 1i64;
+    for j in 0..k.min(n - k) {
+        b = b * (n - j) as i64 / (j + 1) as i64;
+    }
+    b
+}
+
+fn lift<R: Ring>(inp: &Input, diff: impl Fn(usize, usize) -> (R, R), w: Option<&[R]>) -> Lifted<R> {
+    let n = inp.degree();
+    let (r, s) = (inp.r, inp.s);
+    match w {
+        None => {
+            // x' = n Σ C(n-1, i) (b_{i+1} - b_i) t^i (1-t)^{n-1-i}; z drops n and φ.
+            let (zx, zy) = (r..n - s)
+                .map(|i| {
+                    let (dx, dy) = diff(i + 1, i);
+                    let c = binom(n - 1, i);
+                    (dx.mul_int(c), dy.mul_int(c))
+                })
+                .unzip();
+            Lifted { zx, zy, w: None }
+        }
+        Some(w) => {
+            // D1 = n Σ_{i,j} C(n-1,i) C(n-1,j) w_i w_{j+1} (b_{j+1} - b_i) t^{i+j} (1-t)^{..}.
+            let deg = 2 * (n - 1);
+            let mut x: Scaled<R> = (0..=deg).map(|_| R::zero()).collect();
+            let mut y = x.clone();
+            for i in 0..n {
+                for j in 0..n {
+                    let (dx, dy) = diff(j + 1, i);
+                    let c = w[i].mul(&w[j + 1]).mul_int(binom(n - 1, i) * binom(n - 1, j));
+                    x[i + j] = x[i + j].add(&c.mul(&dx));
+                    y[i + j] = y[i + j].add(&c.mul(&dy));
+                }
+            }
+            let ws = w
+                .iter()
+                .enumerate()
+                .map(|(i, v)| v.mul_int(binom(n, i)))
+                .collect();
+            Lifted {
+                zx: x[r..=deg - s].iter().cloned().collect(),
+                zy: y[r..=deg - s].iter().cloned().collect(),
+                w: Some(ws),
+            }
+        }
+    }
+}
+
+/// `δ̃ = m det(z, z')` from z's two sub-polygons (degree 2m - 2), and `z' = B̃ - Ã`.
+fn delta<R: Ring>(l: &Lifted<R>) -> (Scaled<R>, Scaled<R>, Scaled<R>) {
+    let m = l.zx.len() - 1;
+    let sub = |z: &[R]| -> (Scaled<R>, Scaled<R>) {
+        (
+            (0..m).map(|i| z[i].mul_int((m - i) as i64)).collect(),
+            (0..m).map(|i| z[i + 1].mul_int(i as i64 + 1)).collect(),
+        )
+    };
+    let (ax, bx) = sub(&l.zx);
+    let (ay, by) = sub(&l.zy);
+    let d = ring::sub(&ring::conv(&ax, &by), &ring::conv(&ay, &bx));
+    (d, ring::sub(&bx, &ax), ring::sub(&by, &ay))
+}
+
+/// K̃ (see the module docs); the zero constant for a straight segment (z constant).
+fn k_tilde<R: Ring>(inp: &Input, l: &Lifted<R>) -> Scaled<R> {
+    let m = l.zx.len() - 1;
+    if m == 0 {
+        return smallvec::smallvec![R::zero()];
+    }
+    let (d, zpx, zpy) = delta(l);
+    let speed2 = ring::add(&ring::conv(&l.zx, &l.zx), &ring::conv(&l.zy, &l.zy));
+    let q = ring::add(&ring::conv(&l.zx, &zpx), &ring::conv(&l.zy, &zpy));
+    // (2 W' δ + W δ') (or δ'), then times |z|², minus 3 W δ (z·z').
+    let (lead, wd) = match &l.w {
+        None => ((m > 1).then(|| ring::deriv(&d)), d.clone()),
+        Some(w) => {
+            let wp = ring::scale(&ring::conv(&ring::deriv(w), &d), 2);
+            let lead = if m > 1 {
+                ring::add(&wp, &ring::conv(w, &ring::deriv(&d)))
+            } else {
+                wp
+            };
+            (Some(lead), ring::conv(w, &d))
+        }
+    };
+    let tail = ring::scale(&ring::conv(&wd, &q), 3);
+    let kz = match lead {
+        Some(lead) => ring::sub(&ring::conv(&lead, &speed2), &tail),
+        None => tail.iter().map(|v| R::zero().sub(v)).collect(),
+    };
+    let (r, s) = (inp.r as i64, inp.s as i64);
+    if r == 0 && s == 0 {
+        return kz;
+    }
+    let wds = ring::conv(&wd, &speed2);
+    match (r > 0, s > 0) {
+        (true, false) => ring::sub(&ring::times_linear(&kz, 0, 1), &ring::scale(&wds, r)),
+        (false, true) => ring::add(&ring::times_linear(&kz, 1, 0), &ring::scale(&wds, s)),
+        _ => ring::sub(
+            &ring::times_linear(&ring::times_linear(&kz, 0, 1), 1, 0),
+            &ring::times_linear(&wds, r, -s),
+        ),
+    }
+}
+
+/// The inputs as bounded floats, scaled by powers of two so that nothing overflows or
+/// underflows on the way (exact, apart from values that become subnormal: their bound says so).
+fn bounded(inp: &Input) -> Lifted<Bounded> {
+    let p = inp.points;
+    let n = p.len();
+    let mut d = vec![(Bounded::exact(0.0), Bounded::exact(0.0)); n * n];
+    let mut big = 0.0f64;
+    for j in 0..n {
+        for i in 0..n {
+            let v = (Bounded::diff(p[j].x, p[i].x), Bounded::diff(p[j].y, p[i].y));
+            big = big.max(v.0.v.abs()).max(v.1.v.abs());
+            d[j * n + i] = v;
+        }
+    }
+    let k = pow2_normaliser(big);
+    let diff = |j: usize, i: usize| {
+        let (x, y) = d[j * n + i];
+        (times_pow2(x, k), times_pow2(y, k))
+    };
+    let w: Option<Vec<Bounded>> = inp.weights.map(|w| {
+        let kw = pow2_normaliser(w.iter().fold(0.0f64, |m, v| m.max(*v)));
+        w.iter().map(|v| times_pow2(Bounded::exact(*v), kw)).collect()
+    });
+    lift(inp, diff, w.as_deref())
+}
+
+/// The power of two that brings `big` near 1 (0 for zero or non-finite values).
+fn pow2_normaliser(big: f64) -> i32 {
+    if big > 0.0 && big.is_finite() {
+        -(big.log2().floor() as i32)
+    } else {
+        0
+    }
+}
+
+fn times_pow2(b: Bounded, k: i32) -> Bounded {
+    let f = 2f64.powi(k.clamp(-1000, 1000));
+    let v = b.v * f;
+    let tiny = if v != 0.0 && v.abs() < f64::MIN_POSITIVE {
+        f64::from_bits(1)
+    } else {
+        0.0
+    };
+    Bounded {
+        v,
+        e: b.e * f + tiny,
+    }
+}
+
+/// The inputs as exact integers (all coordinates share one power of two, the weights
+/// another: positive factors that change no sign).
+fn exact(inp: &Input) -> Lifted<BigInt> {
+    let p = inp.points;
+    let coords: Vec<f64> = p.iter().flat_map(|q| [q.x, q.y]).collect();
+    let (ints, _) = dyadic_integers(&coords);
+    let diff = |j: usize, i: usize| {
+        (
+            &ints[2 * j] - &ints[2 * i],
+            &ints[2 * j + 1] - &ints[2 * i + 1],
+        )
+    };
+    let w = inp.weights.map(|w| dyadic_integers(w).0);
+    lift(inp, diff, w.as_deref())
+}
+
+fn coeffs(v: &[BigInt]) -> Vec<BigInt> {
+    v.to_vec()
+}
+
+fn big_sign(v: &BigInt) -> i32 {
+    match v.sign() {
+        num_bigint::Sign::Minus => -1,
+        num_bigint::Sign::NoSign => 0,
+        num_bigint::Sign::Plus => 1,
+    }
+}
+
+/// `Err(Degenerate)` when z vanishes inside (0, 1): a cusp or a curve that turns back.
+fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
+    let m = b.zx.len() - 1;
+    let h: Vec<kurbo::Vec2> = (0..=m)
+        .map(|i| {
+            let c = binom(m, i) as f64;
+            kurbo::Vec2::new(b.zx[i].v / c, b.zy[i].v / c)
+        })
+        .collect();
+    let scale = h.iter().map(|v| v.hypot2()).fold(0.0, f64::max);
+    let err = (0..=m)
+        .map(|i| (b.zx[i].e + b.zy[i].e) / binom(m, i) as f64)
+        .fold(0.0, f64::max);
+    let margin = super::DEGENERATE_SPEED_TOL * scale.sqrt();
+    if scale.is_finite() && scale > 0.0 && err * 1e3 < margin && super::hodograph_vanishes(&h, margin).is_none() {
+        return Ok(());
+    }
+    // Exactly: a common root of z's components in (0, 1) (z's ends are not zero).
+    let e = exact(inp);
+    let g = poly::IntPoly::new(coeffs(&e.zx)).gcd(&poly::IntPoly::new(coeffs(&e.zy)));
+    match poly::roots(g.coeffs()).first() {
+        Some(t) => Err(Error::Degenerate(format!(
+            "the tangent vanishes at t = {t:.9}, inside the segment (a cusp, or the curve \
+             turns back on itself): curvature is undefined there"
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The end behaviour of the curvature at t = 0 (`start`) or t = 1.
+fn end_curvature(inp: &Input, b: &Lifted<Bounded>, start: bool) -> EndCurvature {
+    let order = if start { inp.r } else { inp.s };
+    let m = b.zx.len() - 1;
+    let n = inp.degree();
+    let w_end = inp.weights.map_or(1.0, |w| if start { w[0] } else { w[n] });
+    let z_end = if start { 0 } else { m };
+    let z2 = b.zx[z_end].v.hypot(b.zy[z_end].v);
+    let d = if m > 0 { delta(b).0 } else { Scaled::new() };
+    // Exact zero test of δ's end coefficients (the filter's signs, else exact).
+    let signs: Vec<i32> = if m == 0 {
+        Vec::new()
+    } else if d.iter().all(|c| c.sign().is_some()) {
+        d.iter().map(|c| c.sign().unwrap_or(0)).collect()
+    } else {
+        delta(&exact(inp)).0.iter().map(big_sign).collect()
+    };
+    let ordered: Vec<usize> = if start { (0..signs.len()).collect() } else { (0..signs.len()).rev().collect() };
+    let first = ordered.iter().position(|&i| signs[i] != 0);
+    let value = |i: usize| w_end * w_end * d[i].v / (m as f64 * n as f64 * z2 * z2 * z2);
+    match first {
+        None => {
+            if order == 0 {
+                EndCurvature::Regular(0.0)
+            } else {
+                EndCurvature::Finite { curvature: 0.0, order }
+            }
+        }
+        Some(o) if order == 0 => EndCurvature::Regular(if o == 0 { value(ordered[0]) } else { 0.0 }),
+        Some(o) if o < order => EndCurvature::Unbounded {
+            positive: signs[ordered[o]] > 0,
+            order,
+            rate: order - o,
+        },
+        Some(o) => EndCurvature::Finite {
+            curvature: if o == order { value(ordered[o]) } else { 0.0 },
+            order,
+        },
+    }
+}
+
+/// The sign structure of K̃ on (0, 1), certified; the curve checked for regularity first.
+fn signs(inp: &Input, b: &Lifted<Bounded>, want: Want) -> Result<(crate::exact::Signs, usize)> {
+    check_regular(inp, b)?;
+    let k = k_tilde(inp, b);
+    let s = certified_signs(&k, || coeffs(&k_tilde(inp, &exact(inp))), want);
+    if s.exact {
+        super::note_exact_fallback();
+    }
+    Ok((s, k.len() - 1))
+}
+
+/// The certified verdict only.
+pub(super) fn verdict(inp: &Input) -> Result<bool> {
+    let b = bounded(inp);
+    let (s, _) = signs(inp, &b, Want::Signs)?;
+    Ok(!(s.positive && s.negative))
+}
+
+/// The certified verdict with the extrema located and the end curvatures.
+pub(super) fn report(inp: &Input) -> Result<MonotoneReport> {
+    let b = bounded(inp);
+    let (signs, test_degree) = signs(inp, &b, Want::Changes)?;
+    let monotone = !(signs.positive && signs.negative);
+    let trend = monotone.then_some(match (signs.positive, signs.negative) {
+        (true, _) => Trend::Increasing,
+        (_, true) => Trend::Decreasing,
+        _ => Trend::Constant,
+    });
+    Ok(MonotoneReport {
+        monotone,
+        trend,
+        extrema: if monotone { Vec::new() } else { signs.changes },
+        test_degree,
+        exact: signs.exact,
+        ends: [end_curvature(inp, &b, true), end_curvature(inp, &b, false)],
+    })
+}
