@@ -742,11 +742,18 @@ pub fn shape_json(c: &ShapeCheck) -> Value {
                     "rational": s.rational,
                     "extrema": s.extrema.iter().map(|(t, p)| json!({"t": t, "point": pt(*p)})).collect::<Vec<_>>(),
                     "inflections": s.inflections.iter().map(|(t, p)| json!({"t": t, "point": pt(*p)})).collect::<Vec<_>>(),
-                    "max_abs_curvature": s.max_abs_curvature,
+                    "exact_arithmetic": s.exact,
                 });
+                // A curvature that grows without bound is null, with its kind in "ends".
+                let num = |v: f64| if v.is_finite() { json!(v) } else { Value::Null };
+                o["max_abs_curvature"] = num(s.max_abs_curvature);
+                if let Some(e) = &s.ends {
+                    o["ends"] = json!(e.iter().map(crate::protocol::end_curvature_json).collect::<Vec<_>>());
+                }
+                if !s.notes.is_empty() { o["notes"] = json!(s.notes); }
                 if let Some(m) = s.monotone { o["monotone"] = json!(m); }
                 if let Some(t) = s.trend { o["trend"] = json!(t.as_str()); }
-                if let Some((a, b)) = s.end_curvatures { o["end_curvatures"] = json!([a, b]); }
+                if let Some((a, b)) = s.end_curvatures { o["end_curvatures"] = json!([num(a), num(b)]); }
                 if let Some(f) = &s.flag { o["flag"] = json!(f); }
                 if let Some(g) = &s.suggestion {
                     o["suggestion"] = json!({
@@ -760,10 +767,11 @@ pub fn shape_json(c: &ShapeCheck) -> Value {
             "joins": k.joins.iter().map(|j| {
                 let mut o = json!({
                     "after_segment": j.after_segment, "point": pt(j.point),
-                    "angle_break_degrees": j.angle_break.to_degrees(),
+                    "angle_break_degrees": if j.angle_break.is_finite() { json!(j.angle_break.to_degrees()) } else { Value::Null },
                     "g1": j.g1, "g2": j.g2, "near_break": j.near_break,
                 });
                 if let Some(x) = j.curvature_jump { o["curvature_jump"] = json!(x); }
+                if j.unbounded_curvature { o["unbounded_curvature"] = json!(true); }
                 o
             }).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),

@@ -358,7 +358,42 @@ pub fn monotone_json(r: &aesthetic_curves::MonotoneReport) -> Value {
         "extrema": r.extrema,
         "test_degree": r.test_degree,
         "trend": r.trend.map(|t| t.as_str()),
+        "exact_arithmetic": r.exact,
+        "ends": r.ends.iter().map(end_curvature_json).collect::<Vec<_>>(),
     })
+}
+
+/// One end's curvature: `{"kind": "regular" | "finite" | "unbounded", "curvature": value or
+/// null, "retracted_handles": n, "growth": "1/t" (unbounded only), "sign"}`.
+pub fn end_curvature_json(e: &aesthetic_curves::monotone::EndCurvature) -> Value {
+    use aesthetic_curves::monotone::EndCurvature as E;
+    match *e {
+        E::Regular(k) => json!({"kind": "regular", "curvature": finite_or_null(k), "retracted_handles": 0}),
+        E::Finite { curvature, order } => json!({
+            "kind": "finite",
+            "curvature": finite_or_null(curvature),
+            "retracted_handles": order,
+        }),
+        E::Unbounded {
+            positive,
+            order,
+            rate,
+        } => json!({
+            "kind": "unbounded",
+            "curvature": null,
+            "retracted_handles": order,
+            "growth": if rate == 1 { "1/t".to_string() } else { format!("1/t^{rate}") },
+            "sign": if positive { 1 } else { -1 },
+        }),
+    }
+}
+
+fn finite_or_null(v: f64) -> Value {
+    if v.is_finite() {
+        json!(v)
+    } else {
+        Value::Null
+    }
 }
 
 /// The result of `bezier.curvature_monotone` with `"method": "sampling"`.

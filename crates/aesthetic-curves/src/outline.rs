@@ -18,13 +18,16 @@
 //! [`OutlineOptions::near_break`] (a few degrees) is almost always unintended: it is
 //! flagged.
 //!
-//! A segment that does not move (all control points equal) or whose tangent vanishes at an
-//! end (coincident handles) is flagged, never an error or a NaN: its curvature at that end is
-//! the limit from inside (as in [`crate::curve`]), or absent for a point.
+//! Every verdict, extremum and inflection is exact for the file's f64 coordinates
+//! ([`crate::monotone`]). A handle retracted onto its end point is an ordinary segment: the
+//! verdict is the exact one on the open segment, and the end's curvature is what it is (a
+//! finite limit, 0 on a straight stretch, or unbounded like 1/t, said in the segment's
+//! `notes`); a join next to an unbounded end gets no curvature jump. Only a segment that does
+//! not move (all control points equal) or whose tangent vanishes inside (a cusp) is flagged,
+//! never an error or a NaN; findings are placed on the segment, never at (0, 0).
 
-use crate::bernstein::{sign_change_roots, Bernstein};
 use crate::bezier::{PlanarCurve, RationalBezier};
-use crate::monotone::{CurvatureMonotone, Trend};
+use crate::monotone::{CurvatureMonotone, EndCurvature, Trend};
 use kurbo::{Point, Vec2};
 
 /// Thresholds of the join checks.
@@ -64,6 +67,8 @@ impl Default for OutlineOptions {
 pub struct SegmentCheck {
     /// Polynomial degree (1: a line).
     pub degree: usize,
+    /// The segment's first point (where findings without a better place are put).
+    pub start: Point,
     /// Whether any weight differs from the others (a truly rational segment).
     pub rational: bool,
     /// The exact verdict: curvature monotone along the segment (None: the segment does not
@@ -75,12 +80,22 @@ pub struct SegmentCheck {
     pub extrema: Vec<(f64, Point)>,
     /// Interior inflections: parameter and point.
     pub inflections: Vec<(f64, Point)>,
-    /// Signed curvature at the start and at the end (None for a segment that does not move).
+    /// Signed curvature at the start and at the end, the limit at a retracted handle
+    /// (±infinity where it grows without bound: see `ends`); None for a segment that does
+    /// not move or could not be checked.
     pub end_curvatures: Option<(f64, f64)>,
-    /// Largest |curvature| on the segment.
+    /// What the curvature does at each end (None when the segment could not be checked).
+    pub ends: Option<[EndCurvature; 2]>,
+    /// Largest |curvature| on the segment, over its ends and its extrema (infinite when an
+    /// end's curvature grows without bound).
     pub max_abs_curvature: f64,
-    /// Why the segment could not be checked fully (a point, coincident handles), if so.
+    /// Why the segment could not be checked (a point, a cusp), if so.
     pub flag: Option<String>,
+    /// Facts worth knowing that are not defects (retracted handles and what the curvature
+    /// does there).
+    pub notes: Vec<String>,
+    /// The verdict needed exact arithmetic (the floating-point filter could not decide).
+    pub exact: bool,
     /// With [`OutlineOptions::suggest`]: monotone handle lengths within the tolerance.
     pub suggestion: Option<HandleSuggestion>,
 }
@@ -188,6 +203,9 @@ pub struct JoinCheck {
     pub g2: bool,
     /// Break above `g1_angle` and below `near_break`: probably unintended.
     pub near_break: bool,
+    /// At least one side's curvature grows without bound at the join (a retracted handle):
+    /// no jump is measured.
+    pub unbounded_curvature: bool,
 }
 
 /// A place worth a look, for the ranked list.
@@ -228,37 +246,43 @@ impl ContourCheck {
     }
 }
 
-/// The parameter values in (0, 1) where the curvature of `c` changes sign.
+/// The parameter values in (0, 1) where the curvature of `c` changes sign, exact for its
+/// f64 inputs ([`CurvatureMonotone::inflections`]); none for a line or a segment that
+/// cannot be checked.
 pub fn inflections(c: &RationalBezier) -> Vec<f64> {
     if c.degree() < 2 {
         return Vec::new();
     }
-    let (x, y, w) = c.components();
-    let (x1, y1, w1) = (x.deriv(), y.deriv(), w.deriv());
-    let (x2, y2, w2) = (x1.deriv(), y1.deriv(), w1.deriv());
-    // det [H, H', H''] by its first column.
-    let minor = |a1: &Bernstein, a2: &Bernstein, b1: &Bernstein, b2: &Bernstein| {
-        a1.mul(b2).sub(&b1.mul(a2))
-    };
-    let det = x
-        .mul(&minor(&y1, &y2, &w1, &w2))
-        .sub(&y.mul(&minor(&x1, &x2, &w1, &w2)))
-        .add(&w.mul(&minor(&x1, &x2, &y1, &y2)));
-    sign_change_roots(&det)
+    c.inflections().unwrap_or_default()
 }
 
-/// Unit tangent and curvature at `t` (0 or 1), from just inside where the tangent vanishes;
-/// None for a segment that does not move.
-fn end_state(c: &RationalBezier, t: f64) -> Option<(Vec2, f64)> {
-    for dt in [0.0, 1e-7, 1e-4] {
-        let s = if t < 0.5 { t + dt } else { t - dt };
-        let d = c.derivs(s);
-        if d.is_regular() {
-            let k = d.kappa();
-            return Some((d.d1 / d.d1.hypot(), if k.is_finite() { k } else { 0.0 }));
+/// The unit tangent at t = 0 (`start`) or t = 1: along the first control point that differs
+/// from the end point (the limit of the tangent at a retracted handle); None for a point.
+fn end_tangent(c: &RationalBezier, start: bool) -> Option<Vec2> {
+    let p = c.points();
+    let (end, mut others): (Point, Box<dyn Iterator<Item = &Point>>) = if start {
+        (p[0], Box::new(p.iter().skip(1)))
+    } else {
+        (p[p.len() - 1], Box::new(p.iter().rev().skip(1)))
+    };
+    let q = others.find(|q| **q != end)?;
+    let v = if start { *q - end } else { end - *q };
+    let l = v.hypot();
+    (l > 0.0 && l.is_finite()).then(|| v / l)
+}
+
+/// A signed end curvature as a number: ±infinity where it is unbounded.
+fn end_value(e: &EndCurvature) -> f64 {
+    match e {
+        EndCurvature::Unbounded { positive, .. } => {
+            if *positive {
+                f64::INFINITY
+            } else {
+                f64::NEG_INFINITY
+            }
         }
+        _ => e.value().unwrap_or(0.0),
     }
-    None
 }
 
 /// Check one segment (no suggestion: [`check_segment_with`]).
@@ -272,44 +296,52 @@ pub fn check_segment_with(c: &RationalBezier, opts: &OutlineOptions) -> SegmentC
     let rational = w.iter().any(|v| (v - w[0]).abs() > 1e-12 * w[0].abs());
     let mut out = SegmentCheck {
         degree: c.degree(),
+        start: c.points()[0],
         rational,
         monotone: None,
         trend: None,
         extrema: Vec::new(),
         inflections: Vec::new(),
         end_curvatures: None,
+        ends: None,
         max_abs_curvature: 0.0,
         flag: None,
+        notes: Vec::new(),
+        exact: false,
         suggestion: None,
     };
-    let (Some((_, k0)), Some((_, k1))) = (end_state(c, 0.0), end_state(c, 1.0)) else {
+    if end_tangent(c, true).is_none() {
         out.flag = Some("the segment is a point (all control points coincide)".into());
         return out;
-    };
-    out.end_curvatures = Some((k0, k1));
-    out.max_abs_curvature = k0.abs().max(k1.abs());
-    let stationary = !c.derivs(0.0).is_regular() || !c.derivs(1.0).is_regular();
-    if c.degree() == 1 {
-        out.monotone = Some(true);
-        out.trend = Some(Trend::Constant);
-        return out;
     }
-    out.inflections = inflections(c).into_iter().map(|t| (t, c.eval(t))).collect();
-    match c.curvature_monotone() {
-        Ok(r) => {
-            out.monotone = Some(r.monotone);
-            out.trend = r.trend;
-            for &t in &r.extrema {
-                let k = c.kappa(t);
-                if k.is_finite() {
-                    out.max_abs_curvature = out.max_abs_curvature.max(k.abs());
-                }
-                out.extrema.push((t, c.eval(t)));
-            }
-        }
+    let r = match c.curvature_monotone() {
+        Ok(r) => r,
         Err(e) => {
             out.flag = Some(e.to_string());
+            return out;
         }
+    };
+    let (k0, k1) = (end_value(&r.ends[0]), end_value(&r.ends[1]));
+    out.end_curvatures = Some((k0, k1));
+    out.ends = Some(r.ends);
+    out.max_abs_curvature = k0.abs().max(k1.abs());
+    out.exact = r.exact;
+    for (e, at) in r.ends.iter().zip(["start", "end"]) {
+        if let Some(d) = e.describe() {
+            out.notes.push(format!("{at}: {d}"));
+        }
+    }
+    out.monotone = Some(r.monotone);
+    out.trend = r.trend;
+    if c.degree() >= 2 {
+        out.inflections = inflections(c).into_iter().map(|t| (t, c.eval(t))).collect();
+    }
+    for &t in &r.extrema {
+        let k = c.kappa(t);
+        if k.is_finite() {
+            out.max_abs_curvature = out.max_abs_curvature.max(k.abs());
+        }
+        out.extrema.push((t, c.eval(t)));
     }
     if let (Some(tol), Some(false), false) = (opts.suggest, out.monotone, rational) {
         if c.degree() == 3 {
@@ -317,12 +349,6 @@ pub fn check_segment_with(c: &RationalBezier, opts: &OutlineOptions) -> SegmentC
                 out.suggestion = suggest_handles(&b, tol);
             }
         }
-    }
-    if stationary && out.flag.is_none() {
-        out.flag = Some(
-            "a handle coincides with its end point: the tangent there is the limit from inside"
-                .into(),
-        );
     }
     out
 }
@@ -342,9 +368,13 @@ pub fn check_contour(
     let mut joins = Vec::with_capacity(join_count);
     for i in 0..join_count {
         let (a, b) = (&segments[i], &segments[(i + 1) % n]);
-        let (Some((ta, ka)), Some((tb, kb))) = (end_state(a, 1.0), end_state(b, 0.0)) else {
+        let (Some(ta), Some(tb)) = (end_tangent(a, false), end_tangent(b, true)) else {
             continue; // a point segment: flagged on the segment
         };
+        // Curvatures on both sides (from the checks; a segment that could not be checked
+        // gives no jump).
+        let side = |s: &SegmentCheck, end: bool| s.end_curvatures.map(|(k0, k1)| if end { k1 } else { k0 });
+        let (ka, kb) = (side(&checks[i], true), side(&checks[(i + 1) % n], false));
         let angle = ta.cross(tb).atan2(ta.dot(tb)).abs();
         // The handle legs at the join: what rounding to the grid can turn them by.
         let leg = |c: &RationalBezier, end: bool| {
@@ -361,14 +391,14 @@ pub fn check_contour(
             * opts.grid
             * (1.0 / leg(a, true) + 1.0 / leg(b, false));
         let g1 = angle <= opts.g1_angle + if slack.is_finite() { slack } else { 0.0 };
-        let jump = g1.then(|| {
-            let m = ka.abs().max(kb.abs());
-            if m > 0.0 {
-                (ka - kb).abs() / m
-            } else {
-                0.0
+        let unbounded = [ka, kb].iter().any(|k| k.is_some_and(|v| v.is_infinite()));
+        let jump = match (ka, kb) {
+            (Some(ka), Some(kb)) if g1 && !unbounded => {
+                let m = ka.abs().max(kb.abs());
+                Some(if m > 0.0 { (ka - kb).abs() / m } else { 0.0 })
             }
-        });
+            _ => None,
+        };
         joins.push(JoinCheck {
             after_segment: i,
             point: a.points()[a.points().len() - 1],
@@ -377,6 +407,7 @@ pub fn check_contour(
             g1,
             g2: jump.is_some_and(|j| j < opts.g2_jump),
             near_break: !g1 && angle < opts.near_break,
+            unbounded_curvature: unbounded,
         });
     }
     ContourCheck {
@@ -420,7 +451,7 @@ pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding
         }
         for (si, s) in c.segments.iter().enumerate() {
             if s.monotone == Some(false) {
-                let at = s.extrema.first().map(|e| e.1).unwrap_or(Point::ORIGIN);
+                let at = s.extrema.first().map(|e| e.1).unwrap_or(s.start);
                 out.push(Finding {
                     contour: ci,
                     kind: "not-monotone",
@@ -439,7 +470,7 @@ pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding
                     contour: ci,
                     kind: "degenerate",
                     segment: si,
-                    point: Point::ORIGIN,
+                    point: s.start,
                     score: 0.5,
                     message: f.clone(),
                 });

@@ -81,6 +81,8 @@ pub(crate) fn check(
     let near = count(&|c| c.joins.iter().filter(|j| j.near_break).count());
     let inflections = count(&|c| c.segments.iter().map(|s| s.inflections.len()).sum());
     let suggested = count(&|c| c.segments.iter().filter(|s| s.suggestion.is_some()).count());
+    let exact = count(&|c| c.segments.iter().filter(|s| s.exact).count());
+    let retracted = count(&|c| c.segments.iter().filter(|s| !s.notes.is_empty()).count());
     if let Some(r) = report {
         let title = format!(
             "aecurve check: {}",
@@ -116,6 +118,7 @@ pub(crate) fn check(
                 "shapes": checked.len(), "segments": segments, "curved_segments": curved,
                 "monotone_segments": monotone, "inflections": inflections, "joins": joins,
                 "g1_joins": g1, "g2_joins": g2, "near_breaks": near, "suggestions": suggested,
+                "exact_arithmetic": exact, "retracted_handles": retracted,
             },
             "findings": ranked.iter().map(|(n, f)| finding_json(n, f)).collect::<Vec<_>>(),
             "milliseconds": {"read": read_ms, "check": check_ms},
@@ -137,6 +140,10 @@ pub(crate) fn check(
     println!(
         "  curvature monotone: {monotone} of {segments} segments ({} not, or flagged); {inflections} inflection(s) inside segments",
         segments - monotone
+    );
+    println!(
+        "  proofs: every verdict exact for the file's coordinates; {exact} of {segments} needed exact integer arithmetic ({:.2} %); {retracted} segment(s) with retracted handles",
+        if segments > 0 { 100.0 * exact as f64 / segments as f64 } else { 0.0 }
     );
     println!(
         "  joins: {g1} G1 (of which {g2} G2), {near} near-breaks (above G1{} and under 3°: probably meant smooth)",

@@ -37,12 +37,21 @@ pub(crate) fn monotone(
                 writeln!(out, "{}", aecurve::protocol::monotone_json(&r))?;
             } else {
                 writeln!(out, "{kind} Bézier curve of degree {degree}")?;
+                let end = |e: &aesthetic_curves::monotone::EndCurvature| match e.value() {
+                    Some(k) => format!("{k:.6}"),
+                    None => "unbounded".to_string(),
+                };
                 writeln!(
                     out,
-                    "curvature at the ends: {:.6} (t = 0), {:.6} (t = 1)",
-                    curve.kappa(0.0),
-                    curve.kappa(1.0)
+                    "curvature at the ends: {} (t = 0), {} (t = 1)",
+                    end(&r.ends[0]),
+                    end(&r.ends[1])
                 )?;
+                for (e, at) in r.ends.iter().zip(["t = 0", "t = 1"]) {
+                    if let Some(d) = e.describe() {
+                        writeln!(out, "  {at}: {d}")?;
+                    }
+                }
                 if r.monotone {
                     let how = r.trend.map(|t| t.as_str()).unwrap_or("constant");
                     writeln!(out, "curvature is MONOTONE ({how})")?;
@@ -65,9 +74,15 @@ pub(crate) fn monotone(
                 }
                 writeln!(
                     out,
-                    "proof: sign of dkappa/ds from a Bernstein polynomial of degree {} \
-                     (convex hull + subdivision)",
-                    r.test_degree
+                    "proof: sign of dkappa/ds from a Bernstein polynomial of degree {}, {}",
+                    r.test_degree,
+                    if r.exact {
+                        "decided in exact integer arithmetic (the floating-point filter could \
+                         not: Sturm sequence and exact bisection)"
+                    } else {
+                        "decided by its coefficients with rigorous rounding bounds (convex \
+                         hull + subdivision)"
+                    }
                 )?;
             }
         }

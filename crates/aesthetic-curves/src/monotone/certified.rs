@@ -363,6 +363,22 @@ fn signs(inp: &Input, b: &Lifted<Bounded>, want: Want) -> Result<(crate::exact::
     Ok((s, k.len() - 1))
 }
 
+/// Where the curvature changes sign in (0, 1) (inflections), certified: the sign changes of
+/// δ, which has the sign of κ there.
+pub(super) fn inflections(inp: &Input) -> Result<Vec<f64>> {
+    let b = bounded(inp);
+    check_regular(inp, &b)?;
+    if b.zx.len() < 2 {
+        return Ok(Vec::new());
+    }
+    let d = delta(&b).0;
+    let s = certified_signs(&d, || coeffs(&delta(&exact(inp)).0), Want::Changes);
+    if s.exact {
+        super::note_exact_fallback();
+    }
+    Ok(s.changes)
+}
+
 /// The certified verdict only.
 pub(super) fn verdict(inp: &Input) -> Result<bool> {
     let b = bounded(inp);

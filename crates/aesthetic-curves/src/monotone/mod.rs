@@ -1014,6 +1014,10 @@ pub trait CurvatureMonotone: PlanarCurve {
     fn curvature_monotone_sampled(&self, samples: usize) -> Result<SampledReport> {
         sampled(|t| self.kappa(t), samples)
     }
+
+    /// The parameters in (0, 1) where the curvature changes sign (inflections), sorted, each
+    /// within 1e-12: exact for the given f64 inputs, as the verdict is.
+    fn inflections(&self) -> Result<Vec<f64>>;
 }
 
 impl CurvatureMonotone for Bezier {
@@ -1025,6 +1029,9 @@ impl CurvatureMonotone for Bezier {
     }
     fn is_curvature_monotone(&self) -> Result<bool> {
         verdict(self.points(), None)
+    }
+    fn inflections(&self) -> Result<Vec<f64>> {
+        certified::inflections(&certified::Input::new(self.points(), None)?)
     }
     fn curvature_monotone_sampled(&self, samples: usize) -> Result<SampledReport> {
         let k = KappaSampler::new(self);
@@ -1041,6 +1048,9 @@ impl CurvatureMonotone for RationalBezier {
     }
     fn is_curvature_monotone(&self) -> Result<bool> {
         verdict(self.points(), Some(self.weights()))
+    }
+    fn inflections(&self) -> Result<Vec<f64>> {
+        certified::inflections(&certified::Input::new(self.points(), Some(self.weights()))?)
     }
 }
 
