@@ -96,6 +96,10 @@ struct Lifted<R> {
     zx: Scaled<R>,
     zy: Scaled<R>,
     w: Option<Scaled<R>>,
+    /// The factor the coordinates were scaled by (a power of two; 1 for exact integers,
+    /// whose scale does not matter): curvatures computed from these are the true ones
+    /// divided by it.
+    length_scale: f64,
 }
 
 fn binom(n: usize, k: usize) -> i64 {
@@ -119,7 +123,12 @@ fn lift<R: Ring>(inp: &Input, diff: impl Fn(usize, usize) -> (R, R), w: Option<&
                     (dx.mul_int(c), dy.mul_int(c))
                 })
                 .unzip();
-            Lifted { zx, zy, w: None }
+            Lifted {
+                zx,
+                zy,
+                w: None,
+                length_scale: 1.0,
+            }
         }
         Some(w) => {
             // D1 = n Σ_{i,j} C(n-1,i) C(n-1,j) w_i w_{j+1} (b_{j+1} - b_i) t^{i+j} (1-t)^{..}.
@@ -143,6 +152,7 @@ fn lift<R: Ring>(inp: &Input, diff: impl Fn(usize, usize) -> (R, R), w: Option<&
                 zx: x[r..=deg - s].iter().cloned().collect(),
                 zy: y[r..=deg - s].iter().cloned().collect(),
                 w: Some(ws),
+                length_scale: 1.0,
             }
         }
     }
@@ -228,7 +238,10 @@ fn bounded(inp: &Input) -> Lifted<Bounded> {
         let kw = pow2_normaliser(w.iter().fold(0.0f64, |m, v| m.max(*v)));
         w.iter().map(|v| times_pow2(Bounded::exact(*v), kw)).collect()
     });
-    lift(inp, diff, w.as_deref())
+    Lifted {
+        length_scale: 2f64.powi(k.clamp(-1000, 1000)),
+        ..lift(inp, diff, w.as_deref())
+    }
 }
 
 /// The power of two that brings `big` near 1 (0 for zero or non-finite values).
@@ -316,7 +329,8 @@ fn end_curvature(inp: &Input, b: &Lifted<Bounded>, start: bool) -> EndCurvature 
     let order = if start { inp.r } else { inp.s };
     let m = b.zx.len() - 1;
     let n = inp.degree();
-    let w_end = inp.weights.map_or(1.0, |w| if start { w[0] } else { w[n] });
+    // W at the end, as scaled with the rest (W(0) = w_0, W(1) = w_n).
+    let w_end = b.w.as_ref().map_or(1.0, |w| if start { w[0].v } else { w[n].v });
     let z_end = if start { 0 } else { m };
     let z2 = b.zx[z_end].v.hypot(b.zy[z_end].v);
     let d = if m > 0 { delta(b).0 } else { Scaled::new() };
@@ -330,7 +344,10 @@ fn end_curvature(inp: &Input, b: &Lifted<Bounded>, start: bool) -> EndCurvature 
     };
     let ordered: Vec<usize> = if start { (0..signs.len()).collect() } else { (0..signs.len()).rev().collect() };
     let first = ordered.iter().position(|&i| signs[i] != 0);
-    let value = |i: usize| w_end * w_end * d[i].v / (m as f64 * n as f64 * z2 * z2 * z2);
+    // κ from the scaled inputs is the true one divided by the length scale.
+    let value = |i: usize| {
+        w_end * w_end * d[i].v / (m as f64 * n as f64 * z2 * z2 * z2) * b.length_scale
+    };
     match first {
         None => {
             if order == 0 {

@@ -1298,6 +1298,34 @@ mod tests {
     }
 
     #[test]
+    fn certified_end_curvatures_are_the_curvatures_at_the_ends() {
+        // Regular ends: the certified report's value is κ(0) and κ(1), at any scale and
+        // weights; a retracted end's finite limit is the limit of κ.
+        let mut curves = crate::samples::random_rational_curves(3, 200, 5);
+        for c in &mut curves {
+            let s = 1e3;
+            let p: Vec<Point> = c.points().iter().map(|q| Point::new(q.x * s + 7.0, q.y * s)).collect();
+            *c = RationalBezier::new(p, c.weights().iter().map(|w| w * 3.0).collect()).unwrap();
+        }
+        for c in &curves {
+            let inp = certified::Input::new(c.points(), Some(c.weights())).unwrap();
+            let Ok(r) = certified::report(&inp) else { continue };
+            for (e, t) in r.ends.iter().zip([0.0, 1.0]) {
+                let (k, want) = (e.value().unwrap(), c.kappa(t));
+                assert!((k - want).abs() <= 1e-9 * want.abs().max(1e-12), "{c:?}: {k} vs {want}");
+            }
+        }
+        // A cubic with a retracted handle has unbounded curvature there unless it is
+        // straight; a quartic whose next two control points continue the end's tangent has a
+        // finite nonzero limit (δ vanishes there as fast as the speed).
+        let c = bez(&[(0.0, 0.0), (0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 1.0)]);
+        let r = c.curvature_monotone().unwrap();
+        assert!(matches!(r.ends[0], EndCurvature::Finite { .. }), "{r:?}");
+        let lim = r.ends[0].value().unwrap();
+        assert!((lim - c.kappa(1e-7)).abs() < 1e-5 * lim.abs().max(1.0), "{lim} {}", c.kappa(1e-7));
+    }
+
+    #[test]
     fn retracted_handles_get_a_verdict_and_cusps_are_errors() {
         // One handle on its point: the speed vanishes like t, the curvature like 1/t.
         let retracted = bez(&[(0.0, 0.0), (0.0, 0.0), (1.0, 1.0), (2.0, 0.0)]);
