@@ -31,6 +31,9 @@ pub struct BenchRow {
     pub curves: usize,
     /// Of which the exact test found monotone.
     pub monotone: usize,
+    /// Of which the exact test's floating-point filter could not decide and big-integer
+    /// arithmetic did (the same for every row of a degree).
+    pub exact_fallbacks: usize,
 }
 
 /// Settings of a run.
@@ -102,12 +105,14 @@ pub fn run(cfg: &BenchConfig) -> Vec<BenchRow> {
         let all = random_curves(degree, cfg.curves, cfg.seed);
         let mut curves = Vec::new();
         let mut verdicts = Vec::new();
+        let before = aesthetic_curves::monotone::exact_fallbacks();
         for c in all {
             if let Ok(m) = c.is_curvature_monotone() {
                 curves.push(c);
                 verdicts.push(m);
             }
         }
+        let exact_fallbacks = (aesthetic_curves::monotone::exact_fallbacks() - before) as usize;
         let monotone = verdicts.iter().filter(|v| **v).count();
         // Method 0 is the exact test, then one per sampling count.
         let methods: Vec<Option<usize>> = std::iter::once(None)
@@ -142,6 +147,7 @@ pub fn run(cfg: &BenchConfig) -> Vec<BenchRow> {
                 disagreements,
                 curves: curves.len(),
                 monotone,
+                exact_fallbacks,
             });
         }
     }
@@ -152,7 +158,7 @@ pub fn run(cfg: &BenchConfig) -> Vec<BenchRow> {
 /// The table for a person.
 pub fn table(rows: &[BenchRow]) -> String {
     let mut s = String::from(
-        "degree  method          time/curve   vs exact   disagreements  (curves, monotone)\n",
+        "degree  method          time/curve   vs exact   disagreements  (curves, monotone, exact fallbacks)\n",
     );
     for r in rows {
         let exact = rows
@@ -165,14 +171,15 @@ pub fn table(rows: &[BenchRow]) -> String {
             None => "exact".to_string(),
         };
         s += &format!(
-            "{:>6}  {:<14} {:>9.3} µs  {:>8.1}x  {:>13}  ({}, {})\n",
+            "{:>6}  {:<14} {:>9.3} µs  {:>8.1}x  {:>13}  ({}, {}, {})\n",
             r.degree,
             name,
             r.ns_per_curve / 1000.0,
             r.ns_per_curve / exact,
             r.disagreements,
             r.curves,
-            r.monotone
+            r.monotone,
+            r.exact_fallbacks
         );
     }
     s

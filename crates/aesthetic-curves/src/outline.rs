@@ -373,7 +373,9 @@ pub fn check_contour(
         };
         // Curvatures on both sides (from the checks; a segment that could not be checked
         // gives no jump).
-        let side = |s: &SegmentCheck, end: bool| s.end_curvatures.map(|(k0, k1)| if end { k1 } else { k0 });
+        let side = |s: &SegmentCheck, end: bool| {
+            s.end_curvatures.map(|(k0, k1)| if end { k1 } else { k0 })
+        };
         let (ka, kb) = (side(&checks[i], true), side(&checks[(i + 1) % n], false));
         let angle = ta.cross(tb).atan2(ta.dot(tb)).abs();
         // The handle legs at the join: what rounding to the grid can turn them by.

@@ -135,7 +135,8 @@ fn check(label: &str, points: &[Point], weights: Option<&[f64]>, tally: &mut Tal
     tally.curves += 1;
     if o.degenerate {
         assert!(
-            matches!(full, Err(Error::Degenerate(_))) && matches!(verdict, Err(Error::Degenerate(_))),
+            matches!(full, Err(Error::Degenerate(_)))
+                && matches!(verdict, Err(Error::Degenerate(_))),
             "{label}: {points:?} {weights:?}: the speed vanishes inside, ours {full:?}"
         );
         tally.degenerate += 1;
@@ -148,7 +149,11 @@ fn check(label: &str, points: &[Point], weights: Option<&[f64]>, tally: &mut Tal
         "{label}: {points:?} {weights:?}: ours {r:?}, oracle sign changes {:?}",
         o.changes
     );
-    assert_eq!(verdict.as_ref().ok(), Some(&want), "{label}: verdict-only path {points:?} {weights:?}");
+    assert_eq!(
+        verdict.as_ref().ok(),
+        Some(&want),
+        "{label}: verdict-only path {points:?} {weights:?}"
+    );
     if r.exact {
         tally.exact += 1;
     }
@@ -156,10 +161,18 @@ fn check(label: &str, points: &[Point], weights: Option<&[f64]>, tally: &mut Tal
         tally.monotone += 1;
     } else {
         tally.not_monotone += 1;
-        assert_eq!(r.extrema.len(), o.changes.len(), "{label}: {points:?} {weights:?}: {r:?} vs {:?}", o.changes);
+        assert_eq!(
+            r.extrema.len(),
+            o.changes.len(),
+            "{label}: {points:?} {weights:?}: {r:?} vs {:?}",
+            o.changes
+        );
         for (a, b) in r.extrema.iter().zip(&o.changes) {
             let e = (a - b).abs();
-            assert!(e <= 1e-12, "{label}: {points:?} {weights:?}: extremum {a} vs {b}");
+            assert!(
+                e <= 1e-12,
+                "{label}: {points:?} {weights:?}: extremum {a} vs {b}"
+            );
             tally.max_extremum_error = tally.max_extremum_error.max(e);
         }
     }
@@ -213,7 +226,9 @@ fn short_handles(r: &mut ChaCha8Rng) -> Vec<Point> {
     let p0 = Point::new(r.random_range(-1.0..1.0), r.random_range(-1.0..1.0));
     let p3 = Point::new(r.random_range(-1.0..1.0), r.random_range(-1.0..1.0));
     let s = 10f64.powf(r.random_range(-9.0..-3.0));
-    let h = |r: &mut ChaCha8Rng| kurbo::Vec2::new(r.random_range(-1.0..1.0), r.random_range(-1.0..1.0)) * s;
+    let h = |r: &mut ChaCha8Rng| {
+        kurbo::Vec2::new(r.random_range(-1.0..1.0), r.random_range(-1.0..1.0)) * s
+    };
     vec![p0, p0 + h(r), p3 + h(r), p3]
 }
 
@@ -224,16 +239,32 @@ fn axis_aligned(r: &mut ChaCha8Rng) -> Vec<Point> {
     let (x3, y3) = (r.random_range(0..1000), r.random_range(0..1000));
     let h0 = r.random_range(0..400);
     let h3 = r.random_range(0..400);
-    let p1 = if r.random_bool(0.5) { ipt(x0 + h0, y0) } else { ipt(x0, y0 + h0) };
-    let p2 = if r.random_bool(0.5) { ipt(x3, y3 - h3) } else { ipt(x3 - h3, y3) };
+    let p1 = if r.random_bool(0.5) {
+        ipt(x0 + h0, y0)
+    } else {
+        ipt(x0, y0 + h0)
+    };
+    let p2 = if r.random_bool(0.5) {
+        ipt(x3, y3 - h3)
+    } else {
+        ipt(x3 - h3, y3)
+    };
     vec![ipt(x0, y0), p1, p2, ipt(x3, y3)]
 }
 
 /// Integer font units far from the origin (offsets up to 2^40).
 fn far_from_origin(r: &mut ChaCha8Rng) -> Vec<Point> {
-    let off = (r.random_range(-(1i64 << 40)..(1i64 << 40)), r.random_range(-(1i64 << 40)..(1i64 << 40)));
+    let off = (
+        r.random_range(-(1i64 << 40)..(1i64 << 40)),
+        r.random_range(-(1i64 << 40)..(1i64 << 40)),
+    );
     (0..4)
-        .map(|_| ipt(off.0 + r.random_range(-20..20), off.1 + r.random_range(-20..20)))
+        .map(|_| {
+            ipt(
+                off.0 + r.random_range(-20..20),
+                off.1 + r.random_range(-20..20),
+            )
+        })
         .collect()
 }
 
@@ -247,17 +278,32 @@ fn scaled(r: &mut ChaCha8Rng, degree: usize) -> Vec<Point> {
 
 const N: usize = 80;
 
-fn family(label: &str, seed: u64, count: usize, gen: impl Fn(&mut ChaCha8Rng) -> Vec<Point>) -> Tally {
+fn family(
+    label: &str,
+    seed: u64,
+    count: usize,
+    gen: impl Fn(&mut ChaCha8Rng) -> Vec<Point>,
+) -> Tally {
     let mut r = rng(seed);
     let mut t = Tally::default();
     for i in 0..count {
         let p = gen(&mut r);
         check(&format!("{label} {i}"), &p, None, &mut t);
         // The same curve as a rational one with unit weights and with small integer weights.
-        check(&format!("{label} {i} (weights 1)"), &p, Some(&[1.0; 4][..p.len().min(4)]).filter(|_| p.len() == 4), &mut t);
+        check(
+            &format!("{label} {i} (weights 1)"),
+            &p,
+            Some(&[1.0; 4][..p.len().min(4)]).filter(|_| p.len() == 4),
+            &mut t,
+        );
         if p.len() == 4 {
             let w: Vec<f64> = (0..4).map(|_| r.random_range(1..4) as f64).collect();
-            check(&format!("{label} {i} (weights {w:?})"), &p, Some(&w), &mut t);
+            check(
+                &format!("{label} {i} (weights {w:?})"),
+                &p,
+                Some(&w),
+                &mut t,
+            );
         }
     }
     println!("{label}: {t:?}");
@@ -269,10 +315,30 @@ fn the_issues_reproductions() {
     let pts = |v: &[(f64, f64)]| v.iter().map(|&(x, y)| Point::new(x, y)).collect::<Vec<_>>();
     let mut t = Tally::default();
     for p in [
-        pts(&[(165.0, 524.0), (145.0, 525.0), (144.0, 525.0), (143.0, 525.0)]),
-        pts(&[(677.0, 683.0), (670.0, 683.0), (663.0, 680.0), (658.0, 674.0)]),
-        pts(&[(475.0, 709.0), (476.0, 711.0), (476.0, 713.0), (476.0, 715.0)]),
-        pts(&[(1773.0, 660.0), (1777.0, 660.0), (1778.0, 660.0), (1830.0, 658.0)]),
+        pts(&[
+            (165.0, 524.0),
+            (145.0, 525.0),
+            (144.0, 525.0),
+            (143.0, 525.0),
+        ]),
+        pts(&[
+            (677.0, 683.0),
+            (670.0, 683.0),
+            (663.0, 680.0),
+            (658.0, 674.0),
+        ]),
+        pts(&[
+            (475.0, 709.0),
+            (476.0, 711.0),
+            (476.0, 713.0),
+            (476.0, 715.0),
+        ]),
+        pts(&[
+            (1773.0, 660.0),
+            (1777.0, 660.0),
+            (1778.0, 660.0),
+            (1830.0, 658.0),
+        ]),
         pts(&[(0.0, 0.0), (0.0, 0.0), (1.0, 1.0), (2.0, 0.0)]),
         pts(&[(0.0, 0.0), (0.0, 0.0), (1.0, 0.0), (2.0, 0.0)]),
         pts(&[(939.0, -298.0), (939.0, -298.0), (919.0, -315.0)]),
@@ -281,21 +347,49 @@ fn the_issues_reproductions() {
         check("repro, weights 1", &p, Some(&vec![1.0; p.len()]), &mut t);
     }
     // The two the issue names as wrong: not monotone, exactly.
-    let c = Bezier::new(pts(&[(165.0, 524.0), (145.0, 525.0), (144.0, 525.0), (143.0, 525.0)])).unwrap();
+    let c = Bezier::new(pts(&[
+        (165.0, 524.0),
+        (145.0, 525.0),
+        (144.0, 525.0),
+        (143.0, 525.0),
+    ]))
+    .unwrap();
     let r = c.curvature_monotone().unwrap();
     assert!(!r.monotone && (r.extrema[0] - 0.8974).abs() < 1e-4, "{r:?}");
-    let c = Bezier::new(pts(&[(475.0, 709.0), (476.0, 711.0), (476.0, 713.0), (476.0, 715.0)])).unwrap();
+    let c = Bezier::new(pts(&[
+        (475.0, 709.0),
+        (476.0, 711.0),
+        (476.0, 713.0),
+        (476.0, 715.0),
+    ]))
+    .unwrap();
     assert!(!c.curvature_monotone().unwrap().monotone);
     // A straight quadratic with a retracted handle: monotone, curvature 0 everywhere.
     let c = Bezier::new(pts(&[(939.0, -298.0), (939.0, -298.0), (919.0, -315.0)])).unwrap();
     let r = c.curvature_monotone().unwrap();
     assert!(r.monotone, "{r:?}");
-    assert_eq!(r.ends[0], EndCurvature::Finite { curvature: 0.0, order: 1 });
+    assert_eq!(
+        r.ends[0],
+        EndCurvature::Finite {
+            curvature: 0.0,
+            order: 1
+        }
+    );
     assert_eq!(r.ends[1], EndCurvature::Regular(0.0));
     // One retracted handle: the curvature grows like 1/t; t κ tends to a constant.
     let c = Bezier::new(pts(&[(0.0, 0.0), (0.0, 0.0), (1.0, 1.0), (2.0, 0.0)])).unwrap();
     let r = c.curvature_monotone().unwrap();
-    assert!(matches!(r.ends[0], EndCurvature::Unbounded { positive: false, order: 1, rate: 1 }), "{r:?}");
+    assert!(
+        matches!(
+            r.ends[0],
+            EndCurvature::Unbounded {
+                positive: false,
+                order: 1,
+                rate: 1
+            }
+        ),
+        "{r:?}"
+    );
     let (a, b): (f64, f64) = (1e-6 * c.kappa(1e-6), 1e-7 * c.kappa(1e-7));
     assert!((a - b).abs() < 1e-5 * a.abs() && a.abs() > 1e-3, "{a} {b}");
 }
@@ -332,7 +426,12 @@ fn extents_from_1e_minus_6_to_1e9_and_degrees_2_to_7() {
 
 fn extents(count: usize) {
     for degree in 2..=7 {
-        family(&format!("scaled, degree {degree}"), 10 + degree as u64, count, |r| scaled(r, degree));
+        family(
+            &format!("scaled, degree {degree}"),
+            10 + degree as u64,
+            count,
+            |r| scaled(r, degree),
+        );
     }
 }
 
@@ -346,8 +445,14 @@ fn weights(count: usize) {
     let mut t = Tally::default();
     for i in 0..count {
         let degree = r.random_range(2..=4);
-        let p: Vec<Point> = if r.random_bool(0.5) { scaled(&mut r, degree) } else { axis_aligned(&mut r)[..=degree.min(3)].to_vec() };
-        let w: Vec<f64> = (0..p.len()).map(|_| 10f64.powf(r.random_range(-3.0..3.0))).collect();
+        let p: Vec<Point> = if r.random_bool(0.5) {
+            scaled(&mut r, degree)
+        } else {
+            axis_aligned(&mut r)[..=degree.min(3)].to_vec()
+        };
+        let w: Vec<f64> = (0..p.len())
+            .map(|_| 10f64.powf(r.random_range(-3.0..3.0)))
+            .collect();
         check(&format!("weights {i}"), &p, Some(&w), &mut t);
     }
     println!("weights: {t:?}");
@@ -359,10 +464,17 @@ fn weights(count: usize) {
 fn similarity_and_reversal_keep_the_verdict() {
     let mut r = rng(30);
     for _ in 0..N {
-        let p = if r.random_bool(0.5) { collinear_end(&mut r) } else { retracted(&mut r) };
+        let p = if r.random_bool(0.5) {
+            collinear_end(&mut r)
+        } else {
+            retracted(&mut r)
+        };
         let a = Bezier::new(p.clone()).unwrap().curvature_monotone();
         let s = 2f64.powi(r.random_range(-30..30));
-        let moved: Vec<Point> = p.iter().map(|q| Point::new((q.x + 1024.0) * s, (q.y - 4096.0) * s)).collect();
+        let moved: Vec<Point> = p
+            .iter()
+            .map(|q| Point::new((q.x + 1024.0) * s, (q.y - 4096.0) * s))
+            .collect();
         let b = Bezier::new(moved).unwrap().curvature_monotone();
         let rev: Vec<Point> = p.iter().rev().copied().collect();
         let c = Bezier::new(rev).unwrap().curvature_monotone();
@@ -389,10 +501,30 @@ fn cusps_and_turning_back_are_degenerate_exactly() {
     let mut t = Tally::default();
     // An exact cusp (hodograph through zero at t = 1/2), and a straight cubic that turns
     // back, and an almost-cusp (regular: a verdict, not an error).
-    let cusp = vec![Point::new(0.0, 0.0), Point::new(2.0, 1.0), Point::new(0.0, 1.0), Point::new(2.0, 0.0)];
+    let cusp = vec![
+        Point::new(0.0, 0.0),
+        Point::new(2.0, 1.0),
+        Point::new(0.0, 1.0),
+        Point::new(2.0, 0.0),
+    ];
     check("cusp", &cusp, None, &mut t);
-    check("back", &[Point::new(0.0, 0.0), Point::new(3.0, 0.0), Point::new(-1.0, 0.0), Point::new(2.0, 0.0)], None, &mut t);
-    let near = vec![Point::new(0.0, 0.0), Point::new(2.0, 1.0), Point::new(0.0, 1.0 + 1e-9), Point::new(2.0, 0.0)];
+    check(
+        "back",
+        &[
+            Point::new(0.0, 0.0),
+            Point::new(3.0, 0.0),
+            Point::new(-1.0, 0.0),
+            Point::new(2.0, 0.0),
+        ],
+        None,
+        &mut t,
+    );
+    let near = vec![
+        Point::new(0.0, 0.0),
+        Point::new(2.0, 1.0),
+        Point::new(0.0, 1.0 + 1e-9),
+        Point::new(2.0, 0.0),
+    ];
     check("near cusp", &near, None, &mut t);
     assert_eq!(t.degenerate, 2, "{t:?}");
 }
@@ -400,9 +532,15 @@ fn cusps_and_turning_back_are_degenerate_exactly() {
 #[test]
 #[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
 fn all_classes_many_more() {
-    for (i, gen) in [collinear_end as fn(&mut ChaCha8Rng) -> Vec<Point>, retracted, short_handles, axis_aligned, far_from_origin]
-        .iter()
-        .enumerate()
+    for (i, gen) in [
+        collinear_end as fn(&mut ChaCha8Rng) -> Vec<Point>,
+        retracted,
+        short_handles,
+        axis_aligned,
+        far_from_origin,
+    ]
+    .iter()
+    .enumerate()
     {
         family(&format!("class {i}, long run"), 100 + i as u64, 10 * N, gen);
     }

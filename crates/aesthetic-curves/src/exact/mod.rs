@@ -64,7 +64,8 @@ mod tests {
         let (ints, e) = dyadic_integers(&vals);
         assert_eq!(e, -1074);
         for (v, n) in vals.iter().zip(&ints) {
-            let back = num_rational::BigRational::new(n.clone(), BigInt::from(1)) * num_rational::BigRational::from_float(2f64.powi(0)).unwrap();
+            let back = num_rational::BigRational::new(n.clone(), BigInt::from(1))
+                * num_rational::BigRational::from_float(2f64.powi(0)).unwrap();
             let want = num_rational::BigRational::from_float(*v).unwrap();
             let two = num_rational::BigRational::from_integer(BigInt::from(2));
             let scale = num_traits::pow::pow(two.recip(), 1074);

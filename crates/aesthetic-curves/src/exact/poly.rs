@@ -220,7 +220,10 @@ impl Dyadic {
         // a < 2^k: shift both down to 60 bits of a.
         let bits = self.a.bits() as i64;
         let drop = (bits - 60).max(0);
-        let a = (&self.a >> drop as usize).to_string().parse::<f64>().unwrap_or(0.0);
+        let a = (&self.a >> drop as usize)
+            .to_string()
+            .parse::<f64>()
+            .unwrap_or(0.0);
         a * 2f64.powi((drop - self.k as i64) as i32)
     }
 }
@@ -365,14 +368,21 @@ pub fn roots(c: &[BigInt]) -> Vec<f64> {
     let g = p.gcd(&p.deriv());
     let s = if g.degree() > 0 { p.div_exact(&g) } else { p };
     let sturm = Sturm::new(&s);
-    let (zero, one) = (Dyadic::new(BigInt::zero(), 0), Dyadic::new(BigInt::one(), 0));
+    let (zero, one) = (
+        Dyadic::new(BigInt::zero(), 0),
+        Dyadic::new(BigInt::one(), 0),
+    );
     let (v0, v1) = (sturm.at_zero(), sturm.at_one());
     let mut intervals = Vec::new();
     isolate(&s, &sturm, (zero, v0), (one, v1), &mut intervals);
     intervals
         .into_iter()
         .map(|(a, b)| {
-            let sa = if a.a.is_zero() { s.sign_at_zero() } else { s.sign_at(&a) };
+            let sa = if a.a.is_zero() {
+                s.sign_at_zero()
+            } else {
+                s.sign_at(&a)
+            };
             refine(&s, a, b, sa)
         })
         .collect()

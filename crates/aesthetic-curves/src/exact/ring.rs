@@ -155,7 +155,11 @@ impl Ring for Bounded {
     fn mul_int(&self, k: i64) -> Self {
         let kf = k as f64;
         let v = self.v * kf;
-        let round = if self.v == 0.0 { 0.0 } else { U * v.abs() + ETA };
+        let round = if self.v == 0.0 {
+            0.0
+        } else {
+            U * v.abs() + ETA
+        };
         Bounded {
             v,
             e: (kf.abs() * self.e + round) * INFLATE,
@@ -201,7 +205,11 @@ pub fn deriv<R: Ring>(a: &[R]) -> Scaled<R> {
         return smallvec::smallvec![R::zero()];
     }
     (0..d)
-        .map(|j| a[j + 1].mul_int(j as i64 + 1).sub(&a[j].mul_int((d - j) as i64)))
+        .map(|j| {
+            a[j + 1]
+                .mul_int(j as i64 + 1)
+                .sub(&a[j].mul_int((d - j) as i64))
+        })
         .collect()
 }
 
@@ -251,7 +259,10 @@ mod tests {
             let (pv, qv) = (eval(&v(&p), t), eval(&v(&q), t));
             assert!((eval(&v(&conv(&p, &q)), t) - pv * qv).abs() < 1e-12);
             assert!((eval(&v(&elevate(&p)), t) - pv).abs() < 1e-12);
-            assert!((eval(&v(&times_linear(&p, 2, -3)), t) - (2.0 * (1.0 - t) - 3.0 * t) * pv).abs() < 1e-12);
+            assert!(
+                (eval(&v(&times_linear(&p, 2, -3)), t) - (2.0 * (1.0 - t) - 3.0 * t) * pv).abs()
+                    < 1e-12
+            );
             let h = 1e-6;
             let fd = (eval(&v(&p), t + h) - eval(&v(&p), t - h)) / (2.0 * h);
             assert!((eval(&v(&deriv(&p)), t) - fd).abs() < 1e-6);
@@ -268,7 +279,9 @@ mod tests {
         for (i, v) in xs.iter().enumerate() {
             let bv = Bounded::exact(*v);
             b = b.mul(&bv).add(&bv.mul_int(i as i64 + 3));
-            x = x.mul(&BigInt::from(*v as i64)).add(&BigInt::from(*v as i64 * (i as i64 + 3)));
+            x = x
+                .mul(&BigInt::from(*v as i64))
+                .add(&BigInt::from(*v as i64 * (i as i64 + 3)));
         }
         let exact: f64 = x.to_string().parse().unwrap();
         assert!((b.v - exact).abs() <= b.e, "{b:?} vs {exact}");

@@ -83,7 +83,11 @@ fn unscale(scaled: &[Bounded]) -> Co {
     let d = scaled.len() - 1;
     // Binomials beyond C(56, 28) are not all exact in f64: their relative error (at most
     // d units in the last place from the product formula) joins the bound.
-    let rel = if d > 56 { 4.0 * d as f64 * f64::EPSILON } else { 0.0 };
+    let rel = if d > 56 {
+        4.0 * d as f64 * f64::EPSILON
+    } else {
+        0.0
+    };
     scaled
         .iter()
         .enumerate()
@@ -126,7 +130,10 @@ fn classify(c: &[Bounded]) -> Piece {
             _ => Piece::Split,
         };
     };
-    let lu = signs.iter().rposition(Option::is_none).expect("one unknown");
+    let lu = signs
+        .iter()
+        .rposition(Option::is_none)
+        .expect("one unknown");
     let run = |part: &[Option<i32>]| -> Option<i32> {
         let mut s = None;
         for v in part.iter().flatten().filter(|v| **v != 0) {
@@ -357,7 +364,15 @@ mod tests {
             c = n;
         }
         let ints = super::super::dyadic_integers(&c).0;
-        (c.iter().map(|v| Bounded { v: *v, e: 1e-15 * v.abs() }).collect(), ints)
+        (
+            c.iter()
+                .map(|v| Bounded {
+                    v: *v,
+                    e: 1e-15 * v.abs(),
+                })
+                .collect(),
+            ints,
+        )
     }
 
     #[test]
@@ -366,14 +381,31 @@ mod tests {
         let s = certified_signs(&c, || panic!("the filter decides this"), Want::Changes);
         assert!(!s.exact && s.positive && s.negative);
         assert_eq!(s.changes.len(), 2);
-        assert!((s.changes[0] - 0.25).abs() < 2e-13 && (s.changes[1] - 0.625).abs() < 2e-13, "{s:?}");
+        assert!(
+            (s.changes[0] - 0.25).abs() < 2e-13 && (s.changes[1] - 0.625).abs() < 2e-13,
+            "{s:?}"
+        );
         // A double root: the filter cannot tell a touch from two close roots.
         let (c, ints) = from_roots(&[0.5, 0.5]);
         let s = certified_signs(&c, || ints, Want::Changes);
-        assert!(s.exact && s.positive && !s.negative && s.changes.is_empty(), "{s:?}");
+        assert!(
+            s.exact && s.positive && !s.negative && s.changes.is_empty(),
+            "{s:?}"
+        );
         // Unknown is never zero: tiny coefficients with bounds bigger than they are.
         let c = [Bounded { v: 1e-20, e: 1e-18 }; 4];
-        let s = certified_signs(&c, || vec![BigInt::from(-1), <BigInt as Zero>::zero(), BigInt::from(1), BigInt::from(1)], Want::Signs);
+        let s = certified_signs(
+            &c,
+            || {
+                vec![
+                    BigInt::from(-1),
+                    <BigInt as Zero>::zero(),
+                    BigInt::from(1),
+                    BigInt::from(1),
+                ]
+            },
+            Want::Signs,
+        );
         assert!(s.exact && s.positive && s.negative);
     }
 }

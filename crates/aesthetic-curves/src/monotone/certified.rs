@@ -138,7 +138,9 @@ fn lift<R: Ring>(inp: &Input, diff: impl Fn(usize, usize) -> (R, R), w: Option<&
             for i in 0..n {
                 for j in 0..n {
                     let (dx, dy) = diff(j + 1, i);
-                    let c = w[i].mul(&w[j + 1]).mul_int(binom(n - 1, i) * binom(n - 1, j));
+                    let c = w[i]
+                        .mul(&w[j + 1])
+                        .mul_int(binom(n - 1, i) * binom(n - 1, j));
                     x[i + j] = x[i + j].add(&c.mul(&dx));
                     y[i + j] = y[i + j].add(&c.mul(&dy));
                 }
@@ -236,7 +238,9 @@ fn bounded(inp: &Input) -> Lifted<Bounded> {
     };
     let w: Option<Vec<Bounded>> = inp.weights.map(|w| {
         let kw = pow2_normaliser(w.iter().fold(0.0f64, |m, v| m.max(*v)));
-        w.iter().map(|v| times_pow2(Bounded::exact(*v), kw)).collect()
+        w.iter()
+            .map(|v| times_pow2(Bounded::exact(*v), kw))
+            .collect()
     });
     Lifted {
         length_scale: 2f64.powi(k.clamp(-1000, 1000)),
@@ -309,7 +313,11 @@ fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
         .map(|i| (b.zx[i].e + b.zy[i].e) / binom(m, i) as f64)
         .fold(0.0, f64::max);
     let margin = super::DEGENERATE_SPEED_TOL * scale.sqrt();
-    if scale.is_finite() && scale > 0.0 && err * 1e3 < margin && super::hodograph_vanishes(&h, margin).is_none() {
+    if scale.is_finite()
+        && scale > 0.0
+        && err * 1e3 < margin
+        && super::hodograph_vanishes(&h, margin).is_none()
+    {
         return Ok(());
     }
     // Exactly: a common root of z's components in (0, 1) (z's ends are not zero).
@@ -330,7 +338,9 @@ fn end_curvature(inp: &Input, b: &Lifted<Bounded>, start: bool) -> EndCurvature 
     let m = b.zx.len() - 1;
     let n = inp.degree();
     // W at the end, as scaled with the rest (W(0) = w_0, W(1) = w_n).
-    let w_end = b.w.as_ref().map_or(1.0, |w| if start { w[0].v } else { w[n].v });
+    let w_end =
+        b.w.as_ref()
+            .map_or(1.0, |w| if start { w[0].v } else { w[n].v });
     let z_end = if start { 0 } else { m };
     let z2 = b.zx[z_end].v.hypot(b.zy[z_end].v);
     let d = if m > 0 { delta(b).0 } else { Scaled::new() };
@@ -342,21 +352,29 @@ fn end_curvature(inp: &Input, b: &Lifted<Bounded>, start: bool) -> EndCurvature 
     } else {
         delta(&exact(inp)).0.iter().map(big_sign).collect()
     };
-    let ordered: Vec<usize> = if start { (0..signs.len()).collect() } else { (0..signs.len()).rev().collect() };
+    let ordered: Vec<usize> = if start {
+        (0..signs.len()).collect()
+    } else {
+        (0..signs.len()).rev().collect()
+    };
     let first = ordered.iter().position(|&i| signs[i] != 0);
     // κ from the scaled inputs is the true one divided by the length scale.
-    let value = |i: usize| {
-        w_end * w_end * d[i].v / (m as f64 * n as f64 * z2 * z2 * z2) * b.length_scale
-    };
+    let value =
+        |i: usize| w_end * w_end * d[i].v / (m as f64 * n as f64 * z2 * z2 * z2) * b.length_scale;
     match first {
         None => {
             if order == 0 {
                 EndCurvature::Regular(0.0)
             } else {
-                EndCurvature::Finite { curvature: 0.0, order }
+                EndCurvature::Finite {
+                    curvature: 0.0,
+                    order,
+                }
             }
         }
-        Some(o) if order == 0 => EndCurvature::Regular(if o == 0 { value(ordered[0]) } else { 0.0 }),
+        Some(o) if order == 0 => {
+            EndCurvature::Regular(if o == 0 { value(ordered[0]) } else { 0.0 })
+        }
         Some(o) if o < order => EndCurvature::Unbounded {
             positive: signs[ordered[o]] > 0,
             order,
