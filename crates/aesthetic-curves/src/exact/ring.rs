@@ -51,7 +51,7 @@ const U: f64 = f64::EPSILON * 0.5;
 /// Covers the rounding of the bound's own few operations (each rounds by at most U).
 const INFLATE: f64 = 1.0 + 16.0 * f64::EPSILON;
 /// The absolute rounding error of a product in the subnormal range is at most 2^-1075.
-const ETA: f64 = 4.9406564584124654e-324;
+const ETA: f64 = f64::from_bits(1);
 
 /// A floating-point value `v` and a bound `e` with `|v - exact| <= e`, where `exact` is what
 /// the same formula gives in exact arithmetic on the exact inputs. Overflow gives an

@@ -26,10 +26,10 @@
 //! cannot decide:
 //!
 //! 1. **fast paths** (regular curves): K as above in plain floating point, against a
-//!    rigorous bound on its rounding ([`loose_k_bound`], [`rational_cubic_bounds`]): all
+//!    rigorous bound on its rounding (`loose_k_bound`, `rational_cubic_bounds`): all
 //!    coefficients beyond it and of one sign prove monotonicity; values of both strict signs
 //!    prove a change. A coefficient within the bound has an unknown sign, never a zero one;
-//! 2. **the certified filter** ([`certified`]): K̃, the numerator with the vanishing ends of
+//! 2. **the certified filter** (`monotone/certified.rs`): K̃, the numerator with the vanishing ends of
 //!    the hodograph divided out, computed on [`crate::exact::Bounded`] numbers (every value
 //!    with a rigorous error bound, the inputs scaled by powers of two so that nothing
 //!    overflows), and its signs by subdivision ([`crate::exact::signs`]);
@@ -841,7 +841,8 @@ fn rational_cubic_fast(b: &[Point], w: &[f64]) -> Option<Fast> {
     let hodograph: [Vec2; 5] = std::array::from_fn(|i| Vec2::new(dx[i], dy[i]));
     let scale = hodograph.iter().map(|h| h.hypot2()).fold(0.0, f64::max);
     let margin = DEGENERATE_SPEED_TOL * scale.sqrt();
-    if !(margin > 1e3 * d_bound) || hodograph_vanishes(&hodograph, margin).is_some() {
+    let margin_ok = margin > 1e3 * d_bound;
+    if !margin_ok || hodograph_vanishes(&hodograph, margin).is_some() {
         return None;
     }
     if k.iter().all(|v| *v > k_bound) {
