@@ -76,12 +76,17 @@ fn monotone_verdicts_on_the_font_never_contradict_dense_sampling() {
             continue;
         }
         checked += 1;
+        // Inside the open segment: at a retracted handle the curvature at the end itself is
+        // undefined (its limit is what the check reports).
         let ks: Vec<f64> = (0..20_000)
-            .map(|i| seg.kappa(i as f64 / 19_999.0))
+            .map(|i| seg.kappa((i as f64 + 0.5) / 20_000.0))
             .collect();
         let scale = ks.iter().fold(0.0f64, |m, k| m.max(k.abs()));
-        let up = ks.windows(2).all(|w| w[1] >= w[0] - 1e-9 * scale);
-        let down = ks.windows(2).all(|w| w[1] <= w[0] + 1e-9 * scale);
+        // An absolute floor for straight segments, whose sampled curvature is rounding noise
+        // around the exact 0 (1e-15 per font unit is far below any real curvature).
+        let tol = 1e-9 * scale + 1e-15;
+        let up = ks.windows(2).all(|w| w[1] >= w[0] - tol);
+        let down = ks.windows(2).all(|w| w[1] <= w[0] + tol);
         assert!(up || down, "{:?}", seg.points());
     }
     assert!(checked > 50, "{checked}");
@@ -156,13 +161,15 @@ fn bad_files_get_clear_errors() {
     let f = std::fs::File::create(&big).unwrap();
     f.set_len(aecurve::outline_io::MAX_FILE_BYTES + 1).unwrap();
     assert!(format!("{:#}", read(&big).unwrap_err()).contains("over the"));
-    // A zero-length segment and coincident handles are flagged, not errors.
+    // A zero-length segment is flagged, not an error; a retracted handle is an ordinary
+    // segment whose curvature grows without bound at that end (said in its notes, never NaN).
     let o = read_svg(br#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 0 0 C 0 0 10 10 20 10" stroke="black" fill="none"/></svg>"#).unwrap();
     let shapes: Vec<_> = o.shapes.iter().collect();
     let checked = check_shapes(&shapes, &options_for(&o), &|| {});
     let segs = &checked[0].contours[0].segments;
-    assert!(segs.iter().all(|s| s.max_abs_curvature.is_finite()));
+    assert!(segs.iter().all(|s| !s.max_abs_curvature.is_nan()));
     assert!(segs.iter().any(|s| s.flag.is_some()), "{segs:?}");
+    assert!(segs.iter().any(|s| s.notes.iter().any(|n| n.contains("without bound"))), "{segs:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
 
