@@ -72,19 +72,25 @@ fn monotone_verdicts_on_the_font_never_contradict_dense_sampling() {
         .collect();
     let mut checked = 0;
     for seg in curved.iter().step_by(300) {
+        // Retracted handles are left to the exact oracles (tests/monotone_exact.rs, the font
+        // oracle in CI): next to them floating-point κ is rounding noise over a vanishing
+        // speed (1e-10 at t = 1e-3 on a straight segment whose curvature is exactly 0).
+        let p = seg.points();
+        if p[1] == p[0] || p[p.len() - 2] == p[p.len() - 1] {
+            continue;
+        }
         if check_segment(seg).monotone != Some(true) {
             continue;
         }
         checked += 1;
-        // Inside the open segment: at a retracted handle the curvature at the end itself is
-        // undefined (its limit is what the check reports).
         let ks: Vec<f64> = (0..20_000)
-            .map(|i| seg.kappa((i as f64 + 0.5) / 20_000.0))
+            .map(|i| seg.kappa(i as f64 / 19_999.0))
             .collect();
         let scale = ks.iter().fold(0.0f64, |m, k| m.max(k.abs()));
-        // An absolute floor for straight segments, whose sampled curvature is rounding noise
-        // around the exact 0 (1e-15 per font unit is far below any real curvature).
-        let tol = 1e-9 * scale + 1e-15;
+        // A floor for straight segments, whose sampled curvature is rounding noise around the
+        // exact 0: 1e-9 of the curvature of a circle the segment's size.
+        let size = p.iter().map(|q| (*q - p[0]).hypot()).fold(0.0f64, f64::max);
+        let tol = 1e-9 * scale + 1e-9 / size;
         let up = ks.windows(2).all(|w| w[1] >= w[0] - tol);
         let down = ks.windows(2).all(|w| w[1] <= w[0] + tol);
         assert!(up || down, "{:?}", seg.points());
@@ -169,7 +175,11 @@ fn bad_files_get_clear_errors() {
     let segs = &checked[0].contours[0].segments;
     assert!(segs.iter().all(|s| !s.max_abs_curvature.is_nan()));
     assert!(segs.iter().any(|s| s.flag.is_some()), "{segs:?}");
-    assert!(segs.iter().any(|s| s.notes.iter().any(|n| n.contains("without bound"))), "{segs:?}");
+    assert!(
+        segs.iter()
+            .any(|s| s.notes.iter().any(|n| n.contains("without bound"))),
+        "{segs:?}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -113,7 +113,10 @@ fn the_reader_sees_real_edges() {
 /// The layers of docs/architecture.md, bottom up: a module may use modules of its own layer
 /// or below, never above.
 const LAYERS: [(&str, &[&str]); 6] = [
-    ("foundations", &["error", "exact", "quadrature", "solve", "deadline"]),
+    (
+        "foundations",
+        &["error", "exact", "quadrature", "solve", "deadline"],
+    ),
     (
         "curves",
         &["bernstein", "bezier", "bezpath", "lac", "bspline", "nurbs"],
