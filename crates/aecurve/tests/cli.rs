@@ -51,8 +51,9 @@ fn batch_answers_every_line_in_order() {
     assert_eq!(lines[0]["id"], 1);
     assert_eq!(lines[0]["result"]["monotone"], false);
     assert_eq!(lines[1]["error"]["kind"], "parse");
-    assert_eq!(lines[2]["result"]["monotone"], true);
-    assert_eq!(lines[2]["result"]["trend"], "constant");
+    // The f64 quarter arc is exactly an ellipse arc: its extremum at the middle.
+    assert_eq!(lines[2]["result"]["monotone"], false);
+    assert!((lines[2]["result"]["extrema"][0].as_f64().unwrap() - 0.5).abs() < 1e-12);
     assert_eq!(lines[3]["result"]["samples"], 50);
 }
 
@@ -66,8 +67,20 @@ fn monotone_command_reads_for_a_person_and_fails_clearly() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("NOT monotone"), "{text}");
     assert!(text.contains("t = 0.500000000"), "{text}");
+    // A retracted handle gets a verdict and says what the curvature does there.
     let out = aecurve()
         .args(["monotone", "--points", "0,0 0,0 1,1 2,0"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("retracted handle") && text.contains("unbounded"),
+        "{text}"
+    );
+    // A cusp does not.
+    let out = aecurve()
+        .args(["monotone", "--points", "0,0 2,1 0,1 2,0"])
         .output()
         .unwrap();
     assert!(!out.status.success());

@@ -117,6 +117,16 @@ impl Bounded {
     }
 }
 
+/// Integers below 2^53 in magnitude are exact in f64, and so are their sums, differences
+/// and products while the result stays below it: such a result has the bound 0 (so the
+/// exact zeros of integer data, a font's, are known to be zeros).
+const EXACT_INT: f64 = 9007199254740992.0;
+
+#[inline]
+fn exact_int(a: &Bounded, b: &Bounded, v: f64) -> bool {
+    a.e == 0.0 && b.e == 0.0 && v.abs() < EXACT_INT && a.v.fract() == 0.0 && b.v.fract() == 0.0
+}
+
 impl Ring for Bounded {
     fn zero() -> Self {
         Bounded::exact(0.0)
@@ -124,6 +134,9 @@ impl Ring for Bounded {
     #[inline]
     fn add(&self, o: &Self) -> Self {
         let v = self.v + o.v;
+        if exact_int(self, o, v) {
+            return Bounded::exact(v);
+        }
         Bounded {
             v,
             e: (self.e + o.e + U * v.abs()) * INFLATE,
@@ -132,6 +145,9 @@ impl Ring for Bounded {
     #[inline]
     fn sub(&self, o: &Self) -> Self {
         let v = self.v - o.v;
+        if exact_int(self, o, v) {
+            return Bounded::exact(v);
+        }
         Bounded {
             v,
             e: (self.e + o.e + U * v.abs()) * INFLATE,
@@ -140,6 +156,9 @@ impl Ring for Bounded {
     #[inline]
     fn mul(&self, o: &Self) -> Self {
         let v = self.v * o.v;
+        if exact_int(self, o, v) {
+            return Bounded::exact(v);
+        }
         let e = self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e;
         let round = if v == 0.0 && (self.v == 0.0 || o.v == 0.0) {
             0.0
@@ -155,6 +174,9 @@ impl Ring for Bounded {
     fn mul_int(&self, k: i64) -> Self {
         let kf = k as f64;
         let v = self.v * kf;
+        if self.e == 0.0 && v.abs() < EXACT_INT && self.v.fract() == 0.0 {
+            return Bounded::exact(v);
+        }
         let round = if self.v == 0.0 {
             0.0
         } else {

@@ -248,9 +248,11 @@ fn bounded(inp: &Input) -> Lifted<Bounded> {
     }
 }
 
-/// The power of two that brings `big` near 1 (0 for zero or non-finite values).
+/// The power of two that brings `big` near 1 when it is far from it (0 between 2^-20 and
+/// 2^40, where nothing can overflow or underflow and integer data stay integers, whose
+/// exact arithmetic [`Bounded`] recognises; 0 for zero or non-finite values).
 fn pow2_normaliser(big: f64) -> i32 {
-    if big > 0.0 && big.is_finite() {
+    if big > 0.0 && big.is_finite() && !(2f64.powi(-20)..=2f64.powi(40)).contains(&big) {
         -(big.log2().floor() as i32)
     } else {
         0
