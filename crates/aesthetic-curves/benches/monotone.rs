@@ -75,5 +75,72 @@ fn bench_rational(c: &mut Criterion) {
     bench_set(c, "monotone/rational3", &curves, &[100]);
 }
 
-criterion_group!(benches, bench_polynomial, bench_rational);
+/// Near-degenerate cubics in integer font units that the floating-point filter cannot decide
+/// (a collinear end with a long nearly parallel handle, retracted handles; kept only where
+/// `MonotoneReport::exact` says big-integer arithmetic ran): the exact fallback's cost per
+/// curve (issue 32: under 100 µs).
+fn bench_exact_fallback(c: &mut Criterion) {
+    use aesthetic_curves::{Bezier, Point, RationalBezier};
+    let mut curves = Vec::new();
+    let mut state = 12345u64;
+    let mut next = |m: i64| {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((state >> 33) as i64).rem_euclid(m)
+    };
+    while curves.len() < 64 {
+        let (x0, y0) = (100 + next(1900), 100 + next(1900));
+        let a = 1 + next(7);
+        let p = [
+            (x0, y0),
+            (x0 + a, y0),
+            (x0 + a + 1 + next(3), y0),
+            (x0 + a + 5 + next(60), y0 + next(7) - 3),
+        ];
+        let mut pts: Vec<Point> = p
+            .iter()
+            .map(|&(x, y)| Point::new(x as f64, y as f64))
+            .collect();
+        if next(2) == 0 {
+            pts[1] = pts[0];
+        }
+        let b = Bezier::new(pts.clone()).expect("cubic");
+        if b.curvature_monotone().is_ok_and(|r| r.exact) {
+            curves.push(b);
+        }
+    }
+    let rational: Vec<RationalBezier> = curves
+        .iter()
+        .map(|b| {
+            RationalBezier::new(b.points().to_vec(), vec![1.0, 2.0, 1.0, 3.0]).expect("weights")
+        })
+        .collect();
+    let mut g = c.benchmark_group("monotone/exact_fallback");
+    g.throughput(Throughput::Elements(curves.len() as u64));
+    g.bench_function("polynomial_with_extrema", |b| {
+        b.iter(|| {
+            curves
+                .iter()
+                .filter(|c| black_box(c).curvature_monotone().is_ok_and(|r| r.monotone))
+                .count()
+        })
+    });
+    g.bench_function("rational_with_extrema", |b| {
+        b.iter(|| {
+            rational
+                .iter()
+                .filter(|c| black_box(c).curvature_monotone().is_ok_and(|r| r.monotone))
+                .count()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_polynomial,
+    bench_rational,
+    bench_exact_fallback
+);
 criterion_main!(benches);

@@ -117,14 +117,24 @@ impl Bounded {
     }
 }
 
-/// Integers below 2^53 in magnitude are exact in f64, and so are their sums, differences
-/// and products while the result stays below it: such a result has the bound 0 (so the
-/// exact zeros of integer data, a font's, are known to be zeros).
-const EXACT_INT: f64 = 9007199254740992.0;
-
+/// Whether `a + b` (computed as `v`) was exact: Knuth's TwoSum gives the rounding error
+/// exactly (exact inputs only, so the result's bound can be 0 and a computed zero of exact
+/// data, a font's, is known to be zero).
 #[inline]
-fn exact_int(a: &Bounded, b: &Bounded, v: f64) -> bool {
-    a.e == 0.0 && b.e == 0.0 && v.abs() < EXACT_INT && a.v.fract() == 0.0 && b.v.fract() == 0.0
+fn sum_is_exact(a: f64, b: f64, v: f64) -> bool {
+    let bb = v - a;
+    (a - (v - bb)) + (b - bb) == 0.0 && v.is_finite()
+}
+
+/// Whether the product `a b` (computed as `v`) was exact: a fused multiply-add gives its
+/// rounding error exactly, when the product is a normal number (in the subnormal range the
+/// error itself may round to zero) or a factor is zero.
+#[inline]
+fn product_is_exact(a: f64, b: f64, v: f64) -> bool {
+    if a == 0.0 || b == 0.0 {
+        return true;
+    }
+    v.is_finite() && v.abs() >= f64::MIN_POSITIVE && a.mul_add(b, -v) == 0.0
 }
 
 impl Ring for Bounded {
@@ -134,7 +144,7 @@ impl Ring for Bounded {
     #[inline]
     fn add(&self, o: &Self) -> Self {
         let v = self.v + o.v;
-        if exact_int(self, o, v) {
+        if self.e == 0.0 && o.e == 0.0 && sum_is_exact(self.v, o.v, v) {
             return Bounded::exact(v);
         }
         Bounded {
@@ -145,7 +155,7 @@ impl Ring for Bounded {
     #[inline]
     fn sub(&self, o: &Self) -> Self {
         let v = self.v - o.v;
-        if exact_int(self, o, v) {
+        if self.e == 0.0 && o.e == 0.0 && sum_is_exact(self.v, -o.v, v) {
             return Bounded::exact(v);
         }
         Bounded {
@@ -156,7 +166,7 @@ impl Ring for Bounded {
     #[inline]
     fn mul(&self, o: &Self) -> Self {
         let v = self.v * o.v;
-        if exact_int(self, o, v) {
+        if self.e == 0.0 && o.e == 0.0 && product_is_exact(self.v, o.v, v) {
             return Bounded::exact(v);
         }
         let e = self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e;
@@ -174,7 +184,7 @@ impl Ring for Bounded {
     fn mul_int(&self, k: i64) -> Self {
         let kf = k as f64;
         let v = self.v * kf;
-        if self.e == 0.0 && v.abs() < EXACT_INT && self.v.fract() == 0.0 {
+        if self.e == 0.0 && product_is_exact(self.v, kf, v) {
             return Bounded::exact(v);
         }
         let round = if self.v == 0.0 {

@@ -39,6 +39,25 @@ pub struct Signs {
     pub changes: Vec<f64>,
     /// Decided by exact arithmetic (the filter could not decide).
     pub exact: bool,
+    /// Not decided: the exact arithmetic would need more than [`EXACT_BUDGET`] (a
+    /// polynomial of high degree with huge integers, from coordinates spanning hundreds of
+    /// orders of magnitude); the other fields mean nothing then.
+    pub over_budget: bool,
+}
+
+/// The most work the exact stage takes on, in a cost model of its gcd and Sturm sequence:
+/// about `d³` products of numbers of `d × bits` bits (d the degree), each `(d bits / 64)^1.58`
+/// word operations (Karatsuba), the isolation's evaluations on top. 5·10^7 admits a rational
+/// cubic's degree-16 numerator with 1,400-bit coefficients (coordinates spanning 40 orders of
+/// magnitude) and a font's cubics ten thousand times over, and refuses at once what would take
+/// seconds to minutes (a degree-29 numerator with 10,000-bit coefficients: a degree-8 curve
+/// whose coordinates span 300 orders of magnitude took 20 s).
+pub const EXACT_BUDGET: f64 = 5e7;
+
+/// The exact stage's cost in the model of [`EXACT_BUDGET`].
+pub fn exact_cost(degree: usize, bits: u64) -> f64 {
+    let d = degree.max(1) as f64;
+    d * d * d * (d * bits.max(64) as f64 / 64.0).powf(1.58)
 }
 
 /// The filter's limits: at most `MAX_DEPTH` splits deep, at most `MAX_PIECES` visited.
@@ -58,13 +77,23 @@ pub fn certified_signs(
     if let Some(s) = filter(scaled, want) {
         return s;
     }
-    let e = poly::sign_changes(&exact(), want == Want::Changes);
+    let c = exact();
+    let bits = c.iter().map(|v| v.bits()).max().unwrap_or(0);
+    if exact_cost(c.len().saturating_sub(1), bits) > EXACT_BUDGET {
+        return Signs {
+            exact: true,
+            over_budget: true,
+            ..Signs::default()
+        };
+    }
+    let e = poly::sign_changes(&c, want == Want::Changes);
     Signs {
         zero: e.zero,
         positive: e.positive,
         negative: e.negative,
         changes: e.changes,
         exact: true,
+        over_budget: false,
     }
 }
 
@@ -343,6 +372,7 @@ pub fn filter_plain(c: &[Bounded], want: Want) -> Option<Signs> {
         negative: walk.negative,
         changes: walk.changes,
         exact: false,
+        over_budget: false,
     })
 }
 

@@ -249,8 +249,7 @@ fn bounded(inp: &Input) -> Lifted<Bounded> {
 }
 
 /// The power of two that brings `big` near 1 when it is far from it (0 between 2^-20 and
-/// 2^40, where nothing can overflow or underflow and integer data stay integers, whose
-/// exact arithmetic [`Bounded`] recognises; 0 for zero or non-finite values).
+/// 2^40, where nothing can overflow or underflow; 0 for zero or non-finite values).
 fn pow2_normaliser(big: f64) -> i32 {
     if big > 0.0 && big.is_finite() && !(2f64.powi(-20)..=2f64.powi(40)).contains(&big) {
         -(big.log2().floor() as i32)
@@ -324,6 +323,20 @@ fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
     }
     // Exactly: a common root of z's components in (0, 1) (z's ends are not zero).
     let e = exact(inp);
+    let bits =
+        e.zx.iter()
+            .chain(&e.zy)
+            .map(|v| v.bits())
+            .max()
+            .unwrap_or(0) as f64;
+    let d = e.zx.len() as f64;
+    over_budget(
+        &crate::exact::Signs {
+            over_budget: d * d * d * bits > crate::exact::signs::EXACT_BUDGET,
+            ..Default::default()
+        },
+        e.zx.len() - 1,
+    )?;
     let g = poly::IntPoly::new(coeffs(&e.zx)).gcd(&poly::IntPoly::new(coeffs(&e.zy)));
     match poly::roots(g.coeffs()).first() {
         Some(t) => Err(Error::Degenerate(format!(
@@ -397,6 +410,7 @@ fn signs(inp: &Input, b: &Lifted<Bounded>, want: Want) -> Result<(crate::exact::
     if s.exact {
         super::note_exact_fallback();
     }
+    over_budget(&s, k.len() - 1)?;
     Ok((s, k.len() - 1))
 }
 
@@ -413,7 +427,21 @@ pub(super) fn inflections(inp: &Input) -> Result<Vec<f64>> {
     if s.exact {
         super::note_exact_fallback();
     }
+    over_budget(&s, d.len() - 1)?;
     Ok(s.changes)
+}
+
+/// `Err(NoConvergence)` when the exact stage was over its budget: said, never guessed.
+fn over_budget(s: &crate::exact::Signs, degree: usize) -> Result<()> {
+    if s.over_budget {
+        return Err(Error::NoConvergence(format!(
+            "the floating-point filter could not decide this curve and the exact test (a \
+             polynomial of degree {degree}) would need more than its work budget: its \
+             coordinates or weights span too many orders of magnitude for big-integer \
+             arithmetic in reasonable time; rescale or round them"
+        )));
+    }
+    Ok(())
 }
 
 /// The certified verdict only.
