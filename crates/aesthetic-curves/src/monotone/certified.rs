@@ -322,6 +322,13 @@ fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
         return Ok(());
     }
     // Exactly: a common root of z's components in (0, 1) (z's ends are not zero).
+    over_budget(
+        &crate::exact::Signs {
+            over_budget: predicted_cost(inp, 3 * m) > crate::exact::signs::EXACT_BUDGET,
+            ..Default::default()
+        },
+        m,
+    )?;
     let e = exact(inp);
     let bits =
         e.zx.iter()
@@ -406,7 +413,18 @@ fn end_curvature(inp: &Input, b: &Lifted<Bounded>, start: bool) -> EndCurvature 
 fn signs(inp: &Input, b: &Lifted<Bounded>, want: Want) -> Result<(crate::exact::Signs, usize)> {
     check_regular(inp, b)?;
     let k = k_tilde(inp, b);
-    let s = certified_signs(&k, || coeffs(&k_tilde(inp, &exact(inp))), want);
+    let affordable = predicted_cost(inp, k.len() - 1) <= crate::exact::signs::EXACT_BUDGET;
+    let s = certified_signs(
+        &k,
+        || {
+            if affordable {
+                coeffs(&k_tilde(inp, &exact(inp)))
+            } else {
+                Vec::new()
+            }
+        },
+        want,
+    );
     if s.exact {
         super::note_exact_fallback();
     }
@@ -423,12 +441,48 @@ pub(super) fn inflections(inp: &Input) -> Result<Vec<f64>> {
         return Ok(Vec::new());
     }
     let d = delta(&b).0;
-    let s = certified_signs(&d, || coeffs(&delta(&exact(inp)).0), Want::Changes);
+    let affordable = predicted_cost(inp, d.len() - 1) <= crate::exact::signs::EXACT_BUDGET;
+    let s = certified_signs(
+        &d,
+        || {
+            if affordable {
+                coeffs(&delta(&exact(inp)).0)
+            } else {
+                Vec::new()
+            }
+        },
+        Want::Changes,
+    );
     if s.exact {
         super::note_exact_fallback();
     }
     over_budget(&s, d.len() - 1)?;
     Ok(s.changes)
+}
+
+/// The exact stage's cost (`exact::signs::exact_cost`) predicted from the inputs before any
+/// big integer is made: the coordinates' binary exponents span `span` bits (plus 53 of
+/// mantissa), K̃ is of degree 4 in them (8 for a rational curve, with 16 weight factors).
+fn predicted_cost(inp: &Input, degree: usize) -> f64 {
+    let span = |v: &mut dyn Iterator<Item = f64>| {
+        let (mut lo, mut hi) = (i32::MAX, i32::MIN);
+        for x in v.filter(|x| *x != 0.0 && x.is_finite()) {
+            let e = x.abs().log2().floor() as i32;
+            lo = lo.min(e);
+            hi = hi.max(e);
+        }
+        if lo > hi {
+            53
+        } else {
+            (hi - lo + 53) as u64
+        }
+    };
+    let c = span(&mut inp.points.iter().flat_map(|p| [p.x, p.y]));
+    let bits = match inp.weights {
+        None => 4 * c + 32,
+        Some(w) => 8 * c + 16 * span(&mut w.iter().copied()) + 64,
+    };
+    crate::exact::signs::exact_cost(degree, bits)
 }
 
 /// `Err(NoConvergence)` when the exact stage was over its budget: said, never guessed.
