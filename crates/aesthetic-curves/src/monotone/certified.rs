@@ -462,7 +462,7 @@ pub(super) fn inflections(inp: &Input) -> Result<Vec<f64>> {
 
 /// The exact stage's cost (`exact::signs::exact_cost`) predicted from the inputs before any
 /// big integer is made: the coordinates' binary exponents span `span` bits (plus 53 of
-/// mantissa), K̃ is of degree 4 in them (8 for a rational curve, with 16 weight factors).
+/// mantissa), K̃ is of degree 4 in them (8 for a rational curve, with 9 weight factors).
 fn predicted_cost(inp: &Input, degree: usize) -> f64 {
     let span = |v: &mut dyn Iterator<Item = f64>| {
         let (mut lo, mut hi) = (i32::MAX, i32::MIN);
@@ -480,7 +480,7 @@ fn predicted_cost(inp: &Input, degree: usize) -> f64 {
     let c = span(&mut inp.points.iter().flat_map(|p| [p.x, p.y]));
     let bits = match inp.weights {
         None => 4 * c + 32,
-        Some(w) => 8 * c + 16 * span(&mut w.iter().copied()) + 64,
+        Some(w) => 8 * c + 10 * span(&mut w.iter().copied()) + 64,
     };
     crate::exact::signs::exact_cost(degree, bits)
 }
