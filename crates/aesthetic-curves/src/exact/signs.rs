@@ -47,12 +47,14 @@ pub struct Signs {
 
 /// The most work the exact stage takes on, in a cost model of its gcd and Sturm sequence:
 /// about `d³` products of numbers of `d × bits` bits (d the degree), each `(d bits / 64)^1.58`
-/// word operations (Karatsuba), the isolation's evaluations on top. 5·10^7 admits a rational
-/// cubic's degree-16 numerator with 1,400-bit coefficients (coordinates spanning 40 orders of
-/// magnitude) and a font's cubics ten thousand times over, and refuses at once what would take
-/// seconds to minutes (a degree-29 numerator with 10,000-bit coefficients: a degree-8 curve
-/// whose coordinates span 300 orders of magnitude took 20 s).
-pub const EXACT_BUDGET: f64 = 5e7;
+/// word operations (Karatsuba), the isolation's evaluations on top. 4·10^8 admits every
+/// degree up to 12 with ordinary coordinates (a degree-41 numerator with 300-bit
+/// coefficients), a rational cubic whose coordinates span 100 orders of magnitude, and a
+/// font's cubics many times over; it refuses at once what would take many seconds to minutes
+/// (a degree-29 numerator with 10,000-bit coefficients: a degree-8 curve whose coordinates
+/// span 300 orders of magnitude took 20 s), and a degree-20 curve's degree-73 numerator
+/// from about 200-bit coefficients on.
+pub const EXACT_BUDGET: f64 = 4e8;
 
 /// The exact stage's cost in the model of [`EXACT_BUDGET`].
 pub fn exact_cost(degree: usize, bits: u64) -> f64 {
