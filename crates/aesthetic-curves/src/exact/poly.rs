@@ -184,7 +184,8 @@ impl IntPoly {
     }
 }
 
-fn sign_of(v: &BigInt) -> i32 {
+/// The sign of an integer: -1, 0 or 1.
+pub fn sign_of(v: &BigInt) -> i32 {
     match v.sign() {
         num_bigint::Sign::Minus => -1,
         num_bigint::Sign::NoSign => 0,

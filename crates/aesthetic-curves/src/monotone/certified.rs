@@ -288,18 +288,6 @@ fn exact(inp: &Input) -> Lifted<BigInt> {
     lift(inp, diff, w.as_deref())
 }
 
-fn coeffs(v: &[BigInt]) -> Vec<BigInt> {
-    v.to_vec()
-}
-
-fn big_sign(v: &BigInt) -> i32 {
-    match v.sign() {
-        num_bigint::Sign::Minus => -1,
-        num_bigint::Sign::NoSign => 0,
-        num_bigint::Sign::Plus => 1,
-    }
-}
-
 /// `Err(Degenerate)` when z vanishes inside (0, 1): a cusp or a curve that turns back.
 fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
     let m = b.zx.len() - 1;
@@ -344,7 +332,7 @@ fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
         },
         e.zx.len() - 1,
     )?;
-    let g = poly::IntPoly::new(coeffs(&e.zx)).gcd(&poly::IntPoly::new(coeffs(&e.zy)));
+    let g = poly::IntPoly::new(e.zx.to_vec()).gcd(&poly::IntPoly::new(e.zy.to_vec()));
     match poly::roots(g.coeffs()).first() {
         Some(t) => Err(Error::Degenerate(format!(
             "the tangent vanishes at t = {t:.9}, inside the segment (a cusp, or the curve \
@@ -372,7 +360,7 @@ fn end_curvature(inp: &Input, b: &Lifted<Bounded>, start: bool) -> EndCurvature 
     } else if d.iter().all(|c| c.sign().is_some()) {
         d.iter().map(|c| c.sign().unwrap_or(0)).collect()
     } else {
-        delta(&exact(inp)).0.iter().map(big_sign).collect()
+        delta(&exact(inp)).0.iter().map(poly::sign_of).collect()
     };
     let ordered: Vec<usize> = if start {
         (0..signs.len()).collect()
@@ -418,7 +406,7 @@ fn signs(inp: &Input, b: &Lifted<Bounded>, want: Want) -> Result<(crate::exact::
         &k,
         || {
             if affordable {
-                coeffs(&k_tilde(inp, &exact(inp)))
+                k_tilde(inp, &exact(inp)).to_vec()
             } else {
                 Vec::new()
             }
@@ -446,7 +434,7 @@ pub(super) fn inflections(inp: &Input) -> Result<Vec<f64>> {
         &d,
         || {
             if affordable {
-                coeffs(&delta(&exact(inp)).0)
+                delta(&exact(inp)).0.to_vec()
             } else {
                 Vec::new()
             }
