@@ -325,19 +325,84 @@ struct MonotoneReport {
     extrema: Py<PyArray1<f64>>,
     /// Degree of the Bernstein polynomial the test examines.
     test_degree: usize,
+    /// The floating-point filter could not decide: exact integer arithmetic did.
+    exact: bool,
+    /// How the curvature behaves at t = 0 and at t = 1.
+    ends: (EndCurvature, EndCurvature),
+}
+
+/// The curvature at one end of a curve.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+#[derive(Clone)]
+struct EndCurvature {
+    /// "regular" (the speed does not vanish), "finite" (a retracted handle, the curvature
+    /// tends to a limit) or "unbounded" (a retracted handle, the curvature grows without
+    /// bound).
+    kind: String,
+    /// The curvature at the end (its limit at a retracted one); None where unbounded.
+    curvature: Option<f64>,
+    /// How many handles are retracted onto the end point (0 at a regular end).
+    retracted_handles: usize,
+    /// Where unbounded: the curvature grows like 1/t**growth_rate.
+    growth_rate: Option<usize>,
+    /// Where unbounded: the sign of the curvature near the end (+1 or -1).
+    sign: Option<i8>,
+}
+
+#[pymethods]
+impl EndCurvature {
+    fn __repr__(&self) -> String {
+        let opt = |v: Option<String>| v.unwrap_or_else(|| "None".into());
+        format!(
+            "EndCurvature(kind='{}', curvature={}, retracted_handles={}, growth_rate={}, sign={})",
+            self.kind,
+            opt(self.curvature.map(|k| k.to_string())),
+            self.retracted_handles,
+            opt(self.growth_rate.map(|r| r.to_string())),
+            opt(self.sign.map(|s| s.to_string())),
+        )
+    }
+}
+
+impl From<ac::monotone::EndCurvature> for EndCurvature {
+    fn from(e: ac::monotone::EndCurvature) -> Self {
+        use ac::monotone::EndCurvature as E;
+        let (kind, retracted_handles, growth_rate, sign) = match e {
+            E::Regular(_) => ("regular", 0, None, None),
+            E::Finite { order, .. } => ("finite", order, None, None),
+            E::Unbounded {
+                positive,
+                order,
+                rate,
+            } => (
+                "unbounded",
+                order,
+                Some(rate),
+                Some(if positive { 1 } else { -1 }),
+            ),
+        };
+        EndCurvature {
+            kind: kind.into(),
+            curvature: e.value(),
+            retracted_handles,
+            growth_rate,
+            sign,
+        }
+    }
 }
 
 #[pymethods]
 impl MonotoneReport {
     fn __repr__(&self, py: Python<'_>) -> String {
         format!(
-            "MonotoneReport(monotone={}, trend={}, extrema={}, test_degree={})",
+            "MonotoneReport(monotone={}, trend={}, extrema={}, test_degree={}, exact={})",
             if self.monotone { "True" } else { "False" },
             self.trend
                 .as_ref()
                 .map_or("None".to_string(), |t| format!("'{t}'")),
             self.extrema.bind(py).len(),
-            self.test_degree
+            self.test_degree,
+            if self.exact { "True" } else { "False" }
         )
     }
 }
@@ -348,6 +413,8 @@ fn report(py: Python<'_>, r: ac::MonotoneReport) -> MonotoneReport {
         trend: r.trend.map(|t| t.as_str().to_string()),
         extrema: r.extrema.into_pyarray(py).unbind(),
         test_degree: r.test_degree,
+        exact: r.exact,
+        ends: (r.ends[0].into(), r.ends[1].into()),
     }
 }
 
@@ -1236,6 +1303,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DeadlineError", py.get_type::<DeadlineError>())?;
     m.add_class::<Samples>()?;
     m.add_class::<MonotoneReport>()?;
+    m.add_class::<EndCurvature>()?;
     m.add_class::<CurveAt>()?;
     m.add_class::<Bezier>()?;
     m.add_class::<RationalBezier>()?;

@@ -61,9 +61,24 @@ def test_rational_quadratic_quarter_circle_has_constant_curvature():
     assert p.shape == (101, 2)
     assert np.allclose(np.hypot(p[:, 0], p[:, 1]), r, atol=1e-12)
     assert abs(c.arc_length() - math.pi * r / 2) < 1e-9
-    assert c.curvature_monotone().trend == "constant"
+    # The weight is the double nearest √½ (slightly above it), so this is exactly an ellipse
+    # a hair away from the circle: its curvature is symmetric about t = ½ and not constant,
+    # and the exact test says so, with the extremum at the middle.
+    rep = c.curvature_monotone()
+    assert rep.monotone is False and rep.exact is True
+    assert np.allclose(rep.extrema, [0.5], atol=1e-12)
     assert isinstance(c.kappa(0.3), float)
     assert c.eval(0.0).tolist() == [r, 0.0]
+
+
+def test_rational_quadratic_exact_circle_arc_is_constant():
+    # Isosceles triangle (0,0) (3,4) (6,0) with weights 5, 3, 5: w1²/(w0·w2) = (3/5)² = cos² of
+    # the base angle, so this is exactly an arc of a circle, of radius 15/4.
+    c = ac.RationalBezier([(0, 0), (3, 4), (6, 0)], [5.0, 3.0, 5.0])
+    rep = c.curvature_monotone()
+    assert rep.monotone and rep.trend == "constant" and len(rep.extrema) == 0
+    assert np.allclose(np.abs(c.kappa(np.linspace(0, 1, 11))), 4 / 15, rtol=1e-14)
+    assert [e.kind for e in rep.ends] == ["regular", "regular"]
 
 
 def test_bezier_accepts_arrays_and_pairs_and_refuses_the_rest():

@@ -16,6 +16,7 @@ __all__ = [
     "CurveAt",
     "DeadlineError",
     "DegenerateError",
+    "EndCurvature",
     "InvalidInputError",
     "LacFit",
     "LacInflectionSegment",
@@ -85,6 +86,16 @@ class MonotoneReport:
     trend: Optional[str]
     extrema: _Array1
     test_degree: int
+    exact: bool
+    ends: Tuple[EndCurvature, EndCurvature]
+
+@final
+class EndCurvature:
+    kind: str
+    curvature: Optional[float]
+    retracted_handles: int
+    growth_rate: Optional[int]
+    sign: Optional[int]
 
 @final
 class Nurbs(_Exportable):

@@ -98,12 +98,22 @@ impl Bounded {
         }
     }
 
-    /// `self / k` for a positive integer k.
+    /// `self / k` for a positive integer k; the bound stays 0 when the input was exact and
+    /// the quotient is (a fused multiply-add gives `v k - self` exactly for a normal or zero
+    /// quotient), so an exact zero stays a known zero.
     pub fn div_int(&self, k: f64) -> Self {
         let v = self.v / k;
+        let exact = self.e == 0.0
+            && (v == 0.0 || v.abs() >= f64::MIN_POSITIVE)
+            && v.is_finite()
+            && v.mul_add(k, -self.v) == 0.0;
         Bounded {
             v,
-            e: (self.e / k + U * v.abs() + ETA) * INFLATE,
+            e: if exact {
+                0.0
+            } else {
+                (self.e / k + U * v.abs() + ETA) * INFLATE
+            },
         }
     }
 

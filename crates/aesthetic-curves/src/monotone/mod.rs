@@ -1407,6 +1407,45 @@ mod tests {
     }
 }
 #[cfg(test)]
+mod exact_zeros {
+    use super::*;
+
+    /// Integer control points whose K has exact zero coefficients (a parabola's vertex, a
+    /// circle's identically zero K): the filter knows those zeros are zeros, so these common
+    /// shapes never pay for the exact stage (a division by a binomial that is exact keeps
+    /// its bound at 0).
+    #[test]
+    fn exact_zeros_are_decided_by_the_filter() {
+        let parabola = Bezier::new(
+            [(0.0, 0.0), (1.0, 0.0), (2.0, 1.0), (3.0, 3.0)]
+                .iter()
+                .map(|&(x, y)| Point::new(x, y))
+                .collect(),
+        )
+        .unwrap();
+        let r = parabola.curvature_monotone().unwrap();
+        assert!(
+            r.monotone && r.trend == Some(Trend::Decreasing) && !r.exact,
+            "{r:?}"
+        );
+        let circle = RationalBezier::new(
+            vec![
+                Point::new(0.0, 0.0),
+                Point::new(3.0, 4.0),
+                Point::new(6.0, 0.0),
+            ],
+            vec![5.0, 3.0, 5.0],
+        )
+        .unwrap();
+        let r = circle.curvature_monotone().unwrap();
+        assert!(
+            r.monotone && r.trend == Some(Trend::Constant) && !r.exact,
+            "{r:?}"
+        );
+    }
+}
+
+#[cfg(test)]
 mod fast_path {
     /// The fast path decides every generic random curve (the certified test is for the
     /// near-degenerate ones): it is what keeps the verdict at its old speed.
