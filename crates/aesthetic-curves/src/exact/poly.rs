@@ -184,6 +184,20 @@ impl IntPoly {
     }
 }
 
+/// The exact sign of `Σ c_i u^i` at the f64 parameter `t`: at `t <= 0` the sign just right
+/// of 0, at `t >= 1` the sign just left of 1 (0 only for an exact root inside).
+pub fn sign_at_f64(p: &IntPoly, t: f64) -> i32 {
+    if t <= 0.0 {
+        return p.sign_at_zero();
+    }
+    if t >= 1.0 {
+        return p.sign_at_one();
+    }
+    let (m, e) = super::decompose(t);
+    // t = m 2^e with 0 < t < 1, so e < 0.
+    p.sign_at(&Dyadic::new(BigInt::from(m), (-e) as u32))
+}
+
 /// The sign of an integer: -1, 0 or 1.
 pub fn sign_of(v: &BigInt) -> i32 {
     match v.sign() {

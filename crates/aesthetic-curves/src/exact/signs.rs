@@ -9,8 +9,11 @@
 //! rule then counts one variation whatever the unknown signs are). Anything else is split in
 //! two (de Casteljau at 33/64, the bounds carried along), up to a depth and a number of pieces. A
 //! located change is certified by the signs of the polynomial, with bounds, on both sides of
-//! it, `2^-43` away. Whatever the filter leaves open goes to [`super::poly::sign_changes`] on
-//! the exact integer coefficients.
+//! it, `2^-43` away (up to `2^-40` where the bounds are wide). A change the filter proved
+//! but could not place that closely is placed on the exact integer coefficients, by their
+//! exact signs `2^-42` on either side of it (or exact bisection): a few evaluations, not a
+//! gcd. Whatever else the filter leaves open goes to [`super::poly::sign_changes`] on the
+//! exact integer coefficients.
 
 use super::poly;
 use super::ring::{Bounded, Ring};
@@ -76,13 +79,26 @@ pub fn certified_signs(
     exact: impl FnOnce() -> Vec<BigInt>,
     want: Want,
 ) -> Signs {
-    if let Some(s) = filter(scaled, want) {
+    let mut pending = Vec::new();
+    if let Some(s) = filter(scaled, want, &mut pending) {
         return s;
     }
     let c = exact();
-    let bits = c.iter().map(|v| v.bits()).max().unwrap_or(0);
     // An empty answer: the caller knew beforehand that it was over the budget.
-    if c.is_empty() || exact_cost(c.len().saturating_sub(1), bits) > EXACT_BUDGET {
+    if c.is_empty() {
+        return Signs {
+            exact: true,
+            over_budget: true,
+            ..Signs::default()
+        };
+    }
+    // The filter proved every sign change and only could not place some: place those on
+    // the exact polynomial (a few evaluations, no gcd or Sturm sequence).
+    if let Some(s) = pending.pop().and_then(|partial| place_exactly(partial, &c)) {
+        return s;
+    }
+    let bits = c.iter().map(|v| v.bits()).max().unwrap_or(0);
+    if exact_cost(c.len().saturating_sub(1), bits) > EXACT_BUDGET {
         return Signs {
             exact: true,
             over_budget: true,
@@ -207,15 +223,31 @@ fn split(c: &[Bounded]) -> (Co, Co) {
     (left, right)
 }
 
-fn values_at(c: &[Bounded], x: f64) -> f64 {
-    let mut b: SmallVec<[f64; 24]> = c.iter().map(|v| v.v).collect();
+/// A number with the sign of the polynomial's value at `x` in (0, 1), in plain floating
+/// point (for the search only; certificates use [`bounded_at`]): `Σ C(d,i) c_i r^i` with
+/// `r = x / (1 - x)` by Horner (the value divided by `(1 - x)^d`), or from the other end in
+/// `(1 - x) / x` when x > 1/2, so the ratio stays at most 1.
+fn sign_value_at(c: &[Bounded], x: f64) -> f64 {
+    let d = c.len() - 1;
     let s = 1.0 - x;
-    for k in 1..b.len() {
-        for i in 0..b.len() - k {
-            b[i] = s * b[i] + x * b[i + 1];
+    let mut acc = 0.0;
+    // The binomials C(d, i) step by step (exact up to far beyond the degrees met here; a
+    // rounded one would only perturb the search, never a certificate).
+    let mut b = 1.0;
+    if x <= 0.5 {
+        let r = x / s;
+        for (i, ci) in c.iter().enumerate().rev() {
+            acc = acc * r + b * ci.v;
+            b = b * i as f64 / (d - i + 1) as f64;
+        }
+    } else {
+        let r = s / x;
+        for (i, ci) in c.iter().enumerate() {
+            acc = acc * r + b * ci.v;
+            b = b * (d - i) as f64 / (i + 1) as f64;
         }
     }
-    b[0]
+    acc
 }
 
 /// The value at `x` in [0, 1] with a bound (1 - x is exact for x >= 1/2 and carries its
@@ -239,7 +271,19 @@ struct Walk {
     /// The sign of the last settled stretch (for changes at piece boundaries).
     last: i32,
     changes: Vec<f64>,
+    /// Changes the filter proved (exactly one in their piece) but could not place within
+    /// `2^-40`: their piece `(a, w)`, the sign at its start, and the float estimate.
+    pending: Vec<Pending>,
     failed: bool,
+}
+
+/// A proven sign change still to be located (exactly).
+#[derive(Clone, Copy, Debug)]
+struct Pending {
+    a: f64,
+    w: f64,
+    s0: i32,
+    guess: f64,
 }
 
 impl Walk {
@@ -273,8 +317,13 @@ impl Walk {
                 self.note(s0, a);
                 if self.want == Want::Changes {
                     match self.locate(c, s0, w) {
-                        Some(r) => self.changes.push(a + w * r),
-                        None => self.failed = true,
+                        Ok(r) => self.changes.push(a + w * r),
+                        Err(r) => self.pending.push(Pending {
+                            a,
+                            w,
+                            s0,
+                            guess: a + w * r,
+                        }),
                     }
                 }
                 // The far side's sign, without a second change at the piece's end.
@@ -297,38 +346,132 @@ impl Walk {
         }
     }
 
-    /// The one sign change of the piece (local parameter), certified within `2^-43` in t.
-    fn locate(&self, c: &[Bounded], s0: i32, w: f64) -> Option<f64> {
-        let f = |x: f64| values_at(c, x);
-        let mut lo = 0.0f64;
-        let mut hi = 1.0f64;
-        for _ in 0..200 {
+    /// Where the piece's one change is, in plain floating point (local parameter, within
+    /// about `2^-47` in t): the Illinois variant of regula falsi on a bracket, bisection
+    /// steps where it stalls.
+    fn search(&self, c: &[Bounded], s0: i32, w: f64) -> f64 {
+        let f = |x: f64| sign_value_at(c, x) * s0 as f64;
+        // f > 0 at the start, < 0 at the end (the end coefficients' certified signs).
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        let (mut flo, mut fhi) = (c[0].v * s0 as f64, c[c.len() - 1].v * s0 as f64);
+        let tol = (-47f64).exp2() / w;
+        let mut side = 0;
+        for i in 0..200 {
+            if hi - lo <= tol {
+                break;
+            }
+            let mut x = if i % 4 == 3 || !(flo > 0.0 && fhi < 0.0) {
+                0.5 * (lo + hi)
+            } else {
+                lo + (hi - lo) * (flo / (flo - fhi))
+            };
+            if !(x > lo && x < hi) {
+                x = 0.5 * (lo + hi);
+                if !(x > lo && x < hi) {
+                    break;
+                }
+            }
+            let v = f(x);
+            if v == 0.0 {
+                return x;
+            }
+            if v > 0.0 {
+                lo = x;
+                flo = v;
+                if side == 1 {
+                    fhi *= 0.5;
+                }
+                side = 1;
+            } else {
+                hi = x;
+                fhi = v;
+                if side == -1 {
+                    flo *= 0.5;
+                }
+                side = -1;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// The one sign change of the piece (local parameter), certified within `2^-40` in t;
+    /// `Err(estimate)` when the bounds are too wide to certify it there.
+    fn locate(&self, c: &[Bounded], s0: i32, w: f64) -> Result<f64, f64> {
+        let r = self.search(c, s0, w);
+        // Certified as close as the bounds allow, at most 2^-40 (9.1e-13) away in t.
+        for bits in [43, 41, 40] {
+            let d = (-(bits as f64)).exp2() / w;
+            let (x1, x2) = ((r - d).max(0.0), (r + d).min(1.0));
+            let (v1, v2) = (bounded_at(c, x1).sign(), bounded_at(c, x2).sign());
+            if v1 == Some(s0) && v2 == Some(-s0) {
+                return Ok(r);
+            }
+        }
+        Err(r)
+    }
+}
+
+/// The filter's answer with some proven changes not yet placed.
+struct Partial {
+    signs: Signs,
+    pending: Vec<Pending>,
+}
+
+/// Separation below which two placed changes might be one root seen twice.
+const PLACED: f64 = 1.0 / (1u64 << 42) as f64;
+
+/// Places the filter's pending changes on the exact polynomial `c`. Each is placed at `x`
+/// once the exact signs at `x ∓ 2^-42` are the piece's start sign and its opposite: a
+/// change lies within `2^-42` of `x`. Such an interval, from floating-point ends, may reach
+/// past its piece, so the placed changes must also lie more than `2^-41` apart: then the
+/// filter's count (one change per piece) and the placements match one to one. `None` (the
+/// full exact analysis decides) when a bracket's exact signs disagree with the filter's.
+fn place_exactly(partial: Partial, c: &[BigInt]) -> Option<Signs> {
+    let p = poly::IntPoly::new(c.to_vec());
+    let sign = |t: f64| poly::sign_at_f64(&p, t);
+    let mut signs = partial.signs;
+    for q in partial.pending {
+        let brackets = |x: f64| sign(x - PLACED) == q.s0 && sign(x + PLACED) == -q.s0;
+        if brackets(q.guess) {
+            signs.changes.push(q.guess);
+            continue;
+        }
+        // Bisection on the exact sign over the whole piece.
+        let (mut lo, mut hi) = (q.a, q.a + q.w);
+        if sign(lo) != q.s0 || sign(hi) != -q.s0 {
+            return None;
+        }
+        while hi - lo > PLACED {
             let m = 0.5 * (lo + hi);
             if m <= lo || m >= hi {
                 break;
             }
-            let v = f(m);
-            if v == 0.0 {
-                lo = m;
-                hi = m;
-                break;
-            }
-            if (v > 0.0) == (s0 > 0) {
-                lo = m;
-            } else {
-                hi = m;
+            match sign(m) {
+                0 => {
+                    lo = m;
+                    hi = m;
+                }
+                v if v == q.s0 => lo = m,
+                _ => hi = m,
             }
         }
-        let r = 0.5 * (lo + hi);
-        let d = (-43f64).exp2() / w;
-        let (x1, x2) = ((r - d).max(0.0), (r + d).min(1.0));
-        let (v1, v2) = (bounded_at(c, x1).sign(), bounded_at(c, x2).sign());
-        (v1 == Some(s0) && v2 == Some(-s0)).then_some(r)
+        signs.changes.push(0.5 * (lo + hi));
     }
+    signs.changes.sort_by(f64::total_cmp);
+    if signs
+        .changes
+        .windows(2)
+        .any(|w| w[1] - w[0] <= 2.0 * PLACED)
+    {
+        return None;
+    }
+    signs.exact = true;
+    Some(signs)
 }
 
-/// The filter on scaled coefficients: `None` when it cannot decide.
-fn filter(scaled: &[Bounded], want: Want) -> Option<Signs> {
+/// The filter on scaled coefficients: `None` when it cannot decide (with the changes it
+/// proved but could not place in `pending`, if that is all it lacks).
+fn filter(scaled: &[Bounded], want: Want, pending: &mut Vec<Partial>) -> Option<Signs> {
     if scaled.is_empty() {
         return Some(Signs {
             zero: true,
@@ -341,12 +484,16 @@ fn filter(scaled: &[Bounded], want: Want) -> Option<Signs> {
             ..Signs::default()
         });
     }
-    filter_plain(&unscale(scaled), want)
+    walk_plain(&unscale(scaled), want, pending)
 }
 
 /// The filter on ordinary Bernstein coefficients with their bounds: `None` when it cannot
 /// decide.
 pub fn filter_plain(c: &[Bounded], want: Want) -> Option<Signs> {
+    walk_plain(c, want, &mut Vec::new())
+}
+
+fn walk_plain(c: &[Bounded], want: Want, partial: &mut Vec<Partial>) -> Option<Signs> {
     if c.iter().all(|c| c.v == 0.0 && c.e == 0.0) {
         return Some(Signs {
             zero: true,
@@ -360,6 +507,7 @@ pub fn filter_plain(c: &[Bounded], want: Want) -> Option<Signs> {
         negative: false,
         last: 0,
         changes: Vec::new(),
+        pending: Vec::new(),
         failed: false,
     };
     walk.visit(c, 0.0, 1.0, 0);
@@ -369,14 +517,22 @@ pub fn filter_plain(c: &[Bounded], want: Want) -> Option<Signs> {
     if want == Want::Changes {
         walk.changes.sort_by(f64::total_cmp);
     }
-    Some(Signs {
+    let signs = Signs {
         zero: false,
         positive: walk.positive,
         negative: walk.negative,
         changes: walk.changes,
         exact: false,
         over_budget: false,
-    })
+    };
+    if walk.pending.is_empty() {
+        return Some(signs);
+    }
+    partial.push(Partial {
+        signs,
+        pending: walk.pending,
+    });
+    None
 }
 
 #[cfg(test)]
@@ -440,5 +596,27 @@ mod tests {
             Want::Signs,
         );
         assert!(s.exact && s.positive && s.negative);
+    }
+
+    /// Bounds too wide to certify a change within 2^-40 (1e-9 of each coefficient): the
+    /// filter still proves how many changes there are, and the exact signs place them.
+    #[test]
+    fn proven_changes_are_placed_exactly_when_the_bounds_are_wide() {
+        for roots in [
+            vec![0.25, 0.625],
+            // Dyadic roots with few bits, so that the coefficients are exact.
+            vec![0.0078125, 0.296875, 0.296875 + 2f64.powi(-20), 0.9990234375],
+        ] {
+            let (mut c, ints) = from_roots(&roots);
+            for v in &mut c {
+                v.e = 1e-9 * v.v.abs().max(1e-300);
+            }
+            let s = certified_signs(&c, || ints.clone(), Want::Changes);
+            assert!(s.exact && !s.over_budget, "{roots:?}: {s:?}");
+            assert_eq!(s.changes.len(), roots.len(), "{roots:?}: {s:?}");
+            for (got, want) in s.changes.iter().zip(&roots) {
+                assert!((got - want).abs() <= 2.3e-13, "{roots:?}: {s:?}");
+            }
+        }
     }
 }

@@ -240,6 +240,8 @@ pub fn curvature_variation(curve: &Bezier) -> CurvatureVariation {
 /// Degrees up to this use the small stack buffers.
 const SMALL_DEGREE: usize = 5;
 const SMALL_CAP: usize = 4 * SMALL_DEGREE - 5;
+/// Buffers for cubics and below, the commonest curves (K of degree 5, |x'|² of degree 4).
+const CUBIC_CAP: usize = 8;
 const LARGE_CAP: usize = 4 * crate::bezier::MAX_BEZIER_DEGREE;
 
 /// K, its magnitude bounds, |x'|^2 and the hodograph of a polynomial curve, on the stack.
@@ -470,7 +472,10 @@ const U: f64 = f64::EPSILON * 0.5;
 
 /// The fast verdict for polynomial curves (stack buffers sized for the degree).
 fn poly_fast(b: &[Point]) -> Option<Fast> {
-    if b.len() - 1 <= SMALL_DEGREE {
+    let n = b.len() - 1;
+    if n <= 3 {
+        poly_fast_cap::<CUBIC_CAP>(b)
+    } else if n <= SMALL_DEGREE {
         poly_fast_cap::<SMALL_CAP>(b)
     } else {
         poly_fast_cap::<LARGE_CAP>(b)
@@ -504,19 +509,35 @@ fn loose_k_bound(b: &[Point], dk: usize) -> f64 {
     (16.0 + 4.0 * dk as f64) * 8.0 * f64::EPSILON * bound
 }
 
-/// One instance per buffer size, kept out of line so that the small case does not pay for
-/// the large case's stack frame.
-#[inline(never)]
-fn poly_fast_cap<const C: usize>(b: &[Point]) -> Option<Fast> {
+/// K of a quickly proven regular curve with [`loose_k_bound`]; None when regularity is not
+/// quickly proven or the bound is out of range (underflow, overflow).
+#[inline(always)]
+fn poly_fast_k<const C: usize>(b: &[Point]) -> Option<(PolyK<C>, f64)> {
     let pk = poly_k::<C>(b, false);
     if pk.n < 2 || !(pk.speed_is_clearly_positive() || pk.hodograph_is_clearly_regular()) {
         return None;
     }
     let loose = loose_k_bound(b, pk.dk);
-    // Beyond the range where the bound is a bound (underflow), or overflowed: undecided.
-    if !(loose > 1e-280 && loose < 1e280) {
-        return None;
-    }
+    (loose > 1e-280 && loose < 1e280).then_some((pk, loose))
+}
+
+/// Plain Bernstein coefficients with one common bound as [`Bounded`] numbers (the
+/// division by the binomials adds its rounding).
+fn plain_with_bound(plain: &[f64], bound: f64) -> SmallVec<[Bounded; 24]> {
+    plain
+        .iter()
+        .map(|v| Bounded {
+            v: *v,
+            e: bound + 2.0 * U * v.abs(),
+        })
+        .collect()
+}
+
+/// One instance per buffer size, kept out of line so that the small case does not pay for
+/// the large case's stack frame.
+#[inline(never)]
+fn poly_fast_cap<const C: usize>(b: &[Point]) -> Option<Fast> {
+    let (pk, loose) = poly_fast_k::<C>(b)?;
     let dk = pk.dk;
     let k = &pk.k[..=dk];
     // Scaled coefficients: the plain bound times the binomials (plus the scaling's rounding).
@@ -548,7 +569,8 @@ fn poly_fast_cap<const C: usize>(b: &[Point]) -> Option<Fast> {
     let big = ku[..=dk].iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let margin = 2.0 * loose + 4.0 * (dk as f64 + 2.0) * U * big;
     let (mut pos, mut neg) = (k[0] > 0.0 && s0 != 0, k[0] < 0.0 && s0 != 0);
-    for j in 1..8 {
+    // The middle first: with both ends of one sign, the other sign is most often there.
+    for j in [4, 2, 6, 1, 3, 5, 7] {
         let v = crate::bernstein::de_casteljau(&ku[..=dk], j as f64 / 8.0);
         pos |= v > margin;
         neg |= v < -margin;
@@ -557,13 +579,7 @@ fn poly_fast_cap<const C: usize>(b: &[Point]) -> Option<Fast> {
         }
     }
     // Subdivide, the bound carried along (it is the same for every plain coefficient).
-    let plain: SmallVec<[Bounded; 24]> = (0..=dk)
-        .map(|i| Bounded {
-            v: ku[i],
-            e: loose + 2.0 * U * ku[i].abs(),
-        })
-        .collect();
-    let s = crate::exact::signs::filter_plain(&plain, Want::Signs)?;
+    let s = crate::exact::signs::filter_plain(&plain_with_bound(&ku[..=dk], loose), Want::Signs)?;
     Some(if s.positive && s.negative {
         Fast::NotMonotone
     } else if s.positive {
@@ -697,6 +713,7 @@ pub fn curvature_variation_rational(curve: &RationalBezier) -> CurvatureVariatio
 
 /// Product of two Bernstein polynomials given by their coefficients, into `out` (length
 /// `a.len() + b.len() - 1`): `(ab)_k = Σ C(m,i) C(n,j) / C(m+n,k) a_i b_j`.
+#[inline(always)]
 fn bernstein_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
     let (m, n) = (a.len() - 1, b.len() - 1);
     out[..=m + n].fill(0.0);
@@ -769,7 +786,47 @@ fn rational_cubic_bounds(b: &[Point], w: &[f64]) -> (f64, f64) {
 /// beyond it and of one sign prove monotonicity; two values at sample points beyond it (and
 /// beyond the evaluation's rounding) of opposite signs prove a sign change. `None`: the
 /// certified test decides (also when regularity is not quickly proven).
+#[inline(never)]
 fn rational_cubic_fast(b: &[Point], w: &[f64]) -> Option<Fast> {
+    let rk = rational_cubic_k(b, w)?;
+    let (k, k_bound) = (&rk.k, rk.k_bound);
+    if k.iter().all(|v| *v > k_bound) {
+        return Some(Fast::Monotone(1));
+    }
+    if k.iter().all(|v| *v < -k_bound) {
+        return Some(Fast::Monotone(-1));
+    }
+    if rk.samples_change_sign() {
+        return Some(Fast::NotMonotone);
+    }
+    // Subdivide, the bound carried along (the same for every plain coefficient).
+    let s = crate::exact::signs::filter_plain(&plain_with_bound(k, k_bound), Want::Signs)?;
+    Some(if s.positive && s.negative {
+        Fast::NotMonotone
+    } else if s.positive {
+        Fast::Monotone(1)
+    } else if s.negative {
+        Fast::Monotone(-1)
+    } else {
+        return None;
+    })
+}
+
+/// A rational cubic's K (degree 13, plain Bernstein coefficients), its rigorous bound and
+/// the parts it is made of.
+struct RationalCubicK {
+    k: [f64; 14],
+    k_bound: f64,
+    e: [f64; 6],
+    speed2: [f64; 9],
+    wg: [f64; 7],
+    q: [f64; 8],
+}
+
+/// K of a rational cubic whose regularity is quickly proven (None otherwise, or when the
+/// bound is out of range).
+#[inline(always)]
+fn rational_cubic_k(b: &[Point], w: &[f64]) -> Option<RationalCubicK> {
     let (k_bound, d_bound) = rational_cubic_bounds(b, w);
     if !(k_bound > 1e-280 && k_bound < 1e280) {
         return None;
@@ -845,20 +902,24 @@ fn rational_cubic_fast(b: &[Point], w: &[f64]) -> Option<Fast> {
     if !margin_ok || hodograph_vanishes(&hodograph, margin).is_some() {
         return None;
     }
-    if k.iter().all(|v| *v > k_bound) {
-        return Some(Fast::Monotone(1));
-    }
-    if k.iter().all(|v| *v < -k_bound) {
-        return Some(Fast::Monotone(-1));
-    }
-    {
-        // K at 15 evenly spaced t (ends included): two values of strictly opposite signs,
-        // each beyond its rounding, prove a sign change: not monotone. A value's error is at
-        // most the coefficients' bound (the value is a convex combination of them) plus the
-        // evaluation's rounding, a few ulps of the terms' magnitudes: 1e-8 of the size of
-        // the terms K is made of at that t, bounded by the Bernstein polynomial of their
-        // absolute coefficients, |E S| + 3 |W G Q| <= (|e| x |s| + 3 |wg| x |q|)(t), is far
-        // above that.
+    Some(RationalCubicK {
+        k,
+        k_bound,
+        e,
+        speed2,
+        wg,
+        q,
+    })
+}
+
+impl RationalCubicK {
+    /// K at 15 evenly spaced t (ends included): two values of strictly opposite signs, each
+    /// beyond its rounding, prove a sign change. A value's error is at most the
+    /// coefficients' bound (the value is a convex combination of them) plus the
+    /// evaluation's rounding, a few ulps of the terms' magnitudes: 1e-8 of the size of the
+    /// terms K is made of at that t, bounded by the Bernstein polynomial of their absolute
+    /// coefficients, |E S| + 3 |W G Q| <= (|e| x |s| + 3 |wg| x |q|)(t), is far above that.
+    fn samples_change_sign(&self) -> bool {
         let abs = |v: &[f64], out: &mut [f64]| {
             for (o, x) in out.iter_mut().zip(v) {
                 *o = x.abs();
@@ -866,30 +927,30 @@ fn rational_cubic_fast(b: &[Point], w: &[f64]) -> Option<Fast> {
         };
         let (mut ea, mut sa, mut wga, mut qa) =
             ([0.0f64; 6], [0.0f64; 9], [0.0f64; 7], [0.0f64; 8]);
-        abs(&e, &mut ea);
-        abs(&speed2, &mut sa);
-        abs(&wg, &mut wga);
-        abs(&q, &mut qa);
+        abs(&self.e, &mut ea);
+        abs(&self.speed2, &mut sa);
+        abs(&self.wg, &mut wga);
+        abs(&self.q, &mut qa);
         let (mut size, mut t14) = ([0.0f64; 14], [0.0f64; 14]);
         bernstein_mul(&ea, &sa, &mut size);
         bernstein_mul(&wga, &qa, &mut t14);
         for (a, b) in size.iter_mut().zip(&t14) {
             *a += 3.0 * b;
         }
-        let kmax = k.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let kmax = self.k.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let (mut pos, mut neg) = (false, false);
         for j in 0..=14 {
             let t = j as f64 / 14.0;
-            let (v, sz) = (bernstein_eval13(&k, t), bernstein_eval13(&size, t));
-            if v.abs() > 1e-8 * sz + 2.0 * k_bound + 64.0 * U * kmax {
+            let (v, sz) = (bernstein_eval13(&self.k, t), bernstein_eval13(&size, t));
+            if v.abs() > 1e-8 * sz + 2.0 * self.k_bound + 64.0 * U * kmax {
                 pos |= v > 0.0;
                 neg |= v < 0.0;
             }
             if pos && neg {
-                return Some(Fast::NotMonotone);
+                return true;
             }
         }
-        None
+        false
     }
 }
 
@@ -1003,8 +1064,11 @@ fn report(
     kappa: impl Fn(f64) -> f64,
 ) -> Result<MonotoneReport> {
     let inp = certified::Input::new(points, weights)?;
-    if !inp.retracted() {
-        if let Some(Fast::Monotone(sign)) = fast(points, inp.weights()) {
+    if inp.retracted() {
+        return certified::report(&inp);
+    }
+    match fast(points, inp.weights()) {
+        Some(Fast::Monotone(sign)) => {
             return Ok(MonotoneReport {
                 monotone: true,
                 trend: Some(if sign > 0 {
@@ -1021,6 +1085,9 @@ fn report(
                 ],
             });
         }
+        // The certified test locates the extrema (faster than a second try on the fast
+        // path's K, whose one bound is too loose to place them).
+        Some(Fast::NotMonotone) | None => {}
     }
     certified::report(&inp)
 }
