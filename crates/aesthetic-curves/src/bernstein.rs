@@ -26,6 +26,12 @@
 //!
 //! Sign changes are reported only between strictly positive and strictly negative pieces, so a
 //! polynomial that touches zero without changing sign has none.
+//!
+//! This is *numerical* root finding: "within its bound counts as zero" is a choice, not a
+//! proof, and suits the places that only need where a floating-point function is near zero
+//! (the sketch pipeline's split points). Every monotonicity verdict and every reported
+//! extremum or inflection comes instead from [`crate::exact::certified_signs`], where a
+//! coefficient within its bound has an unknown sign and exact arithmetic decides it.
 
 use smallvec::SmallVec;
 

@@ -36,6 +36,20 @@ pub fn dyadic_integers(values: &[f64]) -> (Vec<BigInt>, i32) {
     (ints, e)
 }
 
+/// The binomial coefficient C(n, k) as f64: exact for n <= 56 (all of them then fit in 53
+/// bits), and within a few ulps beyond.
+pub fn binomial(n: usize, k: usize) -> f64 {
+    if k > n {
+        return 0.0;
+    }
+    let k = k.min(n - k);
+    let mut b = 1.0f64;
+    for j in 0..k {
+        b = b * (n - j) as f64 / (j + 1) as f64;
+    }
+    b.round()
+}
+
 /// `v = m 2^e` with an integer m (|m| < 2^53), for finite v.
 fn decompose(v: f64) -> (i64, i32) {
     if v == 0.0 || !v.is_finite() {

@@ -116,16 +116,6 @@ pub fn certified_signs(
     }
 }
 
-/// C(d, i) and whether it is exact in f64.
-fn binomial(d: usize, i: usize) -> f64 {
-    let i = i.min(d - i);
-    let mut b = 1.0f64;
-    for j in 0..i {
-        b = b * (d - j) as f64 / (j + 1) as f64;
-    }
-    b.round()
-}
-
 /// Ordinary Bernstein coefficients from scaled ones, bounds included.
 fn unscale(scaled: &[Bounded]) -> Co {
     let d = scaled.len() - 1;
@@ -140,7 +130,7 @@ fn unscale(scaled: &[Bounded]) -> Co {
         .iter()
         .enumerate()
         .map(|(i, c)| {
-            let mut b = c.div_int(binomial(d, i));
+            let mut b = c.div_int(super::binomial(d, i));
             b.e += rel * b.v.abs();
             b
         })

@@ -102,12 +102,9 @@ struct Lifted<R> {
     length_scale: f64,
 }
 
+/// C(n, k) for the small n here (at most twice a curve's degree, so exact).
 fn binom(n: usize, k: usize) -> i64 {
-    let mut b = 1i64;
-    for j in 0..k.min(n - k) {
-        b = b * (n - j) as i64 / (j + 1) as i64;
-    }
-    b
+    crate::exact::binomial(n, k) as i64
 }
 
 fn lift<R: Ring>(inp: &Input, diff: impl Fn(usize, usize) -> (R, R), w: Option<&[R]>) -> Lifted<R> {
@@ -343,7 +340,30 @@ fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
 }
 
 /// The end behaviour of the curvature at t = 0 (`start`) or t = 1.
-fn end_curvature(inp: &Input, b: &Lifted<Bounded>, start: bool) -> EndCurvature {
+fn end_curvatures(inp: &Input, b: &Lifted<Bounded>) -> [EndCurvature; 2] {
+    let m = b.zx.len() - 1;
+    let d = if m > 0 { delta(b).0 } else { Scaled::new() };
+    // Exact zero test of δ's coefficients (the filter's signs, else exact).
+    let signs: Vec<i32> = if m == 0 {
+        Vec::new()
+    } else if d.iter().all(|c| c.sign().is_some()) {
+        d.iter().map(|c| c.sign().unwrap_or(0)).collect()
+    } else {
+        delta(&exact(inp)).0.iter().map(poly::sign_of).collect()
+    };
+    [
+        end_curvature(inp, b, (&d, &signs), true),
+        end_curvature(inp, b, (&d, &signs), false),
+    ]
+}
+
+/// One end's curvature from δ (with bounds) and the exact signs of its coefficients.
+fn end_curvature(
+    inp: &Input,
+    b: &Lifted<Bounded>,
+    (d, signs): (&[Bounded], &[i32]),
+    start: bool,
+) -> EndCurvature {
     let order = if start { inp.r } else { inp.s };
     let m = b.zx.len() - 1;
     let n = inp.degree();
@@ -353,15 +373,6 @@ fn end_curvature(inp: &Input, b: &Lifted<Bounded>, start: bool) -> EndCurvature 
             .map_or(1.0, |w| if start { w[0].v } else { w[n].v });
     let z_end = if start { 0 } else { m };
     let z2 = b.zx[z_end].v.hypot(b.zy[z_end].v);
-    let d = if m > 0 { delta(b).0 } else { Scaled::new() };
-    // Exact zero test of δ's end coefficients (the filter's signs, else exact).
-    let signs: Vec<i32> = if m == 0 {
-        Vec::new()
-    } else if d.iter().all(|c| c.sign().is_some()) {
-        d.iter().map(|c| c.sign().unwrap_or(0)).collect()
-    } else {
-        delta(&exact(inp)).0.iter().map(poly::sign_of).collect()
-    };
     let ordered: Vec<usize> = if start {
         (0..signs.len()).collect()
     } else {
@@ -509,6 +520,6 @@ pub(super) fn report(inp: &Input) -> Result<MonotoneReport> {
         extrema: if monotone { Vec::new() } else { signs.changes },
         test_degree,
         exact: signs.exact,
-        ends: [end_curvature(inp, &b, true), end_curvature(inp, &b, false)],
+        ends: end_curvatures(inp, &b),
     })
 }
