@@ -136,75 +136,192 @@ impl OutlinePen for Collector {
 }
 
 /// Read a font, an SVG or a DXF file by its extension (`.ttf`, `.otf`, `.svg`, `.dxf`), or
-/// a UFO source (a `.ufo` folder).
+/// a UFO source (a `.ufo` folder). Only the file (or the folder's own regular files) is
+/// read, into memory, at most [`MAX_FILE_BYTES`]: pipes, devices and sockets are refused
+/// before they are opened, so nothing can block, and nothing the file names is resolved.
 pub fn read(path: &Path) -> Result<Outlines> {
-    if path.is_dir() {
+    let meta = std::fs::metadata(path).with_context(|| format!("reading {}", path.display()))?;
+    if meta.is_dir() {
         anyhow::ensure!(
             path.extension()
                 .is_some_and(|e| e.eq_ignore_ascii_case("ufo")),
             "{}: a folder, and not a .ufo source",
             path.display()
         );
+        check_ufo_folder(path)?;
         return read_ufo(path).with_context(|| format!("{}", path.display()));
     }
-    let len = std::fs::metadata(path)
-        .with_context(|| format!("reading {}", path.display()))?
-        .len();
-    if len > MAX_FILE_BYTES {
-        bail!(
-            "{}: {len} bytes, over the {} MB that `check` reads",
-            path.display(),
-            MAX_FILE_BYTES / (1024 * 1024)
-        );
-    }
-    let data = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    match ext.as_str() {
-        "ttf" | "otf" => read_font(&data).with_context(|| format!("{}", path.display())),
-        "svg" => read_svg(&data).with_context(|| format!("{}", path.display())),
-        "dxf" => read_dxf(&data).with_context(|| format!("{}", path.display())),
+    let reader: fn(&[u8]) -> Result<Outlines> = match ext.as_str() {
+        "ttf" | "otf" => read_font,
+        "svg" => read_svg,
+        "dxf" => read_dxf,
         _ => bail!(
-            "{}: not a file `check` reads (.ttf, .otf, .svg, .dxf)",
+            "{}: not a file `check` reads (.ttf, .otf, .svg, .dxf, or a .ufo folder)",
             path.display()
         ),
+    };
+    let data = read_regular_file(path, MAX_FILE_BYTES)?;
+    contained(|| reader(&data)).with_context(|| format!("{}", path.display()))
+}
+
+/// The bytes of a regular file, at most `cap` of them: anything else (a pipe, a device, a
+/// socket) is refused before it is opened, the file is opened without blocking and checked
+/// again once open (it may have been replaced), and the read stops at the cap.
+pub fn read_regular_file(path: &Path, cap: u64) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let what = || format!("reading {}", path.display());
+    let meta = std::fs::metadata(path).with_context(what)?;
+    if !meta.is_file() {
+        bail!(
+            "{}: not a regular file (a pipe, device or socket?): only files are read",
+            path.display()
+        );
+    }
+    if meta.len() > cap {
+        bail!(
+            "{}: {} bytes, over the {} MB that are read",
+            path.display(),
+            meta.len(),
+            cap / (1024 * 1024)
+        );
+    }
+    let mut opts = std::fs::OpenOptions::new();
+    opts.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        opts.custom_flags(libc::O_NONBLOCK);
+    }
+    let file = opts.open(path).with_context(what)?;
+    if !file.metadata().with_context(what)?.is_file() {
+        bail!("{}: not a regular file once opened", path.display());
+    }
+    let mut data = Vec::with_capacity(meta.len() as usize);
+    file.take(cap + 1)
+        .read_to_end(&mut data)
+        .with_context(what)?;
+    if data.len() as u64 > cap {
+        bail!(
+            "{}: over the {} MB that are read",
+            path.display(),
+            cap / (1024 * 1024)
+        );
+    }
+    Ok(data)
+}
+
+/// A UFO folder holds only folders and regular files (no links, pipes or devices), at most
+/// [`MAX_FILE_BYTES`] in all, before `norad` opens any of it.
+fn check_ufo_folder(root: &Path) -> Result<()> {
+    let mut total = 0u64;
+    let mut stack = vec![(root.to_path_buf(), 0usize)];
+    while let Some((dir, depth)) = stack.pop() {
+        anyhow::ensure!(
+            depth <= 8,
+            "{}: folders nested deeper than 8 levels in a UFO source",
+            dir.display()
+        );
+        for entry in
+            std::fs::read_dir(&dir).with_context(|| format!("reading {}", dir.display()))?
+        {
+            let entry = entry.with_context(|| format!("reading {}", dir.display()))?;
+            let path = entry.path();
+            let meta = std::fs::symlink_metadata(&path)
+                .with_context(|| format!("reading {}", path.display()))?;
+            if meta.is_dir() {
+                stack.push((path, depth + 1));
+            } else if meta.is_file() {
+                total += meta.len();
+                anyhow::ensure!(
+                    total <= MAX_FILE_BYTES,
+                    "{}: over the {} MB that are read",
+                    root.display(),
+                    MAX_FILE_BYTES / (1024 * 1024)
+                );
+            } else {
+                bail!(
+                    "{}: not a regular file (a link, pipe or device) inside the UFO source: \
+                     only its own files are read",
+                    path.display()
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Runs a third-party parser on hostile bytes: a panic inside it (its robustness is not
+/// ours) becomes an error naming it, and the caller goes on.
+pub fn contained<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
+        Ok(r) => r,
+        Err(p) => {
+            let why = p
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| p.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown".into());
+            bail!("the file's parser failed on these bytes (a damaged file?): {why}")
+        }
     }
 }
 
-/// Every glyph of a TrueType or OpenType/CFF font, unhinted, in font units.
+/// Every glyph of a TrueType or OpenType/CFF font, unhinted, in font units. A glyph whose
+/// name another glyph also has is named with its glyph id too (`uni00AD (gid 2584)`), so
+/// each shape has its own name; a glyph the parser fails on (a panic inside it included) is
+/// listed as unreadable, and the others are read.
 pub fn read_font(data: &[u8]) -> Result<Outlines> {
+    contained(|| read_font_inner(data))
+}
+
+fn read_font_inner(data: &[u8]) -> Result<Outlines> {
     let font = FontRef::new(data).map_err(|e| anyhow::anyhow!("not a readable font: {e}"))?;
     let names = font.glyph_names();
     let outlines = font.outline_glyphs();
     let count = names.num_glyphs();
+    if count == 0 {
+        bail!("not a readable font: it has no glyphs (a truncated or damaged file?)");
+    }
+    let raw: Vec<String> = (0..count)
+        .map(|gid| {
+            names
+                .get(GlyphId::new(gid))
+                .map(|n| n.as_str().to_string())
+                .unwrap_or_else(|| format!("gid{gid}"))
+        })
+        .collect();
+    let mut seen = std::collections::HashMap::<&str, usize>::new();
+    for n in &raw {
+        *seen.entry(n.as_str()).or_default() += 1;
+    }
     let mut shapes = Vec::with_capacity(count as usize);
     let mut unreadable = Vec::new();
     for gid in 0..count {
-        let id = GlyphId::new(gid);
-        let name = names
-            .get(id)
-            .map(|n| n.as_str().to_string())
-            .unwrap_or_else(|| format!("gid{gid}"));
-        let Some(glyph) = outlines.get(id) else {
-            unreadable.push((name, "no outline".into()));
-            continue;
+        let name = if seen[raw[gid as usize].as_str()] > 1 {
+            format!("{} (gid {gid})", raw[gid as usize])
+        } else {
+            raw[gid as usize].clone()
         };
-        let mut pen = Collector::default();
-        let settings = DrawSettings::unhinted(Size::unscaled(), LocationRef::default());
-        if let Err(e) = glyph.draw(settings, &mut pen) {
-            unreadable.push((name, e.to_string()));
-            continue;
-        }
-        match pen.done() {
+        let drawn = contained(|| {
+            let glyph = outlines.get(GlyphId::new(gid)).ok_or_else(|| {
+                anyhow::anyhow!("glyph {gid} has no outline in the font's tables")
+            })?;
+            let mut pen = Collector::default();
+            let settings = DrawSettings::unhinted(Size::unscaled(), LocationRef::default());
+            glyph
+                .draw(settings, &mut pen)
+                .map_err(|e| anyhow::anyhow!("glyph {gid}: {e}"))?;
+            pen.done().map_err(|e| anyhow::anyhow!("glyph {gid}: {e}"))
+        });
+        match drawn {
             Ok(contours) => shapes.push(Shape { name, contours }),
-            Err(e) => unreadable.push((name, e)),
+            Err(e) => unreadable.push((name, format!("{e:#}"))),
         }
-    }
-    if count == 0 {
-        bail!("not a readable font: it has no glyphs (a truncated or damaged file?)");
     }
     Ok(Outlines {
         kind: "font",
@@ -213,56 +330,177 @@ pub fn read_font(data: &[u8]) -> Result<Outlines> {
     })
 }
 
+/// usvg options that resolve nothing outside the document: every `<image>` (a file, a URL
+/// or embedded data) is refused and counted, fonts are not loaded (no text support).
+fn svg_options(images: std::sync::Arc<std::sync::atomic::AtomicUsize>) -> usvg::Options<'static> {
+    use std::sync::atomic::Ordering;
+    let (a, b) = (images.clone(), images);
+    usvg::Options {
+        resources_dir: None,
+        image_href_resolver: usvg::ImageHrefResolver {
+            resolve_data: Box::new(move |_, _, _| {
+                a.fetch_add(1, Ordering::Relaxed);
+                None
+            }),
+            resolve_string: Box::new(move |_, _| {
+                b.fetch_add(1, Ordering::Relaxed);
+                None
+            }),
+        },
+        ..usvg::Options::default()
+    }
+}
+
 /// Every path of an SVG document (basic shapes and text-free groups resolved by usvg), with
-/// its transforms applied.
+/// its transforms applied. Nothing outside the document is read: images are refused and
+/// listed as unreadable. A path with coordinates that are not finite numbers after its
+/// transforms is listed as unreadable with the reason, not dropped.
 pub fn read_svg(data: &[u8]) -> Result<Outlines> {
-    let tree = usvg::Tree::from_data(data, &usvg::Options::default())
+    contained(|| read_svg_inner(data))
+}
+
+fn read_svg_inner(data: &[u8]) -> Result<Outlines> {
+    let images = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+    let tree = usvg::Tree::from_data(data, &svg_options(images.clone()))
         .map_err(|e| anyhow::anyhow!("not a readable SVG document: {e}"))?;
     let mut shapes = Vec::new();
-    fn walk(g: &usvg::Group, shapes: &mut Vec<Shape>) {
-        for node in g.children() {
-            match node {
-                usvg::Node::Group(g) => walk(g, shapes),
-                usvg::Node::Path(p) => {
-                    let t = p.abs_transform();
-                    let map = |q: usvg::tiny_skia_path::Point| {
-                        let mut q = q;
-                        t.map_point(&mut q);
-                        Point::new(q.x as f64, q.y as f64)
-                    };
-                    let mut pen = Collector::default();
-                    use usvg::tiny_skia_path::PathSegment as S;
-                    for seg in p.data().segments() {
-                        match seg {
-                            S::MoveTo(a) => pen.move_to(map(a)),
-                            S::LineTo(a) => pen.line_to(map(a)),
-                            S::QuadTo(a, b) => pen.quad_to(map(a), map(b)),
-                            S::CubicTo(a, b, c) => pen.cubic_to(map(a), map(b), map(c)),
-                            S::Close => pen.close(),
-                        }
-                    }
-                    let name = if p.id().is_empty() {
-                        format!("path {}", shapes.len() + 1)
-                    } else {
-                        p.id().to_string()
-                    };
-                    if let Ok(contours) = pen.done() {
-                        shapes.push(Shape { name, contours });
-                    }
-                }
-                _ => {}
-            }
-        }
+    let mut unreadable = Vec::new();
+    walk_svg(tree.root(), &mut shapes, &mut unreadable);
+    list_dropped_elements(data, &shapes, &mut unreadable);
+    let images = images.load(std::sync::atomic::Ordering::Relaxed);
+    for i in 0..images {
+        unreadable.push((
+            format!("image {}", i + 1),
+            "an <image>: images are never read (no file, URL or embedded data is resolved)".into(),
+        ));
     }
-    walk(tree.root(), &mut shapes);
-    if shapes.is_empty() {
+    if shapes.is_empty() && unreadable.is_empty() {
         bail!("the SVG document has no path");
     }
     Ok(Outlines {
         kind: "svg",
         shapes,
-        unreadable: Vec::new(),
+        unreadable,
     })
+}
+
+/// The geometry elements of the document (outside definitions) that usvg dropped without
+/// a word (invalid or non-finite geometry, zero size, not rendered): listed by id, the
+/// unnamed ones counted, so nothing vanishes silently.
+fn list_dropped_elements(data: &[u8], shapes: &[Shape], unreadable: &mut Vec<(String, String)>) {
+    const GEOMETRY: [&str; 7] = [
+        "path", "rect", "circle", "ellipse", "line", "polyline", "polygon",
+    ];
+    const DEFINITIONS: [&str; 7] = [
+        "defs", "clipPath", "mask", "pattern", "marker", "symbol", "metadata",
+    ];
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let opts = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..Default::default()
+    };
+    let Ok(doc) = roxmltree::Document::parse_with_options(text, opts) else {
+        return;
+    };
+    let known: std::collections::HashSet<&str> = shapes
+        .iter()
+        .map(|s| s.name.as_str())
+        .chain(unreadable.iter().map(|u| u.0.as_str()))
+        .collect();
+    let mut missing = Vec::new();
+    let mut unnamed = 0usize;
+    for node in doc.descendants().filter(|n| n.is_element()) {
+        if !GEOMETRY.contains(&node.tag_name().name())
+            || node
+                .ancestors()
+                .skip(1)
+                .any(|a| DEFINITIONS.contains(&a.tag_name().name()))
+        {
+            continue;
+        }
+        match node.attribute("id") {
+            Some(id) if !id.is_empty() => {
+                if !known.contains(id) {
+                    missing.push(id.to_string());
+                }
+            }
+            _ => unnamed += 1,
+        }
+    }
+    let read_unnamed = shapes
+        .iter()
+        .filter(|s| s.name.starts_with("path "))
+        .count()
+        + unreadable
+            .iter()
+            .filter(|u| u.0.starts_with("path "))
+            .count();
+    let why = "the SVG reader (usvg) dropped this element: its geometry is invalid, not \
+               finite, empty, or not rendered (display none, zero size)";
+    for id in missing {
+        unreadable.push((id, why.into()));
+    }
+    if unnamed > read_unnamed {
+        let n = unnamed - read_unnamed;
+        unreadable.push((
+            format!("{n} unnamed element{}", if n == 1 { "" } else { "s" }),
+            why.into(),
+        ));
+    }
+}
+
+fn walk_svg(g: &usvg::Group, shapes: &mut Vec<Shape>, unreadable: &mut Vec<(String, String)>) {
+    for node in g.children() {
+        match node {
+            usvg::Node::Group(g) => walk_svg(g, shapes, unreadable),
+            usvg::Node::Path(p) => {
+                let name = if p.id().is_empty() {
+                    format!("path {}", shapes.len() + unreadable.len() + 1)
+                } else {
+                    p.id().to_string()
+                };
+                match svg_path_contours(p) {
+                    Ok(contours) => shapes.push(Shape { name, contours }),
+                    Err(e) => unreadable.push((name, e)),
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+fn svg_path_contours(p: &usvg::Path) -> std::result::Result<Vec<Contour>, String> {
+    let t = p.abs_transform();
+    let mut bad = None;
+    let mut map = |q: usvg::tiny_skia_path::Point| {
+        let mut m = q;
+        t.map_point(&mut m);
+        if !(m.x.is_finite() && m.y.is_finite()) && bad.is_none() {
+            bad = Some(format!(
+                "a point ({}, {}) is not finite once transformed (coordinates or a transform \
+                 beyond single precision's range)",
+                q.x, q.y
+            ));
+        }
+        Point::new(m.x as f64, m.y as f64)
+    };
+    let mut pen = Collector::default();
+    use usvg::tiny_skia_path::PathSegment as S;
+    for seg in p.data().segments() {
+        match seg {
+            S::MoveTo(a) => pen.move_to(map(a)),
+            S::LineTo(a) => pen.line_to(map(a)),
+            S::QuadTo(a, b) => pen.quad_to(map(a), map(b)),
+            S::CubicTo(a, b, c) => pen.cubic_to(map(a), map(b), map(c)),
+            S::Close => pen.close(),
+        }
+    }
+    if let Some(b) = bad {
+        return Err(b);
+    }
+    pen.done()
 }
 
 /// Every glyph of a UFO source's default layer (with `norad`), in font units, in name order.
@@ -432,98 +670,39 @@ fn bulge_segment(p0: Point, p1: Point, b: f64) -> Vec<RationalBezier> {
 }
 
 /// The curves of a DXF drawing: one shape per LINE, ARC, CIRCLE, LWPOLYLINE and SPLINE
-/// (named by layer and handle); other entities are skipped, a SPLINE given only by fit points
-/// is listed as unreadable.
+/// (named by layer and handle), open ones chained by layer. A malformed entity (a coordinate,
+/// radius or angle that is not a finite number, a spline whose weights or degree do not fit
+/// its control points, one given by fit points only) is listed as unreadable with the
+/// reason; the entity kinds not read (ELLIPSE, POLYLINE, INSERT, ...) are listed once per
+/// kind with their count. No external reference (XREF) is followed.
 pub fn read_dxf(data: &[u8]) -> Result<Outlines> {
-    use dxf::entities::EntityType;
+    contained(|| read_dxf_inner(data))
+}
+
+fn read_dxf_inner(data: &[u8]) -> Result<Outlines> {
     let drawing = dxf::Drawing::load(&mut std::io::Cursor::new(data))
         .map_err(|e| anyhow::anyhow!("not a readable DXF drawing: {e}"))?;
     let mut pieces: Vec<(String, String, Contour)> = Vec::new(); // (layer, name, contour)
     let mut unreadable = Vec::new();
-    let p2 = |p: &dxf::Point| Point::new(p.x, p.y);
+    let mut skipped = std::collections::BTreeMap::<String, usize>::new();
     for e in drawing.entities() {
         let name = format!("{} #{:X}", e.common.layer, e.common.handle.0);
-        let contour = match &e.specific {
-            EntityType::Line(l) => Contour {
-                segments: RationalBezier::new(vec![p2(&l.p1), p2(&l.p2)], vec![1.0, 1.0])
-                    .into_iter()
-                    .collect(),
-                closed: false,
-            },
-            EntityType::Arc(a) => {
-                let (s, mut e) = (a.start_angle.to_radians(), a.end_angle.to_radians());
-                while e <= s {
-                    e += std::f64::consts::TAU;
-                }
-                Contour {
-                    segments: arc(p2(&a.center), a.radius, s, e - s),
-                    closed: false,
-                }
+        match dxf_contour(&e.specific) {
+            Ok(Some(contour)) if !contour.segments.is_empty() => {
+                pieces.push((e.common.layer.clone(), name, contour))
             }
-            EntityType::Circle(c) => Contour {
-                segments: arc(p2(&c.center), c.radius, 0.0, std::f64::consts::TAU),
-                closed: true,
-            },
-            EntityType::LwPolyline(pl) => {
-                let v = &pl.vertices;
-                let closed = pl.is_closed();
-                let count = if closed {
-                    v.len()
-                } else {
-                    v.len().saturating_sub(1)
-                };
-                let mut segments = Vec::new();
-                for i in 0..count {
-                    let (a, b) = (&v[i], &v[(i + 1) % v.len()]);
-                    segments.extend(bulge_segment(
-                        Point::new(a.x, a.y),
-                        Point::new(b.x, b.y),
-                        a.bulge,
-                    ));
-                }
-                Contour { segments, closed }
-            }
-            EntityType::Spline(sp) => {
-                if sp.control_points.is_empty() {
-                    unreadable.push((name, "a spline given by fit points only".into()));
-                    continue;
-                }
-                let pts: Vec<Point> = sp.control_points.iter().map(p2).collect();
-                let w = if sp.weight_values.len() == pts.len() {
-                    sp.weight_values.clone()
-                } else {
-                    vec![1.0; pts.len()]
-                };
-                let spans = aesthetic_curves::nurbs::Nurbs::new(
-                    sp.degree_of_curve.max(1) as usize,
-                    sp.knot_values.clone(),
-                    pts,
-                    w,
-                )
-                .map_err(|e| e.to_string())
-                .and_then(|n| {
-                    n.bezier_spans()
-                        .ok_or_else(|| "no Bézier spans".to_string())
-                });
-                match spans {
-                    Ok(segments) => {
-                        let closed = match (segments.first(), segments.last()) {
-                            (Some(a), Some(b)) => a.points()[0] == b.points()[b.points().len() - 1],
-                            _ => false,
-                        };
-                        Contour { segments, closed }
-                    }
-                    Err(e) => {
-                        unreadable.push((name, e));
-                        continue;
-                    }
-                }
-            }
-            _ => continue,
-        };
-        if !contour.segments.is_empty() {
-            pieces.push((e.common.layer.clone(), name, contour));
+            Ok(Some(_)) => unreadable.push((name, "an entity of zero length".into())),
+            Ok(None) => *skipped.entry(dxf_kind(&e.specific)).or_default() += 1,
+            Err(why) => unreadable.push((name, why)),
         }
+    }
+    for (kind, n) in skipped {
+        unreadable.push((
+            format!("{kind} ({n} entit{})", if n == 1 { "y" } else { "ies" }),
+            "an entity kind `check` does not read (it reads LINE, ARC, CIRCLE, LWPOLYLINE and \
+             SPLINE)"
+                .into(),
+        ));
     }
     let shapes = chain_entities(pieces);
     if shapes.is_empty() && unreadable.is_empty() {
@@ -534,6 +713,149 @@ pub fn read_dxf(data: &[u8]) -> Result<Outlines> {
         shapes,
         unreadable,
     })
+}
+
+/// The entity's kind as DXF names it (from the dxf crate's variant name).
+fn dxf_kind(e: &dxf::entities::EntityType) -> String {
+    let debug = format!("{e:?}");
+    let variant = debug.split(['(', ' ', '{']).next().unwrap_or("entity");
+    variant.to_ascii_uppercase()
+}
+
+fn finite_point(p: &dxf::Point, what: &str) -> std::result::Result<Point, String> {
+    if p.x.is_finite() && p.y.is_finite() {
+        Ok(Point::new(p.x, p.y))
+    } else {
+        Err(format!(
+            "its {what} ({}, {}) is not a finite number",
+            p.x, p.y
+        ))
+    }
+}
+
+fn finite(v: f64, what: &str) -> std::result::Result<f64, String> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("its {what} ({v}) is not a finite number"))
+    }
+}
+
+fn positive_radius(r: f64) -> std::result::Result<f64, String> {
+    if r.is_finite() && r > 0.0 {
+        Ok(r)
+    } else {
+        Err(format!("its radius ({r}) is not a positive finite number"))
+    }
+}
+
+/// One entity as a contour; `Ok(None)` for a kind not read.
+fn dxf_contour(e: &dxf::entities::EntityType) -> std::result::Result<Option<Contour>, String> {
+    use dxf::entities::EntityType;
+    let open = |segments| Contour {
+        segments,
+        closed: false,
+    };
+    Ok(Some(match e {
+        EntityType::Line(l) => {
+            let (a, b) = (finite_point(&l.p1, "start")?, finite_point(&l.p2, "end")?);
+            open(
+                RationalBezier::new(vec![a, b], vec![1.0, 1.0])
+                    .map(|c| vec![c])
+                    .map_err(|e| e.to_string())?,
+            )
+        }
+        EntityType::Arc(a) => {
+            let c = finite_point(&a.center, "center")?;
+            let r = positive_radius(a.radius)?;
+            let s = finite(a.start_angle, "start angle")?.to_radians();
+            let e = finite(a.end_angle, "end angle")?.to_radians();
+            // The sweep counterclockwise from start to end, in (0, 2π].
+            let mut sweep = (e - s).rem_euclid(std::f64::consts::TAU);
+            if sweep == 0.0 {
+                sweep = std::f64::consts::TAU;
+            }
+            open(arc(c, r, s, sweep))
+        }
+        EntityType::Circle(ci) => Contour {
+            segments: arc(
+                finite_point(&ci.center, "center")?,
+                positive_radius(ci.radius)?,
+                0.0,
+                std::f64::consts::TAU,
+            ),
+            closed: true,
+        },
+        EntityType::LwPolyline(pl) => {
+            let v = &pl.vertices;
+            let closed = pl.is_closed();
+            let count = if closed {
+                v.len()
+            } else {
+                v.len().saturating_sub(1)
+            };
+            let mut segments = Vec::new();
+            for i in 0..count {
+                let (a, b) = (&v[i], &v[(i + 1) % v.len()]);
+                let pa = Point::new(finite(a.x, "vertex x")?, finite(a.y, "vertex y")?);
+                let pb = Point::new(finite(b.x, "vertex x")?, finite(b.y, "vertex y")?);
+                segments.extend(bulge_segment(pa, pb, finite(a.bulge, "bulge")?));
+            }
+            Contour { segments, closed }
+        }
+        EntityType::Spline(sp) => dxf_spline(sp)?,
+        _ => return Ok(None),
+    }))
+}
+
+fn dxf_spline(sp: &dxf::entities::Spline) -> std::result::Result<Contour, String> {
+    if sp.control_points.is_empty() {
+        return Err(if sp.fit_points.is_empty() {
+            "a spline with no control points".into()
+        } else {
+            "a spline given by fit points only (its curve is not determined by the file: \
+             save it with control points)"
+                .into()
+        });
+    }
+    let pts = sp
+        .control_points
+        .iter()
+        .map(|p| finite_point(p, "control point"))
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    if sp.degree_of_curve < 1 {
+        return Err(format!(
+            "a spline of degree {} (a degree is at least 1)",
+            sp.degree_of_curve
+        ));
+    }
+    let w = match sp.weight_values.len() {
+        0 => vec![1.0; pts.len()],
+        n if n == pts.len() => sp.weight_values.clone(),
+        n => {
+            return Err(format!(
+                "a spline with {n} weights for {} control points (one weight per control \
+                 point, or none)",
+                pts.len()
+            ))
+        }
+    };
+    let segments = aesthetic_curves::nurbs::Nurbs::new(
+        sp.degree_of_curve as usize,
+        sp.knot_values.clone(),
+        pts,
+        w,
+    )
+    .map_err(|e| e.to_string())
+    .and_then(|n| {
+        n.bezier_spans()
+            .ok_or_else(|| "no Bézier spans".to_string())
+    })?;
+    let closed = match (segments.first(), segments.last()) {
+        (Some(a), Some(b)) => a.points()[0] == b.points()[b.points().len() - 1],
+        _ => false,
+    };
+    Ok(Contour { segments, closed })
 }
 
 /// Open entities of one layer that meet end to end (within 1e-9 of the drawing's size),

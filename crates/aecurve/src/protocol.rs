@@ -844,9 +844,20 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
             let doc = format!(
                 r#"<svg xmlns="http://www.w3.org/2000/svg"><path id="path" d="{esc}"/></svg>"#
             );
-            crate::outline_io::read_svg(doc.as_bytes()).map_err(|e| {
+            let o = crate::outline_io::read_svg(doc.as_bytes()).map_err(|e| {
                 ProtoError::invalid("path", format!("{e:#} (SVG path data expected)"))
-            })?
+            })?;
+            if o.shapes.is_empty() {
+                let why = o
+                    .unreadable
+                    .first()
+                    .map_or("it draws nothing", |u| u.1.as_str());
+                return Err(ProtoError::invalid(
+                    "path",
+                    format!("the path data cannot be read: {why} (SVG path data expected)"),
+                ));
+            }
+            o
         }
         (None, Some(Value::Array(segs))) => {
             if segs.is_empty() || segs.len() > MAX_OUTLINE_SEGMENTS {

@@ -1,0 +1,246 @@
+//! The readers on hostile files (issue 33): they read only the bytes they are given, never
+//! block on a special file, never panic, and list what they cannot read instead of dropping
+//! it. Each case here failed before the readers were hardened.
+
+use aecurve::outline_io::{read, read_dxf, read_font, read_svg};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// A fresh empty folder under the target directory (removed first if left over).
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("readers-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs `f` on another thread and fails the test if it does not finish within `limit` (a
+/// reader blocked on a pipe would hang the suite otherwise).
+fn within<T: Send + 'static>(limit: Duration, f: impl FnOnce() -> T + Send + 'static) -> T {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(f());
+    });
+    rx.recv_timeout(limit)
+        .expect("the reader did not finish in time (blocked on a special file?)")
+}
+
+#[cfg(unix)]
+fn mkfifo(path: &Path) {
+    let status = std::process::Command::new("mkfifo")
+        .arg(path)
+        .status()
+        .expect("mkfifo runs");
+    assert!(status.success());
+}
+
+/// An `<image>` naming a pipe, and one naming /dev/zero: neither is opened (the first hung
+/// `check` forever, the second grew it to 2 GB); both are listed as unreadable, and the
+/// path beside them is read.
+#[cfg(unix)]
+#[test]
+fn svg_images_are_never_resolved() {
+    let dir = scratch("image");
+    let pipe = dir.join("pipe");
+    mkfifo(&pipe);
+    for href in [pipe.display().to_string(), "/dev/zero".to_string()] {
+        let svg = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg"><image href="{href}" width="9" height="9"/><path d="M0 0 L1 1"/></svg>"#
+        );
+        let file = dir.join("doc.svg");
+        std::fs::write(&file, svg).unwrap();
+        let t = Instant::now();
+        let o = within(Duration::from_secs(20), move || read(&file)).unwrap();
+        assert!(t.elapsed() < Duration::from_secs(5));
+        assert_eq!(o.shapes.len(), 1, "{href}");
+        assert_eq!(o.unreadable.len(), 1, "{href}: {:?}", o.unreadable);
+        assert!(o.unreadable[0].1.contains("images are never read"));
+    }
+}
+
+/// The file itself a pipe (or a device): refused before it is opened.
+#[cfg(unix)]
+#[test]
+fn special_files_are_refused_without_blocking() {
+    let dir = scratch("fifo");
+    let pipe = dir.join("font.ttf");
+    mkfifo(&pipe);
+    let e = within(Duration::from_secs(20), move || read(&pipe)).unwrap_err();
+    assert!(format!("{e:#}").contains("not a regular file"), "{e:#}");
+    let e = read(Path::new("/dev/zero.svg")).unwrap_err();
+    assert!(!format!("{e:#}").is_empty());
+    // A UFO folder with a pipe inside: refused, naming the pipe, before norad opens it.
+    let ufo = dir.join("font.ufo");
+    std::fs::create_dir_all(ufo.join("glyphs")).unwrap();
+    mkfifo(&ufo.join("glyphs").join("a.glif"));
+    let e = within(Duration::from_secs(20), move || read(&ufo)).unwrap_err();
+    let msg = format!("{e:#}");
+    assert!(
+        msg.contains("a.glif") && msg.contains("not a regular file"),
+        "{msg}"
+    );
+}
+
+/// A TrueType glyph with `numberOfContours = 0` and trailing bytes (fontTools' square with
+/// two bytes zeroed) panicked inside read-fonts and ended `check` and `batch`: now that
+/// glyph is unreadable, with the reason, and the rest of the font is read.
+#[test]
+fn a_glyph_that_panics_the_parser_is_listed_and_the_font_read() {
+    let data = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/zero_contours.ttf"
+    ))
+    .unwrap();
+    let o = read_font(&data).unwrap();
+    assert_eq!(o.shapes.len() + o.unreadable.len(), 2);
+    assert!(o.shapes.iter().any(|s| s.name == ".notdef"));
+    let (name, why) = &o.unreadable[0];
+    assert_eq!(name, "square");
+    assert!(why.contains("parser failed"), "{why}");
+}
+
+/// Bit flips and truncations of a real font: every one read or refused with an error, no
+/// panic, and every glyph accounted for (read or listed).
+#[test]
+fn mutated_fonts_never_panic() {
+    const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+    // A small font keeps the debug build fast: the fixture square, mutated at every byte.
+    let square = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/zero_contours.ttf"
+    ))
+    .unwrap();
+    let mut state = 0x9e3779b97f4a7c15u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let mut cases: Vec<Vec<u8>> = Vec::new();
+    for i in 0..square.len() {
+        let mut m = square.clone();
+        m[i] ^= 1 << (next() % 8);
+        cases.push(m);
+        cases.push(square[..i].to_vec());
+    }
+    // DejaVu: a few flips in its glyf and loca data and truncations.
+    for _ in 0..12 {
+        let mut m = FONT.to_vec();
+        for _ in 0..8 {
+            let at = (next() as usize) % m.len();
+            m[at] ^= 1 << (next() % 8);
+        }
+        cases.push(m);
+    }
+    for cut in [12usize, 400, 70_000, FONT.len() / 2] {
+        cases.push(FONT[..cut].to_vec());
+    }
+    for c in &cases {
+        if let Ok(o) = read_font(c) {
+            for (_, why) in &o.unreadable {
+                assert!(!why.is_empty());
+            }
+        }
+    }
+}
+
+/// SVG paths whose coordinates are not finite once transformed were dropped without a word
+/// (and "has no path" when all were): now each is listed with the reason.
+#[test]
+fn svg_paths_that_cannot_be_read_are_listed() {
+    let svg = br#"<svg xmlns="http://www.w3.org/2000/svg">
+        <path id="ok" d="M0 0 C1 2 3 2 4 0"/>
+        <path id="huge" transform="scale(1e30)" d="M0 0 C1e10 2e10 3 2 4 0"/>
+    </svg>"#;
+    let o = read_svg(svg).unwrap();
+    assert_eq!(o.shapes.len(), 1);
+    assert_eq!(o.unreadable.len(), 1, "{:?}", o.unreadable);
+    assert_eq!(o.unreadable[0].0, "huge");
+    assert!(
+        o.unreadable[0].1.contains("not finite"),
+        "{:?}",
+        o.unreadable
+    );
+    // Unnamed ones are counted; a hidden one is listed too (with the reason's words).
+    let svg = br#"<svg xmlns="http://www.w3.org/2000/svg">
+        <path d="M0 0 C1 2 3 2 4 0"/>
+        <path transform="scale(1e30)" d="M0 0 C1e10 2e10 3 2 4 0"/>
+        <path transform="scale(1e30)" d="M0 0 C1e10 2e10 3 2 4 0"/>
+        <defs><path id="def" d="M0 0 L1 1"/></defs>
+    </svg>"#;
+    let o = read_svg(svg).unwrap();
+    assert_eq!(o.shapes.len(), 1);
+    assert_eq!(o.unreadable.len(), 1, "{:?}", o.unreadable);
+    assert_eq!(o.unreadable[0].0, "2 unnamed elements");
+}
+
+fn dxf_bytes(entities: Vec<dxf::entities::EntityType>) -> Vec<u8> {
+    let mut d = dxf::Drawing::new();
+    // SPLINE and ELLIPSE exist from R13 on (the default R12 would leave them out).
+    d.header.version = dxf::enums::AcadVersion::R2000;
+    for e in entities {
+        d.add_entity(dxf::entities::Entity::new(e));
+    }
+    let mut out = Vec::new();
+    d.save(&mut out).unwrap();
+    out
+}
+
+/// DXF entities with NaN or infinite numbers vanished (and an ARC with an infinite angle
+/// looped forever); unsupported kinds were skipped without notice; a SPLINE with 3 weights
+/// for 4 control points was read as non-rational. Each is now listed with its reason.
+#[test]
+fn dxf_entities_that_cannot_be_read_are_listed() {
+    use dxf::entities::*;
+    use dxf::Point as P;
+    let good = Line::new(P::new(0.0, 0.0, 0.0), P::new(1.0, 0.0, 0.0));
+    let nan_line = Line::new(P::new(f64::NAN, 0.0, 0.0), P::new(1.0, 5.0, 0.0));
+    let inf_circle = Circle::new(P::new(0.0, 0.0, 0.0), f64::INFINITY);
+    let nan_arc = Arc::new(P::new(0.0, 0.0, 0.0), 1.0, f64::NAN, 90.0);
+    let inf_arc = Arc::new(P::new(9.0, 9.0, 0.0), 1.0, 0.0, f64::INFINITY);
+    let spline = Spline {
+        degree_of_curve: 3,
+        control_points: (0..4)
+            .map(|i| P::new(i as f64, (i * i) as f64, 0.0))
+            .collect(),
+        knot_values: vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+        weight_values: vec![1.0, 2.0, 1.0],
+        ..Default::default()
+    };
+    let ellipse = Ellipse::default();
+    let data = dxf_bytes(vec![
+        EntityType::Line(good),
+        EntityType::Line(nan_line),
+        EntityType::Circle(inf_circle),
+        EntityType::Arc(nan_arc),
+        EntityType::Arc(inf_arc),
+        EntityType::Spline(spline),
+        EntityType::Ellipse(ellipse.clone()),
+        EntityType::Ellipse(ellipse),
+    ]);
+    let o = within(Duration::from_secs(20), move || read_dxf(&data)).unwrap();
+    assert_eq!(o.shapes.len(), 1, "{:?}", o.unreadable);
+    let why: Vec<&str> = o.unreadable.iter().map(|(_, w)| w.as_str()).collect();
+    assert_eq!(o.unreadable.len(), 6, "{:?}", o.unreadable);
+    assert!(
+        why.iter()
+            .filter(|w| w.contains("not a finite number"))
+            .count()
+            >= 3,
+        "{why:?}"
+    );
+    assert!(why.iter().any(|w| w.contains("radius")), "{why:?}");
+    assert!(
+        why.iter()
+            .any(|w| w.contains("3 weights for 4 control points")),
+        "{why:?}"
+    );
+    assert!(
+        o.unreadable
+            .iter()
+            .any(|(n, w)| n == "ELLIPSE (2 entities)" && w.contains("does not read")),
+        "{:?}",
+        o.unreadable
+    );
+}
