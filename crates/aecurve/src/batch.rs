@@ -9,6 +9,10 @@ use std::io::{BufRead, Write};
 /// Default largest request line, in bytes.
 pub const DEFAULT_MAX_LINE: usize = 16 * 1024 * 1024;
 
+/// Default wall-clock budget of one request (seconds): the library's long loops stop at it
+/// and the request gets a `timeout` error, as in the editor (whose budget is 5 s).
+pub const DEFAULT_TIMEOUT_SECS: usize = 60;
+
 /// Counts of one batch run.
 #[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
 pub struct BatchStats {
@@ -54,11 +58,45 @@ fn read_line_capped<R: BufRead>(
     }
 }
 
-/// Run the batch loop from `input` to `output`.
+/// Run the batch loop from `input` to `output`, each request within
+/// [`DEFAULT_TIMEOUT_SECS`].
 pub fn run<R: BufRead, W: Write>(
+    input: R,
+    output: W,
+    max_line: usize,
+) -> std::io::Result<BatchStats> {
+    run_with_timeout(
+        input,
+        output,
+        max_line,
+        std::time::Duration::from_secs(DEFAULT_TIMEOUT_SECS as u64),
+    )
+}
+
+/// One request under its deadline; a panic inside (a bug: no input should cause one) is an
+/// `internal` error for that request, and the batch goes on.
+fn answer(text: &str, timeout: std::time::Duration) -> Value {
+    let deadline = std::time::Instant::now() + timeout;
+    let run = || aesthetic_curves::deadline::with_deadline(deadline, || handle_line(text));
+    match std::panic::catch_unwind(run) {
+        Ok(v) => v,
+        Err(_) => error_response(
+            Value::Null,
+            ProtoError {
+                kind: "internal",
+                message: "the request made the program fail (a bug: please report the request)"
+                    .into(),
+            },
+        ),
+    }
+}
+
+/// The batch loop with a per-request wall-clock budget.
+pub fn run_with_timeout<R: BufRead, W: Write>(
     mut input: R,
     mut output: W,
     max_line: usize,
+    timeout: std::time::Duration,
 ) -> std::io::Result<BatchStats> {
     let mut stats = BatchStats::default();
     let mut buf = Vec::new();
@@ -85,7 +123,7 @@ pub fn run<R: BufRead, W: Write>(
                     if text.trim().is_empty() {
                         continue;
                     }
-                    handle_line(text)
+                    answer(text, timeout)
                 }
             },
         };
@@ -112,6 +150,50 @@ mod tests {
             .lines()
             .map(|l| serde_json::from_str(l).unwrap())
             .collect()
+    }
+
+    /// Issue 33: 20,000 spline points with `draw: 2000` grew `batch` past 17 GB; the exact
+    /// mode had no budget. Now the first is refused at once naming the drawing budget, the
+    /// second stops at the request's deadline, and the batch answers the next line.
+    #[test]
+    fn requests_over_their_budgets_are_refused_or_stopped_and_the_batch_goes_on() {
+        let pts: Vec<[f64; 2]> = (0..20_000)
+            .map(|i| [i as f64, (i as f64 * 0.7).sin()])
+            .collect();
+        let big = serde_json::json!({"id": 1, "op": "spline.pseudo_elastic", "points": pts, "draw": 2000});
+        let exact = serde_json::json!({"id": 2, "op": "spline.pseudo_elastic", "mode": "exact",
+            "points": [[0, 0], [1, 1], [2, 0], [3, 1], [4, 0], [5, 1], [6, 0], [7, 1]]});
+        let ok = serde_json::json!({"id": 3, "op": "bezier.curvature_monotone",
+            "control_points": [[0, 0], [1, 0], [2, 1]]});
+        let input = format!("{big}\n{exact}\n{ok}\n");
+        let t = std::time::Instant::now();
+        let mut out = Vec::new();
+        run_with_timeout(
+            input.as_bytes(),
+            &mut out,
+            1 << 28,
+            std::time::Duration::from_millis(500),
+        )
+        .unwrap();
+        let r: Vec<Value> = String::from_utf8(out)
+            .unwrap()
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect();
+        assert_eq!(r.len(), 3);
+        assert_eq!(r[0]["error"]["kind"], "invalid_input", "{}", r[0]);
+        let msg = r[0]["error"]["message"].as_str().unwrap();
+        assert!(
+            msg.contains("drawing budget") && msg.contains("at most 25 points per piece"),
+            "{msg}"
+        );
+        assert_eq!(r[1]["error"]["kind"], "timeout", "{}", r[1]);
+        assert_eq!(r[2]["ok"], true);
+        assert!(
+            t.elapsed() < std::time::Duration::from_secs(30),
+            "{:?}",
+            t.elapsed()
+        );
     }
 
     #[test]

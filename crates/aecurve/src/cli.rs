@@ -26,6 +26,10 @@ pub(crate) enum Cmd {
         /// Largest accepted request line in bytes (1 to 1 GiB).
         #[arg(long, default_value_t = batch::DEFAULT_MAX_LINE, value_parser = count::<1, 1_073_741_824>)]
         max_line_bytes: usize,
+        /// Wall-clock budget of one request in seconds (1 to 86,400): longer work stops
+        /// and the request gets a `timeout` error.
+        #[arg(long, default_value_t = batch::DEFAULT_TIMEOUT_SECS, value_parser = count::<1, 86_400>)]
+        timeout_secs: usize,
     },
     /// Is the curvature of one Bézier curve monotone?
     Monotone {

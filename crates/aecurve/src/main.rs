@@ -112,10 +112,18 @@ fn run() -> Result<()> {
         }
     }
     match cli.cmd {
-        Cmd::Batch { max_line_bytes } => {
+        Cmd::Batch {
+            max_line_bytes,
+            timeout_secs,
+        } => {
             let stdin = std::io::stdin();
             let stdout = std::io::stdout();
-            batch::run(stdin.lock(), stdout.lock(), max_line_bytes)?;
+            batch::run_with_timeout(
+                stdin.lock(),
+                stdout.lock(),
+                max_line_bytes,
+                std::time::Duration::from_secs(timeout_secs as u64),
+            )?;
         }
         Cmd::Monotone {
             points,

@@ -600,6 +600,26 @@ fn draw_param(obj: &Map<String, Value>) -> Result<Option<usize>, ProtoError> {
     }
 }
 
+/// Most points one `drawing` member holds (pieces times points per piece): about 100 bytes
+/// of JSON and a few hundred bytes of memory each, so a drawing stays under about 200 MB.
+pub const MAX_DRAWING_POINTS: usize = 500_000;
+
+/// `invalid_input` on `draw` when `pieces` pieces at `n` points each are over
+/// [`MAX_DRAWING_POINTS`]: checked before any work.
+fn drawing_budget(pieces: usize, n: usize) -> Result<(), ProtoError> {
+    if pieces.saturating_mul(n) > MAX_DRAWING_POINTS {
+        let most = (MAX_DRAWING_POINTS / pieces.max(1)).max(1);
+        return Err(ProtoError::invalid(
+            "draw",
+            format!(
+                "{pieces} pieces at {n} points each is over the drawing budget of \
+                 {MAX_DRAWING_POINTS} points: ask for at most {most} points per piece"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The `drawing` member (with `draw`): what a picture of the result needs, computed here so
 /// that a client draws without evaluating curves itself: `n` points per piece with the
 /// curve's unit left normal and signed curvature (consecutive pieces share their joint), the
@@ -754,6 +774,7 @@ fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     )?;
     let mut out = sketch_json(&sk, tolerance);
     if let Some(n) = draw {
+        drawing_budget(sk.pieces.len(), n)?;
         let curve = sk.as_curve();
         let nurbs = curve.to_nurbs(0.0)?;
         out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
@@ -943,6 +964,11 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         Some(i) => vec![&outlines.shapes[i]],
         None => outlines.shapes.iter().collect(),
     };
+    // The drawing's budget, before any work.
+    if let (Some(n), Some(first)) = (draw, shapes.first()) {
+        let segments: usize = first.contours.iter().map(|c| c.segments.len()).sum();
+        drawing_budget(segments, n)?;
+    }
     let checked = check_shapes(&shapes, &opts, &|| {});
     let mut out = json!({
         "shape_names": outlines.shapes.iter().map(|s| s.name.as_str()).collect::<Vec<_>>(),
@@ -953,13 +979,6 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
             .collect::<Vec<_>>(),
     });
     if let (Some(n), Some(first)) = (draw, shapes.first()) {
-        let segments: usize = first.contours.iter().map(|c| c.segments.len()).sum();
-        if segments.saturating_mul(n) > MAX_OUTLINE_DRAWING {
-            return Err(ProtoError::invalid(
-                "draw",
-                format!("{segments} segments at {n} points each: more than {MAX_OUTLINE_DRAWING} points"),
-            ));
-        }
         // The (first) shape's contours for a picture: their segments (what an editor drags)
         // and `n` points per segment with normals and curvature.
         let mut contours = Vec::new();
@@ -983,7 +1002,7 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
 }
 
 /// Most points an `outline.check` drawing holds (segments times `draw`).
-pub const MAX_OUTLINE_DRAWING: usize = 500_000;
+pub const MAX_OUTLINE_DRAWING: usize = MAX_DRAWING_POINTS;
 
 /// Largest file `outline.check` takes in `svg` or `file` (bytes).
 pub const MAX_OUTLINE_FILE: usize = 3 << 20;
@@ -1070,6 +1089,9 @@ fn spline_pseudo_elastic(obj: &Map<String, Value>) -> Result<Value, ProtoError> 
     };
     let points = points_param(obj, "points", if closed { 3 } else { 2 }, max)?;
     let draw = draw_param(obj)?;
+    if let Some(n) = draw {
+        drawing_budget(points.len(), n)?;
+    }
     let s = aesthetic_curves::pseudo_spline::pseudo_elastic(&points, closed, spline_mode(mode))?;
     let mut out = spline_json(&s, mode);
     if let Some(n) = draw {
