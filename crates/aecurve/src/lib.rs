@@ -54,8 +54,15 @@ pub fn parse_numbers(s: &str) -> anyhow::Result<Vec<f64>> {
 /// `[x, y]` pairs. Errors name the line.
 pub fn read_points_file(path: &std::path::Path) -> anyhow::Result<Vec<aesthetic_curves::Point>> {
     use anyhow::Context;
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    let bytes = crate::outline_io::read_regular_file(path, crate::outline_io::MAX_FILE_BYTES)?;
+    let text = String::from_utf8(bytes).map_err(|_| {
+        anyhow::anyhow!(
+            "{}: not a text file of points (it holds binary data: a font or an image?); \
+             points are read from CSV or x y rows, a JSON array of [x, y] pairs, or SVG path \
+             data",
+            path.display()
+        )
+    })?;
     // The extension decides where it names a format; the content otherwise.
     let ext = path
         .extension()

@@ -20,7 +20,7 @@ use serde_json::{json, Value};
 use skrifa::instance::{LocationRef, Size};
 use skrifa::outline::{DrawSettings, OutlinePen};
 use skrifa::{FontRef, GlyphId, MetadataProvider};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Largest file `aecurve check` reads (bytes): a font or drawing beyond this is refused.
 pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
@@ -361,8 +361,17 @@ pub fn read_svg(data: &[u8]) -> Result<Outlines> {
 
 fn read_svg_inner(data: &[u8]) -> Result<Outlines> {
     let images = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
-    let tree = usvg::Tree::from_data(data, &svg_options(images.clone()))
-        .map_err(|e| anyhow::anyhow!("not a readable SVG document: {e}"))?;
+    let tree = usvg::Tree::from_data(data, &svg_options(images.clone())).map_err(|e| {
+        let msg = e.to_string();
+        if msg.contains("nodes limit") {
+            anyhow::anyhow!(
+                "not a readable SVG document: its elements nest too deeply (the XML reader \
+                 stops at 1024 levels) or are too many; flatten the groups"
+            )
+        } else {
+            anyhow::anyhow!("not a readable SVG document: {msg}")
+        }
+    })?;
     let mut shapes = Vec::new();
     let mut unreadable = Vec::new();
     walk_svg(tree.root(), &mut shapes, &mut unreadable);
@@ -509,7 +518,13 @@ fn svg_path_contours(p: &usvg::Path) -> std::result::Result<Vec<Contour>, String
 /// on-curve points, also a contour of off-curve points alone); components are not resolved
 /// (the glyphs they name are checked themselves).
 pub fn read_ufo(path: &Path) -> Result<Outlines> {
-    let font = norad::Font::load(path).map_err(|e| anyhow::anyhow!("not a readable UFO: {e}"))?;
+    let font = norad::Font::load(path).map_err(|e| match first_bad_glif(path) {
+        Some((file, why)) => anyhow::anyhow!(
+            "not a readable UFO: {} cannot be read ({why}); fix or remove that glyph file",
+            file.display()
+        ),
+        None => anyhow::anyhow!("not a readable UFO: {e}"),
+    })?;
     let mut shapes = Vec::new();
     let mut unreadable = Vec::new();
     let mut glyphs: Vec<_> = font.default_layer().iter().collect();
@@ -533,6 +548,37 @@ pub fn read_ufo(path: &Path) -> Result<Outlines> {
         shapes,
         unreadable,
     })
+}
+
+/// The first `.glif` file of a UFO source that does not load, and why (norad's own error
+/// names only the layer).
+fn first_bad_glif(root: &Path) -> Option<(PathBuf, String)> {
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
+        .ok()?
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.is_dir()
+                && p.file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with("glyphs"))
+        })
+        .collect();
+    dirs.sort();
+    for dir in dirs {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+            .ok()?
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| p.extension().is_some_and(|e| e == "glif"))
+            .collect();
+        files.sort();
+        for f in files {
+            if let Err(e) = norad::Glyph::load(&f) {
+                return Some((f, e.to_string()));
+            }
+        }
+    }
+    None
 }
 
 /// One UFO contour into the pen.

@@ -35,7 +35,7 @@ impl From<Error> for ProtoError {
     fn from(e: Error) -> Self {
         ProtoError {
             kind: e.kind(),
-            message: e.to_string(),
+            message: e.message(),
         }
     }
 }
@@ -1049,11 +1049,20 @@ fn outline_file(obj: &Map<String, Value>) -> Result<crate::outline_io::Outlines,
             format!("larger than {MAX_OUTLINE_FILE} bytes"),
         ));
     }
-    let ext = name.rsplit('.').next().unwrap_or("");
+    let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
     let read = match ext {
         "ttf" | "otf" | "ttc" | "otc" => crate::outline_io::read_font(&bytes),
         "dxf" => crate::outline_io::read_dxf(&bytes),
-        _ => crate::outline_io::read_svg(&bytes),
+        "svg" => crate::outline_io::read_svg(&bytes),
+        _ => {
+            return Err(ProtoError::invalid(
+                "file",
+                format!(
+                    "{name:?}: not a file outline.check reads (by its name's extension: .ttf, \
+                     .otf, .ttc, .otc, .svg or .dxf)"
+                ),
+            ))
+        }
     };
     read.map_err(|e| ProtoError::invalid("file", format!("{e:#}")))
 }

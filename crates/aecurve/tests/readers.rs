@@ -244,3 +244,79 @@ fn dxf_entities_that_cannot_be_read_are_listed() {
         o.unreadable
     );
 }
+
+/// One bad `.glif` made the whole UFO fail with "failed to load layer 'public.default'",
+/// naming no file: now the message names the glyph file.
+#[test]
+fn a_bad_glif_is_named() {
+    let dir = scratch("ufo");
+    let ufo = dir.join("font.ufo");
+    let mut font = norad::Font::new();
+    for name in ["a", "b"] {
+        let mut g = norad::Glyph::new(name);
+        g.contours.push(norad::Contour::new(
+            vec![
+                norad::ContourPoint::new(0.0, 0.0, norad::PointType::Line, false, None, None),
+                norad::ContourPoint::new(10.0, 0.0, norad::PointType::Line, false, None, None),
+                norad::ContourPoint::new(0.0, 10.0, norad::PointType::Line, false, None, None),
+            ],
+            None,
+        ));
+        font.default_layer_mut().insert_glyph(g);
+    }
+    font.save(&ufo).unwrap();
+    assert_eq!(read(&ufo).unwrap().shapes.len(), 2);
+    std::fs::write(
+        ufo.join("glyphs").join("b.glif"),
+        "<glyph name=\"b\" format=\"2\"><outline><contour>",
+    )
+    .unwrap();
+    let msg = format!("{:#}", read(&ufo).unwrap_err());
+    assert!(msg.contains("b.glif"), "{msg}");
+}
+
+/// Bit flips and truncations of a real SVG and of a DXF drawing: each read or refused with
+/// an error, never a panic or a hang, every unreadable part with a reason.
+#[test]
+fn mutated_svg_and_dxf_never_panic() {
+    let svg = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/check-shapes.svg"
+    ))
+    .unwrap();
+    use dxf::entities::*;
+    use dxf::Point as P;
+    let dxf_data = dxf_bytes(vec![
+        EntityType::Line(Line::new(P::new(0.0, 0.0, 0.0), P::new(1.0, 0.0, 0.0))),
+        EntityType::Arc(Arc::new(P::new(1.0, 1.0, 0.0), 1.0, 270.0, 90.0)),
+        EntityType::Circle(Circle::new(P::new(5.0, 5.0, 0.0), 2.0)),
+    ]);
+    let mut state = 0x2545f4914f6cdd1du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let t = Instant::now();
+    for (data, reader) in [
+        (svg, read_svg as fn(&[u8]) -> anyhow::Result<_>),
+        (dxf_data, read_dxf),
+    ] {
+        for k in 0..300 {
+            let mut m = data.clone();
+            if k % 3 == 0 {
+                m.truncate((next() as usize) % m.len());
+            } else {
+                for _ in 0..1 + k % 4 {
+                    let at = (next() as usize) % m.len();
+                    m[at] = (next() & 0xff) as u8;
+                }
+            }
+            if let Ok(o) = reader(&m) {
+                assert!(o.unreadable.iter().all(|(_, why)| !why.is_empty()));
+            }
+        }
+    }
+    assert!(t.elapsed() < Duration::from_secs(60), "{:?}", t.elapsed());
+}

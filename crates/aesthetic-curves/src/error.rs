@@ -43,6 +43,18 @@ impl Error {
         }
     }
 
+    /// The message without the kind in front (what the protocol sends beside its `kind`,
+    /// so a client that shows both does not say "degenerate: degenerate: ...").
+    pub fn message(&self) -> String {
+        match self {
+            Error::InvalidInput { field, message } => format!("{field}: {message}"),
+            Error::Degenerate(m)
+            | Error::NoSegment(m)
+            | Error::NoConvergence(m)
+            | Error::Timeout(m) => m.clone(),
+        }
+    }
+
     /// Shorthand for [`Error::InvalidInput`].
     pub fn invalid(field: impl Into<String>, message: impl Into<String>) -> Self {
         Error::InvalidInput {

@@ -21,7 +21,7 @@ pub(crate) fn approx(
         "--map-cells must be 2 to 1000"
     );
     // Library errors keep the protocol's kind in the message (`no_segment: ...`).
-    let kinded = |e: aesthetic_curves::Error| anyhow::anyhow!("{}: {e}", e.kind());
+    let kinded = |e: aesthetic_curves::Error| anyhow::anyhow!("{}: {}", e.kind(), e.message());
     let seg =
         aesthetic_curves::lac::LacSegment::new(alpha, [pts[0], pts[1], pts[2]]).map_err(kinded)?;
     let opts = approx::ApproxOptions::default();

@@ -108,22 +108,51 @@ pub(crate) fn check(
         .collect();
     ranked.sort_by(|a, b| b.1.score.total_cmp(&a.1.score));
     if json_out {
-        let shapes: Vec<Value> = checked.iter().map(shape_json).collect();
-        let v = json!({
-            "file": file.display().to_string(),
-            "kind": outlines.kind,
-            "shapes": shapes,
-            "unreadable": outlines.unreadable.iter().map(|(n, e)| json!({"name": n, "error": e})).collect::<Vec<_>>(),
-            "counts": {
-                "shapes": checked.len(), "segments": segments, "curved_segments": curved,
-                "monotone_segments": monotone, "inflections": inflections, "joins": joins,
-                "g1_joins": g1, "g2_joins": g2, "near_breaks": near, "suggestions": suggested,
-                "exact_arithmetic": exact, "retracted_handles": retracted,
-            },
-            "findings": ranked.iter().map(|(n, f)| finding_json(n, f)).collect::<Vec<_>>(),
-            "milliseconds": {"read": read_ms, "check": check_ms},
+        // Streamed shape by shape (keys in the order serde_json sorts them), so memory
+        // grows with the file, not with a document of every shape's JSON at once.
+        let counts = json!({
+            "shapes": checked.len(), "segments": segments, "curved_segments": curved,
+            "monotone_segments": monotone, "inflections": inflections, "joins": joins,
+            "g1_joins": g1, "g2_joins": g2, "near_breaks": near, "suggestions": suggested,
+            "exact_arithmetic": exact, "retracted_handles": retracted,
         });
-        println!("{v}");
+        let unreadable: Vec<Value> = outlines
+            .unreadable
+            .iter()
+            .map(|(n, e)| json!({"name": n, "error": e}))
+            .collect();
+        let out = std::io::stdout();
+        let mut w = std::io::BufWriter::new(out.lock());
+        let write = || -> std::io::Result<()> {
+            use std::io::Write;
+            write!(
+                w,
+                "{{\"counts\":{counts},\"file\":{},",
+                json!(file.display().to_string())
+            )?;
+            write!(w, "\"findings\":[")?;
+            for (i, (n, f)) in ranked.iter().enumerate() {
+                if i > 0 {
+                    write!(w, ",")?;
+                }
+                serde_json::to_writer(&mut w, &finding_json(n, f))?;
+            }
+            write!(w, "],\"kind\":{},", json!(outlines.kind))?;
+            write!(
+                w,
+                "\"milliseconds\":{},\"shapes\":[",
+                json!({"read": read_ms, "check": check_ms})
+            )?;
+            for (i, c) in checked.iter().enumerate() {
+                if i > 0 {
+                    write!(w, ",")?;
+                }
+                serde_json::to_writer(&mut w, &shape_json(c))?;
+            }
+            writeln!(w, "],\"unreadable\":{}}}", Value::Array(unreadable))?;
+            w.flush()
+        };
+        write().map_err(|e| anyhow::anyhow!("writing the JSON report: {e}"))?;
         return Ok(());
     }
     println!(
