@@ -521,6 +521,22 @@ fn poly_fast_k<const C: usize>(b: &[Point]) -> Option<(PolyK<C>, f64)> {
     (loose > 1e-280 && loose < 1e280).then_some((pk, loose))
 }
 
+/// The fast paths' last resort: the filter's subdivision of the plain coefficients, the one
+/// bound carried along; None when it cannot decide.
+#[inline(always)]
+fn subdivided(plain: &[f64], bound: f64) -> Option<Fast> {
+    let s = crate::exact::signs::filter_plain(&plain_with_bound(plain, bound), Want::Signs)?;
+    Some(if s.positive && s.negative {
+        Fast::NotMonotone
+    } else if s.positive {
+        Fast::Monotone(1)
+    } else if s.negative {
+        Fast::Monotone(-1)
+    } else {
+        return None;
+    })
+}
+
 /// Plain Bernstein coefficients with one common bound as [`Bounded`] numbers (the
 /// division by the binomials adds its rounding).
 fn plain_with_bound(plain: &[f64], bound: f64) -> SmallVec<[Bounded; 24]> {
@@ -578,17 +594,7 @@ fn poly_fast_cap<const C: usize>(b: &[Point]) -> Option<Fast> {
             return Some(Fast::NotMonotone);
         }
     }
-    // Subdivide, the bound carried along (it is the same for every plain coefficient).
-    let s = crate::exact::signs::filter_plain(&plain_with_bound(&ku[..=dk], loose), Want::Signs)?;
-    Some(if s.positive && s.negative {
-        Fast::NotMonotone
-    } else if s.positive {
-        Fast::Monotone(1)
-    } else if s.negative {
-        Fast::Monotone(-1)
-    } else {
-        return None;
-    })
+    subdivided(&ku[..=dk], loose)
 }
 
 /// K(t) for a rational Bézier curve (degree 8n-12 for n >= 2; see the module docs).
@@ -799,17 +805,7 @@ fn rational_cubic_fast(b: &[Point], w: &[f64]) -> Option<Fast> {
     if rk.samples_change_sign() {
         return Some(Fast::NotMonotone);
     }
-    // Subdivide, the bound carried along (the same for every plain coefficient).
-    let s = crate::exact::signs::filter_plain(&plain_with_bound(k, k_bound), Want::Signs)?;
-    Some(if s.positive && s.negative {
-        Fast::NotMonotone
-    } else if s.positive {
-        Fast::Monotone(1)
-    } else if s.negative {
-        Fast::Monotone(-1)
-    } else {
-        return None;
-    })
+    subdivided(k, k_bound)
 }
 
 /// A rational cubic's K (degree 13, plain Bernstein coefficients), its rigorous bound and
