@@ -48,6 +48,25 @@ pub struct Signs {
     pub over_budget: bool,
 }
 
+impl Signs {
+    /// The answer when the exact stage would be over [`EXACT_BUDGET`].
+    fn over_budget() -> Self {
+        Signs {
+            exact: true,
+            over_budget: true,
+            ..Signs::default()
+        }
+    }
+
+    /// Identically zero.
+    fn zero() -> Self {
+        Signs {
+            zero: true,
+            ..Signs::default()
+        }
+    }
+}
+
 /// The most work the exact stage takes on, in a cost model of its gcd and Sturm sequence:
 /// about `d³` products of numbers of `d × bits` bits (d the degree), each `(d bits / 64)^1.58`
 /// word operations (Karatsuba), the isolation's evaluations on top. 4·10^8 admits every
@@ -79,31 +98,24 @@ pub fn certified_signs(
     exact: impl FnOnce() -> Vec<BigInt>,
     want: Want,
 ) -> Signs {
-    let mut pending = Vec::new();
-    if let Some(s) = filter(scaled, want, &mut pending) {
-        return s;
-    }
+    let unplaced = match filter(scaled, want) {
+        Filtered::Decided(s) => return s,
+        Filtered::Unplaced(p) => Some(p),
+        Filtered::Undecided => None,
+    };
     let c = exact();
     // An empty answer: the caller knew beforehand that it was over the budget.
     if c.is_empty() {
-        return Signs {
-            exact: true,
-            over_budget: true,
-            ..Signs::default()
-        };
+        return Signs::over_budget();
     }
     // The filter proved every sign change and only could not place some: place those on
     // the exact polynomial (a few evaluations, no gcd or Sturm sequence).
-    if let Some(s) = pending.pop().and_then(|partial| place_exactly(partial, &c)) {
+    if let Some(s) = unplaced.and_then(|partial| place_exactly(partial, &c)) {
         return s;
     }
     let bits = c.iter().map(|v| v.bits()).max().unwrap_or(0);
     if exact_cost(c.len().saturating_sub(1), bits) > EXACT_BUDGET {
-        return Signs {
-            exact: true,
-            over_budget: true,
-            ..Signs::default()
-        };
+        return Signs::over_budget();
     }
     let e = poly::sign_changes(&c, want == Want::Changes);
     Signs {
@@ -337,51 +349,18 @@ impl Walk {
     }
 
     /// Where the piece's one change is, in plain floating point (local parameter, within
-    /// about `2^-47` in t): the Illinois variant of regula falsi on a bracket, bisection
-    /// steps where it stalls.
+    /// about `2^-47` in t), by [`crate::solve::roots::illinois`] on the bracket [0, 1].
     fn search(&self, c: &[Bounded], s0: i32, w: f64) -> f64 {
-        let f = |x: f64| sign_value_at(c, x) * s0 as f64;
-        // f > 0 at the start, < 0 at the end (the end coefficients' certified signs).
-        let (mut lo, mut hi) = (0.0f64, 1.0f64);
-        let (mut flo, mut fhi) = (c[0].v * s0 as f64, c[c.len() - 1].v * s0 as f64);
-        let tol = (-47f64).exp2() / w;
-        let mut side = 0;
-        for i in 0..200 {
-            if hi - lo <= tol {
-                break;
-            }
-            let mut x = if i % 4 == 3 || !(flo > 0.0 && fhi < 0.0) {
-                0.5 * (lo + hi)
-            } else {
-                lo + (hi - lo) * (flo / (flo - fhi))
-            };
-            if !(x > lo && x < hi) {
-                x = 0.5 * (lo + hi);
-                if !(x > lo && x < hi) {
-                    break;
-                }
-            }
-            let v = f(x);
-            if v == 0.0 {
-                return x;
-            }
-            if v > 0.0 {
-                lo = x;
-                flo = v;
-                if side == 1 {
-                    fhi *= 0.5;
-                }
-                side = 1;
-            } else {
-                hi = x;
-                fhi = v;
-                if side == -1 {
-                    flo *= 0.5;
-                }
-                side = -1;
-            }
-        }
-        0.5 * (lo + hi)
+        let f = |x: f64| Ok(sign_value_at(c, x) * s0 as f64);
+        // The end coefficients' signs are known: s0 (or an exact zero) at the start, -s0 (or
+        // an exact zero) at the end; a zero end stands in as the smallest value of its sign,
+        // so the bracket is one and the search moves off that end.
+        let flo = (c[0].v * s0 as f64).max(f64::MIN_POSITIVE);
+        let fhi = (c[c.len() - 1].v * s0 as f64).min(-f64::MIN_POSITIVE);
+        // 200 steps, every fourth a bisection, always reach the tolerance; were they not to,
+        // the certificate below would fail and the change go to exact placement.
+        crate::solve::roots::illinois(f, (0.0, flo), (1.0, fhi), (-47f64).exp2() / w, 200)
+            .unwrap_or(0.5)
     }
 
     /// The one sign change of the piece (local parameter), certified within `2^-40` in t;
@@ -459,36 +438,34 @@ fn place_exactly(partial: Partial, c: &[BigInt]) -> Option<Signs> {
     Some(signs)
 }
 
-/// The filter on scaled coefficients: `None` when it cannot decide (with the changes it
-/// proved but could not place in `pending`, if that is all it lacks).
-fn filter(scaled: &[Bounded], want: Want, pending: &mut Vec<Partial>) -> Option<Signs> {
+/// What the filter made of a polynomial.
+enum Filtered {
+    Decided(Signs),
+    /// Every sign change proven, some not placed closely enough.
+    Unplaced(Partial),
+    Undecided,
+}
+
+/// The filter on scaled coefficients.
+fn filter(scaled: &[Bounded], want: Want) -> Filtered {
     if scaled.is_empty() {
-        return Some(Signs {
-            zero: true,
-            ..Signs::default()
-        });
+        return Filtered::Decided(Signs::zero());
     }
-    if scaled.iter().all(|c| c.v == 0.0 && c.e == 0.0) {
-        return Some(Signs {
-            zero: true,
-            ..Signs::default()
-        });
-    }
-    walk_plain(&unscale(scaled), want, pending)
+    walk_plain(&unscale(scaled), want)
 }
 
 /// The filter on ordinary Bernstein coefficients with their bounds: `None` when it cannot
 /// decide.
 pub fn filter_plain(c: &[Bounded], want: Want) -> Option<Signs> {
-    walk_plain(c, want, &mut Vec::new())
+    match walk_plain(c, want) {
+        Filtered::Decided(s) => Some(s),
+        Filtered::Unplaced(_) | Filtered::Undecided => None,
+    }
 }
 
-fn walk_plain(c: &[Bounded], want: Want, partial: &mut Vec<Partial>) -> Option<Signs> {
+fn walk_plain(c: &[Bounded], want: Want) -> Filtered {
     if c.iter().all(|c| c.v == 0.0 && c.e == 0.0) {
-        return Some(Signs {
-            zero: true,
-            ..Signs::default()
-        });
+        return Filtered::Decided(Signs::zero());
     }
     let mut walk = Walk {
         want,
@@ -502,7 +479,7 @@ fn walk_plain(c: &[Bounded], want: Want, partial: &mut Vec<Partial>) -> Option<S
     };
     walk.visit(c, 0.0, 1.0, 0);
     if walk.failed {
-        return None;
+        return Filtered::Undecided;
     }
     if want == Want::Changes {
         walk.changes.sort_by(f64::total_cmp);
@@ -516,13 +493,13 @@ fn walk_plain(c: &[Bounded], want: Want, partial: &mut Vec<Partial>) -> Option<S
         over_budget: false,
     };
     if walk.pending.is_empty() {
-        return Some(signs);
+        Filtered::Decided(signs)
+    } else {
+        Filtered::Unplaced(Partial {
+            signs,
+            pending: walk.pending,
+        })
     }
-    partial.push(Partial {
-        signs,
-        pending: walk.pending,
-    });
-    None
 }
 
 #[cfg(test)]

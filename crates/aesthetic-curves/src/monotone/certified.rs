@@ -308,10 +308,7 @@ fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
     }
     // Exactly: a common root of z's components in (0, 1) (z's ends are not zero).
     over_budget(
-        &crate::exact::Signs {
-            over_budget: predicted_cost(inp, 3 * m) > crate::exact::signs::EXACT_BUDGET,
-            ..Default::default()
-        },
+        predicted_cost(inp, 3 * m) > crate::exact::signs::EXACT_BUDGET,
         m,
     )?;
     let e = exact(inp);
@@ -323,10 +320,7 @@ fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
             .unwrap_or(0) as f64;
     let d = e.zx.len() as f64;
     over_budget(
-        &crate::exact::Signs {
-            over_budget: d * d * d * bits > crate::exact::signs::EXACT_BUDGET,
-            ..Default::default()
-        },
+        d * d * d * bits > crate::exact::signs::EXACT_BUDGET,
         e.zx.len() - 1,
     )?;
     let g = poly::IntPoly::new(e.zx.to_vec()).gcd(&poly::IntPoly::new(e.zy.to_vec()));
@@ -412,12 +406,25 @@ fn end_curvature(
 fn signs(inp: &Input, b: &Lifted<Bounded>, want: Want) -> Result<(crate::exact::Signs, usize)> {
     check_regular(inp, b)?;
     let k = k_tilde(inp, b);
-    let affordable = predicted_cost(inp, k.len() - 1) <= crate::exact::signs::EXACT_BUDGET;
+    let s = decide(inp, &k, || k_tilde(inp, &exact(inp)), want)?;
+    Ok((s, k.len() - 1))
+}
+
+/// The certified signs of `p` (with bounds); `exact_p` gives the same polynomial exactly,
+/// built only when the filter cannot decide and the exact stage is within its budget.
+fn decide(
+    inp: &Input,
+    p: &[Bounded],
+    exact_p: impl FnOnce() -> Scaled<BigInt>,
+    want: Want,
+) -> Result<crate::exact::Signs> {
+    let degree = p.len() - 1;
+    let affordable = predicted_cost(inp, degree) <= crate::exact::signs::EXACT_BUDGET;
     let s = certified_signs(
-        &k,
+        p,
         || {
             if affordable {
-                k_tilde(inp, &exact(inp)).to_vec()
+                exact_p().to_vec()
             } else {
                 Vec::new()
             }
@@ -427,8 +434,8 @@ fn signs(inp: &Input, b: &Lifted<Bounded>, want: Want) -> Result<(crate::exact::
     if s.exact {
         super::note_exact_fallback();
     }
-    over_budget(&s, k.len() - 1)?;
-    Ok((s, k.len() - 1))
+    over_budget(s.over_budget, degree)?;
+    Ok(s)
 }
 
 /// Where the curvature changes sign in (0, 1) (inflections), certified: the sign changes of
@@ -440,23 +447,7 @@ pub(super) fn inflections(inp: &Input) -> Result<Vec<f64>> {
         return Ok(Vec::new());
     }
     let d = delta(&b).0;
-    let affordable = predicted_cost(inp, d.len() - 1) <= crate::exact::signs::EXACT_BUDGET;
-    let s = certified_signs(
-        &d,
-        || {
-            if affordable {
-                delta(&exact(inp)).0.to_vec()
-            } else {
-                Vec::new()
-            }
-        },
-        Want::Changes,
-    );
-    if s.exact {
-        super::note_exact_fallback();
-    }
-    over_budget(&s, d.len() - 1)?;
-    Ok(s.changes)
+    Ok(decide(inp, &d, || delta(&exact(inp)).0, Want::Changes)?.changes)
 }
 
 /// The exact stage's cost (`exact::signs::exact_cost`) predicted from the inputs before any
@@ -484,9 +475,9 @@ fn predicted_cost(inp: &Input, degree: usize) -> f64 {
     crate::exact::signs::exact_cost(degree, bits)
 }
 
-/// `Err(NoConvergence)` when the exact stage was over its budget: said, never guessed.
-fn over_budget(s: &crate::exact::Signs, degree: usize) -> Result<()> {
-    if s.over_budget {
+/// `Err(NoConvergence)` when the exact stage is over its budget: said, never guessed.
+fn over_budget(over: bool, degree: usize) -> Result<()> {
+    if over {
         return Err(Error::NoConvergence(format!(
             "the floating-point filter could not decide this curve and the exact test (a \
              polynomial of degree {degree}) would need more than its work budget: its \

@@ -894,6 +894,7 @@ fn rational_cubic_k(b: &[Point], w: &[f64]) -> Option<RationalCubicK> {
     let hodograph: [Vec2; 5] = std::array::from_fn(|i| Vec2::new(dx[i], dy[i]));
     let scale = hodograph.iter().map(|h| h.hypot2()).fold(0.0, f64::max);
     let margin = DEGENERATE_SPEED_TOL * scale.sqrt();
+    // Written so that a NaN margin fails too.
     let margin_ok = margin > 1e3 * d_bound;
     if !margin_ok || hodograph_vanishes(&hodograph, margin).is_some() {
         return None;
@@ -1060,11 +1061,8 @@ fn report(
     kappa: impl Fn(f64) -> f64,
 ) -> Result<MonotoneReport> {
     let inp = certified::Input::new(points, weights)?;
-    if inp.retracted() {
-        return certified::report(&inp);
-    }
-    match fast(points, inp.weights()) {
-        Some(Fast::Monotone(sign)) => {
+    if !inp.retracted() {
+        if let Some(Fast::Monotone(sign)) = fast(points, inp.weights()) {
             return Ok(MonotoneReport {
                 monotone: true,
                 trend: Some(if sign > 0 {
@@ -1081,10 +1079,9 @@ fn report(
                 ],
             });
         }
-        // The certified test locates the extrema (faster than a second try on the fast
-        // path's K, whose one bound is too loose to place them).
-        Some(Fast::NotMonotone) | None => {}
     }
+    // The certified test locates the extrema (the fast path's one loose bound is too wide
+    // to place them).
     certified::report(&inp)
 }
 
@@ -1429,6 +1426,30 @@ mod tests {
         );
     }
 
+    /// Integer control points whose K has exact zero coefficients (a parabola's vertex, a
+    /// circle's identically zero K): the filter knows those zeros are zeros, so these common
+    /// shapes never pay for the exact stage (a division by a binomial that is exact keeps
+    /// its bound at 0).
+    #[test]
+    fn exact_zeros_are_decided_by_the_filter() {
+        let parabola = bez(&[(0.0, 0.0), (1.0, 0.0), (2.0, 1.0), (3.0, 3.0)]);
+        let r = parabola.curvature_monotone().unwrap();
+        assert!(
+            r.monotone && r.trend == Some(Trend::Decreasing) && !r.exact,
+            "{r:?}"
+        );
+        let circle = RationalBezier::new(
+            bez(&[(0.0, 0.0), (3.0, 4.0), (6.0, 0.0)]).points().to_vec(),
+            vec![5.0, 3.0, 5.0],
+        )
+        .unwrap();
+        let r = circle.curvature_monotone().unwrap();
+        assert!(
+            r.monotone && r.trend == Some(Trend::Constant) && !r.exact,
+            "{r:?}"
+        );
+    }
+
     #[test]
     fn retracted_handles_get_a_verdict_and_cusps_are_errors() {
         // One handle on its point: the speed vanishes like t, the curvature like 1/t.
@@ -1469,45 +1490,6 @@ mod tests {
         ));
     }
 }
-#[cfg(test)]
-mod exact_zeros {
-    use super::*;
-
-    /// Integer control points whose K has exact zero coefficients (a parabola's vertex, a
-    /// circle's identically zero K): the filter knows those zeros are zeros, so these common
-    /// shapes never pay for the exact stage (a division by a binomial that is exact keeps
-    /// its bound at 0).
-    #[test]
-    fn exact_zeros_are_decided_by_the_filter() {
-        let parabola = Bezier::new(
-            [(0.0, 0.0), (1.0, 0.0), (2.0, 1.0), (3.0, 3.0)]
-                .iter()
-                .map(|&(x, y)| Point::new(x, y))
-                .collect(),
-        )
-        .unwrap();
-        let r = parabola.curvature_monotone().unwrap();
-        assert!(
-            r.monotone && r.trend == Some(Trend::Decreasing) && !r.exact,
-            "{r:?}"
-        );
-        let circle = RationalBezier::new(
-            vec![
-                Point::new(0.0, 0.0),
-                Point::new(3.0, 4.0),
-                Point::new(6.0, 0.0),
-            ],
-            vec![5.0, 3.0, 5.0],
-        )
-        .unwrap();
-        let r = circle.curvature_monotone().unwrap();
-        assert!(
-            r.monotone && r.trend == Some(Trend::Constant) && !r.exact,
-            "{r:?}"
-        );
-    }
-}
-
 #[cfg(test)]
 mod fast_path {
     /// The fast path decides every generic random curve (the certified test is for the
