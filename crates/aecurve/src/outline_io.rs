@@ -166,7 +166,8 @@ pub fn read(path: &Path) -> Result<Outlines> {
         ),
     };
     let data = read_regular_file(path, MAX_FILE_BYTES)?;
-    contained(|| reader(&data)).with_context(|| format!("{}", path.display()))
+    // Each reader contains its parser's panics itself.
+    reader(&data).with_context(|| format!("{}", path.display()))
 }
 
 /// The bytes of a regular file, at most `cap` of them: anything else (a pipe, a device, a
@@ -1113,7 +1114,7 @@ pub fn shape_json(c: &ShapeCheck) -> Value {
                     "exact_arithmetic": s.exact,
                 });
                 // A curvature that grows without bound is null, with its kind in "ends".
-                let num = |v: f64| if v.is_finite() { json!(v) } else { Value::Null };
+                let num = crate::protocol::finite_or_null;
                 o["max_abs_curvature"] = num(s.max_abs_curvature);
                 if let Some(e) = &s.ends {
                     o["ends"] = json!(e.iter().map(crate::protocol::end_curvature_json).collect::<Vec<_>>());
@@ -1135,7 +1136,7 @@ pub fn shape_json(c: &ShapeCheck) -> Value {
             "joins": k.joins.iter().map(|j| {
                 let mut o = json!({
                     "after_segment": j.after_segment, "point": pt(j.point),
-                    "angle_break_degrees": if j.angle_break.is_finite() { json!(j.angle_break.to_degrees()) } else { Value::Null },
+                    "angle_break_degrees": crate::protocol::finite_or_null(j.angle_break.to_degrees()),
                     "g1": j.g1, "g2": j.g2, "near_break": j.near_break,
                 });
                 if let Some(x) = j.curvature_jump { o["curvature_jump"] = json!(x); }

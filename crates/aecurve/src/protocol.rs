@@ -390,7 +390,8 @@ pub fn end_curvature_json(e: &aesthetic_curves::monotone::EndCurvature) -> Value
     }
 }
 
-fn finite_or_null(v: f64) -> Value {
+/// A number, or null where it is not finite (JSON has no infinities).
+pub fn finite_or_null(v: f64) -> Value {
     if v.is_finite() {
         json!(v)
     } else {

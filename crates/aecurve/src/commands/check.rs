@@ -130,26 +130,16 @@ pub(crate) fn check(
                 "{{\"counts\":{counts},\"file\":{},",
                 json!(file.display().to_string())
             )?;
-            write!(w, "\"findings\":[")?;
-            for (i, (n, f)) in ranked.iter().enumerate() {
-                if i > 0 {
-                    write!(w, ",")?;
-                }
-                serde_json::to_writer(&mut w, &finding_json(n, f))?;
-            }
-            write!(w, "],\"kind\":{},", json!(outlines.kind))?;
+            write!(w, "\"findings\":")?;
+            write_array(&mut w, ranked.iter().map(|(n, f)| finding_json(n, f)))?;
+            write!(w, ",\"kind\":{},", json!(outlines.kind))?;
             write!(
                 w,
-                "\"milliseconds\":{},\"shapes\":[",
+                "\"milliseconds\":{},\"shapes\":",
                 json!({"read": read_ms, "check": check_ms})
             )?;
-            for (i, c) in checked.iter().enumerate() {
-                if i > 0 {
-                    write!(w, ",")?;
-                }
-                serde_json::to_writer(&mut w, &shape_json(c))?;
-            }
-            writeln!(w, "],\"unreadable\":{}}}", Value::Array(unreadable))?;
+            write_array(&mut w, checked.iter().map(shape_json))?;
+            writeln!(w, ",\"unreadable\":{}}}", Value::Array(unreadable))?;
             w.flush()
         };
         write().map_err(|e| anyhow::anyhow!("writing the JSON report: {e}"))?;
@@ -204,4 +194,19 @@ pub(crate) fn check(
         }
     }
     Ok(())
+}
+
+/// A JSON array written element by element (none of them held beyond its own writing).
+fn write_array(
+    w: &mut impl std::io::Write,
+    items: impl Iterator<Item = Value>,
+) -> std::io::Result<()> {
+    w.write_all(b"[")?;
+    for (i, v) in items.enumerate() {
+        if i > 0 {
+            w.write_all(b",")?;
+        }
+        serde_json::to_writer(&mut *w, &v)?;
+    }
+    w.write_all(b"]")
 }
