@@ -606,7 +606,9 @@ fn draw_param(obj: &Map<String, Value>) -> Result<Option<usize>, ProtoError> {
 pub const MAX_DRAWING_POINTS: usize = 500_000;
 
 /// `invalid_input` on `draw` when `pieces` pieces at `n` points each are over
-/// [`MAX_DRAWING_POINTS`]: checked before any work.
+/// [`MAX_DRAWING_POINTS`]: checked before any work where the pieces are known from the
+/// request (a spline's points, an outline's segments), and for `sketch.fit`, whose pieces
+/// the fit decides, after the fit and before the drawing.
 fn drawing_budget(pieces: usize, n: usize) -> Result<(), ProtoError> {
     if pieces.saturating_mul(n) > MAX_DRAWING_POINTS {
         let most = (MAX_DRAWING_POINTS / pieces.max(1)).max(1);
