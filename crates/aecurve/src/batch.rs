@@ -184,7 +184,7 @@ mod tests {
         assert_eq!(r[0]["error"]["kind"], "invalid_input", "{}", r[0]);
         let msg = r[0]["error"]["message"].as_str().unwrap();
         assert!(
-            msg.contains("drawing budget") && msg.contains("at most 25 points per piece"),
+            msg.contains("drawing budget") && msg.contains("at most 10 points per piece"),
             "{msg}"
         );
         assert_eq!(r[1]["error"]["kind"], "timeout", "{}", r[1]);

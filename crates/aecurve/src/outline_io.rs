@@ -13,6 +13,7 @@
 //! before it is read, a truncated or foreign file says what it is not, a glyph that cannot be
 //! drawn is reported with its name and the others are read.
 
+use crate::json_out::object;
 use aesthetic_curves::outline::{check_contour, findings, ContourCheck, Finding, OutlineOptions};
 use aesthetic_curves::{Point, RationalBezier};
 use anyhow::{bail, Context, Result};
@@ -24,6 +25,32 @@ use std::path::{Path, PathBuf};
 
 /// Largest file `aecurve check` reads (bytes): a font or drawing beyond this is refused.
 pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
+
+/// Most segments one shape (a glyph, a path, a chain of entities) may have to be checked:
+/// the check of a shape holds about 0.6 KB per segment until the shape is done, so this keeps
+/// one shape's check near 300 MB. A larger shape is listed as unreadable with its count, not
+/// checked (no design outline comes near: the largest glyphs of real fonts have a few
+/// hundred segments).
+pub const MAX_SHAPE_SEGMENTS: usize = 500_000;
+
+/// The shapes of `o` with more than [`MAX_SHAPE_SEGMENTS`] segments moved to its unreadable
+/// list, with their count and what to do.
+fn within_limits(mut o: Outlines) -> Outlines {
+    let count = |s: &Shape| s.contours.iter().map(|c| c.segments.len()).sum::<usize>();
+    let (keep, over): (Vec<Shape>, Vec<Shape>) = std::mem::take(&mut o.shapes)
+        .into_iter()
+        .partition(|s| count(s) <= MAX_SHAPE_SEGMENTS);
+    o.shapes = keep;
+    o.unreadable.extend(over.into_iter().map(|s| {
+        let why = format!(
+            "{} segments: more than the {MAX_SHAPE_SEGMENTS} one shape may have to be checked \
+             (about 0.6 KB of memory each); split it into smaller paths",
+            count(&s)
+        );
+        (s.name, why)
+    }));
+    o
+}
 
 /// A contour: consecutive segments, each starting where the previous one ends.
 #[derive(Clone, Debug, Default)]
@@ -277,7 +304,7 @@ pub fn contained<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
 /// each shape has its own name; a glyph the parser fails on (a panic inside it included) is
 /// listed as unreadable, and the others are read.
 pub fn read_font(data: &[u8]) -> Result<Outlines> {
-    contained(|| read_font_inner(data))
+    contained(|| read_font_inner(data)).map(within_limits)
 }
 
 fn read_font_inner(data: &[u8]) -> Result<Outlines> {
@@ -357,7 +384,7 @@ fn svg_options(images: std::sync::Arc<std::sync::atomic::AtomicUsize>) -> usvg::
 /// listed as unreadable. A path with coordinates that are not finite numbers after its
 /// transforms is listed as unreadable with the reason, not dropped.
 pub fn read_svg(data: &[u8]) -> Result<Outlines> {
-    contained(|| read_svg_inner(data))
+    contained(|| read_svg_inner(data)).map(within_limits)
 }
 
 fn read_svg_inner(data: &[u8]) -> Result<Outlines> {
@@ -544,11 +571,11 @@ pub fn read_ufo(path: &Path) -> Result<Outlines> {
     if shapes.is_empty() && unreadable.is_empty() {
         bail!("not a readable UFO: its default layer has no glyphs");
     }
-    Ok(Outlines {
+    Ok(within_limits(Outlines {
         kind: "font",
         shapes,
         unreadable,
-    })
+    }))
 }
 
 /// The first `.glif` file of a UFO source that does not load, and why (norad's own error
@@ -723,7 +750,7 @@ fn bulge_segment(p0: Point, p1: Point, b: f64) -> Vec<RationalBezier> {
 /// reason; the entity kinds not read (ELLIPSE, POLYLINE, INSERT, ...) are listed once per
 /// kind with their count. No external reference (XREF) is followed.
 pub fn read_dxf(data: &[u8]) -> Result<Outlines> {
-    contained(|| read_dxf_inner(data))
+    contained(|| read_dxf_inner(data)).map(within_limits)
 }
 
 fn read_dxf_inner(data: &[u8]) -> Result<Outlines> {
@@ -1100,51 +1127,98 @@ pub fn finding_json(name: &str, f: &Finding) -> Value {
 
 /// A shape's check as JSON: per contour its segments and joins.
 pub fn shape_json(c: &ShapeCheck) -> Value {
-    let pt = |p: aesthetic_curves::Point| json!([p.x, p.y]);
-    json!({
-        "name": c.name,
-        "contours": c.contours.iter().map(|k| json!({
-            "closed": k.closed,
-            "segments": k.segments.iter().map(|s| {
-                let mut o = json!({
-                    "degree": s.degree,
-                    "rational": s.rational,
-                    "extrema": s.extrema.iter().map(|(t, p)| json!({"t": t, "point": pt(*p)})).collect::<Vec<_>>(),
-                    "inflections": s.inflections.iter().map(|(t, p)| json!({"t": t, "point": pt(*p)})).collect::<Vec<_>>(),
-                    "exact_arithmetic": s.exact,
-                });
-                // A curvature that grows without bound is null, with its kind in "ends".
-                let num = crate::protocol::finite_or_null;
-                o["max_abs_curvature"] = num(s.max_abs_curvature);
-                if let Some(e) = &s.ends {
-                    o["ends"] = json!(e.iter().map(crate::protocol::end_curvature_json).collect::<Vec<_>>());
-                }
-                if !s.notes.is_empty() { o["notes"] = json!(s.notes); }
-                if let Some(m) = s.monotone { o["monotone"] = json!(m); }
-                if let Some(t) = s.trend { o["trend"] = json!(t.as_str()); }
-                if let Some((a, b)) = s.end_curvatures { o["end_curvatures"] = json!([num(a), num(b)]); }
-                if let Some(f) = &s.flag { o["flag"] = json!(f); }
-                if let Some(g) = &s.suggestion {
-                    o["suggestion"] = json!({
-                        "control_points": g.curve.points().iter().map(|p| pt(*p)).collect::<Vec<_>>(),
-                        "handle_scale": [g.scale.0, g.scale.1],
-                        "deviation": g.deviation,
-                    });
-                }
-                o
-            }).collect::<Vec<_>>(),
-            "joins": k.joins.iter().map(|j| {
-                let mut o = json!({
-                    "after_segment": j.after_segment, "point": pt(j.point),
-                    "angle_break_degrees": crate::protocol::finite_or_null(j.angle_break.to_degrees()),
-                    "g1": j.g1, "g2": j.g2, "near_break": j.near_break,
-                });
-                if let Some(x) = j.curvature_jump { o["curvature_jump"] = json!(x); }
-                if j.unbounded_curvature { o["unbounded_curvature"] = json!(true); }
-                o
-            }).collect::<Vec<_>>(),
-        })).collect::<Vec<_>>(),
-    })
+    let contours = c.contours.iter().map(|k| {
+        object([
+            ("closed", Value::Bool(k.closed)),
+            (
+                "segments",
+                Value::Array(k.segments.iter().map(segment_json).collect()),
+            ),
+            (
+                "joins",
+                Value::Array(k.joins.iter().map(join_json).collect()),
+            ),
+        ])
+    });
+    object([
+        ("name", Value::String(c.name.to_string())),
+        ("contours", Value::Array(contours.collect())),
+    ])
+}
+
+fn point_json(p: Point) -> Value {
+    json!([p.x, p.y])
+}
+
+/// One segment's check as JSON (the values moved in: see [`object`]).
+fn segment_json(s: &aesthetic_curves::outline::SegmentCheck) -> Value {
+    let places = |v: &[(f64, Point)]| {
+        let each = v
+            .iter()
+            .map(|(t, p)| object([("t", json!(t)), ("point", point_json(*p))]));
+        Value::Array(each.collect())
+    };
+    let mut o = object([
+        ("degree", json!(s.degree)),
+        ("rational", Value::Bool(s.rational)),
+        ("extrema", places(&s.extrema)),
+        ("inflections", places(&s.inflections)),
+        ("exact_arithmetic", Value::Bool(s.exact)),
+    ]);
+    // A curvature that grows without bound is null, with its kind in "ends".
+    let num = crate::json_out::finite_or_null;
+    o["max_abs_curvature"] = num(s.max_abs_curvature);
+    if let Some(e) = &s.ends {
+        o["ends"] = Value::Array(e.iter().map(crate::json_out::end_curvature_json).collect());
+    }
+    if !s.notes.is_empty() {
+        o["notes"] = json!(s.notes);
+    }
+    if let Some(m) = s.monotone {
+        o["monotone"] = json!(m);
+    }
+    if let Some(t) = s.trend {
+        o["trend"] = json!(t.as_str());
+    }
+    if let Some((a, b)) = s.end_curvatures {
+        o["end_curvatures"] = Value::Array(vec![num(a), num(b)]);
+    }
+    if let Some(f) = &s.flag {
+        o["flag"] = json!(f);
+    }
+    if let Some(g) = &s.suggestion {
+        o["suggestion"] = object([
+            (
+                "control_points",
+                Value::Array(g.curve.points().iter().map(|p| point_json(*p)).collect()),
+            ),
+            ("handle_scale", json!([g.scale.0, g.scale.1])),
+            ("deviation", json!(g.deviation)),
+        ]);
+    }
+    o
+}
+
+/// One join's check as JSON.
+fn join_json(j: &aesthetic_curves::outline::JoinCheck) -> Value {
+    let mut o = object([
+        ("after_segment", json!(j.after_segment)),
+        ("point", point_json(j.point)),
+        (
+            "angle_break_degrees",
+            crate::json_out::finite_or_null(j.angle_break.to_degrees()),
+        ),
+        ("g1", Value::Bool(j.g1)),
+        ("g2", Value::Bool(j.g2)),
+        ("near_break", Value::Bool(j.near_break)),
+    ]);
+    if let Some(x) = j.curvature_jump {
+        o["curvature_jump"] = json!(x);
+    }
+    if j.unbounded_curvature {
+        o["unbounded_curvature"] = json!(true);
+    }
+    o
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 //! `invalid_input` naming the field, and library errors keep their own kind. Nothing in a
 //! result is NaN or infinite (checked once more before a response leaves).
 
+pub use crate::json_out::{end_curvature_json, finite_or_null, object};
 use aesthetic_curves::monotone::CurvatureMonotone;
 use aesthetic_curves::{Bezier, Curve, Error, Point, RationalBezier};
 use serde_json::{json, Map, Value};
@@ -98,7 +99,7 @@ pub fn handle_value(v: &Value) -> Value {
                     },
                 );
             }
-            json!({"id": id, "ok": true, "result": result})
+            object([("id", id), ("ok", Value::Bool(true)), ("result", result)])
         }
         Err(e) => error_response(id, e),
     }
@@ -363,42 +364,6 @@ pub fn monotone_json(r: &aesthetic_curves::MonotoneReport) -> Value {
     })
 }
 
-/// One end's curvature: `{"kind": "regular" | "finite" | "unbounded", "curvature": value or
-/// null, "retracted_handles": n, "growth": "1/t" (unbounded only), "sign"}`.
-pub fn end_curvature_json(e: &aesthetic_curves::monotone::EndCurvature) -> Value {
-    use aesthetic_curves::monotone::EndCurvature as E;
-    match *e {
-        E::Regular(k) => {
-            json!({"kind": "regular", "curvature": finite_or_null(k), "retracted_handles": 0})
-        }
-        E::Finite { curvature, order } => json!({
-            "kind": "finite",
-            "curvature": finite_or_null(curvature),
-            "retracted_handles": order,
-        }),
-        E::Unbounded {
-            positive,
-            order,
-            rate,
-        } => json!({
-            "kind": "unbounded",
-            "curvature": null,
-            "retracted_handles": order,
-            "growth": if rate == 1 { "1/t".to_string() } else { format!("1/t^{rate}") },
-            "sign": if positive { 1 } else { -1 },
-        }),
-    }
-}
-
-/// A number, or null where it is not finite (JSON has no infinities).
-pub fn finite_or_null(v: f64) -> Value {
-    if v.is_finite() {
-        json!(v)
-    } else {
-        Value::Null
-    }
-}
-
 /// The result of `bezier.curvature_monotone` with `"method": "sampling"`.
 pub fn sampled_json(r: &aesthetic_curves::SampledReport) -> Value {
     json!({
@@ -601,9 +566,10 @@ fn draw_param(obj: &Map<String, Value>) -> Result<Option<usize>, ProtoError> {
     }
 }
 
-/// Most points one `drawing` member holds (pieces times points per piece): about 100 bytes
-/// of JSON and a few hundred bytes of memory each, so a drawing stays under about 200 MB.
-pub const MAX_DRAWING_POINTS: usize = 500_000;
+/// Most points one `drawing` member holds (pieces times points per piece): about 110 bytes
+/// of JSON and up to 1 KB of memory each while the answer is built (measured), so a drawing
+/// stays under about 200 MB. A screen is a few thousand pixels wide: no picture needs more.
+pub const MAX_DRAWING_POINTS: usize = 200_000;
 
 /// `invalid_input` on `draw` when `pieces` pieces at `n` points each are over
 /// [`MAX_DRAWING_POINTS`]: checked before any work where the pieces are known from the
@@ -844,7 +810,9 @@ pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Val
 /// Longest SVG path data `outline.check` accepts (characters).
 pub const MAX_PATH_DATA: usize = 1 << 20;
 
-/// Most segments `outline.check` accepts.
+/// Most segments `outline.check` checks and answers for in one request (as `segments`, or in
+/// the shapes it checks of a path, an SVG or a file): each costs about 2 KB of answer and up
+/// to 15 KB of memory while the answer is built, so an answer stays near 150 MB.
 pub const MAX_OUTLINE_SEGMENTS: usize = 10_000;
 
 /// `outline.check`: the exact check of one outline (`aecurve check` for one shape), given as
@@ -967,20 +935,54 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         Some(i) => vec![&outlines.shapes[i]],
         None => outlines.shapes.iter().collect(),
     };
-    // The drawing's budget, before any work.
+    // The answer's budget and the drawing's, before any work.
+    let total: usize = shapes
+        .iter()
+        .flat_map(|s| s.contours.iter())
+        .map(|c| c.segments.len())
+        .sum();
+    if total > MAX_OUTLINE_SEGMENTS {
+        let field = if obj.contains_key("path") {
+            "path"
+        } else {
+            "shape"
+        };
+        let what = match pick {
+            Some(i) => format!("shape {i} holds {total} segments"),
+            None => format!("the {} shapes hold {total} segments", shapes.len()),
+        };
+        return Err(ProtoError::invalid(
+            field,
+            format!(
+                "{what}, over the {MAX_OUTLINE_SEGMENTS} one outline.check answers for: pick \
+                 one shape with `shape` (an index into `shape_names`, which every answer \
+                 holds), or check the whole file with `aecurve check --json`"
+            ),
+        ));
+    }
     if let (Some(n), Some(first)) = (draw, shapes.first()) {
         let segments: usize = first.contours.iter().map(|c| c.segments.len()).sum();
         drawing_budget(segments, n)?;
     }
     let checked = check_shapes(&shapes, &opts, &|| {});
-    let mut out = json!({
-        "shape_names": outlines.shapes.iter().map(|s| s.name.as_str()).collect::<Vec<_>>(),
-        "shapes": checked.iter().map(shape_json).collect::<Vec<_>>(),
-        "findings": checked
-            .iter()
-            .flat_map(|c| c.findings.iter().map(move |f| finding_json(c.name, f)))
-            .collect::<Vec<_>>(),
-    });
+    let findings = checked
+        .iter()
+        .flat_map(|c| c.findings.iter().map(move |f| finding_json(c.name, f)));
+    let mut out = object([
+        (
+            "shape_names",
+            json!(outlines
+                .shapes
+                .iter()
+                .map(|s| s.name.as_str())
+                .collect::<Vec<_>>()),
+        ),
+        (
+            "shapes",
+            Value::Array(checked.iter().map(shape_json).collect()),
+        ),
+        ("findings", Value::Array(findings.collect())),
+    ]);
     if let (Some(n), Some(first)) = (draw, shapes.first()) {
         // The (first) shape's contours for a picture: their segments (what an editor drags)
         // and `n` points per segment with normals and curvature.
@@ -990,16 +992,22 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
                 continue;
             }
             let pieces = aesthetic_curves::curve::Pieces(c.segments.clone());
-            contours.push(json!({
-                "closed": c.closed,
-                "segments": c.segments.iter().map(|b| json!({
+            let segments = c.segments.iter().map(|b| {
+                json!({
                     "control_points": b.points().iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
                     "weights": b.weights(),
-                })).collect::<Vec<_>>(),
-                "drawing": drawing_json(&pieces, n, None)?,
-            }));
+                })
+            });
+            contours.push(object([
+                ("closed", Value::Bool(c.closed)),
+                ("segments", Value::Array(segments.collect())),
+                ("drawing", drawing_json(&pieces, n, None)?),
+            ]));
         }
-        out["drawing"] = json!({ "name": first.name, "contours": contours });
+        out["drawing"] = object([
+            ("name", Value::String(first.name.clone())),
+            ("contours", Value::Array(contours)),
+        ]);
     }
     Ok(out)
 }
@@ -1075,8 +1083,10 @@ fn outline_file(obj: &Map<String, Value>) -> Result<crate::outline_io::Outlines,
 /// points keep a request near 70 MB; the library itself has no limit).
 pub const MAX_SPLINE_POINTS: usize = 20_000;
 
-/// Largest number of points in exact mode (a minimisation per point, seconds each).
-pub const MAX_EXACT_SPLINE_POINTS: usize = 64;
+/// Largest number of points in exact mode: a minimisation per point, 1.2 to 2 s each on a
+/// shared 2-core machine (measured: 16 closed points 22 s, 32 past the batch's 60 s
+/// deadline), so that a request within the limit ends inside `batch`'s default deadline.
+pub const MAX_EXACT_SPLINE_POINTS: usize = 16;
 
 /// The spline mode named by a protocol string ("table" or "exact").
 pub fn spline_mode(name: &str) -> aesthetic_curves::pseudo_spline::Mode {

@@ -27,12 +27,30 @@ pub fn outline_report(
     limit: usize,
 ) -> String {
     let mut order: Vec<usize> = (0..shapes.len()).collect();
-    let worst = |i: usize| checked[i].findings.first().map_or(0.0, |f| f.score);
-    order.sort_by(|&a, &b| {
-        worst(b)
-            .total_cmp(&worst(a))
-            .then(checked[b].findings.len().cmp(&checked[a].findings.len()))
-    });
+    order.sort_by(|&a, &b| worse_first(&checked[a], &checked[b]));
+    let drawn: Vec<(&Shape, &ShapeCheck)> = order
+        .iter()
+        .take(limit)
+        .map(|&i| (shapes[i], &checked[i]))
+        .collect();
+    outline_report_drawn(title, y_up, shapes.len(), &drawn)
+}
+
+/// The report's order: the highest finding score first, then the most findings.
+pub fn worse_first(a: &ShapeCheck, b: &ShapeCheck) -> std::cmp::Ordering {
+    let worst = |c: &ShapeCheck| c.findings.first().map_or(0.0, |f| f.score);
+    worst(b)
+        .total_cmp(&worst(a))
+        .then(b.findings.len().cmp(&a.findings.len()))
+}
+
+/// The report page of `total` shapes of which `drawn` (in order) are drawn.
+pub fn outline_report_drawn(
+    title: &str,
+    y_up: bool,
+    total: usize,
+    drawn: &[(&Shape, &ShapeCheck)],
+) -> String {
     let mut html = String::new();
     let _ = write!(
         html,
@@ -51,15 +69,15 @@ pub fn outline_report(
          <span style=\"color:#2ca02c\">- - suggested handles (monotone)</span></p>\n\
          <p>{n} shapes, the worst first{more}.</p>\n<div class=\"grid\">\n",
         t = esc(title),
-        n = shapes.len(),
-        more = if shapes.len() > limit {
-            format!("; the first {limit} are drawn")
+        n = total,
+        more = if total > drawn.len() {
+            format!("; the first {} are drawn", drawn.len())
         } else {
             String::new()
         }
     );
-    for &i in order.iter().take(limit) {
-        html.push_str(&picture(shapes[i], &checked[i], y_up));
+    for (shape, check) in drawn {
+        html.push_str(&picture(shape, check, y_up));
     }
     html.push_str("</div>\n</body></html>\n");
     html

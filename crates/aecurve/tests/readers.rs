@@ -320,3 +320,29 @@ fn mutated_svg_and_dxf_never_panic() {
     }
     assert!(t.elapsed() < Duration::from_secs(60), "{:?}", t.elapsed());
 }
+
+/// A path of more segments than one shape may have is listed with its count and what to do,
+/// not checked (its check alone would hold about 0.6 KB a segment), and the path beside it
+/// is read.
+#[test]
+fn a_shape_over_the_segment_limit_is_listed_with_its_count() {
+    use aecurve::outline_io::MAX_SHAPE_SEGMENTS;
+    let n = MAX_SHAPE_SEGMENTS + 1;
+    let mut svg = String::from(
+        r#"<svg xmlns="http://www.w3.org/2000/svg"><path id="small" d="M0 0 C1 2 3 2 4 0"/><path id="huge" d="M0 0"#,
+    );
+    for _ in 0..n {
+        svg.push_str("h1");
+    }
+    svg.push_str(r#""/></svg>"#);
+    let o = read_svg(svg.as_bytes()).unwrap();
+    let names: Vec<&str> = o.shapes.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["small"]);
+    assert_eq!(o.unreadable.len(), 1, "{:?}", o.unreadable);
+    let (name, why) = &o.unreadable[0];
+    assert_eq!(name, "huge");
+    assert!(
+        why.contains(&format!("{n} segments")) && why.contains("split it"),
+        "{why}"
+    );
+}

@@ -1,10 +1,11 @@
 //! `aecurve check FILE`: the exact curvature check of a font's glyphs or an SVG's paths
 //! (`aesthetic_curves::outline`), as a summary with the places most worth a look, or JSON.
 
-use aecurve::outline_io::{self, finding_json, shape_json, Outlines, ShapeCheck as Checked};
+use aecurve::outline_io::{self, finding_json, shape_json, Outlines, Shape, ShapeCheck as Checked};
 use aesthetic_curves::outline::{ContourCheck, Finding};
 use anyhow::Result;
 use serde_json::{json, Value};
+use std::io::Write;
 use std::path::Path;
 
 pub(crate) fn check(
@@ -58,114 +59,235 @@ pub(crate) fn check(
         );
         b
     });
-    let t1 = std::time::Instant::now();
     let tick = || {
         if let Some(b) = &bar {
             b.inc(1);
         }
     };
-    let checked: Vec<Checked> = outline_io::check_shapes(&shapes, &opts, &tick);
-    let check_ms = t1.elapsed().as_secs_f64() * 1e3;
+    let out = std::io::stdout();
+    let mut json = json_out.then(|| std::io::BufWriter::new(out.lock()));
+    if let Some(w) = &mut json {
+        write!(
+            w,
+            "{{\"file\":{},\"kind\":{},\"shapes\":",
+            json!(file.display().to_string()),
+            json!(outlines.kind)
+        )
+        .map_err(json_error)?;
+    }
+    let folded = fold_checks(&shapes, &opts, &tick, json.as_mut())?;
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    let count = |f: &dyn Fn(&ContourCheck) -> usize| -> usize {
-        checked.iter().flat_map(|c| c.contours.iter()).map(f).sum()
-    };
-    let segments = count(&|c| c.segments.len());
-    let monotone = count(&|c| c.monotone_count());
-    let curved = count(&|c| c.segments.iter().filter(|s| s.degree > 1).count());
-    let joins = count(&|c| c.joins.len());
-    let g1 = count(&|c| c.joins.iter().filter(|j| j.g1).count());
-    let g2 = count(&|c| c.joins.iter().filter(|j| j.g2).count());
-    let near = count(&|c| c.joins.iter().filter(|j| j.near_break).count());
-    let inflections = count(&|c| c.segments.iter().map(|s| s.inflections.len()).sum());
-    let suggested = count(&|c| c.segments.iter().filter(|s| s.suggestion.is_some()).count());
-    let exact = count(&|c| c.segments.iter().filter(|s| s.exact).count());
-    let retracted = count(&|c| c.segments.iter().filter(|s| !s.notes.is_empty()).count());
     if let Some(r) = report {
         let title = format!(
             "aecurve check: {}",
             file.file_name()
                 .map_or(String::new(), |n| n.to_string_lossy().to_string())
         );
+        // The drawn shapes are checked again (the fold keeps no shape's checks).
+        let drawn: Vec<&Shape> = folded
+            .worst
+            .iter()
+            .take(pictures)
+            .map(|&i| shapes[i])
+            .collect();
+        let checked = outline_io::check_shapes(&drawn, &opts, &|| {});
+        let pairs: Vec<_> = drawn.iter().copied().zip(checked.iter()).collect();
         // Fonts have y up; SVG (and its user units) y down; DXF y up.
-        let page = aecurve::report::outline_report(
-            &title,
-            outlines.kind != "svg",
-            &shapes,
-            &checked,
-            pictures,
-        );
+        let y_up = outlines.kind != "svg";
+        let page = aecurve::report::outline_report_drawn(&title, y_up, shapes.len(), &pairs);
         std::fs::write(r, page).map_err(|e| anyhow::anyhow!("writing {}: {e}", r.display()))?;
         if !json_out {
             eprintln!("wrote {}", r.display());
         }
     }
-    let mut ranked: Vec<(&str, &Finding)> = checked
-        .iter()
-        .flat_map(|c| c.findings.iter().map(move |f| (c.name, f)))
-        .collect();
-    ranked.sort_by(|a, b| b.1.score.total_cmp(&a.1.score));
-    if json_out {
-        // Streamed shape by shape (keys in the order serde_json sorts them), so memory
-        // grows with the file, not with a document of every shape's JSON at once.
-        let counts = json!({
-            "shapes": checked.len(), "segments": segments, "curved_segments": curved,
-            "monotone_segments": monotone, "inflections": inflections, "joins": joins,
-            "g1_joins": g1, "g2_joins": g2, "near_breaks": near, "suggestions": suggested,
-            "exact_arithmetic": exact, "retracted_handles": retracted,
-        });
-        let unreadable: Vec<Value> = outlines
-            .unreadable
-            .iter()
-            .map(|(n, e)| json!({"name": n, "error": e}))
-            .collect();
-        let out = std::io::stdout();
-        let mut w = std::io::BufWriter::new(out.lock());
-        let write = || -> std::io::Result<()> {
-            use std::io::Write;
-            write!(
-                w,
-                "{{\"counts\":{counts},\"file\":{},",
-                json!(file.display().to_string())
-            )?;
-            write!(w, "\"findings\":")?;
-            write_array(&mut w, ranked.iter().map(|(n, f)| finding_json(n, f)))?;
-            write!(w, ",\"kind\":{},", json!(outlines.kind))?;
-            write!(
-                w,
-                "\"milliseconds\":{},\"shapes\":",
-                json!({"read": read_ms, "check": check_ms})
-            )?;
-            write_array(&mut w, checked.iter().map(shape_json))?;
-            writeln!(w, ",\"unreadable\":{}}}", Value::Array(unreadable))?;
-            w.flush()
-        };
-        write().map_err(|e| anyhow::anyhow!("writing the JSON report: {e}"))?;
-        return Ok(());
+    let times = (read_ms, folded.check_ms);
+    match json {
+        Some(mut w) => write_json_tail(&mut w, &folded, &outlines, times).map_err(json_error),
+        None => {
+            print_summary(file, &outlines, &folded, (&opts, suggest), times);
+            print_findings(&folded.ranked, top);
+            Ok(())
+        }
     }
+}
+
+fn json_error(e: std::io::Error) -> anyhow::Error {
+    anyhow::anyhow!("writing the JSON report: {e}")
+}
+
+/// The counts of the summary, folded shape by shape.
+#[derive(Default)]
+struct Tally {
+    shapes: usize,
+    segments: usize,
+    curved: usize,
+    monotone: usize,
+    inflections: usize,
+    joins: usize,
+    g1: usize,
+    g2: usize,
+    near: usize,
+    suggested: usize,
+    exact: usize,
+    retracted: usize,
+}
+
+impl Tally {
+    fn add(&mut self, c: &Checked) {
+        self.shapes += 1;
+        for k in &c.contours {
+            self.add_contour(k);
+        }
+    }
+
+    fn add_contour(&mut self, c: &ContourCheck) {
+        let segs = &c.segments;
+        self.segments += segs.len();
+        self.monotone += c.monotone_count();
+        self.curved += segs.iter().filter(|s| s.degree > 1).count();
+        self.inflections += segs.iter().map(|s| s.inflections.len()).sum::<usize>();
+        self.suggested += segs.iter().filter(|s| s.suggestion.is_some()).count();
+        self.exact += segs.iter().filter(|s| s.exact).count();
+        self.retracted += segs.iter().filter(|s| !s.notes.is_empty()).count();
+        self.joins += c.joins.len();
+        self.g1 += c.joins.iter().filter(|j| j.g1).count();
+        self.g2 += c.joins.iter().filter(|j| j.g2).count();
+        self.near += c.joins.iter().filter(|j| j.near_break).count();
+    }
+
+    fn json(&self) -> Value {
+        json!({
+            "shapes": self.shapes, "segments": self.segments, "curved_segments": self.curved,
+            "monotone_segments": self.monotone, "inflections": self.inflections,
+            "joins": self.joins, "g1_joins": self.g1, "g2_joins": self.g2,
+            "near_breaks": self.near, "suggestions": self.suggested,
+            "exact_arithmetic": self.exact, "retracted_handles": self.retracted,
+        })
+    }
+}
+
+/// What the fold keeps of the checks: the counts, every finding (ranked, worst first) and
+/// the shapes' indices, worst first (for the report's pictures).
+struct Folded<'a> {
+    tally: Tally,
+    ranked: Vec<(&'a str, Finding)>,
+    worst: Vec<usize>,
+    check_ms: f64,
+}
+
+/// Shapes checked per round: enough to keep every core busy, few enough that memory holds
+/// the checks of a few hundred shapes (plus the largest), not of the whole file.
+const ROUND: usize = 256;
+
+/// Check `shapes` round by round, folding each shape's check into counts and findings (and
+/// writing its JSON to `json`) before the next round, so that memory grows with the file
+/// and its findings, not with the checks of every segment.
+fn fold_checks<'a>(
+    shapes: &[&'a Shape],
+    opts: &aesthetic_curves::outline::OutlineOptions,
+    tick: &(dyn Fn() + Sync),
+    mut json: Option<&mut impl Write>,
+) -> Result<Folded<'a>> {
+    let mut tally = Tally::default();
+    let mut ranked = Vec::new();
+    let mut scores = Vec::with_capacity(shapes.len());
+    let mut check_ms = 0.0;
+    if let Some(w) = json.as_mut() {
+        w.write_all(b"[").map_err(json_error)?;
+    }
+    for (round, chunk) in shapes.chunks(ROUND).enumerate() {
+        let t = std::time::Instant::now();
+        let checked = outline_io::check_shapes(chunk, opts, tick);
+        check_ms += t.elapsed().as_secs_f64() * 1e3;
+        for (j, c) in checked.into_iter().enumerate() {
+            tally.add(&c);
+            if let Some(w) = json.as_mut() {
+                if round + j > 0 {
+                    w.write_all(b",").map_err(json_error)?;
+                }
+                serde_json::to_writer(&mut **w, &shape_json(&c))?;
+            }
+            let worst = c.findings.first().map_or(0.0, |f| f.score);
+            scores.push((round * ROUND + j, worst, c.findings.len()));
+            ranked.extend(c.findings.into_iter().map(|f| (c.name, f)));
+        }
+    }
+    if let Some(w) = json.as_mut() {
+        w.write_all(b"]").map_err(json_error)?;
+    }
+    ranked.sort_by(|a, b| b.1.score.total_cmp(&a.1.score));
+    scores.sort_by(|a, b| b.1.total_cmp(&a.1).then(b.2.cmp(&a.2)));
+    Ok(Folded {
+        tally,
+        ranked,
+        worst: scores.into_iter().map(|(i, ..)| i).collect(),
+        check_ms,
+    })
+}
+
+/// The rest of `check --json` after the streamed shapes.
+fn write_json_tail(
+    w: &mut impl Write,
+    folded: &Folded,
+    outlines: &Outlines,
+    (read_ms, check_ms): (f64, f64),
+) -> std::io::Result<()> {
+    let unreadable: Vec<Value> = outlines
+        .unreadable
+        .iter()
+        .map(|(n, e)| json!({"name": n, "error": e}))
+        .collect();
+    write!(w, ",\"counts\":{},\"findings\":", folded.tally.json())?;
+    write_array(w, folded.ranked.iter().map(|(n, f)| finding_json(n, f)))?;
+    write!(
+        w,
+        ",\"milliseconds\":{},\"unreadable\":{}}}",
+        json!({"read": read_ms, "check": check_ms}),
+        Value::Array(unreadable)
+    )?;
+    writeln!(w)?;
+    w.flush()
+}
+
+fn print_summary(
+    file: &Path,
+    outlines: &Outlines,
+    folded: &Folded,
+    (opts, suggest): (&aesthetic_curves::outline::OutlineOptions, Option<f64>),
+    (read_ms, check_ms): (f64, f64),
+) {
+    let t = &folded.tally;
+    let (segments, monotone, exact) = (t.segments, t.monotone, t.exact);
     println!(
-        "{} ({}): {} {}, {segments} segments ({curved} curved), {joins} joins",
+        "{} ({}): {} {}, {segments} segments ({} curved), {} joins",
         file.display(),
         outlines.kind,
-        checked.len(),
+        t.shapes,
         if outlines.kind == "font" {
             "glyphs"
         } else {
             "paths"
-        }
+        },
+        t.curved,
+        t.joins
     );
     println!(
-        "  curvature monotone: {monotone} of {segments} segments ({} not, or flagged); {inflections} inflection(s) inside segments",
-        segments - monotone
+        "  curvature monotone: {monotone} of {segments} segments ({} not, or flagged); {} inflection(s) inside segments",
+        segments - monotone,
+        t.inflections
     );
     println!(
-        "  proofs: every verdict exact for the file's coordinates; {exact} of {segments} needed exact integer arithmetic ({:.2} %); {retracted} segment(s) with retracted handles",
-        if segments > 0 { 100.0 * exact as f64 / segments as f64 } else { 0.0 }
+        "  proofs: every verdict exact for the file's coordinates; {exact} of {segments} needed exact integer arithmetic ({:.2} %); {} segment(s) with retracted handles",
+        if segments > 0 { 100.0 * exact as f64 / segments as f64 } else { 0.0 },
+        t.retracted
     );
     println!(
-        "  joins: {g1} G1 (of which {g2} G2), {near} near-breaks (above G1{} and under 3°: probably meant smooth)",
+        "  joins: {} G1 (of which {} G2), {} near-breaks (above G1{} and under 3°: probably meant smooth)",
+        t.g1,
+        t.g2,
+        t.near,
         if opts.grid > 0.0 { " and the integer grid's rounding" } else { "" }
     );
     if !outlines.unreadable.is_empty() {
@@ -176,24 +298,28 @@ pub(crate) fn check(
     }
     if let Some(t) = suggest {
         println!(
-            "  suggestions: {suggested} cubics become monotone by their handle lengths alone, moving at most {t}"
+            "  suggestions: {} cubics become monotone by their handle lengths alone, moving at most {t}",
+            folded.tally.suggested
         );
     }
     println!("  read in {read_ms:.1} ms, checked in {check_ms:.1} ms");
-    if !ranked.is_empty() {
-        println!(
-            "most worth a look ({} of {}):",
-            top.min(ranked.len()),
-            ranked.len()
-        );
-        for (n, f) in ranked.iter().take(top) {
-            println!(
-                "  {n}, contour {}, segment {} at ({:.1}, {:.1}): {}",
-                f.contour, f.segment, f.point.x, f.point.y, f.message
-            );
-        }
+}
+
+fn print_findings(ranked: &[(&str, Finding)], top: usize) {
+    if ranked.is_empty() {
+        return;
     }
-    Ok(())
+    println!(
+        "most worth a look ({} of {}):",
+        top.min(ranked.len()),
+        ranked.len()
+    );
+    for (n, f) in ranked.iter().take(top) {
+        println!(
+            "  {n}, contour {}, segment {} at ({:.1}, {:.1}): {}",
+            f.contour, f.segment, f.point.x, f.point.y, f.message
+        );
+    }
 }
 
 /// A JSON array written element by element (none of them held beyond its own writing).
