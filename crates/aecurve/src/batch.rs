@@ -196,6 +196,47 @@ mod tests {
         );
     }
 
+    /// An outline check past its deadline stops (cooperative cancellation reaches the
+    /// worker threads of the check), answers `timeout`, and the batch goes on: 10,000
+    /// segments of degree 20 take seconds (optimised) to check in full.
+    #[test]
+    fn an_outline_check_stops_at_its_deadline() {
+        let segs: Vec<Value> = (0..10_000)
+            .map(|i| {
+                let pts: Vec<[f64; 2]> = (0..21)
+                    .map(|j| [(i * 20 + j) as f64, ((i * 20 + j) as f64).sin()])
+                    .collect();
+                serde_json::json!({ "control_points": pts })
+            })
+            .collect();
+        let big = serde_json::json!({"id": 1, "op": "outline.check", "segments": segs});
+        let ok = serde_json::json!({"id": 2, "op": "outline.check", "path": "M0 0 C1 2 3 2 4 0"});
+        let input = format!("{big}\n{ok}\n");
+        let t = std::time::Instant::now();
+        let mut out = Vec::new();
+        let timeout = std::time::Duration::from_millis(300);
+        run_with_timeout(input.as_bytes(), &mut out, 1 << 28, timeout).unwrap();
+        let r: Vec<Value> = String::from_utf8(out)
+            .unwrap()
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect();
+        assert_eq!(r.len(), 2);
+        assert_eq!(
+            r[0]["error"]["kind"],
+            "timeout",
+            "{:.300}",
+            r[0].to_string()
+        );
+        assert_eq!(r[1]["ok"], true);
+        // Reading the request is most of what is left (the check itself stopped).
+        assert!(
+            t.elapsed() < std::time::Duration::from_secs(5),
+            "{:?}",
+            t.elapsed()
+        );
+    }
+
     #[test]
     fn a_bad_line_never_stops_the_batch() {
         let input = b"{\"id\":1,\"op\":\"bezier.curvature_monotone\",\"control_points\":[[0,0],[1,0],[2,1]]}\n\

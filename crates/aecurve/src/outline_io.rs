@@ -336,9 +336,9 @@ fn read_font_inner(data: &[u8]) -> Result<Outlines> {
             raw[gid as usize].clone()
         };
         let drawn = contained(|| {
-            let glyph = outlines.get(GlyphId::new(gid)).ok_or_else(|| {
-                anyhow::anyhow!("glyph {gid} has no outline in the font's tables")
-            })?;
+            let glyph = outlines
+                .get(GlyphId::new(gid))
+                .ok_or_else(|| anyhow::anyhow!("glyph {gid}: {}", why_no_outline(&font, gid)))?;
             let mut pen = Collector::default();
             let settings = DrawSettings::unhinted(Size::unscaled(), LocationRef::default());
             glyph
@@ -376,6 +376,52 @@ fn svg_options(images: std::sync::Arc<std::sync::atomic::AtomicUsize>) -> usvg::
             }),
         },
         ..usvg::Options::default()
+    }
+}
+
+/// Components the font reader follows (skrifa's limit, as FreeType's).
+const COMPONENT_DEPTH_LIMIT: usize = 32;
+
+/// Why the font reader gives no outline for glyph `gid`: a TrueType composite nested deeper
+/// than it follows, or one whose components lead back to itself, or else a table it cannot
+/// read.
+fn why_no_outline(font: &FontRef, gid: u32) -> String {
+    use skrifa::raw::tables::glyf::Glyph;
+    use skrifa::raw::TableProvider;
+    let (Ok(loca), Ok(glyf)) = (font.loca(None), font.glyf()) else {
+        return "no outline in the font's tables (its outline table cannot be read)".into();
+    };
+    // Depth-first over the components: the deepest chain, and whether one comes back.
+    let mut stack = vec![(GlyphId::new(gid), 0usize, vec![gid])];
+    let mut deepest = 0;
+    while let Some((g, depth, chain)) = stack.pop() {
+        deepest = deepest.max(depth);
+        if depth > COMPONENT_DEPTH_LIMIT || stack.len() > 10_000 {
+            break;
+        }
+        if let Ok(Some(Glyph::Composite(c))) = loca.get_glyf(g, &glyf) {
+            for comp in c.components() {
+                let next = comp.glyph.to_u32();
+                if chain.contains(&next) {
+                    return format!(
+                        "a composite whose components lead back to itself (through glyph \
+                         {next}); break the loop in its components"
+                    );
+                }
+                let mut longer = chain.clone();
+                longer.push(next);
+                stack.push((GlyphId::new(next), depth + 1, longer));
+            }
+        }
+    }
+    if deepest > COMPONENT_DEPTH_LIMIT {
+        format!(
+            "a composite nested more than {COMPONENT_DEPTH_LIMIT} deep (components of \
+             components), more than the font reader follows; decompose it, or flatten its \
+             components"
+        )
+    } else {
+        "no outline in the font's tables (a damaged glyph record?)".into()
     }
 }
 
@@ -883,6 +929,18 @@ fn dxf_contour(e: &dxf::entities::EntityType) -> std::result::Result<Option<Cont
 }
 
 fn dxf_spline(sp: &dxf::entities::Spline) -> std::result::Result<Contour, String> {
+    // The DXF reader pairs x, y and z (group codes 10, 20, 30) in order and stops at the
+    // shortest list: control points without a z vanish (or pair with the wrong z). The count
+    // the file declares (group code 73) shows it.
+    let declared = sp.__number_of_control_points_ignored;
+    if declared > 0 && declared as usize != sp.control_points.len() {
+        return Err(format!(
+            "a spline declaring {declared} control points (group code 73) of which {} are \
+             complete: each needs its x, y and z (group codes 10, 20 and 30, z 0 in a 2D \
+             drawing); save the drawing again from a CAD program",
+            sp.control_points.len()
+        ));
+    }
     if sp.control_points.is_empty() {
         return Err(if sp.fit_points.is_empty() {
             "a spline with no control points".into()
@@ -1091,28 +1149,33 @@ pub fn options_for(outlines: &Outlines) -> OutlineOptions {
     }
 }
 
-/// Check `shapes` (in parallel), calling `tick` once per shape (a progress bar).
+/// Check `shapes` (in parallel, the worker threads under the caller's deadline: past it,
+/// segments are flagged as not checked), calling `tick` once per shape (a progress bar).
 pub fn check_shapes<'a>(
     shapes: &[&'a Shape],
     opts: &OutlineOptions,
     tick: &(dyn Fn() + Sync),
 ) -> Vec<ShapeCheck<'a>> {
+    use aesthetic_curves::deadline;
     use rayon::prelude::*;
+    let deadline = deadline::current();
     shapes
         .par_iter()
         .map(|s| {
-            tick();
-            let contours: Vec<ContourCheck> = s
-                .contours
-                .iter()
-                .map(|c| check_contour(&c.segments, c.closed, opts))
-                .collect();
-            let findings = findings(&contours, opts);
-            ShapeCheck {
-                name: &s.name,
-                contours,
-                findings,
-            }
+            deadline::inherit(deadline, || {
+                tick();
+                let contours: Vec<ContourCheck> = s
+                    .contours
+                    .iter()
+                    .map(|c| check_contour(&c.segments, c.closed, opts))
+                    .collect();
+                let findings = findings(&contours, opts);
+                ShapeCheck {
+                    name: &s.name,
+                    contours,
+                    findings,
+                }
+            })
         })
         .collect()
 }

@@ -98,27 +98,66 @@ fn requests_at_the_limits() -> Vec<(&'static str, Value)> {
     let thetas: Vec<f64> = (0..100_000).map(|i| i as f64 * 1e-5).collect();
     let arc = |n: usize| (0..n).map(|i| [i as f64 * 1e-4, (i as f64 * 1e-4).powi(2) * 0.3]);
     vec![
-        ("bezier.curvature_monotone, 1,000,000 samples", json!({"op": "bezier.curvature_monotone",
-            "control_points": [[0, 0], [1, 2], [3, 3], [4, 0]], "method": "sampling", "samples": 1_000_000})),
-        ("bezier.curvature_monotone, degree 20, draw 2000", json!({"op": "bezier.curvature_monotone",
-            "control_points": wave(21).iter().map(|p| [p[0] * 100.0, p[1]]).collect::<Vec<_>>(), "draw": 2000})),
-        ("lac.point, 100,000 angles", json!({"op": "lac.point", "alpha": -1, "lambda": 0.2, "theta": thetas})),
-        ("lac.segment, 100,000 samples, draw 2000", json!({"op": "lac.segment", "alpha": -1,
-            "control": [[0, 0], [10, 0], [16, 9]], "samples": 100_000, "draw": 2000})),
-        ("lcg.estimate, 100,000 points", json!({"op": "lcg.estimate", "points": wave(100_000)})),
-        ("lac.rational_approx, tolerance 1e-9, draw 2000", json!({"op": "lac.rational_approx",
-            "alpha": -1, "control": [[0, 0], [10, 0], [16, 9]], "tolerance": 1e-9, "draw": 2000})),
-        ("spline.pseudo_elastic, 20,000 points, draw 10", json!({"op": "spline.pseudo_elastic",
-            "points": wave(20_000), "draw": 10})),
-        ("spline.pseudo_elastic, exact, 16 points", json!({"op": "spline.pseudo_elastic",
-            "points": circle16, "closed": true, "mode": "exact"})),
-        ("lac.fit, 20,000 points", json!({"op": "lac.fit", "points": arc(20_000).collect::<Vec<_>>()})),
-        ("sketch.fit, 20,000 points, draw 1000", json!({"op": "sketch.fit", "points": wave(20_000), "draw": 1000})),
-        ("outline.check, 10,000 cubics as a path, draw 20", json!({"op": "outline.check", "path": path, "draw": 20})),
-        ("outline.check, 10,000 segments of degree 20, draw 20", json!({"op": "outline.check",
-            "segments": degree20, "draw": 20})),
-        ("outline.check, a font's glyph, draw 1000", json!({"op": "outline.check", "shape": 100,
-            "draw": 1000, "file": {"name": "DejaVuSans.ttf", "base64": font_base64()}})),
+        (
+            "bezier.curvature_monotone, 1,000,000 samples",
+            json!({"op": "bezier.curvature_monotone",
+            "control_points": [[0, 0], [1, 2], [3, 3], [4, 0]], "method": "sampling", "samples": 1_000_000}),
+        ),
+        (
+            "bezier.curvature_monotone, degree 20, draw 2000",
+            json!({"op": "bezier.curvature_monotone",
+            "control_points": wave(21).iter().map(|p| [p[0] * 100.0, p[1]]).collect::<Vec<_>>(), "draw": 2000}),
+        ),
+        (
+            "lac.point, 100,000 angles",
+            json!({"op": "lac.point", "alpha": -1, "lambda": 0.2, "theta": thetas}),
+        ),
+        (
+            "lac.segment, 100,000 samples, draw 2000",
+            json!({"op": "lac.segment", "alpha": -1,
+            "control": [[0, 0], [10, 0], [16, 9]], "samples": 100_000, "draw": 2000}),
+        ),
+        (
+            "lcg.estimate, 100,000 points",
+            json!({"op": "lcg.estimate", "points": wave(100_000)}),
+        ),
+        (
+            "lac.rational_approx, tolerance 1e-9, draw 2000",
+            json!({"op": "lac.rational_approx",
+            "alpha": -1, "control": [[0, 0], [10, 0], [16, 9]], "tolerance": 1e-9, "draw": 2000}),
+        ),
+        (
+            "spline.pseudo_elastic, 20,000 points, draw 10",
+            json!({"op": "spline.pseudo_elastic",
+            "points": wave(20_000), "draw": 10}),
+        ),
+        (
+            "spline.pseudo_elastic, exact, 16 points",
+            json!({"op": "spline.pseudo_elastic",
+            "points": circle16, "closed": true, "mode": "exact"}),
+        ),
+        (
+            "lac.fit, 20,000 points",
+            json!({"op": "lac.fit", "points": arc(20_000).collect::<Vec<_>>()}),
+        ),
+        (
+            "sketch.fit, 20,000 points, draw 1000",
+            json!({"op": "sketch.fit", "points": wave(20_000), "draw": 1000}),
+        ),
+        (
+            "outline.check, 10,000 cubics as a path, draw 20",
+            json!({"op": "outline.check", "path": path, "draw": 20}),
+        ),
+        (
+            "outline.check, 10,000 segments of degree 20, draw 20",
+            json!({"op": "outline.check",
+            "segments": degree20, "draw": 20}),
+        ),
+        (
+            "outline.check, a font's glyph, draw 1000",
+            json!({"op": "outline.check", "shape": 100,
+            "draw": 1000, "file": {"name": "DejaVuSans.ttf", "base64": font_base64()}}),
+        ),
     ]
 }
 
@@ -130,7 +169,12 @@ fn every_op_at_its_limits_answers_under_the_memory_bound() {
         let (answer, mb, time) = run_one(&request);
         eprintln!("{name}: {mb:.0} MB, {:.2} s", time.as_secs_f64());
         assert_eq!(answer["id"], json!(name));
-        assert_eq!(answer["ok"], json!(true), "{name}: {:.400}", answer.to_string());
+        assert_eq!(
+            answer["ok"],
+            json!(true),
+            "{name}: {:.400}",
+            answer.to_string()
+        );
         assert!(
             mb < MEMORY_BOUND_MB,
             "{name}: {mb:.0} MB, over the bound of {MEMORY_BOUND_MB} MB"

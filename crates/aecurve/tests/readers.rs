@@ -346,3 +346,61 @@ fn a_shape_over_the_segment_limit_is_listed_with_its_count() {
         "{why}"
     );
 }
+
+/// Composites nested deeper than the font reader follows, and two that refer to each
+/// other, are listed with that reason (they were "no outline in the font's tables"), and the
+/// other glyphs are read. The font is made by `tests/data/deep_composites.py` (fontTools): a
+/// chain `c0` … `c39` of composites over one simple glyph, and `loopa` ↔ `loopb`.
+#[test]
+fn composites_too_deep_or_in_a_loop_are_named_as_such() {
+    let font = include_bytes!("data/deep_composites.ttf");
+    let o = read_font(font).unwrap();
+    let why = |name: &str| {
+        o.unreadable
+            .iter()
+            .find(|u| u.0 == name)
+            .map(|u| u.1.clone())
+            .unwrap_or_else(|| panic!("{name} is not listed: {:?}", o.unreadable))
+    };
+    assert!(
+        why("c32").contains("nested more than 32 deep"),
+        "{}",
+        why("c32")
+    );
+    assert!(
+        why("loopa").contains("lead back to itself"),
+        "{}",
+        why("loopa")
+    );
+    // c0 … c31 are 32 levels at most: read, as the simple glyph under them.
+    assert!(o.shapes.iter().any(|s| s.name == "c31"));
+    assert_eq!(
+        o.shapes.len() + o.unreadable.len(),
+        44,
+        "every glyph is read or listed"
+    );
+}
+
+/// A 2D SPLINE whose control points carry no z (group code 30): the DXF reader pairs x, y
+/// and z in order, so its control points vanished and the spline was reported as "given by
+/// fit points only". It is listed with the count the file declares and the cause.
+#[test]
+fn a_spline_whose_control_points_lack_z_is_named_as_such() {
+    let mut text = String::from(
+        "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n8\n0\n70\n8\n71\n3\n72\n8\n73\n4\n74\n0\n",
+    );
+    for k in [0, 0, 0, 0, 1, 1, 1, 1] {
+        text.push_str(&format!("40\n{k}.0\n"));
+    }
+    for (x, y) in [(0, 0), (1, 2), (3, 2), (4, 0)] {
+        text.push_str(&format!("10\n{x}.0\n20\n{y}.0\n"));
+    }
+    text.push_str("0\nENDSEC\n0\nEOF\n");
+    let o = read_dxf(text.as_bytes()).unwrap();
+    assert!(o.shapes.is_empty(), "{:?}", o.shapes);
+    let why = &o.unreadable.first().expect("the spline is listed").1;
+    assert!(
+        why.contains("declaring 4 control points") && why.contains("group codes 10, 20 and 30"),
+        "{why}"
+    );
+}

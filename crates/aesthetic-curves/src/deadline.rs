@@ -25,6 +25,20 @@ pub fn with_deadline<T>(deadline: Instant, f: impl FnOnce() -> T) -> T {
     f()
 }
 
+/// This thread's deadline, if any (to hand to worker threads with [`inherit`]).
+pub fn current() -> Option<Instant> {
+    DEADLINE.with(|d| d.get())
+}
+
+/// Run `f` under `deadline` when there is one (a worker thread taking on its caller's
+/// deadline, from [`current`]), else as it is.
+pub fn inherit<T>(deadline: Option<Instant>, f: impl FnOnce() -> T) -> T {
+    match deadline {
+        Some(d) => with_deadline(d, f),
+        None => f(),
+    }
+}
+
 /// Whether this thread's deadline has passed.
 pub fn expired() -> bool {
     DEADLINE

@@ -266,9 +266,16 @@ fn end_tangent(c: &RationalBezier, start: bool) -> Option<Vec2> {
         (p[p.len() - 1], Box::new(p.iter().rev().skip(1)))
     };
     let q = others.find(|q| **q != end)?;
-    let v = if start { *q - end } else { end - *q };
-    let l = v.hypot();
-    (l > 0.0 && l.is_finite()).then(|| v / l)
+    // Halved first: the difference of two finite coordinates near ±1.8e308 overflows, and
+    // a segment of such points is not a point. The direction is the same.
+    let (a, b) = (q.to_vec2() * 0.5, end.to_vec2() * 0.5);
+    let v = if start { a - b } else { b - a };
+    // Scaled to its largest component before the length (whose square would overflow or
+    // underflow near the ends of the range); v is not zero: q != end.
+    let m = v.x.abs().max(v.y.abs());
+    let u = v / m;
+    let l = u.hypot();
+    (m > 0.0 && l.is_finite()).then(|| u / l)
 }
 
 /// A signed end curvature as a number: ±infinity where it is unbounded.
@@ -312,6 +319,12 @@ pub fn check_segment_with(c: &RationalBezier, opts: &OutlineOptions) -> SegmentC
     };
     if end_tangent(c, true).is_none() {
         out.flag = Some("the segment is a point (all control points coincide)".into());
+        return out;
+    }
+    // Cooperative cancellation: once the caller's deadline has passed, the rest of an outline
+    // is flagged instead of checked (and the caller, seeing the deadline, answers timeout).
+    if crate::deadline::expired() {
+        out.flag = Some("not checked: the work ran past its deadline".into());
         return out;
     }
     let r = match c.curvature_monotone() {
@@ -487,6 +500,42 @@ pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding
 mod tests {
     use super::*;
     use crate::Bezier;
+
+    /// A contour from -1e308 to 1.6e308 is checked like the same contour at unit scale
+    /// (its segments were flagged "a point", their tangents' differences overflowing), with
+    /// the same join angle and the end curvatures divided by the scale.
+    #[test]
+    fn a_contour_across_the_whole_range_is_checked_as_at_unit_scale() {
+        let unit = [
+            cubic([-1.0, 0.0, -0.5, 0.1, 0.5, 0.1, 1.0, 0.0]),
+            cubic([1.0, 0.0, 1.2, -0.1, 1.5, -0.5, 1.6, -1.0]),
+        ];
+        let big: Vec<RationalBezier> = unit
+            .iter()
+            .map(|c| {
+                let q = c
+                    .points()
+                    .iter()
+                    .map(|p| Point::new(p.x * 1e308, p.y * 1e308));
+                Bezier::new(q.collect()).unwrap().to_rational()
+            })
+            .collect();
+        let opts = OutlineOptions::default();
+        let (a, b) = (
+            check_contour(&unit, false, &opts),
+            check_contour(&big, false, &opts),
+        );
+        for (s, t) in a.segments.iter().zip(&b.segments) {
+            assert_eq!(t.flag, None);
+            assert_eq!(s.monotone, t.monotone);
+            let ((k0, k1), (m0, m1)) = (s.end_curvatures.unwrap(), t.end_curvatures.unwrap());
+            for (k, m) in [(k0, m0), (k1, m1)] {
+                assert!((m * 1e308 - k).abs() < 1e-6 * k.abs(), "{k} vs {m}");
+            }
+        }
+        let (j, k) = (&a.joins[0], &b.joins[0]);
+        assert!((j.angle_break - k.angle_break).abs() < 1e-12);
+    }
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)

@@ -205,3 +205,60 @@ fn fast_verdict_agrees_with_the_full_analysis() {
         }
     }
 }
+
+/// Scaled by 2^1021 (exact: a power of two), curves whose control points differ by more
+/// than the largest double keep their verdict, their extrema and their end curvatures
+/// (divided by the scale): the differences of the coordinates overflowed before, and the end
+/// curvatures came out infinite or NaN (`null` in `check --json`).
+#[test]
+fn curves_at_the_top_of_the_range_keep_verdicts_and_end_curvatures() {
+    let s = 2f64.powi(1021);
+    let mut overflowing = 0;
+    let scale = |p: &[Point]| -> Option<Vec<Point>> {
+        let q: Vec<Point> = p.iter().map(|p| Point::new(p.x * s, p.y * s)).collect();
+        q.iter()
+            .all(|p| p.x.is_finite() && p.y.is_finite())
+            .then_some(q)
+    };
+    let check = |a: aesthetic_curves::monotone::MonotoneReport,
+                 b: aesthetic_curves::monotone::MonotoneReport| {
+        assert_eq!(a.monotone, b.monotone);
+        assert_eq!(a.extrema.len(), b.extrema.len());
+        for (x, y) in a.extrema.iter().zip(&b.extrema) {
+            assert!((x - y).abs() < 1e-12, "{x} {y}");
+        }
+        for (e, f) in a.ends.iter().zip(&b.ends) {
+            let (Some(k), Some(kb)) = (e.value(), f.value()) else {
+                assert_eq!(e.value().is_none(), f.value().is_none(), "{e:?} {f:?}");
+                continue;
+            };
+            assert!(kb.is_finite(), "{f:?}");
+            let back = kb * s;
+            assert!((back - k).abs() <= 1e-9 * k.abs() + 1e-15, "{k} vs {back}");
+        }
+    };
+    for degree in [2, 3, 4, 5] {
+        for c in random_curves(degree, 60, 5) {
+            let Some(q) = scale(c.points()) else { continue };
+            let spread = q
+                .iter()
+                .any(|a| q.iter().any(|b| (a.x - b.x).is_infinite()));
+            overflowing += spread as usize;
+            let big = Bezier::new(q).unwrap();
+            if let (Ok(a), Ok(b)) = (c.curvature_monotone(), big.curvature_monotone()) {
+                check(a, b);
+            }
+        }
+        for c in aesthetic_curves::samples::random_rational_curves(degree, 30, 6) {
+            let Some(q) = scale(c.points()) else { continue };
+            let big = RationalBezier::new(q, c.weights().to_vec()).unwrap();
+            if let (Ok(a), Ok(b)) = (c.curvature_monotone(), big.curvature_monotone()) {
+                check(a, b);
+            }
+        }
+    }
+    assert!(
+        overflowing > 20,
+        "{overflowing} curves whose differences overflow"
+    );
+}

@@ -221,9 +221,23 @@ fn bounded(inp: &Input) -> Lifted<Bounded> {
     let n = p.len();
     let mut d = vec![(Bounded::exact(0.0), Bounded::exact(0.0)); n * n];
     let mut big = 0.0f64;
+    // Coordinates near the top of the range are halved first, so that their differences do
+    // not overflow (halving is exact, apart from a subnormal's last bit: its bound says so).
+    let huge = p
+        .iter()
+        .any(|q| q.x.abs().max(q.y.abs()) >= 2f64.powi(1022));
+    let half = if huge { 0.5 } else { 1.0 };
+    let halved_diff = |a: f64, b: f64| {
+        let (ha, hb) = (a * half, b * half);
+        let mut d = Bounded::diff(ha, hb);
+        if ha / half != a || hb / half != b {
+            d.e += 2.0 * f64::from_bits(1);
+        }
+        d
+    };
     for j in 0..n {
         for i in 0..n {
-            let v = (Bounded::diff(p[j].x, p[i].x), Bounded::diff(p[j].y, p[i].y));
+            let v = (halved_diff(p[j].x, p[i].x), halved_diff(p[j].y, p[i].y));
             big = big.max(v.0.v.abs()).max(v.1.v.abs());
             d[j * n + i] = v;
         }
@@ -240,7 +254,7 @@ fn bounded(inp: &Input) -> Lifted<Bounded> {
             .collect()
     });
     Lifted {
-        length_scale: 2f64.powi(k.clamp(-1000, 1000)),
+        length_scale: 2f64.powi(k.clamp(-1000, 1000)) * half,
         ..lift(inp, diff, w.as_deref())
     }
 }
