@@ -75,20 +75,25 @@ fn font_base64() -> String {
     base64::engine::general_purpose::STANDARD.encode(font)
 }
 
-/// The requests at (or next to) each op's limits, named.
-fn requests_at_the_limits() -> Vec<(&'static str, Value)> {
-    let path = std::iter::once("M0 0".to_string())
-        .chain((0..10_000).map(|i| format!("c1 2 3 {} 5 {}", i % 7, i % 5)))
-        .collect::<Vec<_>>()
-        .join(" ");
-    let degree20: Vec<Value> = (0..10_000)
+/// 10,000 consecutive segments of degree 20 (the most `outline.check` takes), wavy.
+fn degree20_segments() -> Vec<Value> {
+    (0..10_000)
         .map(|i| {
             let pts: Vec<[f64; 2]> = (0..21)
                 .map(|j| [(i * 20 + j) as f64, ((i * 20 + j) as f64).sin()])
                 .collect();
             json!({ "control_points": pts })
         })
-        .collect();
+        .collect()
+}
+
+/// The requests at (or next to) each op's limits, named.
+fn requests_at_the_limits() -> Vec<(&'static str, Value)> {
+    let path = std::iter::once("M0 0".to_string())
+        .chain((0..10_000).map(|i| format!("c1 2 3 {} 5 {}", i % 7, i % 5)))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let degree20 = degree20_segments();
     let circle16: Vec<[f64; 2]> = (0..16)
         .map(|i| {
             let a = std::f64::consts::TAU * i as f64 / 16.0;
@@ -202,6 +207,12 @@ fn requests_over_the_limits_are_refused_at_once() {
             json!({"op": "spline.pseudo_elastic", "points": wave(20_000), "draw": 11}),
             "draw",
             "at most 10 points per piece",
+        ),
+        // 10,000 degree-20 segments drawn at 21 points: refused after 21.8 s of work before.
+        (
+            json!({"op": "outline.check", "segments": degree20_segments(), "draw": 21}),
+            "draw",
+            "at most 20 points per piece",
         ),
     ];
     for (request, field, words) in cases {
