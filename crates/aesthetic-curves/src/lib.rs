@@ -85,6 +85,8 @@
 //! - [`deadline`]: cooperative cancellation: work run under a deadline stops with a
 //!   `timeout` error once it has passed.
 //! - [`error`]: the one error type, [`Error`], whose kinds are the JSON protocol's.
+//! - [`harmonize`]: smooth joins of cubic contours made G2 by sliding handles along their
+//!   tangents, within a tolerance and on a grid, never making a join or a segment worse.
 //! - [`lac`]: log-aesthetic curves: standard form, segments from three control points,
 //!   segments with an inflection end.
 //! - [`lac_fit`]: the single least-squares LAC segment through points.
@@ -127,6 +129,7 @@ pub mod curve;
 pub mod deadline;
 pub mod error;
 pub mod exact;
+pub mod harmonize;
 pub mod lac;
 pub mod lac_fit;
 pub mod lcg;

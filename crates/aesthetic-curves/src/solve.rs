@@ -13,6 +13,9 @@
 //! pattern search in two variables that keeps to a feasible set; [`along_boundary`]
 //! follows the boundary of a feasible set in two variables when the minimum lies on it.
 //!
+//! [`sweep_to_fixed_point`] repeats a sweep of updates (block Gauss–Seidel) until its
+//! largest change is small, with a [`Sweeps`] report.
+//!
 //! [`bisect_by`] bisects a bracket on a yes/no test (the longest piece that meets a
 //! tolerance, the parameter where a condition starts to hold), carrying the last passing
 //! test's value.
@@ -1063,5 +1066,43 @@ pub fn bisect_by<T>(
         }
     }
     out.converged = done(out.inside, out.outside);
+    out
+}
+
+/// How [`sweep_to_fixed_point`] ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sweeps {
+    /// Sweeps done.
+    pub sweeps: usize,
+    /// The largest change the last sweep made (as `sweep` measures it).
+    pub last_change: f64,
+    /// Whether that change was at most the tolerance (else the sweep limit or the thread's
+    /// deadline ended it).
+    pub converged: bool,
+}
+
+/// Block Gauss–Seidel, or any fixed-point iteration done in sweeps: `sweep` updates the
+/// unknowns in place and returns the largest change it made; sweeps repeat until that
+/// change is at most `tolerance`, for at most `max_sweeps` sweeps (the thread's deadline
+/// ends it too).
+pub fn sweep_to_fixed_point(
+    max_sweeps: usize,
+    tolerance: f64,
+    mut sweep: impl FnMut() -> f64,
+) -> Sweeps {
+    let mut out = Sweeps {
+        sweeps: 0,
+        last_change: f64::INFINITY,
+        converged: false,
+    };
+    while out.sweeps < max_sweeps && !crate::deadline::expired() {
+        out.last_change = sweep();
+        out.sweeps += 1;
+        // NaN is no convergence.
+        if out.last_change <= tolerance {
+            out.converged = true;
+            break;
+        }
+    }
     out
 }

@@ -1,0 +1,791 @@
+//! Harmonize: the smooth joins of a contour of cubics made G2 by moving handles along their
+//! own tangent directions, within a tolerance, on a grid, and never making a join or a
+//! segment worse (docs/math.md §9).
+//!
+//! **The join.** At a join P between cubic A (a0 a1 a2 P) and cubic B (P b1 b2 b3), with
+//! unit end tangent T_A = (P - a2)/v and start tangent T_B = (b1 - P)/u (v, u the lengths of
+//! the two handles at P), the curvatures are
+//! `κ_A(1) = (2/3) e_A / v²` and `κ_B(0) = (2/3) e_B / u²`, where `e_A = (P - a1) × T_A` and
+//! `e_B = T_B × (b2 - P)` are the distances of the far handles from the tangent lines. Sliding
+//! a2 and b1 along their tangents changes v and u and neither e, so the join is G2 exactly
+//! when `u / v = √(e_B / e_A)`: one equation in the two lengths, solved with the least change
+//! of their logarithms, inside the box the tolerance allows (a handle point moves by exactly
+//! the change of its length, and the curve by at most the largest move of its control
+//! points: Bernstein weights sum to one).
+//!
+//! **The coupling.** `e_A` depends on A's other handle length (a1 slides along A's start
+//! tangent, and its distance from T_A's line changes unless the two tangents are parallel),
+//! which the join before solves. The joins are therefore swept in turn until nothing moves
+//! ([`solve::sweep_to_fixed_point`]).
+//!
+//! **The grid.** A font's coordinates are integers: the moved handles are rounded to the
+//! grid, each choosing among its four neighbours (and its original place) the one that
+//! leaves the joins it touches closest to G2 without turning them further from G1 than the
+//! file had them.
+//!
+//! **No worse.** Last, every join whose curvature jump or angle is worse than in the input,
+//! and every cubic that has more curvature extrema than before (the exact test), gets its
+//! original handles back, until none is left.
+
+use crate::monotone::CurvatureMonotone;
+use crate::{Bezier, Point, Vec2};
+
+/// What [`harmonize`] may do.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HarmonizeOptions {
+    /// How far a control point may move (the curve moves at most this much).
+    pub tolerance: f64,
+    /// The coordinates' grid (1 for font units; 0 for none).
+    pub grid: f64,
+    /// Most sweeps over the joins.
+    pub max_sweeps: usize,
+}
+
+impl Default for HarmonizeOptions {
+    fn default() -> Self {
+        HarmonizeOptions {
+            tolerance: 1.0,
+            grid: 0.0,
+            max_sweeps: 100,
+        }
+    }
+}
+
+/// What happened at one join.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JoinOutcome {
+    /// Not a smooth join (the caller said so): left alone.
+    Corner,
+    /// A line (or a retracted handle) on one side: G2 would need zero curvature on the
+    /// other, which handle lengths cannot give.
+    NotBetweenCubics,
+    /// The curvature changes sign at the join (or is zero on one side only): no handle
+    /// lengths make it continuous.
+    SignChange,
+    /// Already G2 within rounding, or zero curvature on both sides.
+    AlreadyG2,
+    /// Made G2 (before the grid).
+    Harmonized,
+    /// G2 needs more than the tolerance: moved as far towards it as allowed.
+    Limited,
+    /// Moved part of the way: the whole move would give a cubic more curvature extrema,
+    /// or another join a worse jump.
+    Partly,
+    /// Moved, then given back its handles because the result was worse (after the grid).
+    Reverted,
+}
+
+/// One join of the result.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JoinReport {
+    /// The join after segment `after_segment`.
+    pub after_segment: usize,
+    /// What was done.
+    pub outcome: JoinOutcome,
+    /// The relative curvature jump `|κ_A - κ_B| / max(|κ_A|, |κ_B|)` before and after.
+    pub jump: (f64, f64),
+    /// The angle between the two tangents (radians) before and after.
+    pub angle: (f64, f64),
+}
+
+/// The harmonized contour and what was done.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Harmonized {
+    /// The segments' control points, in order (only handle points differ from the input).
+    pub segments: Vec<Vec<Point>>,
+    /// Per join (n - 1 for an open contour, n for a closed one).
+    pub joins: Vec<JoinReport>,
+    /// Per segment: the largest distance a control point moved (a bound of how far the
+    /// segment moved).
+    pub moved: Vec<f64>,
+    /// Per segment: interior curvature extrema before and after (None: not a cubic, or the
+    /// exact test could not run).
+    pub extrema: Vec<(Option<usize>, Option<usize>)>,
+    /// The sweeps over the joins.
+    pub sweeps: crate::solve::Sweeps,
+}
+
+/// The handle lengths of the cubics and their tangent directions.
+struct Handles {
+    /// Per segment: start tangent, end tangent (unit), or None for a line or a retracted
+    /// handle.
+    dirs: Vec<Option<(Vec2, Vec2)>>,
+    /// Per segment: the input's start and end handle lengths.
+    orig: Vec<(f64, f64)>,
+    /// Per segment: the current lengths.
+    len: Vec<(f64, f64)>,
+}
+
+impl Handles {
+    fn of(segs: &[Vec<Point>]) -> Handles {
+        let mut dirs = Vec::with_capacity(segs.len());
+        let mut orig = Vec::with_capacity(segs.len());
+        for s in segs {
+            if s.len() == 4 {
+                let (h0, h1) = (s[1] - s[0], s[3] - s[2]);
+                let (u, v) = (h0.hypot(), h1.hypot());
+                if u > 0.0 && v > 0.0 && u.is_finite() && v.is_finite() {
+                    dirs.push(Some((h0 / u, h1 / v)));
+                    orig.push((u, v));
+                    continue;
+                }
+            }
+            dirs.push(None);
+            orig.push((0.0, 0.0));
+        }
+        Handles {
+            dirs,
+            len: orig.clone(),
+            orig,
+        }
+    }
+
+    /// The control points of segment `i` with the current lengths (exactly the input's
+    /// points where a length is unchanged).
+    fn points(&self, segs: &[Vec<Point>], i: usize) -> Vec<Point> {
+        let s = &segs[i];
+        if self.dirs[i].is_none() {
+            return s.clone();
+        }
+        let (u0, v0) = self.orig[i];
+        let (u, v) = self.len[i];
+        let p1 = if u == u0 {
+            s[1]
+        } else {
+            s[0] + (s[1] - s[0]) * (u / u0)
+        };
+        let p2 = if v == v0 {
+            s[2]
+        } else {
+            s[3] + (s[2] - s[3]) * (v / v0)
+        };
+        vec![s[0], p1, p2, s[3]]
+    }
+}
+
+/// End curvatures of a cubic's control points: at the start and at the end.
+fn end_curvatures(p: &[Point]) -> (f64, f64) {
+    let k = |a: Vec2, b: Vec2, h: f64| 2.0 / 3.0 * a.cross(b) / (h * h * h);
+    let (d0, d1, d2) = (p[1] - p[0], p[2] - p[1], p[3] - p[2]);
+    (k(d0, d1, d0.hypot()), k(d1, d2, d2.hypot()))
+}
+
+fn relative_jump(a: f64, b: f64) -> f64 {
+    let m = a.abs().max(b.abs());
+    if m > 0.0 {
+        (a - b).abs() / m
+    } else {
+        0.0
+    }
+}
+
+/// The jump and angle at the join of segments `a` and `b` (control points).
+fn join_state(a: &[Point], b: &[Point]) -> (f64, f64) {
+    let (ta, tb) = (a[a.len() - 1] - a[a.len() - 2], b[1] - b[0]);
+    let angle = ta.cross(tb).atan2(ta.dot(tb)).abs();
+    if a.len() != 4 || b.len() != 4 {
+        return (f64::NAN, angle);
+    }
+    (
+        relative_jump(end_curvatures(a).1, end_curvatures(b).0),
+        angle,
+    )
+}
+
+/// The new lengths (v of A's end handle, u of B's start handle) for G2 at the join of
+/// segments `ia` and `ib`, and whether the tolerance held them short of it; None when the
+/// join cannot be made G2 by lengths.
+fn solve_join(
+    segs: &[Vec<Point>],
+    h: &Handles,
+    (ia, ib): (usize, usize),
+    tol: f64,
+) -> Result<((f64, f64), bool), JoinOutcome> {
+    let (Some((ta0, ta)), Some((tb, tb3))) = (h.dirs[ia], h.dirs[ib]) else {
+        return Err(JoinOutcome::NotBetweenCubics);
+    };
+    let (a, b) = (&segs[ia], &segs[ib]);
+    let p = a[3];
+    // e_A with a1 = a0 + u_A t_A0 and e_B with b2 = b3 - v_B t_B3, at the current lengths.
+    let e_a = (p - a[0]).cross(ta) - h.len[ia].0 * ta0.cross(ta);
+    let e_b = tb.cross(b[3] - p) - h.len[ib].1 * tb.cross(tb3);
+    let scale = (p - a[0]).hypot().max((b[3] - p).hypot());
+    let flat = |e: f64| e.abs() <= 1e-12 * scale;
+    if flat(e_a) && flat(e_b) {
+        return Err(JoinOutcome::AlreadyG2);
+    }
+    if flat(e_a) || flat(e_b) || (e_a > 0.0) != (e_b > 0.0) {
+        return Err(JoinOutcome::SignChange);
+    }
+    let rho = (e_b / e_a).sqrt(); // u / v at G2
+    let (v0, u0) = (h.orig[ia].1, h.orig[ib].0);
+    // Least change of (ln v, ln u) on the line ln u - ln v = ln ρ.
+    let v_star = (v0 * u0 / rho).sqrt();
+    // The box: each length within the tolerance of the input's, and positive.
+    let floor = 1e-3 * v0.min(u0);
+    let (v_lo, v_hi) = ((v0 - tol).max(floor), v0 + tol);
+    let (u_lo, u_hi) = ((u0 - tol).max(floor), u0 + tol);
+    let (lo, hi) = (v_lo.max(u_lo / rho), v_hi.min(u_hi / rho));
+    if lo <= hi {
+        let v = v_star.clamp(lo, hi);
+        return Ok(((v, rho * v), false));
+    }
+    // Out of reach: the corner of the box nearest the ratio.
+    Ok((
+        if rho * v_lo > u_hi {
+            (v_lo, u_hi)
+        } else {
+            (v_hi, u_lo)
+        },
+        true,
+    ))
+}
+
+/// The joins of a contour of `n` segments: (join index, segment before, segment after).
+fn joins(n: usize, closed: bool) -> impl Iterator<Item = (usize, usize, usize)> {
+    let count = if closed { n } else { n.saturating_sub(1) };
+    (0..count).map(move |j| (j, j, (j + 1) % n))
+}
+
+/// Harmonize a contour: `segments` are consecutive lines (2 points) and cubics (4 points),
+/// `smooth[j]` says whether the join after segment j is meant smooth (a font's smooth flag,
+/// or the angle test), one per join. See the module documentation.
+pub fn harmonize(
+    segments: &[Vec<Point>],
+    closed: bool,
+    smooth: &[bool],
+    opts: &HarmonizeOptions,
+) -> crate::Result<Harmonized> {
+    check_input(segments, closed, smooth, opts)?;
+    let n = segments.len();
+    let mut h = Handles::of(segments);
+    let mut outcome = vec![JoinOutcome::Corner; smooth.len()];
+    let tol = opts.tolerance;
+    let sweeps = crate::solve::sweep_to_fixed_point(opts.max_sweeps, 1e-13, || {
+        let mut change = 0.0f64;
+        for (j, ia, ib) in joins(n, closed) {
+            if !smooth[j] {
+                continue;
+            }
+            match solve_join(segments, &h, (ia, ib), tol) {
+                Ok(((v, u), limited)) => {
+                    let (ov, ou) = (h.len[ia].1, h.len[ib].0);
+                    change = change.max(((v - ov) / ov).abs()).max(((u - ou) / ou).abs());
+                    h.len[ia].1 = v;
+                    h.len[ib].0 = u;
+                    outcome[j] = if limited {
+                        JoinOutcome::Limited
+                    } else {
+                        JoinOutcome::Harmonized
+                    };
+                }
+                Err(o) => outcome[j] = o,
+            }
+        }
+        change
+    });
+    let before = states(segments, closed);
+    let extrema_before: Vec<Option<usize>> = segments.iter().map(|s| extrema(s)).collect();
+    let (mut pts, share) = blend_back(segments, &h, closed, opts, (&before, &extrema_before));
+    if share < 1.0 {
+        for o in outcome.iter_mut() {
+            if *o == JoinOutcome::Harmonized {
+                *o = JoinOutcome::Partly;
+            }
+        }
+    }
+    revert_what_got_worse(
+        segments,
+        &mut pts,
+        (closed, opts.grid),
+        (&before, &extrema_before),
+        &mut outcome,
+    );
+    let after = states(&pts, closed);
+    let joins = joins(n, closed)
+        .map(|(j, ..)| JoinReport {
+            after_segment: j,
+            outcome: outcome[j],
+            jump: (before[j].0, after[j].0),
+            angle: (before[j].1, after[j].1),
+        })
+        .collect();
+    let moved = segments
+        .iter()
+        .zip(&pts)
+        .map(|(s, p)| {
+            s.iter()
+                .zip(p)
+                .map(|(a, b)| (*a - *b).hypot())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let extrema = extrema_before
+        .into_iter()
+        .zip(pts.iter().map(|p| extrema(p)))
+        .collect();
+    Ok(Harmonized {
+        segments: pts,
+        joins,
+        moved,
+        extrema,
+        sweeps,
+    })
+}
+
+fn check_input(
+    segments: &[Vec<Point>],
+    closed: bool,
+    smooth: &[bool],
+    opts: &HarmonizeOptions,
+) -> crate::Result<()> {
+    use crate::Error;
+    let n = segments.len();
+    let want = if closed { n } else { n.saturating_sub(1) };
+    if smooth.len() != want {
+        return Err(Error::invalid(
+            "smooth",
+            format!("{} flags for {want} joins", smooth.len()),
+        ));
+    }
+    if !(opts.tolerance.is_finite() && opts.tolerance >= 0.0) {
+        return Err(Error::invalid(
+            "tolerance",
+            "must be a finite distance >= 0",
+        ));
+    }
+    if !(opts.grid.is_finite() && opts.grid >= 0.0) {
+        return Err(Error::invalid("grid", "must be a finite step >= 0"));
+    }
+    for (i, s) in segments.iter().enumerate() {
+        if s.len() != 2 && s.len() != 4 {
+            return Err(Error::invalid(
+                "segments",
+                format!("segment {i} has {} points (lines 2, cubics 4)", s.len()),
+            ));
+        }
+        if s.iter().any(|p| !(p.x.is_finite() && p.y.is_finite())) {
+            return Err(Error::invalid(
+                "segments",
+                format!("segment {i} has a non-finite point"),
+            ));
+        }
+    }
+    for (j, ia, ib) in joins(n, closed) {
+        if segments[ia][segments[ia].len() - 1] != segments[ib][0] {
+            return Err(Error::invalid(
+                "segments",
+                format!("segment {ib} does not start where segment {ia} ends (join {j})"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The lengths solved for, or, where the full move makes a join worse or a cubic gain
+/// curvature extrema (after the grid), the largest share of it that does not (the lengths
+/// blended in their logarithms: `orig (solved / orig)^λ`, λ from 1 down to 1/16); the
+/// smallest share when none passes (the last pass of [`revert_what_got_worse`] then settles
+/// it).
+fn blend_back(
+    segments: &[Vec<Point>],
+    h: &Handles,
+    closed: bool,
+    opts: &HarmonizeOptions,
+    (before, extrema_before): (&[(f64, f64)], &[Option<usize>]),
+) -> (Vec<Vec<Point>>, f64) {
+    let n = segments.len();
+    let mut pts = Vec::new();
+    let mut share = 0.0;
+    for lambda in [1.0, 0.75, 0.5, 0.35, 0.25, 0.125, 0.0625] {
+        share = lambda;
+        let blended = Handles {
+            dirs: h.dirs.clone(),
+            orig: h.orig.clone(),
+            len: h
+                .orig
+                .iter()
+                .zip(&h.len)
+                .map(|(&(u0, v0), &(u, v))| {
+                    let mix = |a: f64, b: f64| if a == b { a } else { a * (b / a).powf(lambda) };
+                    (mix(u0, u), mix(v0, v))
+                })
+                .collect(),
+        };
+        pts = (0..n).map(|i| blended.points(segments, i)).collect();
+        if opts.grid > 0.0 {
+            round_to_grid(segments, &mut pts, closed, opts);
+        }
+        let gains =
+            (0..n).any(|i| pts[i] != segments[i] && gains_extrema(&pts[i], extrema_before[i]));
+        if !gains && worse_joins(segments, &pts, closed, before).is_empty() {
+            break;
+        }
+    }
+    (pts, share)
+}
+
+/// Jump and angle at every join.
+fn states(pts: &[Vec<Point>], closed: bool) -> Vec<(f64, f64)> {
+    joins(pts.len(), closed)
+        .map(|(_, a, b)| join_state(&pts[a], &pts[b]))
+        .collect()
+}
+
+/// Interior curvature extrema of a cubic (exact test); None for a line or no verdict.
+fn extrema(p: &[Point]) -> Option<usize> {
+    if p.len() != 4 {
+        return None;
+    }
+    let b = Bezier::new(p.to_vec()).ok()?;
+    b.curvature_monotone().ok().map(|r| r.extrema.len())
+}
+
+/// The cost of the joins a handle touches: their jumps, plus the angle beyond the input's
+/// (in degrees: 0.01° weighs like a 1 % jump).
+fn local_cost(
+    pts: &[Vec<Point>],
+    orig_angles: &[(f64, f64)],
+    touched: &[(usize, usize, usize)],
+) -> f64 {
+    touched
+        .iter()
+        .map(|&(j, a, b)| {
+            let (jump, angle) = join_state(&pts[a], &pts[b]);
+            let excess = (angle - orig_angles[j].1).max(0.0).to_degrees();
+            (if jump.is_nan() { 0.0 } else { jump }) + 100.0 * excess
+        })
+        .sum()
+}
+
+/// Round the moved handle points to the grid: each takes the neighbour (of its four, or its
+/// input place) with the least cost on the joins it touches, within the tolerance; two
+/// passes.
+fn round_to_grid(
+    input: &[Vec<Point>],
+    pts: &mut [Vec<Point>],
+    closed: bool,
+    opts: &HarmonizeOptions,
+) {
+    let g = opts.grid;
+    let n = pts.len();
+    let orig_states = states(input, closed);
+    let all: Vec<(usize, usize, usize)> = joins(n, closed).collect();
+    for _pass in 0..2 {
+        for i in 0..n {
+            if pts[i].len() != 4 {
+                continue;
+            }
+            for k in [1usize, 2] {
+                if pts[i][k] == input[i][k] {
+                    continue;
+                }
+                // The joins at both ends of segment i: moving a handle changes the curvature
+                // at both.
+                let touched: Vec<_> = all
+                    .iter()
+                    .copied()
+                    .filter(|&(_, a, b)| a == i || b == i)
+                    .collect();
+                let q = pts[i][k];
+                let (fx, fy) = ((q.x / g).floor() * g, (q.y / g).floor() * g);
+                let mut best: Option<(f64, Point)> = None;
+                for c in [
+                    Point::new(fx, fy),
+                    Point::new(fx + g, fy),
+                    Point::new(fx, fy + g),
+                    Point::new(fx + g, fy + g),
+                    input[i][k],
+                ] {
+                    if (c - input[i][k]).hypot() > opts.tolerance && c != input[i][k] {
+                        continue;
+                    }
+                    pts[i][k] = c;
+                    let cost = local_cost(pts, &orig_states, &touched);
+                    if best.is_none_or(|(b, _)| cost < b) {
+                        best = Some((cost, c));
+                    }
+                }
+                pts[i][k] = best.map_or(input[i][k], |b| b.1);
+            }
+        }
+    }
+}
+
+/// Whether the cubic `p` has more interior curvature extrema than `before` (or no verdict
+/// where there was one).
+fn gains_extrema(p: &[Point], before: Option<usize>) -> bool {
+    match (before, extrema(p)) {
+        (Some(b), Some(a)) => a > b,
+        (Some(_), None) => true,
+        _ => false,
+    }
+}
+
+/// The cubic `moved` pulled back towards `input` (its handles' moves halved, up to five
+/// times, each time on the grid) until it has no more extrema than before; else `input`.
+fn pull_back(input: &[Point], moved: &[Point], before: Option<usize>, grid: f64) -> Vec<Point> {
+    let on_grid = |v: f64| {
+        if grid > 0.0 {
+            (v / grid).round() * grid
+        } else {
+            v
+        }
+    };
+    let mut f = 0.5;
+    for _ in 0..5 {
+        let q: Vec<Point> = input
+            .iter()
+            .zip(moved)
+            .map(|(a, b)| {
+                let c = *a + (*b - *a) * f;
+                Point::new(on_grid(c.x), on_grid(c.y))
+            })
+            .collect();
+        if !gains_extrema(&q, before) {
+            return q;
+        }
+        f *= 0.5;
+    }
+    input.to_vec()
+}
+
+/// The joins that are worse than in the input (a larger jump, or a larger angle) and whose
+/// segments moved.
+fn worse_joins(
+    input: &[Vec<Point>],
+    pts: &[Vec<Point>],
+    closed: bool,
+    before: &[(f64, f64)],
+) -> Vec<(usize, usize, usize)> {
+    joins(pts.len(), closed)
+        .filter(|&(j, a, b)| {
+            let (jump, angle) = join_state(&pts[a], &pts[b]);
+            // Sliding a handle along its tangent turns it by rounding only (1e-16 rad).
+            let worse_angle = angle > before[j].1 + 1e-12;
+            let worse_jump = !jump.is_nan() && jump > before[j].0 * (1.0 + 1e-12) + 1e-15;
+            (pts[a] != input[a] || pts[b] != input[b]) && (worse_angle || worse_jump)
+        })
+        .collect()
+}
+
+/// Give back the input's segments at every join that got worse (both segments whole:
+/// through the coupling, the far handles set the join's curvature too), and pull back every
+/// cubic that gained curvature extrema, until none is left; a last pass gives back whole
+/// segments only, so it ends with no join worse and no cubic with more extrema than before.
+fn revert_what_got_worse(
+    input: &[Vec<Point>],
+    pts: &mut [Vec<Point>],
+    (closed, grid): (bool, f64),
+    (before, extrema_before): (&[(f64, f64)], &[Option<usize>]),
+    outcome: &mut [JoinOutcome],
+) {
+    let n = pts.len();
+    let mark = |outcome: &mut [JoinOutcome], i: usize| {
+        for (j, a, b) in joins(n, closed) {
+            if (a == i || b == i)
+                && matches!(
+                    outcome[j],
+                    JoinOutcome::Harmonized | JoinOutcome::Limited | JoinOutcome::Partly
+                )
+            {
+                outcome[j] = JoinOutcome::Reverted;
+            }
+        }
+    };
+    for round in 0..3 * n + 3 {
+        let pull = round < 3 * n;
+        let mut changed = false;
+        for (j, a, b) in worse_joins(input, pts, closed, before) {
+            pts[a] = input[a].clone();
+            pts[b] = input[b].clone();
+            outcome[j] = JoinOutcome::Reverted;
+            mark(outcome, a);
+            mark(outcome, b);
+            changed = true;
+        }
+        for i in 0..n {
+            if pts[i] != input[i] && gains_extrema(&pts[i], extrema_before[i]) {
+                pts[i] = if pull {
+                    pull_back(&input[i], &pts[i], extrema_before[i], grid)
+                } else {
+                    input[i].clone()
+                };
+                mark(outcome, i);
+                changed = true;
+            }
+        }
+        if !changed {
+            return;
+        }
+    }
+    // Still not settled: every moved segment back.
+    for i in 0..n {
+        if pts[i] != input[i] {
+            pts[i] = input[i].clone();
+            mark(outcome, i);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    /// A cubic of monotone curvature split in two at t = 1/2 (a G2 join), then the two
+    /// handles at the join lengthened and shortened: a clear curvature jump, which handle
+    /// lengths can undo without a new curvature extremum.
+    fn two_cubics() -> Vec<Vec<Point>> {
+        let c = Bezier::new(vec![p(0.0, 0.0), p(10.0, 0.0), p(18.0, 4.0), p(22.0, 12.0)]).unwrap();
+        let (a, b) = c.subdivide(0.5);
+        let (mut a, mut b) = (a.points().to_vec(), b.points().to_vec());
+        a[2] = a[3] + (a[2] - a[3]) * 0.8;
+        b[1] = b[0] + (b[1] - b[0]) * 1.4;
+        vec![a, b]
+    }
+
+    #[test]
+    fn a_smooth_join_becomes_g2_with_its_tangents_kept() {
+        let segs = two_cubics();
+        let opts = HarmonizeOptions {
+            tolerance: 5.0,
+            ..Default::default()
+        };
+        let r = harmonize(&segs, false, &[true], &opts).unwrap();
+        let j = r.joins[0];
+        assert_eq!(j.outcome, JoinOutcome::Harmonized, "{:?}", r.extrema);
+        assert!(j.jump.0 > 0.2, "{j:?}");
+        assert!(j.jump.1 < 1e-9, "{j:?}");
+        // Tangent directions exactly as before (the handles slid along them).
+        for (s, t) in segs.iter().zip(&r.segments) {
+            assert_eq!(s[0], t[0]);
+            assert_eq!(s[3], t[3]);
+            let (a, b) = (s[1] - s[0], t[1] - t[0]);
+            assert!(a.cross(b).abs() <= 1e-12 * a.hypot() * b.hypot());
+            let (a, b) = (s[3] - s[2], t[3] - t[2]);
+            assert!(a.cross(b).abs() <= 1e-12 * a.hypot() * b.hypot());
+        }
+        assert!(r.moved.iter().all(|m| *m <= 5.0 + 1e-12), "{:?}", r.moved);
+        assert!(r.sweeps.converged);
+        for (b, a) in &r.extrema {
+            assert!(a <= b, "{:?}", r.extrema);
+        }
+    }
+
+    #[test]
+    fn the_tolerance_holds_the_handles_short_of_g2() {
+        let segs = two_cubics();
+        let opts = HarmonizeOptions {
+            tolerance: 0.2,
+            ..Default::default()
+        };
+        let r = harmonize(&segs, false, &[true], &opts).unwrap();
+        let j = r.joins[0];
+        assert_eq!(j.outcome, JoinOutcome::Limited);
+        assert!(j.jump.1 < j.jump.0 && j.jump.1 > 1e-6, "{j:?}");
+        assert!(r.moved.iter().all(|m| *m <= 0.2 + 1e-12), "{:?}", r.moved);
+    }
+
+    #[test]
+    fn corners_lines_and_inflections_are_left_alone() {
+        let segs = two_cubics();
+        let r = harmonize(&segs, false, &[false], &HarmonizeOptions::default()).unwrap();
+        assert_eq!(r.segments, segs);
+        assert_eq!(r.joins[0].outcome, JoinOutcome::Corner);
+        let start = segs[1][0];
+        let line = vec![vec![start - (segs[1][1] - start), start], segs[1].clone()];
+        let r = harmonize(&line, false, &[true], &HarmonizeOptions::default()).unwrap();
+        assert_eq!(r.segments, line);
+        assert_eq!(r.joins[0].outcome, JoinOutcome::NotBetweenCubics);
+        // An S at the join: the second cubic bends the other way.
+        // The second cubic mirrored in its start tangent.
+        let (o, t) = (segs[1][0], (segs[1][1] - segs[1][0]).normalize());
+        let mirror = |q: Point| {
+            let d = q - o;
+            o + t * (2.0 * d.dot(t)) - d
+        };
+        let s = vec![
+            segs[0].clone(),
+            segs[1].iter().map(|q| mirror(*q)).collect(),
+        ];
+        let r = harmonize(&s, false, &[true], &HarmonizeOptions::default()).unwrap();
+        assert_eq!(r.joins[0].outcome, JoinOutcome::SignChange);
+        assert_eq!(r.segments, s);
+    }
+
+    /// A closed contour of four cubics whose joins couple: the sweeps converge, the move is
+    /// shared back until no cubic gains an extremum, and on a unit grid no join ends worse
+    /// than it began.
+    #[test]
+    fn a_closed_contour_converges_and_the_grid_makes_nothing_worse() {
+        // A quarter-ellipse per cubic (G2 by symmetry), each handle then scaled.
+        let (ea, eb, k) = (120.0, 80.0, 0.5523);
+        let q = [p(ea, 0.0), p(0.0, eb), p(-ea, 0.0), p(0.0, -eb), p(ea, 0.0)];
+        let dir = [
+            Vec2::new(0.0, eb),
+            Vec2::new(-ea, 0.0),
+            Vec2::new(0.0, -eb),
+            Vec2::new(ea, 0.0),
+        ];
+        let f = [(1.2, 0.85), (1.1, 0.9), (0.8, 1.15), (1.05, 0.7)];
+        let segs: Vec<Vec<Point>> = (0..4)
+            .map(|i| {
+                let (a, b) = (q[i], q[i + 1]);
+                vec![
+                    a,
+                    a + dir[i] * (k * f[i].0),
+                    b - dir[(i + 1) % 4] * (k * f[i].1),
+                    b,
+                ]
+            })
+            .collect();
+        let free = harmonize(
+            &segs,
+            true,
+            &[true; 4],
+            &HarmonizeOptions {
+                tolerance: 30.0,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert!(free.sweeps.converged, "{:?}", free.sweeps);
+        for j in &free.joins {
+            // Part of the way (the whole way gives the monotone cubics an extremum each),
+            // and at least a halving of every jump.
+            assert_eq!(j.outcome, JoinOutcome::Partly);
+            assert!(j.jump.1 < 0.5 * j.jump.0, "{j:?}");
+        }
+        let grid = harmonize(
+            &segs,
+            true,
+            &[true; 4],
+            &HarmonizeOptions {
+                tolerance: 30.0,
+                grid: 1.0,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        for (s, t) in segs.iter().zip(&grid.segments) {
+            for q in t {
+                assert_eq!((q.x.fract(), q.y.fract()), (0.0, 0.0), "{t:?}");
+            }
+            assert_eq!(s.len(), t.len());
+        }
+        for j in &grid.joins {
+            assert!(
+                j.jump.1 <= j.jump.0 && j.angle.1 <= j.angle.0 + 1e-15,
+                "{j:?}"
+            );
+            assert!(j.jump.1 < 0.75 * j.jump.0, "{j:?}");
+        }
+        for (b, a) in &grid.extrema {
+            assert!(a <= b, "{:?}", grid.extrema);
+        }
+    }
+}
