@@ -182,6 +182,28 @@ pub(crate) enum Cmd {
         #[arg(long)]
         suggest: Option<f64>,
     },
+    /// Repair a UFO source's outlines and write it back: every smooth join between two
+    /// cubics moved towards G2 by sliding its handles along their tangents (tangents, and so
+    /// G1, kept), no point further than the tolerance, coordinates on the grid, and no join
+    /// and no cubic left worse than it was (the exact test decides extrema). The same glyphs,
+    /// contours and points are written; contours with quadratic segments are left alone and
+    /// listed.
+    Fix {
+        /// The UFO source (a .ufo folder).
+        input: PathBuf,
+        /// Where to write the fixed UFO (a new folder).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// How far a point may move (font units).
+        #[arg(long, default_value_t = 2.0)]
+        tolerance: f64,
+        /// The coordinates' grid (1: integer font units; 0: none).
+        #[arg(long, default_value_t = 1.0)]
+        grid: f64,
+        /// Print every change as JSON instead of the summary.
+        #[arg(long)]
+        json: bool,
+    },
     /// Write the gallery of examples (HTML + SVG) to a folder.
     Demo {
         /// Output folder.

@@ -7,6 +7,7 @@ pub mod bench_targets;
 pub mod editor;
 /// The exports live in their own crate (shared with the Python package).
 pub use aesthetic_curves_export as export;
+pub mod fix;
 pub mod json_out;
 pub mod outline_io;
 pub mod plot;

@@ -169,6 +169,13 @@ fn run() -> Result<()> {
             what: BenchCmd::Spline(args),
         } => bench_targets(aecurve::bench_targets::Group::Spline, &args),
         Cmd::Demo { out, quick } => demo(&out, quick)?,
+        Cmd::Fix {
+            input,
+            output,
+            tolerance,
+            grid,
+            json,
+        } => commands::fix::fix(&input, &output, (tolerance, grid), json)?,
         Cmd::Check {
             file,
             select,

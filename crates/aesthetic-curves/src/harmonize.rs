@@ -1,6 +1,6 @@
 //! Harmonize: the smooth joins of a contour of cubics made G2 by moving handles along their
 //! own tangent directions, within a tolerance, on a grid, and never making a join or a
-//! segment worse (docs/math.md §9).
+//! segment worse (docs/math.md §10).
 //!
 //! **The join.** At a join P between cubic A (a0 a1 a2 P) and cubic B (P b1 b2 b3), with
 //! unit end tangent T_A = (P - a2)/v and start tangent T_B = (b1 - P)/u (v, u the lengths of
@@ -183,13 +183,18 @@ fn relative_jump(a: f64, b: f64) -> f64 {
 fn join_state(a: &[Point], b: &[Point]) -> (f64, f64) {
     let (ta, tb) = (a[a.len() - 1] - a[a.len() - 2], b[1] - b[0]);
     let angle = ta.cross(tb).atan2(ta.dot(tb)).abs();
-    if a.len() != 4 || b.len() != 4 {
-        return (f64::NAN, angle);
-    }
-    (
-        relative_jump(end_curvatures(a).1, end_curvatures(b).0),
-        angle,
-    )
+    // A line's curvature is zero: a join with one keeps its jump (0 or 1) too.
+    let ka = if a.len() == 4 {
+        end_curvatures(a).1
+    } else {
+        0.0
+    };
+    let kb = if b.len() == 4 {
+        end_curvatures(b).0
+    } else {
+        0.0
+    };
+    (relative_jump(ka, kb), angle)
 }
 
 /// The new lengths (v of A's end handle, u of B's start handle) for G2 at the join of
@@ -300,6 +305,14 @@ pub fn harmonize(
         (closed, opts.grid),
         (&before, &extrema_before),
         &mut outcome,
+    );
+    improve_joins(
+        segments,
+        &mut pts,
+        &h,
+        (closed, smooth),
+        opts,
+        (&before, &extrema_before),
     );
     let after = states(&pts, closed);
     let joins = joins(n, closed)
@@ -467,47 +480,106 @@ fn round_to_grid(
     closed: bool,
     opts: &HarmonizeOptions,
 ) {
-    let g = opts.grid;
-    let n = pts.len();
     let orig_states = states(input, closed);
-    let all: Vec<(usize, usize, usize)> = joins(n, closed).collect();
     for _pass in 0..2 {
-        for i in 0..n {
+        for i in 0..pts.len() {
             if pts[i].len() != 4 {
                 continue;
             }
             for k in [1usize, 2] {
-                if pts[i][k] == input[i][k] {
-                    continue;
+                if pts[i][k] != input[i][k] {
+                    place_on_grid(input, pts, (i, k), (closed, &orig_states), opts);
                 }
-                // The joins at both ends of segment i: moving a handle changes the curvature
-                // at both.
-                let touched: Vec<_> = all
-                    .iter()
-                    .copied()
-                    .filter(|&(_, a, b)| a == i || b == i)
-                    .collect();
-                let q = pts[i][k];
-                let (fx, fy) = ((q.x / g).floor() * g, (q.y / g).floor() * g);
-                let mut best: Option<(f64, Point)> = None;
-                for c in [
-                    Point::new(fx, fy),
-                    Point::new(fx + g, fy),
-                    Point::new(fx, fy + g),
-                    Point::new(fx + g, fy + g),
-                    input[i][k],
-                ] {
-                    if (c - input[i][k]).hypot() > opts.tolerance && c != input[i][k] {
-                        continue;
-                    }
-                    pts[i][k] = c;
-                    let cost = local_cost(pts, &orig_states, &touched);
-                    if best.is_none_or(|(b, _)| cost < b) {
-                        best = Some((cost, c));
-                    }
-                }
-                pts[i][k] = best.map_or(input[i][k], |b| b.1);
             }
+        }
+    }
+}
+
+/// The joins at both ends of segment `i` (moving a handle changes the curvature at both).
+fn touching(n: usize, closed: bool, i: usize) -> Vec<(usize, usize, usize)> {
+    joins(n, closed)
+        .filter(|&(_, a, b)| a == i || b == i)
+        .collect()
+}
+
+/// Control point `k` of segment `i` to the grid neighbour (of its four, or its input place)
+/// with the least cost on the joins it touches, within the tolerance.
+fn place_on_grid(
+    input: &[Vec<Point>],
+    pts: &mut [Vec<Point>],
+    (i, k): (usize, usize),
+    (closed, orig_states): (bool, &[(f64, f64)]),
+    opts: &HarmonizeOptions,
+) {
+    let g = opts.grid;
+    let touched = touching(pts.len(), closed, i);
+    let q = pts[i][k];
+    let (fx, fy) = ((q.x / g).floor() * g, (q.y / g).floor() * g);
+    let mut best: Option<(f64, Point)> = None;
+    for c in [
+        Point::new(fx, fy),
+        Point::new(fx + g, fy),
+        Point::new(fx, fy + g),
+        Point::new(fx + g, fy + g),
+        input[i][k],
+    ] {
+        if (c - input[i][k]).hypot() > opts.tolerance && c != input[i][k] {
+            continue;
+        }
+        pts[i][k] = c;
+        let cost = local_cost(pts, orig_states, &touched);
+        if best.is_none_or(|(b, _)| cost < b) {
+            best = Some((cost, c));
+        }
+    }
+    pts[i][k] = best.map_or(input[i][k], |b| b.1);
+}
+
+/// Join by join, the two handles at it moved further towards the lengths solved for (the
+/// whole way, or 3/4, 1/2, 1/4 of it in their logarithms, then to the grid), where that
+/// lowers its jump and leaves no join worse than in the input and no cubic with more
+/// extrema: the shared share of [`blend_back`] is set by the most constrained join, and most
+/// joins can go further. Two passes.
+fn improve_joins(
+    input: &[Vec<Point>],
+    pts: &mut [Vec<Point>],
+    solved: &Handles,
+    (closed, smooth): (bool, &[bool]),
+    opts: &HarmonizeOptions,
+    (before, extrema_before): (&[(f64, f64)], &[Option<usize>]),
+) {
+    let n = pts.len();
+    for _pass in 0..2 {
+        for (j, a, b) in joins(n, closed) {
+            if !smooth[j] || solved.dirs[a].is_none() || solved.dirs[b].is_none() {
+                continue;
+            }
+            let current = join_state(&pts[a], &pts[b]).0;
+            let keep = (pts[a][2], pts[b][1]);
+            let (v0, vt) = (solved.orig[a].1, solved.len[a].1);
+            let (u0, ut) = (solved.orig[b].0, solved.len[b].0);
+            let p = input[a][3];
+            let mut best = (current, keep);
+            for lambda in [1.0, 0.75, 0.5, 0.25] {
+                let (v, u) = (v0 * (vt / v0).powf(lambda), u0 * (ut / u0).powf(lambda));
+                pts[a][2] = p + (input[a][2] - p) * (v / v0);
+                pts[b][1] = p + (input[b][1] - p) * (u / u0);
+                if opts.grid > 0.0 {
+                    place_on_grid(input, pts, (a, 2), (closed, before), opts);
+                    place_on_grid(input, pts, (b, 1), (closed, before), opts);
+                }
+                let jump = join_state(&pts[a], &pts[b]).0;
+                let valid = [a, b]
+                    .iter()
+                    .all(|&i| !gains_extrema(&pts[i], extrema_before[i]))
+                    && worse_joins(input, pts, closed, before)
+                        .iter()
+                        .all(|&(_, x, y)| x != a && y != a && x != b && y != b);
+                if valid && jump < best.0 {
+                    best = (jump, (pts[a][2], pts[b][1]));
+                }
+            }
+            (pts[a][2], pts[b][1]) = best.1;
         }
     }
 }

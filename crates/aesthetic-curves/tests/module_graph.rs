@@ -132,6 +132,7 @@ const LAYERS: [(&str, &[&str]); 6] = [
             "pseudo_spline",
             "lac_fit",
             "sketch",
+            "harmonize",
         ],
     ),
     ("interface", &["curve"]),

@@ -4,6 +4,7 @@
 pub(crate) mod approx;
 pub(crate) mod check;
 pub(crate) mod demo;
+pub(crate) mod fix;
 pub(crate) mod lac;
 pub(crate) mod lcg;
 pub(crate) mod monotone;

@@ -1,0 +1,122 @@
+#!/usr/bin/env python3
+"""`aecurve fix` on real UFO sources (CI step; needs fonts-texgyre from Debian, fontTools,
+ufo-extractor and ufoLib2 from PyPI). Issue 34.
+
+For UFOs that ufo-extractor makes from TeX Gyre fonts (OpenType/CFF: cubic outlines):
+
+- ufoLib2 reads the written UFO, with the same glyphs, contours, and points in the same
+  order, of the same kinds, with the same smooth flags and names; on-curve points do not
+  move; no point moves further than the tolerance; every coordinate is an integer (grid 1).
+- `aecurve check --json` on the input and on the output (the exact test, which shares no
+  code with the fix's float formulas for end curvatures): no segment has more curvature
+  extrema after, no smooth join between cubics has a larger curvature jump or angle after;
+  the share of those joins under a 1 % jump is printed before and after.
+- `fix --json`'s counts agree with that check: 0 joins worse, 0 cubics with more extrema.
+
+Exits non-zero on the first failure, printing what failed.
+"""
+import glob
+import json
+import math
+import subprocess
+import sys
+import tempfile
+
+import extractor
+import ufoLib2
+
+AECURVE = sys.argv[1] if len(sys.argv) > 1 else "target/release/aecurve"
+TOLERANCE = 2.0
+scratch = tempfile.TemporaryDirectory(prefix="aecurve-fix-check-")
+
+
+def fail(msg):
+    print(f"FAIL: {msg}")
+    sys.exit(1)
+
+
+def check_json(path):
+    out = subprocess.run([AECURVE, "check", "--json", path], capture_output=True, text=True)
+    if out.returncode != 0:
+        fail(f"check {path}: {out.stderr.strip()}")
+    return json.loads(out.stdout)
+
+
+def same_structure(a, b, name):
+    if sorted(a.keys()) != sorted(b.keys()):
+        fail(f"{name}: the glyph sets differ")
+    moved = 0.0
+    for g in a.keys():
+        ga, gb = a[g], b[g]
+        if len(ga.contours) != len(gb.contours) or len(ga.components) != len(gb.components):
+            fail(f"{name} {g}: contours or components differ")
+        if [x.name for x in ga.anchors] != [x.name for x in gb.anchors]:
+            fail(f"{name} {g}: anchors differ")
+        for ci, (ca, cb) in enumerate(zip(ga.contours, gb.contours)):
+            if len(ca.points) != len(cb.points):
+                fail(f"{name} {g} contour {ci}: {len(ca.points)} points became {len(cb.points)}")
+            for pa, pb in zip(ca.points, cb.points):
+                if (pa.type, pa.smooth, pa.name) != (pb.type, pb.smooth, pb.name):
+                    fail(f"{name} {g} contour {ci}: a point's kind, smooth flag or name changed")
+                d = math.hypot(pa.x - pb.x, pa.y - pb.y)
+                if pa.type is not None and d != 0:
+                    fail(f"{name} {g} contour {ci}: an on-curve point moved by {d}")
+                if d > TOLERANCE + 1e-9:
+                    fail(f"{name} {g} contour {ci}: a point moved by {d} > {TOLERANCE}")
+                if pb.x != int(pb.x) or pb.y != int(pb.y):
+                    fail(f"{name} {g} contour {ci}: ({pb.x}, {pb.y}) is off the grid")
+                moved = max(moved, d)
+    return moved
+
+
+def compare_checks(before, after, name):
+    """Per segment extrema and per join jump/angle, before against after."""
+    sa = {s["name"]: s for s in before["shapes"]}
+    sb = {s["name"]: s for s in after["shapes"]}
+    if sa.keys() != sb.keys():
+        fail(f"{name}: check read other shapes after the fix")
+    joins = under = (0, 0)
+    for g in sa:
+        for ca, cb in zip(sa[g]["contours"], sb[g]["contours"]):
+            for k, (x, y) in enumerate(zip(ca["segments"], cb["segments"])):
+                if len(y["extrema"]) > len(x["extrema"]):
+                    fail(f"{name} {g} segment {k}: {len(x['extrema'])} curvature extrema became {len(y['extrema'])}")
+            for ja, jb in zip(ca["joins"], cb["joins"]):
+                if jb["angle_break_degrees"] > ja["angle_break_degrees"] + 1e-9:
+                    fail(f"{name} {g} join after {ja['after_segment']}: angle {ja['angle_break_degrees']} -> {jb['angle_break_degrees']}")
+                x, y = ja.get("curvature_jump"), jb.get("curvature_jump")
+                if x is None or y is None:
+                    continue
+                if y > x * (1 + 1e-9) + 1e-12:
+                    fail(f"{name} {g} join after {ja['after_segment']}: jump {x} -> {y}")
+                joins = (joins[0] + 1, 0)
+                under = (under[0] + (x < 0.01), under[1] + (y < 0.01))
+    return joins[0], under
+
+
+fonts = sorted(glob.glob("/usr/share/texmf/fonts/opentype/public/tex-gyre/texgyre*-regular.otf"))[:2]
+if not fonts:
+    fail("no TeX Gyre fonts (apt install fonts-texgyre)")
+for f in fonts:
+    name = f.rsplit("/", 1)[1]
+    src = f"{scratch.name}/{name}.ufo"
+    dst = f"{scratch.name}/{name}-fixed.ufo"
+    ufo = ufoLib2.Font()
+    extractor.extractUFO(f, ufo)
+    ufo.save(src)
+    out = subprocess.run([AECURVE, "fix", src, "-o", dst, "--tolerance", str(TOLERANCE), "--json"],
+                         capture_output=True, text=True)
+    if out.returncode != 0:
+        fail(f"fix {name}: {out.stderr.strip()}")
+    claims = json.loads(out.stdout)["counts"]
+    moved = same_structure(ufoLib2.Font.open(src), ufoLib2.Font.open(dst), name)
+    joins, (u0, u1) = compare_checks(check_json(src), check_json(dst), name)
+    if claims["worse_joins"] != 0 or claims["cubics_with_more_extrema"] != 0:
+        fail(f"{name}: fix claims {claims}")
+    if u1 < u0:
+        fail(f"{name}: fewer joins under 1 % after ({u1}) than before ({u0})")
+    print(f"{name}: {claims['changed_segments']} segments changed, largest move {moved:.2f}; "
+          f"of {joins} G1 joins between curves, {u0} ({100 * u0 / max(joins, 1):.1f} %) under a 1 % "
+          f"curvature jump before, {u1} ({100 * u1 / max(joins, 1):.1f} %) after; none worse, "
+          f"no segment with more extrema (check --json on both)")
+print("fix check: ok")
