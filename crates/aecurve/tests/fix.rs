@@ -89,10 +89,7 @@ fn fix_writes_the_same_structure_and_nothing_worse() {
         for (ca, cb) in ga.contours.iter().zip(&gb.contours) {
             assert_eq!(ca.points.len(), cb.points.len());
             for (pa, pb) in ca.points.iter().zip(&cb.points) {
-                assert_eq!(
-                    (pa.typ, pa.smooth, &pa.name),
-                    (pb.typ, pb.smooth, &pb.name)
-                );
+                assert_eq!((pa.typ, pa.smooth, &pa.name), (pb.typ, pb.smooth, &pb.name));
                 let d = (pa.x - pb.x).hypot(pa.y - pb.y);
                 if pa.typ != PointType::OffCurve {
                     assert_eq!(d, 0.0, "an on-curve point of {name} moved");

@@ -16,7 +16,7 @@
 //! **The coupling.** `e_A` depends on A's other handle length (a1 slides along A's start
 //! tangent, and its distance from T_A's line changes unless the two tangents are parallel),
 //! which the join before solves. The joins are therefore swept in turn until nothing moves
-//! ([`solve::sweep_to_fixed_point`]).
+//! ([`crate::solve::sweep_to_fixed_point`]).
 //!
 //! **The grid.** A font's coordinates are integers: the moved handles are rounded to the
 //! grid, each choosing among its four neighbours (and its original place) the one that
