@@ -537,8 +537,8 @@ fn place_on_grid(
 
 /// Join by join, the two handles at it moved further towards the lengths solved for (the
 /// whole way, or 3/4, 1/2, 1/4 of it in their logarithms, then to the grid), where that
-/// lowers its jump and leaves no join worse than in the input and no cubic with more
-/// extrema: the shared share of [`blend_back`] is set by the most constrained join, and most
+/// lowers the sum of the jumps at the joins its two segments touch and leaves no join worse
+/// than in the input and no cubic with more extrema: the shared share of [`blend_back`] is set by the most constrained join, and most
 /// joins can go further. Two passes.
 fn improve_joins(
     input: &[Vec<Point>],
@@ -554,12 +554,21 @@ fn improve_joins(
             if !smooth[j] || solved.dirs[a].is_none() || solved.dirs[b].is_none() {
                 continue;
             }
-            let current = join_state(&pts[a], &pts[b]).0;
+            // The jumps at every join segment a or b touches: a move must lower their sum
+            // (lowering this join's alone could raise its neighbours').
+            let near: Vec<(usize, usize, usize)> = joins(n, closed)
+                .filter(|&(_, x, y)| [x, y].iter().any(|i| *i == a || *i == b))
+                .collect();
+            let cost = |pts: &[Vec<Point>]| -> f64 {
+                near.iter()
+                    .map(|&(_, x, y)| join_state(&pts[x], &pts[y]).0)
+                    .sum()
+            };
             let keep = (pts[a][2], pts[b][1]);
             let (v0, vt) = (solved.orig[a].1, solved.len[a].1);
             let (u0, ut) = (solved.orig[b].0, solved.len[b].0);
             let p = input[a][3];
-            let mut best = (current, keep);
+            let mut best = (cost(pts), keep);
             for lambda in [1.0, 0.75, 0.5, 0.25] {
                 let (v, u) = (v0 * (vt / v0).powf(lambda), u0 * (ut / u0).powf(lambda));
                 pts[a][2] = p + (input[a][2] - p) * (v / v0);
@@ -568,15 +577,15 @@ fn improve_joins(
                     place_on_grid(input, pts, (a, 2), (closed, before), opts);
                     place_on_grid(input, pts, (b, 1), (closed, before), opts);
                 }
-                let jump = join_state(&pts[a], &pts[b]).0;
+                let c = cost(pts);
                 let valid = [a, b]
                     .iter()
                     .all(|&i| !gains_extrema(&pts[i], extrema_before[i]))
                     && worse_joins(input, pts, closed, before)
                         .iter()
                         .all(|&(_, x, y)| x != a && y != a && x != b && y != b);
-                if valid && jump < best.0 {
-                    best = (jump, (pts[a][2], pts[b][1]));
+                if valid && c < best.0 {
+                    best = (c, (pts[a][2], pts[b][1]));
                 }
             }
             (pts[a][2], pts[b][1]) = best.1;
@@ -826,12 +835,18 @@ mod tests {
         )
         .unwrap();
         assert!(free.sweeps.converged, "{:?}", free.sweeps);
+        // Part of the way (the whole way gives the monotone cubics an extremum each): no
+        // join worse, and the jumps' sum less than half what it was.
+        let sum = |r: &Harmonized| -> (f64, f64) {
+            r.joins
+                .iter()
+                .fold((0.0, 0.0), |s, j| (s.0 + j.jump.0, s.1 + j.jump.1))
+        };
         for j in &free.joins {
-            // Part of the way (the whole way gives the monotone cubics an extremum each),
-            // and at least a halving of every jump.
-            assert_eq!(j.outcome, JoinOutcome::Partly);
-            assert!(j.jump.1 < 0.5 * j.jump.0, "{j:?}");
+            assert!(j.jump.1 <= j.jump.0, "{j:?}");
         }
+        let (b, a) = sum(&free);
+        assert!(a < 0.5 * b, "{a} vs {b}: {:?}", free.joins);
         let grid = harmonize(
             &segs,
             true,
@@ -854,10 +869,12 @@ mod tests {
                 j.jump.1 <= j.jump.0 && j.angle.1 <= j.angle.0 + 1e-15,
                 "{j:?}"
             );
-            assert!(j.jump.1 < 0.75 * j.jump.0, "{j:?}");
+            assert!(j.outcome != JoinOutcome::Harmonized, "{j:?}");
         }
         for (b, a) in &grid.extrema {
             assert!(a <= b, "{:?}", grid.extrema);
         }
+        let (b, a) = sum(&grid);
+        assert!(a < 0.6 * b, "{a} vs {b}: {:?}", grid.joins);
     }
 }
