@@ -181,6 +181,9 @@ pub(crate) enum Cmd {
         /// (file units: font units for a font).
         #[arg(long)]
         suggest: Option<f64>,
+        /// The thresholds of the verdicts and the findings.
+        #[command(flatten)]
+        thresholds: Thresholds,
     },
     /// Repair a UFO source's outlines and write it back: every smooth join between two
     /// cubics moved towards G2 by sliding its handles along their tangents (tangents, and so
@@ -341,4 +344,44 @@ pub(crate) struct TargetArgs {
 pub(crate) enum Method {
     Exact,
     Sampling,
+}
+
+/// `check`'s thresholds (the library's `OutlineOptions`).
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct Thresholds {
+    /// A join whose tangents differ by at most this (degrees) is G1 (plus what the
+    /// integer grid's rounding can make, for a font).
+    #[arg(long, default_value_t = 0.05)]
+    pub g1_angle: f64,
+    /// A G1 join whose relative curvature jump is under this is G2 (0.05: 5 %).
+    #[arg(long, default_value_t = 0.05)]
+    pub g2_jump: f64,
+    /// Breaks above G1 and under this (degrees) are listed as probably meant smooth.
+    #[arg(long, default_value_t = 3.0)]
+    pub near_break: f64,
+    /// Non-monotone segments whose curvature detour is under this share of their largest
+    /// curvature are not listed (0.05: 5 %; a cubic standing for a circular arc varies by a
+    /// few per cent).
+    #[arg(long, default_value_t = 0.05)]
+    pub min_bump: f64,
+}
+
+impl Thresholds {
+    /// The library's options (the grid and the suggestion set apart).
+    pub fn options(&self) -> anyhow::Result<aesthetic_curves::outline::OutlineOptions> {
+        let ok = |v: f64| v.is_finite() && v >= 0.0;
+        anyhow::ensure!(
+            [self.g1_angle, self.g2_jump, self.near_break, self.min_bump]
+                .iter()
+                .all(|v| ok(*v)),
+            "--g1-angle, --g2-jump, --near-break and --min-bump take numbers >= 0"
+        );
+        Ok(aesthetic_curves::outline::OutlineOptions {
+            g1_angle: self.g1_angle.to_radians(),
+            g2_jump: self.g2_jump,
+            near_break: self.near_break.to_radians(),
+            min_bump: self.min_bump,
+            ..Default::default()
+        })
+    }
 }

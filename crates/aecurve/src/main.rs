@@ -184,13 +184,16 @@ fn run() -> Result<()> {
             output,
             pictures,
             suggest,
+            thresholds,
         } => commands::check::check(
             &file,
             &select,
-            json,
-            top,
+            (json, top),
             (output.as_deref(), pictures),
-            suggest,
+            aesthetic_curves::outline::OutlineOptions {
+                suggest,
+                ..thresholds.options()?
+            },
         )?,
         Cmd::Editor {
             port,

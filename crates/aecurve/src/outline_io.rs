@@ -1231,6 +1231,9 @@ fn segment_json(s: &aesthetic_curves::outline::SegmentCheck) -> Value {
     // A curvature that grows without bound is null, with its kind in "ends".
     let num = crate::json_out::finite_or_null;
     o["max_abs_curvature"] = num(s.max_abs_curvature);
+    if s.bump > 0.0 {
+        o["bump"] = json!(s.bump);
+    }
     if let Some(e) = &s.ends {
         o["ends"] = Value::Array(e.iter().map(crate::json_out::end_curvature_json).collect());
     }

@@ -465,3 +465,37 @@ fn ufo_point_streams_read_as_their_segments() {
         [1, 2]
     );
 }
+
+/// `check --json` on DejaVu Sans (issue 34): findings ranked by severity, each place once
+/// however many glyphs draw it (the `B` of `Beta` and of Cyrillic `В` is `B`'s own finding,
+/// with them in `also_in`), and no two findings for the same place.
+#[test]
+fn findings_are_ranked_by_severity_and_listed_once_per_place() {
+    let font = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/DejaVuSans.ttf");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_aecurve"))
+        .args(["check", "--json", font])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f = v["findings"].as_array().unwrap();
+    let sev: Vec<f64> = f.iter().map(|x| x["severity"].as_f64().unwrap()).collect();
+    assert!(sev.windows(2).all(|w| w[0] >= w[1]), "not ranked");
+    let b_in_beta = f.iter().any(|x| {
+        x["shape"] == "B"
+            && x["also_in"]
+                .as_array()
+                .is_some_and(|a| a.iter().any(|n| n == "Beta"))
+    });
+    assert!(b_in_beta, "B's findings do not name Beta");
+    assert!(
+        !f.iter().any(|x| x["shape"] == "Beta"),
+        "Beta repeats B's findings"
+    );
+    // Each finding's glyph is named once (the first glyph, not again in also_in).
+    for x in f {
+        if let Some(a) = x["also_in"].as_array() {
+            assert!(!a.iter().any(|n| *n == x["shape"]), "{x}");
+        }
+    }
+}

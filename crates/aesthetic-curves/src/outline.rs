@@ -47,10 +47,17 @@ pub struct OutlineOptions {
     /// monotone, the handle lengths nearest to its own that make it monotone, moving the curve
     /// by at most this ([`suggest_handles`]).
     pub suggest: Option<f64>,
+    /// Non-monotone segments whose curvature bump ([`SegmentCheck::bump`]) is below this
+    /// are not findings (a cubic standing for a circular arc varies by a few per cent; a
+    /// single smooth extremum is often the design).
+    pub min_bump: f64,
+    /// An extremum within this fraction of the parameter of an end is a hook at that end.
+    pub hook_zone: f64,
 }
 
 impl Default for OutlineOptions {
-    /// G1 within 0.05°, G2 within 5 %, near-breaks up to 3°, exact coordinates.
+    /// G1 within 0.05°, G2 within 5 %, near-breaks up to 3°, exact coordinates, bumps from
+    /// 5 %, hooks within 5 % of an end.
     fn default() -> Self {
         OutlineOptions {
             g1_angle: 0.05f64.to_radians(),
@@ -58,6 +65,8 @@ impl Default for OutlineOptions {
             near_break: 3f64.to_radians(),
             grid: 0.0,
             suggest: None,
+            min_bump: 0.05,
+            hook_zone: 0.05,
         }
     }
 }
@@ -89,6 +98,12 @@ pub struct SegmentCheck {
     /// Largest |curvature| on the segment, over its ends and its extrema (infinite when an
     /// end's curvature grows without bound).
     pub max_abs_curvature: f64,
+    /// How large the curvature's detour is, relative to the segment's largest curvature:
+    /// the total variation of the signed curvature over its ends and extrema less what a
+    /// monotone curvature between the same end values would vary, halved
+    /// (`(Σ|Δκ| - |κ₁ - κ₀|) / (2 max|κ|)`): 0 for a monotone segment, 0.03 for a cubic
+    /// circle whose curvature rises 3 % in its middle (0 where an end is unbounded).
+    pub bump: f64,
     /// Why the segment could not be checked (a point, a cusp), if so.
     pub flag: Option<String>,
     /// Facts worth knowing that are not defects (retracted handles and what the curvature
@@ -208,18 +223,74 @@ pub struct JoinCheck {
     pub unbounded_curvature: bool,
 }
 
+/// A non-monotone segment's finding, if its bump is at least `min_bump`: a hook (an
+/// extremum within `hook_zone` of an end: a defect at the join, scored twice its bump),
+/// several extrema (one and a half times), or one smooth extremum inside (half its bump:
+/// often the design, listed for its size).
+fn not_monotone_finding(
+    contour: usize,
+    segment: usize,
+    s: &SegmentCheck,
+    opts: &OutlineOptions,
+) -> Option<Finding> {
+    if s.monotone != Some(false) || s.bump < opts.min_bump {
+        return None;
+    }
+    let z = opts.hook_zone;
+    let hook = s.extrema.iter().find(|e| e.0 < z || e.0 > 1.0 - z);
+    let (kind, weight, at) = match (hook, s.extrema.len()) {
+        (Some(h), _) => ("hook", 2.0, h.1),
+        (None, 1) => ("curvature-extremum", 0.5, s.extrema[0].1),
+        (None, _) => (
+            "not-monotone",
+            1.5,
+            s.extrema.first().map_or(s.start, |e| e.1),
+        ),
+    };
+    let n = s.extrema.len();
+    let what = match kind {
+        "hook" => format!(
+            "curvature hook at the {} (an extremum within {:.0} % of it)",
+            if hook.is_some_and(|h| h.0 < z) {
+                "start"
+            } else {
+                "end"
+            },
+            100.0 * z
+        ),
+        "curvature-extremum" => "one curvature extremum inside (often the design)".to_string(),
+        _ => format!("curvature not monotone: {n} extrema"),
+    };
+    Some(Finding {
+        contour,
+        kind,
+        segment,
+        point: at,
+        score: weight * s.bump,
+        message: format!(
+            "{what}; the curvature's detour is {:.0} % of its largest",
+            100.0 * s.bump
+        ),
+    })
+}
+
 /// A place worth a look, for the ranked list.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Finding {
     /// Contour index.
     pub contour: usize,
-    /// What: "near-break", "not-monotone", "curvature-jump", "degenerate".
+    /// What: "hook", "not-monotone" (several extrema), "curvature-extremum" (one, inside),
+    /// "near-break", "curvature-jump", "degenerate".
     pub kind: &'static str,
     /// Segment index (for a join, the segment before it).
     pub segment: usize,
     /// Where.
     pub point: Point,
-    /// How bad, for the ranking (a break in degrees, extrema count, a relative jump).
+    /// How bad, for the ranking, on one scale for every kind: half a near-break's angle over
+    /// the near-break threshold, a relative curvature jump (a quarter next to a line or a flat
+    /// end, a half where the curvature changes sign), a curvature bump (twice for a hook, one
+    /// and a half times for several extrema, half for one extremum inside); degenerate
+    /// segments 0.5.
     pub score: f64,
     /// For a person.
     pub message: String,
@@ -312,6 +383,7 @@ pub fn check_segment_with(c: &RationalBezier, opts: &OutlineOptions) -> SegmentC
         end_curvatures: None,
         ends: None,
         max_abs_curvature: 0.0,
+        bump: 0.0,
         flag: None,
         notes: Vec::new(),
         exact: false,
@@ -349,13 +421,17 @@ pub fn check_segment_with(c: &RationalBezier, opts: &OutlineOptions) -> SegmentC
     if c.degree() >= 2 {
         out.inflections = inflections(c).into_iter().map(|t| (t, c.eval(t))).collect();
     }
+    let mut along = vec![k0];
     for &t in &r.extrema {
         let k = c.kappa(t);
         if k.is_finite() {
             out.max_abs_curvature = out.max_abs_curvature.max(k.abs());
         }
+        along.push(k);
         out.extrema.push((t, c.eval(t)));
     }
+    along.push(k1);
+    out.bump = bump(&along, out.max_abs_curvature);
     if let (Some(tol), Some(false), false) = (opts.suggest, out.monotone, rational) {
         if c.degree() == 3 {
             if let Ok(b) = crate::Bezier::new(c.points().to_vec()) {
@@ -364,6 +440,17 @@ pub fn check_segment_with(c: &RationalBezier, opts: &OutlineOptions) -> SegmentC
         }
     }
     out
+}
+
+/// The relative detour of the curvature values `k` (ends and extrema in order): see
+/// [`SegmentCheck::bump`].
+fn bump(k: &[f64], max_abs: f64) -> f64 {
+    if k.iter().any(|v| !v.is_finite()) || max_abs <= 0.0 || !max_abs.is_finite() {
+        return 0.0;
+    }
+    let variation: f64 = k.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
+    let direct = (k[k.len() - 1] - k[0]).abs();
+    ((variation - direct) / (2.0 * max_abs)).max(0.0)
 }
 
 /// Check a contour of consecutive segments.
@@ -445,7 +532,9 @@ pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding
                     kind: "near-break",
                     segment: j.after_segment,
                     point: j.point,
-                    score: 3.0 + j.angle_break.to_degrees(),
+                    // Half at the near-break threshold: the larger the break the more visible,
+                    // and the likelier it was meant (a font stores no smooth flags).
+                    score: 0.5 * j.angle_break / opts.near_break,
                     message: format!(
                         "tangent break of {:.3}° (under {:.1}°: probably meant smooth)",
                         j.angle_break.to_degrees(),
@@ -454,31 +543,43 @@ pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding
                 });
             }
             if let Some(jump) = j.curvature_jump.filter(|v| *v >= opts.g2_jump) {
+                // Next to a line (or a flat end: a 90 to 100 % jump) only a zero end
+                // curvature is G2, and a sign change (over 100 %) is an inflection on the node: both
+                // common and mostly meant, so they rank at a quarter and a half.
+                let n = c.segments.len();
+                let (sa, sb) = (
+                    c.segments.get(j.after_segment),
+                    c.segments.get((j.after_segment + 1) % n),
+                );
+                let at_line = [sa, sb].iter().any(|s| s.is_some_and(|s| s.degree == 1));
+                // A flat end: one side's curvature under a tenth of the other's, same sign.
+                let flat = (0.9..=1.0).contains(&jump);
+                let (weight, why) = if at_line || flat {
+                    (
+                        0.25,
+                        " (next to a line or a flat end: G2 only with zero curvature)",
+                    )
+                } else if jump > 1.0 {
+                    (
+                        0.5,
+                        " (the curvature changes sign: an inflection on the node)",
+                    )
+                } else {
+                    (1.0, "")
+                };
                 out.push(Finding {
                     contour: ci,
                     kind: "curvature-jump",
                     segment: j.after_segment,
                     point: j.point,
-                    score: jump.min(1.0),
-                    message: format!("smooth join, curvature jumps by {:.0} %", 100.0 * jump),
+                    score: jump.min(1.0) * weight,
+                    message: format!("smooth join, curvature jumps by {:.0} %{why}", 100.0 * jump),
                 });
             }
         }
         for (si, s) in c.segments.iter().enumerate() {
-            if s.monotone == Some(false) {
-                let at = s.extrema.first().map(|e| e.1).unwrap_or(s.start);
-                out.push(Finding {
-                    contour: ci,
-                    kind: "not-monotone",
-                    segment: si,
-                    point: at,
-                    score: 1.0 + s.extrema.len() as f64,
-                    message: format!(
-                        "curvature not monotone: {} extrem{}",
-                        s.extrema.len(),
-                        if s.extrema.len() == 1 { "um" } else { "a" }
-                    ),
-                });
+            if let Some(f) = not_monotone_finding(ci, si, s, opts) {
+                out.push(f);
             }
             if let Some(f) = &s.flag {
                 out.push(Finding {
@@ -500,6 +601,53 @@ pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding
 mod tests {
     use super::*;
     use crate::Bezier;
+
+    /// A four-cubic circle (handles 0.5523 of the radius) varies in curvature by a few per
+    /// cent: not monotone, but no finding by default; listed when every bump is asked
+    /// for. A cubic whose extremum sits next to its end is a hook.
+    #[test]
+    fn findings_have_sizes_and_kinds() {
+        let k = 0.5523;
+        let q = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0), (1.0, 0.0)];
+        let circle: Vec<RationalBezier> = (0..4)
+            .map(|i| {
+                let ((ax, ay), (bx, by)) = (q[i], q[i + 1]);
+                cubic([
+                    ax,
+                    ay,
+                    ax - k * ay,
+                    ay + k * ax,
+                    bx + k * by,
+                    by - k * bx,
+                    bx,
+                    by,
+                ])
+            })
+            .collect();
+        let opts = OutlineOptions::default();
+        let c = check_contour(&circle, true, &opts);
+        assert_eq!(c.monotone_count(), 0, "a cubic is no circular arc");
+        for s in &c.segments {
+            assert!(s.bump > 0.0 && s.bump < 0.05, "{}", s.bump);
+        }
+        assert!(findings(std::slice::from_ref(&c), &opts).is_empty());
+        let all = OutlineOptions {
+            min_bump: 0.0,
+            ..opts
+        };
+        let f = findings(&[c], &all);
+        assert_eq!(f.len(), 4);
+        // Three extrema each (two minima around a middle maximum), a 4 % detour.
+        assert!(f.iter().all(|f| f.kind == "not-monotone"), "{f:?}");
+        // One extremum, at t ≈ 0.04: a hook at the start.
+        let hooked = cubic([0.0, 0.0, 0.5, 2.0, 6.0, 1.0, 10.0, 0.0]);
+        let s = check_segment_with(&hooked, &opts);
+        assert!(s.extrema.iter().any(|e| e.0 < 0.05), "{:?}", s.extrema);
+        let c = check_contour(&[hooked], false, &opts);
+        let f = findings(&[c], &opts);
+        assert_eq!(f[0].kind, "hook", "{f:?}");
+        assert!(f[0].message.contains("start"), "{}", f[0].message);
+    }
 
     /// A contour from -1e308 to 1.6e308 is checked like the same contour at unit scale
     /// (its segments were flagged "a point", their tangents' differences overflowing), with

@@ -11,11 +11,11 @@ use std::path::Path;
 pub(crate) fn check(
     file: &Path,
     select: &[String],
-    json_out: bool,
-    top: usize,
+    (json_out, top): (bool, usize),
     (report, pictures): (Option<&Path>, usize),
-    suggest: Option<f64>,
+    thresholds: aesthetic_curves::outline::OutlineOptions,
 ) -> Result<()> {
+    let suggest = thresholds.suggest;
     if let Some(t) = suggest {
         anyhow::ensure!(
             t.is_finite() && t > 0.0,
@@ -48,8 +48,8 @@ pub(crate) fn check(
         }
     }
     let opts = aesthetic_curves::outline::OutlineOptions {
-        suggest,
-        ..outline_io::options_for(&outlines)
+        grid: outline_io::options_for(&outlines).grid,
+        ..thresholds
     };
     let bar = (shapes.len() > 2000 && !json_out).then(|| {
         let b = indicatif::ProgressBar::new(shapes.len() as u64);
@@ -123,6 +123,7 @@ struct Tally {
     shapes: usize,
     segments: usize,
     curved: usize,
+    cubics: usize,
     monotone: usize,
     inflections: usize,
     joins: usize,
@@ -147,6 +148,7 @@ impl Tally {
         self.segments += segs.len();
         self.monotone += c.monotone_count();
         self.curved += segs.iter().filter(|s| s.degree > 1).count();
+        self.cubics += segs.iter().filter(|s| s.degree == 3).count();
         self.inflections += segs.iter().map(|s| s.inflections.len()).sum::<usize>();
         self.suggested += segs.iter().filter(|s| s.suggestion.is_some()).count();
         self.exact += segs.iter().filter(|s| s.exact).count();
@@ -168,11 +170,73 @@ impl Tally {
     }
 }
 
+/// A finding, once for every shape that has it: the first shape's name, and the others'.
+struct Ranked<'a> {
+    name: &'a str,
+    finding: Finding,
+    also_in: Vec<&'a str>,
+}
+
+/// The same place in several shapes (a component drawn in each composite that uses it, a
+/// serif repeated): the finding's kind and the shape of its segment (and, at a join, of the
+/// next one), relative to the segment's first point, to the bit.
+fn place_key(shape: &Shape, f: &Finding) -> Option<(&'static str, Vec<u64>)> {
+    let c = shape.contours.get(f.contour)?;
+    let n = c.segments.len();
+    let first = c.segments.get(f.segment)?;
+    let origin = first.points()[0];
+    let mut key = Vec::new();
+    let join = matches!(f.kind, "near-break" | "curvature-jump");
+    let segs = if join {
+        vec![f.segment, (f.segment + 1) % n]
+    } else {
+        vec![f.segment]
+    };
+    for s in segs {
+        let b = &c.segments[s];
+        for p in b.points() {
+            key.push((p.x - origin.x).to_bits());
+            key.push((p.y - origin.y).to_bits());
+        }
+        key.extend(b.weights().iter().map(|w| w.to_bits()));
+    }
+    Some((f.kind, key))
+}
+
+/// The findings of every shape, each place once (with the other shapes that have it), worst
+/// first.
+fn rank_once<'a>(found: Vec<(&'a Shape, Finding)>) -> Vec<Ranked<'a>> {
+    let mut seen: std::collections::HashMap<(&str, Vec<u64>), usize> = Default::default();
+    let mut out: Vec<Ranked> = Vec::new();
+    for (shape, f) in found {
+        match place_key(shape, &f) {
+            Some(key) if seen.contains_key(&key) => {
+                let r = &mut out[seen[&key]];
+                if r.name != shape.name && !r.also_in.contains(&shape.name.as_str()) {
+                    r.also_in.push(&shape.name);
+                }
+            }
+            key => {
+                if let Some(k) = key {
+                    seen.insert(k, out.len());
+                }
+                out.push(Ranked {
+                    name: &shape.name,
+                    finding: f,
+                    also_in: Vec::new(),
+                });
+            }
+        }
+    }
+    out.sort_by(|a, b| b.finding.score.total_cmp(&a.finding.score));
+    out
+}
+
 /// What the fold keeps of the checks: the counts, every finding (ranked, worst first) and
 /// the shapes' indices, worst first (for the report's pictures).
 struct Folded<'a> {
     tally: Tally,
-    ranked: Vec<(&'a str, Finding)>,
+    ranked: Vec<Ranked<'a>>,
     worst: Vec<usize>,
     check_ms: f64,
 }
@@ -211,13 +275,14 @@ fn fold_checks<'a>(
             }
             let worst = c.findings.first().map_or(0.0, |f| f.score);
             scores.push((round * ROUND + j, worst, c.findings.len()));
-            ranked.extend(c.findings.into_iter().map(|f| (c.name, f)));
+            let shape = shapes[round * ROUND + j];
+            ranked.extend(c.findings.into_iter().map(|f| (shape, f)));
         }
     }
     if let Some(w) = json.as_mut() {
         w.write_all(b"]").map_err(json_error)?;
     }
-    ranked.sort_by(|a, b| b.1.score.total_cmp(&a.1.score));
+    let ranked = rank_once(ranked);
     scores.sort_by(|a, b| b.1.total_cmp(&a.1).then(b.2.cmp(&a.2)));
     Ok(Folded {
         tally,
@@ -240,7 +305,17 @@ fn write_json_tail(
         .map(|(n, e)| json!({"name": n, "error": e}))
         .collect();
     write!(w, ",\"counts\":{},\"findings\":", folded.tally.json())?;
-    write_array(w, folded.ranked.iter().map(|(n, f)| finding_json(n, f)))?;
+    write_array(
+        w,
+        folded.ranked.iter().map(|r| {
+            let mut v = finding_json(r.name, &r.finding);
+            v["severity"] = json!(r.finding.score);
+            if !r.also_in.is_empty() {
+                v["also_in"] = json!(r.also_in);
+            }
+            v
+        }),
+    )?;
     write!(
         w,
         ",\"milliseconds\":{},\"unreadable\":{}}}",
@@ -297,27 +372,75 @@ fn print_summary(
         }
     }
     if let Some(t) = suggest {
-        println!(
-            "  suggestions: {} cubics become monotone by their handle lengths alone, moving at most {t}",
-            folded.tally.suggested
-        );
+        if t_cubics(folded) == 0 {
+            println!(
+                "  suggestions: none: the file has no cubic segments (TrueType outlines are quadratic), and --suggest changes cubic handles"
+            );
+        } else {
+            println!(
+                "  suggestions: {} cubics become monotone by their handle lengths alone, moving at most {t}",
+                folded.tally.suggested
+            );
+        }
     }
     println!("  read in {read_ms:.1} ms, checked in {check_ms:.1} ms");
 }
 
-fn print_findings(ranked: &[(&str, Finding)], top: usize) {
+/// The cubic segments checked.
+fn t_cubics(folded: &Folded) -> usize {
+    folded.tally.cubics
+}
+
+fn print_findings(ranked: &[Ranked], top: usize) {
     if ranked.is_empty() {
         return;
     }
+    let kinds = [
+        ("hook", "hooks"),
+        ("not-monotone", "segments with several curvature extrema"),
+        ("curvature-extremum", "with one extremum inside"),
+        ("near-break", "near-breaks"),
+        ("curvature-jump", "curvature jumps at smooth joins"),
+        ("degenerate", "degenerate segments"),
+    ];
+    let counts: Vec<String> = kinds
+        .iter()
+        .map(|(k, words)| {
+            (
+                ranked.iter().filter(|r| r.finding.kind == *k).count(),
+                words,
+            )
+        })
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, words)| format!("{n} {words}"))
+        .collect();
+    println!(
+        "findings, each place once however many glyphs share it: {}",
+        counts.join(", ")
+    );
     println!(
         "most worth a look ({} of {}):",
         top.min(ranked.len()),
         ranked.len()
     );
-    for (n, f) in ranked.iter().take(top) {
+    for r in ranked.iter().take(top) {
+        let f = &r.finding;
+        let also = match r.also_in.len() {
+            0 => String::new(),
+            k => format!(
+                " (also in {k}: {}{})",
+                r.also_in
+                    .iter()
+                    .take(4)
+                    .copied()
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                if k > 4 { ", ..." } else { "" }
+            ),
+        };
         println!(
-            "  {n}, contour {}, segment {} at ({:.1}, {:.1}): {}",
-            f.contour, f.segment, f.point.x, f.point.y, f.message
+            "  {}{also}, contour {}, segment {} at ({:.1}, {:.1}): {}",
+            r.name, f.contour, f.segment, f.point.x, f.point.y, f.message
         );
     }
 }
