@@ -326,6 +326,13 @@ await step('outline check: the sample contour, pasted path data, a dragged point
   assert.ok((await text('verdict')).length > 0);
   await shot('10-outline-font-o');
   console.log(`     DejaVu Sans o, contour 1: ${await text('verdict')}`);
+  // A font whose first glyphs are empty (.notdef without contours, as in Nimbus Sans): the
+  // first glyph with segments is shown, not "could not load".
+  await page.setInputFiles('#outline-file', `${root}crates/aecurve/tests/data/deep_composites.ttf`);
+  await page.waitForFunction(() => window.__editor.state.outline.name === 'base', null, { timeout: 15000 });
+  await idle();
+  assert.equal(await page.evaluate(() => window.__editor.state.outline.shape), 1);
+  assert.ok(!(await text('status')).includes('could not load'), await text('status'));
 });
 
 await step('an answer is never shown under another mode', async () => {

@@ -980,6 +980,14 @@ fn outline_check(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
                 .collect::<Vec<_>>()),
         ),
         (
+            "shape_segments",
+            json!(outlines
+                .shapes
+                .iter()
+                .map(|s| s.contours.iter().map(|c| c.segments.len()).sum::<usize>())
+                .collect::<Vec<_>>()),
+        ),
+        (
             "shapes",
             Value::Array(checked.iter().map(shape_json).collect()),
         ),

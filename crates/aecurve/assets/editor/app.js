@@ -327,10 +327,10 @@ function syncOutline() {
   opts($('outline-shape'), st.names, st.shape);
   opts($('outline-contour'), Array.from({ length: st.contours }, (_, i) => String(i + 1)), st.contour);
 }
-async function outlineLoad(req, shape, contour) {
+async function outlineLoad(req, shape, contour, firstDrawn) {
   const st = JSON.parse(JSON.stringify(state.outline));
   try {
-    await loadOutline(st, req, shape, contour);
+    await loadOutline(st, req, shape, contour, firstDrawn);
   } catch (e) {
     setStatus(`could not load: ${e.message}`, true);
     return;
@@ -352,13 +352,13 @@ async function outlineFile(file) {
     return;
   }
   if (/\.svg$/i.test(file.name)) {
-    await outlineLoad({ svg: await file.text() }, 0, 0);
+    await outlineLoad({ svg: await file.text() }, 0, 0, true);
     return;
   }
   const bytes = new Uint8Array(await file.arrayBuffer());
   let bin = '';
   for (let i = 0; i < bytes.length; i += 0x8000) bin += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
-  await outlineLoad({ file: { name: file.name, base64: btoa(bin) } }, 0, 0);
+  await outlineLoad({ file: { name: file.name, base64: btoa(bin) } }, 0, 0, true);
 }
 $('outline-load').addEventListener('click', () => outlineLoad({ path: $('outline-path').value }, 0, 0));
 $('outline-file').addEventListener('change', () => {

@@ -242,11 +242,24 @@ export function contourState(c) {
 }
 
 // Load an outline (req: {path} | {svg} | {file: {name, base64}}) into the mode's state: the
-// shape `shape` (an index into the file's shapes) and its contour `contour`.
-export async function loadOutline(st, req, shape, contour) {
-  const r = await api(Object.assign({ op: 'outline.check', shape, draw: 2 }, req));
+// shape `shape` (an index into the file's shapes) and its contour `contour`; with
+// `firstDrawn`, the first shape that has segments when `shape` has none (a font's empty
+// .notdef or space).
+export async function loadOutline(st, req, shape, contour, firstDrawn) {
+  let r = await api(Object.assign({ op: 'outline.check', shape, draw: 2 }, req));
+  const drawn = (a) => (a.drawing ? a.drawing.contours : []).length > 0;
+  if (!drawn(r) && firstDrawn && r.shape_segments) {
+    const first = r.shape_segments.findIndex((n) => n > 0);
+    if (first >= 0 && first !== shape) {
+      shape = first;
+      r = await api(Object.assign({ op: 'outline.check', shape, draw: 2 }, req));
+    }
+  }
   const contours = r.drawing ? r.drawing.contours : [];
-  if (!contours.length) throw new Error('no contour with segments in this shape');
+  if (!contours.length) {
+    const name = r.shape_names ? r.shape_names[shape] : 'this shape';
+    throw new Error(`${name} has nothing to check (no contour with segments): pick another`);
+  }
   const k = Math.min(contour, contours.length - 1);
   Object.assign(st, contourState(contours[k]), {
     source: req,
