@@ -6,6 +6,8 @@
 //! NumPy arrays; the library's errors become exceptions under one base class,
 //! `AestheticCurvesError`, with the library's messages. Long fits release the GIL.
 
+mod outline;
+
 use ac::approx::ApproxOptions;
 use ac::monotone::CurvatureMonotone;
 use ac::{Curve, PlanarCurve, Point};
@@ -1319,5 +1321,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pseudo_elastic, m)?)?;
     m.add_function(wrap_pyfunction!(fit_lac, m)?)?;
     m.add_function(wrap_pyfunction!(fit_sketch, m)?)?;
+    m.add_function(wrap_pyfunction!(outline::check_outline, m)?)?;
+    m.add_function(wrap_pyfunction!(outline::harmonize, m)?)?;
     Ok(())
 }

@@ -28,8 +28,10 @@ from ._native import (
     Samples,
     Sketch,
     are_curvature_monotone,
+    check_outline,
     fit_lac,
     fit_sketch,
+    harmonize,
     pseudo_elastic,
 )
 
@@ -55,8 +57,10 @@ __all__ = [
     "Samples",
     "Sketch",
     "are_curvature_monotone",
+    "check_outline",
     "fit_lac",
     "fit_sketch",
+    "harmonize",
     "plot_comb",
     "pseudo_elastic",
 ]

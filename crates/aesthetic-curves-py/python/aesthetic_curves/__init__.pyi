@@ -32,8 +32,10 @@ __all__ = [
     "Samples",
     "Sketch",
     "are_curvature_monotone",
+    "check_outline",
     "fit_lac",
     "fit_sketch",
+    "harmonize",
     "plot_comb",
     "pseudo_elastic",
 ]
@@ -254,4 +256,15 @@ class Sketch(_Exportable):
         """Piece ``floor(u)`` at its own t = u - floor(u) (clamped into (0, n))."""
 
 def fit_sketch(points: _Points, tolerance: float) -> Sketch: ...
+def check_outline(
+    contours: Any,
+    grid: float = 0.0,
+    g1_angle: float = 0.05,
+    g2_jump: float = 0.05,
+    near_break: float = 3.0,
+    min_bump: float = 0.05,
+) -> dict[str, Any]: ...
+def harmonize(
+    segments: Any, closed: bool, smooth: Sequence[bool], tolerance: float = 2.0, grid: float = 0.0
+) -> dict[str, Any]: ...
 def plot_comb(curve: Any, ax: Any = None, samples: int = 200, scale: Optional[float] = None, **line_kwargs: Any) -> Any: ...

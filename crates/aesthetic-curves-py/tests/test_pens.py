@@ -1,0 +1,113 @@
+"""The fontTools pen and the in-place fix (issue 34), on glyphs made here and on a UFO of a
+real font when ufo-extractor and a TeX Gyre font are there."""
+
+import glob
+import math
+
+import pytest
+
+pens = pytest.importorskip("aesthetic_curves.pens")
+ufoLib2 = pytest.importorskip("ufoLib2")
+
+K = 0.5523
+
+
+def draw_circle(pen, r=100.0):
+    q = [(r, 0), (0, r), (-r, 0), (0, -r), (r, 0)]
+    pen.moveTo(q[0])
+    for (ax, ay), (bx, by) in zip(q, q[1:]):
+        pen.curveTo((ax - K * ay, ay + K * ax), (bx + K * by, by - K * bx), (bx, by))
+    pen.closePath()
+
+
+def test_a_cubic_circle_is_not_monotone_but_no_finding():
+    pen = pens.CheckPen()
+    draw_circle(pen)
+    r = pen.check()
+    segs = r["contours"][0]["segments"]
+    assert len(segs) == 4
+    assert all(s["monotone"] is False and 0 < s["bump"] < 0.05 for s in segs)
+    assert r["findings"] == []
+    assert len(pen.check(min_bump=0)["findings"]) == 4
+    # Joins: G1 and G2 (the circle is symmetric).
+    assert all(j["g1"] and j["g2"] for j in r["contours"][0]["joins"])
+
+
+def test_quadratics_and_lines_are_checked_too():
+    pen = pens.CheckPen()
+    pen.moveTo((0, 0))
+    pen.lineTo((100, 0))
+    pen.qCurveTo((150, 0), (150, 50))
+    pen.qCurveTo((150, 100), (100, 150), (50, 100))  # an implied on-curve point
+    pen.closePath()
+    r = pen.check(grid=1)
+    degrees = [s["degree"] for s in r["contours"][0]["segments"]]
+    assert degrees == [1, 2, 2, 2, 1]
+    kinds = {f["kind"] for f in r["findings"]}
+    assert kinds <= {"hook", "not-monotone", "curvature-extremum", "near-break", "curvature-jump", "degenerate"}
+
+
+def o_glyph():
+    font = ufoLib2.Font()
+    g = font.newGlyph("o")
+    pts = [(600, 0, "curve"), (600, 265, None), (330, 400, None), (0, 400, "curve"),
+           (-290, 400, None), (-600, 200, None), (-600, 0, "curve"), (-600, -250, None),
+           (-360, -400, None), (0, -400, "curve"), (300, -400, None), (600, -190, None)]
+    c = ufoLib2.objects.Contour()
+    for x, y, t in pts:
+        c.points.append(ufoLib2.objects.Point(x, y, t, smooth=t is not None))
+    g.contours.append(c)
+    return g
+
+
+def jumps(glyph):
+    pen = pens.CheckPen()
+    glyph.draw(pen)
+    return [j["curvature_jump"] for j in pen.check(grid=1)["contours"][0]["joins"]]
+
+
+def test_fix_glyph_moves_handles_only_within_the_tolerance_and_nothing_worse():
+    g = o_glyph()
+    before = [(p.x, p.y, p.type, p.smooth) for p in g.contours[0].points]
+    j0 = jumps(g)
+    report = pens.fix_glyph(g, tolerance=40, grid=1)
+    after = [(p.x, p.y, p.type, p.smooth) for p in g.contours[0].points]
+    assert len(after) == len(before)
+    for (x0, y0, t0, s0), (x1, y1, t1, s1) in zip(before, after):
+        assert (t0, s0) == (t1, s1)
+        if t0 is not None:
+            assert (x0, y0) == (x1, y1), "an on-curve point moved"
+        assert math.hypot(x1 - x0, y1 - y0) <= 40
+        assert float(x1).is_integer() and float(y1).is_integer()
+    j1 = jumps(g)
+    assert all(b <= a * (1 + 1e-9) for a, b in zip(j0, j1)), (j0, j1)
+    assert sum(j1) < 0.5 * sum(j0), (j0, j1)
+    assert report[0]["contour"] == 0 and len(report[0]["joins"]) == 4
+
+
+def test_fix_glyph_leaves_quadratic_contours_and_says_so():
+    font = ufoLib2.Font()
+    g = font.newGlyph("q")
+    c = ufoLib2.objects.Contour()
+    for x, y, t in [(0, 0, "qcurve"), (100, 0, None), (100, 100, "qcurve"), (0, 100, None)]:
+        c.points.append(ufoLib2.objects.Point(x, y, t))
+    g.contours.append(c)
+    before = [(p.x, p.y) for p in c.points]
+    report = pens.fix_glyph(g)
+    assert "quadratic" in report[0]["skipped"]
+    assert [(p.x, p.y) for p in c.points] == before
+
+
+def test_a_real_font_checks_through_the_pen():
+    fonts = sorted(glob.glob("/usr/share/texmf/fonts/opentype/public/tex-gyre/texgyreheros-regular.otf"))
+    if not fonts:
+        pytest.skip("no TeX Gyre Heros")
+    from fontTools.ttLib import TTFont
+    font = TTFont(fonts[0])
+    gs = font.getGlyphSet()
+    pen = pens.CheckPen(gs)
+    gs["a"].draw(pen)
+    r = pen.check(grid=1)
+    assert len(r["contours"]) == 2
+    assert sum(len(c["segments"]) for c in r["contours"]) > 10
+    assert all(f["severity"] >= g["severity"] for f, g in zip(r["findings"], r["findings"][1:]))
