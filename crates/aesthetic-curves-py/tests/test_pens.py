@@ -111,3 +111,19 @@ def test_a_real_font_checks_through_the_pen():
     assert len(r["contours"]) == 2
     assert sum(len(c["segments"]) for c in r["contours"]) > 10
     assert all(f["severity"] >= g["severity"] for f, g in zip(r["findings"], r["findings"][1:]))
+
+
+def test_the_fontbakery_profile_runs_on_a_real_font():
+    pytest.importorskip("fontbakery")
+    import subprocess
+    import sys
+    fonts = glob.glob("/usr/share/texmf/fonts/opentype/public/tex-gyre/texgyreheros-regular.otf")
+    if not fonts:
+        pytest.skip("no TeX Gyre Heros")
+    r = subprocess.run([sys.executable, "-m", "fontbakery", "check-profile",
+                        "aesthetic_curves.fontbakery_profile", fonts[0]],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    assert "aesthetic_curves/curvature" in r.stdout
+    assert "places where the curvature is worth a look" in r.stdout
+    assert "ERROR: 0" in r.stdout and "WARN: 1" in r.stdout
