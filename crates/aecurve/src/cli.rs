@@ -203,6 +203,11 @@ pub(crate) enum Cmd {
         /// The coordinates' grid (1: integer font units; 0: none).
         #[arg(long, default_value_t = 1.0)]
         grid: f64,
+        /// Also move the on-curve point of a smooth join along the line of its two handles
+        /// (the handles stay, so the curvature elsewhere does not change; within the
+        /// tolerance).
+        #[arg(long)]
+        move_points: bool,
         /// Print every change as JSON instead of the summary.
         #[arg(long)]
         json: bool,

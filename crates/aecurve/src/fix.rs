@@ -1,7 +1,8 @@
 //! `aecurve fix`: a UFO source's smooth joins harmonized (the library's `harmonize`) and the
 //! UFO written back with the same structure: same glyphs, contours, points, kinds, names,
-//! identifiers, anchors and components; only off-curve coordinates move, never further than
-//! the tolerance, on the grid.
+//! identifiers, anchors and components; only off-curve coordinates move (and, with
+//! `--move-points`, on-curve points of smooth joins, along their handles' line), never
+//! further than the tolerance, on the grid.
 //!
 //! A contour is taken as the designer drew it: its segments are read from the points in
 //! order (an open contour from its `move`, a closed one from its first on-curve point), and a
@@ -109,6 +110,8 @@ pub struct FixOptions {
     pub tolerance: f64,
     /// The coordinates' grid (1: integer font units; 0: none).
     pub grid: f64,
+    /// Also move the on-curve points of smooth joins along their handles' line.
+    pub move_points: bool,
 }
 
 /// One contour's result, as JSON and as counts.
@@ -143,13 +146,12 @@ pub struct FixCounts {
 }
 
 impl FixCounts {
-    fn add(&mut self, h: &Harmonized, input: &[Vec<Point>]) {
+    fn add(&mut self, h: &Harmonized, c: &IndexedContour) {
+        let input = &c.segments;
+        let n = input.len();
         for j in &h.joins {
-            if matches!(
-                j.outcome,
-                JoinOutcome::Corner | JoinOutcome::NotBetweenCubics
-            ) || j.jump.0.is_nan()
-            {
+            let (a, b) = (j.after_segment, (j.after_segment + 1) % n);
+            if !c.smooth[j.after_segment] || input[a].len() != 4 || input[b].len() != 4 {
                 continue;
             }
             self.smooth_cubic_joins += 1;
@@ -182,6 +184,7 @@ pub fn fix_ufo(
     let hopts = HarmonizeOptions {
         tolerance: opts.tolerance,
         grid: opts.grid,
+        move_points: opts.move_points,
         ..HarmonizeOptions::default()
     };
     let mut fixes = Vec::new();
@@ -194,7 +197,7 @@ pub fn fix_ufo(
                 let h = harmonize(&c.segments, c.closed, &c.smooth, &hopts)
                     .map_err(|e| e.to_string())?;
                 write_back(&mut contour.points, c, &h);
-                counts.add(&h, &c.segments);
+                counts.add(&h, c);
                 Ok(h)
             });
             counts.skipped_contours += result.is_err() as usize;

@@ -174,8 +174,18 @@ fn run() -> Result<()> {
             output,
             tolerance,
             grid,
+            move_points,
             json,
-        } => commands::fix::fix(&input, &output, (tolerance, grid), json)?,
+        } => commands::fix::fix(
+            &input,
+            &output,
+            aecurve::fix::FixOptions {
+                tolerance,
+                grid,
+                move_points,
+            },
+            json,
+        )?,
         Cmd::Check {
             file,
             select,

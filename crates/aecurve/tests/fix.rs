@@ -70,6 +70,7 @@ fn fix_writes_the_same_structure_and_nothing_worse() {
         &FixOptions {
             tolerance,
             grid: 1.0,
+            move_points: false,
         },
     )
     .unwrap();

@@ -39,6 +39,10 @@ pub struct HarmonizeOptions {
     pub grid: f64,
     /// Most sweeps over the joins.
     pub max_sweeps: usize,
+    /// Also move the on-curve point of a smooth join along the line of its two handles
+    /// (Grey Harmony's way: the two handles stay, so the curvature elsewhere does not
+    /// change), before the handles slide.
+    pub move_points: bool,
 }
 
 impl Default for HarmonizeOptions {
@@ -47,6 +51,7 @@ impl Default for HarmonizeOptions {
             tolerance: 1.0,
             grid: 0.0,
             max_sweeps: 100,
+            move_points: false,
         }
     }
 }
@@ -263,6 +268,17 @@ pub fn harmonize(
 ) -> crate::Result<Harmonized> {
     check_input(segments, closed, smooth, opts)?;
     let n = segments.len();
+    let before = states(segments, closed);
+    let extrema_before: Vec<Option<usize>> = segments.iter().map(|s| extrema(s)).collect();
+    let original = segments;
+    // With `move_points`, the joins' on-curve points first (each checked: no cubic with more
+    // extrema, no join worse); the handles then slide from there.
+    let start = if opts.move_points {
+        move_on_curve_points(segments, (closed, smooth), opts, (&before, &extrema_before))
+    } else {
+        segments.to_vec()
+    };
+    let segments = &start[..];
     let mut h = Handles::of(segments);
     let mut outcome = vec![JoinOutcome::Corner; smooth.len()];
     let tol = opts.tolerance;
@@ -289,8 +305,6 @@ pub fn harmonize(
         }
         change
     });
-    let before = states(segments, closed);
-    let extrema_before: Vec<Option<usize>> = segments.iter().map(|s| extrema(s)).collect();
     let (mut pts, share) = blend_back(segments, &h, closed, opts, (&before, &extrema_before));
     if share < 1.0 {
         for o in outcome.iter_mut() {
@@ -323,7 +337,7 @@ pub fn harmonize(
             angle: (before[j].1, after[j].1),
         })
         .collect();
-    let moved = segments
+    let moved = original
         .iter()
         .zip(&pts)
         .map(|(s, p)| {
@@ -438,6 +452,66 @@ fn blend_back(
     (pts, share)
 }
 
+/// The on-curve point of every smooth join between cubics moved along the line of its two
+/// handles to where the join is G2 (`P = a2 + (b1 - a2) √e_A / (√e_A + √e_B)`: the distances
+/// e of the far handles from that line do not change, and neither does the curvature at the
+/// cubics' other ends), at most the tolerance, on the grid (the best of the 3 × 3 points
+/// around it, or half the way), where no cubic gains extrema and the join's angle is not
+/// worse than the input's.
+fn move_on_curve_points(
+    segments: &[Vec<Point>],
+    (closed, smooth): (bool, &[bool]),
+    opts: &HarmonizeOptions,
+    (before, extrema_before): (&[(f64, f64)], &[Option<usize>]),
+) -> Vec<Vec<Point>> {
+    let mut pts = segments.to_vec();
+    for (j, a, b) in joins(pts.len(), closed) {
+        if !smooth[j] || pts[a].len() != 4 || pts[b].len() != 4 || a == b {
+            continue;
+        }
+        let (a1, a2, p, b1, b2) = (pts[a][1], pts[a][2], pts[a][3], pts[b][1], pts[b][2]);
+        let line = b1 - a2;
+        let len = line.hypot();
+        let usable = len > 0.0 && len.is_finite();
+        if !usable {
+            continue;
+        }
+        let t = line / len;
+        let (ea, eb) = ((a2 - a1).cross(t), t.cross(b2 - b1));
+        if !(ea > 0.0 && eb > 0.0 || ea < 0.0 && eb < 0.0) {
+            continue;
+        }
+        let r = ea.abs().sqrt() / (ea.abs().sqrt() + eb.abs().sqrt());
+        let mut target = a2 + line * r;
+        let d = (target - p).hypot();
+        if d > opts.tolerance {
+            target = p + (target - p) * (opts.tolerance / d);
+        }
+        let mut best = (join_state(&pts[a], &pts[b]).0, p);
+        for share in [1.0, 0.5] {
+            let aim = p + (target - p) * share;
+            for q in grid_candidates(aim, p, opts) {
+                if q == p || (q - p).hypot() > opts.tolerance {
+                    continue;
+                }
+                pts[a][3] = q;
+                pts[b][0] = q;
+                let (jump, angle) = join_state(&pts[a], &pts[b]);
+                if jump < best.0
+                    && angle <= before[j].1 + 1e-12
+                    && !gains_extrema(&pts[a], extrema_before[a])
+                    && !gains_extrema(&pts[b], extrema_before[b])
+                {
+                    best = (jump, q);
+                }
+            }
+        }
+        pts[a][3] = best.1;
+        pts[b][0] = best.1;
+    }
+    pts
+}
+
 /// Jump and angle at every join.
 fn states(pts: &[Vec<Point>], closed: bool) -> Vec<(f64, f64)> {
     joins(pts.len(), closed)
@@ -536,10 +610,12 @@ fn place_on_grid(
 }
 
 /// Join by join, the two handles at it moved further towards the lengths solved for (the
-/// whole way, or 3/4, 1/2, 1/4 of it in their logarithms, then to the grid), where that
-/// lowers the sum of the jumps at the joins its two segments touch and leaves no join worse
-/// than in the input and no cubic with more extrema: the shared share of [`blend_back`] is set by the most constrained join, and most
-/// joins can go further. Two passes.
+/// whole way, or part of it in their logarithms), on the grid the best pair of the 3 × 3
+/// grid points around each (jointly: one handle's rounding can make up for the other's),
+/// where that lowers the sum of the jumps at the joins its two segments touch and leaves no
+/// join worse than in the input and no cubic with more extrema: the shared share of
+/// [`blend_back`] is set by the most constrained join, and most joins can go further. Two
+/// passes.
 fn improve_joins(
     input: &[Vec<Point>],
     pts: &mut [Vec<Point>],
@@ -551,46 +627,109 @@ fn improve_joins(
     let n = pts.len();
     for _pass in 0..2 {
         for (j, a, b) in joins(n, closed) {
-            if !smooth[j] || solved.dirs[a].is_none() || solved.dirs[b].is_none() {
-                continue;
+            if smooth[j] && solved.dirs[a].is_some() && solved.dirs[b].is_some() {
+                improve_join(
+                    input,
+                    pts,
+                    solved,
+                    (a, b),
+                    (closed, opts),
+                    (before, extrema_before),
+                );
             }
-            // The jumps at every join segment a or b touches: a move must lower their sum
-            // (lowering this join's alone could raise its neighbours').
-            let near: Vec<(usize, usize, usize)> = joins(n, closed)
-                .filter(|&(_, x, y)| [x, y].iter().any(|i| *i == a || *i == b))
-                .collect();
-            let cost = |pts: &[Vec<Point>]| -> f64 {
-                near.iter()
-                    .map(|&(_, x, y)| join_state(&pts[x], &pts[y]).0)
-                    .sum()
-            };
-            let keep = (pts[a][2], pts[b][1]);
-            let (v0, vt) = (solved.orig[a].1, solved.len[a].1);
-            let (u0, ut) = (solved.orig[b].0, solved.len[b].0);
-            let p = input[a][3];
-            let mut best = (cost(pts), keep);
-            for lambda in [1.0, 0.75, 0.5, 0.25] {
-                let (v, u) = (v0 * (vt / v0).powf(lambda), u0 * (ut / u0).powf(lambda));
-                pts[a][2] = p + (input[a][2] - p) * (v / v0);
-                pts[b][1] = p + (input[b][1] - p) * (u / u0);
-                if opts.grid > 0.0 {
-                    place_on_grid(input, pts, (a, 2), (closed, before), opts);
-                    place_on_grid(input, pts, (b, 1), (closed, before), opts);
-                }
-                let c = cost(pts);
-                let valid = [a, b]
-                    .iter()
-                    .all(|&i| !gains_extrema(&pts[i], extrema_before[i]))
-                    && worse_joins(input, pts, closed, before)
-                        .iter()
-                        .all(|&(_, x, y)| x != a && y != a && x != b && y != b);
-                if valid && c < best.0 {
-                    best = (c, (pts[a][2], pts[b][1]));
-                }
-            }
-            (pts[a][2], pts[b][1]) = best.1;
         }
     }
+}
+
+/// [`improve_joins`] at the join of segments `a` and `b`.
+fn improve_join(
+    input: &[Vec<Point>],
+    pts: &mut [Vec<Point>],
+    solved: &Handles,
+    (a, b): (usize, usize),
+    (closed, opts): (bool, &HarmonizeOptions),
+    (before, extrema_before): (&[(f64, f64)], &[Option<usize>]),
+) {
+    let n = pts.len();
+    // The jumps at every join segment a or b touches: a move must lower their sum (lowering
+    // this join's alone could raise its neighbours'), and make none worse than the input's.
+    let near: Vec<(usize, usize, usize)> = joins(n, closed)
+        .filter(|&(_, x, y)| [x, y].iter().any(|i| *i == a || *i == b))
+        .collect();
+    let cost = |pts: &[Vec<Point>]| -> Option<f64> {
+        let mut sum = 0.0;
+        for &(j, x, y) in &near {
+            let (jump, angle) = join_state(&pts[x], &pts[y]);
+            let worse = angle > before[j].1 + 1e-12 || jump > before[j].0 * (1.0 + 1e-12) + 1e-15;
+            if worse && (pts[x] != input[x] || pts[y] != input[y]) {
+                return None;
+            }
+            sum += jump;
+        }
+        Some(sum)
+    };
+    let keep = (pts[a][2], pts[b][1]);
+    let (v0, vt) = (solved.orig[a].1, solved.len[a].1);
+    let (u0, ut) = (solved.orig[b].0, solved.len[b].0);
+    let p = input[a][3];
+    let mut best = (cost(pts).unwrap_or(f64::INFINITY), keep);
+    for lambda in [1.0, 0.85, 0.7, 0.5, 0.3] {
+        let (v, u) = (v0 * (vt / v0).powf(lambda), u0 * (ut / u0).powf(lambda));
+        let ta = p + (input[a][2] - p) * (v / v0);
+        let tb = p + (input[b][1] - p) * (u / u0);
+        let (ca, cb) = (
+            grid_candidates(ta, input[a][2], opts),
+            grid_candidates(tb, input[b][1], opts),
+        );
+        let mut ranked: Vec<(f64, Point, Point)> = Vec::with_capacity(ca.len() * cb.len());
+        for &qa in &ca {
+            for &qb in &cb {
+                pts[a][2] = qa;
+                pts[b][1] = qb;
+                if let Some(c) = cost(pts) {
+                    if c < best.0 {
+                        ranked.push((c, qa, qb));
+                    }
+                }
+            }
+        }
+        ranked.sort_by(|x, y| x.0.total_cmp(&y.0));
+        // The exact extrema test on the cheapest few only.
+        for &(c, qa, qb) in ranked.iter().take(6) {
+            pts[a][2] = qa;
+            pts[b][1] = qb;
+            if [a, b]
+                .iter()
+                .all(|&i| !gains_extrema(&pts[i], extrema_before[i]))
+            {
+                best = (c, (qa, qb));
+                break;
+            }
+        }
+    }
+    (pts[a][2], pts[b][1]) = best.1;
+}
+
+/// Where a handle aimed at `target` may go: `target` itself without a grid, else the 3 × 3
+/// grid points around it; only those within the tolerance of `input` (the input place is
+/// always allowed).
+fn grid_candidates(target: Point, input: Point, opts: &HarmonizeOptions) -> Vec<Point> {
+    let within = |q: Point| (q - input).hypot() <= opts.tolerance || q == input;
+    if opts.grid <= 0.0 {
+        return [target, input].into_iter().filter(|q| within(*q)).collect();
+    }
+    let g = opts.grid;
+    let (cx, cy) = ((target.x / g).round(), (target.y / g).round());
+    let mut out = vec![input];
+    for dx in -1..=1 {
+        for dy in -1..=1 {
+            let q = Point::new((cx + dx as f64) * g, (cy + dy as f64) * g);
+            if within(q) {
+                out.push(q);
+            }
+        }
+    }
+    out
 }
 
 /// Whether the cubic `p` has more interior curvature extrema than `before` (or no verdict
@@ -755,6 +894,30 @@ mod tests {
         for (b, a) in &r.extrema {
             assert!(a <= b, "{:?}", r.extrema);
         }
+    }
+
+    /// With `move_points`, the join's point slides along the line of its two handles to
+    /// where the join is G2, the handles staying where they were.
+    #[test]
+    fn the_on_curve_point_moves_along_its_handles_to_g2() {
+        let segs = two_cubics();
+        let opts = HarmonizeOptions {
+            tolerance: 5.0,
+            move_points: true,
+            ..Default::default()
+        };
+        let r = harmonize(&segs, false, &[true], &opts).unwrap();
+        let j = r.joins[0];
+        assert!(j.jump.1 < 1e-9, "{j:?}");
+        let (a, b) = (&r.segments[0], &r.segments[1]);
+        assert_eq!(a[3], b[0]);
+        assert_eq!((a[2], b[1]), (segs[0][2], segs[1][1]), "the handles moved");
+        let (u, v) = (a[3] - a[2], b[1] - a[3]);
+        assert!(
+            u.cross(v).abs() <= 1e-9 * u.hypot() * v.hypot(),
+            "off the handles' line"
+        );
+        assert!((a[3] - segs[0][3]).hypot() <= 5.0);
     }
 
     #[test]

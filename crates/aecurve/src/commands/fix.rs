@@ -5,12 +5,8 @@ use aecurve::fix::{fix_json, fix_ufo, FixOptions};
 use anyhow::Result;
 use std::path::Path;
 
-pub(crate) fn fix(
-    input: &Path,
-    output: &Path,
-    (tolerance, grid): (f64, f64),
-    json: bool,
-) -> Result<()> {
+pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> Result<()> {
+    let (tolerance, grid) = (opts.tolerance, opts.grid);
     anyhow::ensure!(
         tolerance.is_finite() && tolerance >= 0.0,
         "--tolerance must be a distance >= 0 (font units)"
@@ -36,12 +32,12 @@ pub(crate) fn fix(
         std::fs::create_dir_all(parent)
             .map_err(|e| anyhow::anyhow!("creating {}: {e}", parent.display()))?;
     }
-    let (fixes, c) = fix_ufo(input, output, &FixOptions { tolerance, grid })?;
+    let (fixes, c) = fix_ufo(input, output, &opts)?;
     if json {
         let changes: Vec<_> = fixes.iter().map(fix_json).collect();
         let out = serde_json::json!({
             "input": input.display().to_string(), "output": output.display().to_string(),
-            "tolerance": tolerance, "grid": grid,
+            "tolerance": tolerance, "grid": grid, "move_points": opts.move_points,
             "counts": {
                 "smooth_cubic_joins": c.smooth_cubic_joins,
                 "under_1_percent_before": c.under_1_percent.0,
