@@ -77,9 +77,16 @@ def compare_checks(before, after, name):
     if sa.keys() != sb.keys():
         fail(f"{name}: check read other shapes after the fix")
     joins = under = (0, 0)
+    bumps = [0, 0]
+
+    def bump(s):
+        ts = [e["t"] for e in s["extrema"]]
+        return s["degree"] == 3 and (len(ts) > 1 or any(t < 0.05 or t > 0.95 for t in ts))
     for g in sa:
         for ca, cb in zip(sa[g]["contours"], sb[g]["contours"]):
             for k, (x, y) in enumerate(zip(ca["segments"], cb["segments"])):
+                bumps[0] += bump(x)
+                bumps[1] += bump(y)
                 if len(y["extrema"]) > len(x["extrema"]):
                     fail(f"{name} {g} segment {k}: {len(x['extrema'])} curvature extrema became {len(y['extrema'])}")
             n = len(ca["segments"])
@@ -96,7 +103,9 @@ def compare_checks(before, after, name):
                     continue  # next to a line: G2 only with a flat end
                 joins = (joins[0] + 1, 0)
                 under = (under[0] + (x < 0.01), under[1] + (y < 0.01))
-    return joins[0], under
+    if bumps[1] > bumps[0]:
+        fail(f"{name}: more cubics with a hook or several extrema after ({bumps[1]}) than before ({bumps[0]})")
+    return joins[0], under, bumps
 
 
 fonts = sorted(glob.glob("/usr/share/texmf/fonts/opentype/public/tex-gyre/texgyre*-regular.otf"))[:2]
@@ -117,7 +126,9 @@ for f in fonts:
             fail(f"fix {name} {mode}: {out.stderr.strip()}")
         claims = json.loads(out.stdout)["counts"]
         moved = same_structure(ufoLib2.Font.open(src), ufoLib2.Font.open(dst), name, bool(mode))
-        joins, (u0, u1) = compare_checks(before, check_json(dst), name)
+        joins, (u0, u1), bumps = compare_checks(before, check_json(dst), name)
+        if (claims["bumps_before"], claims["bumps_after"]) != tuple(bumps):
+            fail(f"{name}: fix claims {claims['bumps_before']} -> {claims['bumps_after']} hooks or wobbles, check counts {bumps}")
         if claims["worse_joins"] != 0 or claims["cubics_with_more_extrema"] != 0:
             fail(f"{name}: fix claims {claims}")
         if u1 < u0:
@@ -125,5 +136,6 @@ for f in fonts:
         print(f"{name} {' '.join(mode) or '(handles only)'}: {claims['changed_segments']} segments changed, "
               f"largest move {moved:.2f}; of {joins} G1 joins between two curves, {u0} ({100 * u0 / max(joins, 1):.1f} %) "
               f"under a 1 % curvature jump before, {u1} ({100 * u1 / max(joins, 1):.1f} %) after; none worse, "
-              f"no segment with more extrema (check --json on both)")
+              f"no segment with more extrema; cubics with a hook or several extrema {bumps[0]} -> {bumps[1]} "
+              f"(check --json on both)")
 print("fix check: ok")

@@ -203,6 +203,14 @@ pub(crate) enum Cmd {
         /// The coordinates' grid (1: integer font units; 0: none).
         #[arg(long, default_value_t = 1.0)]
         grid: f64,
+        /// Leave curvature hooks and extra extrema alone (by default each cubic with a hook
+        /// within 5 % of an end, or several extrema, gets monotone handle lengths first where
+        /// they exist within the tolerance).
+        #[arg(long)]
+        no_bumps: bool,
+        /// Leave the smooth joins alone (only the bumps).
+        #[arg(long)]
+        no_harmonize: bool,
         /// Also move the on-curve point of a smooth join along the line of its two handles
         /// (the handles stay, so the curvature elsewhere does not change; within the
         /// tolerance).

@@ -10,7 +10,7 @@
 //! segments (`qcurve`, or one off-curve point) are left as they are and listed: `fix` works
 //! on cubic outlines (convert a TrueType source to cubics first).
 
-use aesthetic_curves::harmonize::{harmonize, HarmonizeOptions, Harmonized, JoinOutcome};
+use aesthetic_curves::harmonize::{repair, HarmonizeOptions, Harmonized, JoinOutcome, Repairs};
 use aesthetic_curves::Point;
 use anyhow::{Context, Result};
 use serde_json::{json, Value};
@@ -112,6 +112,8 @@ pub struct FixOptions {
     pub grid: f64,
     /// Also move the on-curve points of smooth joins along their handles' line.
     pub move_points: bool,
+    /// Which repairs run (hooks and extra extrema first, then the joins).
+    pub repairs: Repairs,
 }
 
 /// One contour's result, as JSON and as counts.
@@ -143,6 +145,9 @@ pub struct FixCounts {
     pub max_moved: f64,
     /// Contours left alone (quadratic or unreadable).
     pub skipped_contours: usize,
+    /// Cubics with a hook (an extremum within 5 % of an end) or several extrema, before and
+    /// after (the exact test).
+    pub bumps: (usize, usize),
 }
 
 impl FixCounts {
@@ -165,9 +170,28 @@ impl FixCounts {
                 self.gained_extrema += (a > b) as usize;
             }
         }
+        let bump = |p: &[Point]| hook_or_wobble(p).unwrap_or(false) as usize;
+        for (s, t) in input.iter().zip(&h.segments) {
+            self.bumps.0 += bump(s);
+            self.bumps.1 += bump(t);
+        }
         self.changed_segments += h.segments.iter().zip(input).filter(|(a, b)| a != b).count();
         self.max_moved = h.moved.iter().copied().fold(self.max_moved, f64::max);
     }
+}
+
+/// Whether a cubic has a hook (an extremum within 5 % of an end) or several extrema (None:
+/// not a cubic, or no verdict).
+fn hook_or_wobble(p: &[Point]) -> Option<bool> {
+    use aesthetic_curves::monotone::CurvatureMonotone;
+    if p.len() != 4 {
+        return None;
+    }
+    let r = aesthetic_curves::Bezier::new(p.to_vec())
+        .ok()?
+        .curvature_monotone()
+        .ok()?;
+    Some(r.extrema.len() > 1 || r.extrema.iter().any(|t| *t < 0.05 || *t > 0.95))
 }
 
 /// Fix every glyph of the UFO at `input`'s default layer and write the UFO to `output`:
@@ -194,7 +218,7 @@ pub fn fix_ufo(
         for (ci, contour) in glyph.contours.iter_mut().enumerate() {
             let indexed = index_contour(&contour.points);
             let result = indexed.as_ref().map_err(Clone::clone).and_then(|c| {
-                let h = harmonize(&c.segments, c.closed, &c.smooth, &hopts)
+                let h = repair(&c.segments, c.closed, &c.smooth, &hopts, &opts.repairs)
                     .map_err(|e| e.to_string())?;
                 write_back(&mut contour.points, c, &h);
                 counts.add(&h, c);

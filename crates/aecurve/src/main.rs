@@ -175,6 +175,8 @@ fn run() -> Result<()> {
             tolerance,
             grid,
             move_points,
+            no_bumps,
+            no_harmonize,
             json,
         } => commands::fix::fix(
             &input,
@@ -183,6 +185,11 @@ fn run() -> Result<()> {
                 tolerance,
                 grid,
                 move_points,
+                repairs: aesthetic_curves::harmonize::Repairs {
+                    bumps: !no_bumps,
+                    harmonize: !no_harmonize,
+                    ..Default::default()
+                },
             },
             json,
         )?,

@@ -71,6 +71,7 @@ fn fix_writes_the_same_structure_and_nothing_worse() {
             tolerance,
             grid: 1.0,
             move_points: false,
+            repairs: Default::default(),
         },
     )
     .unwrap();

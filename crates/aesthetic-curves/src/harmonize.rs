@@ -108,6 +108,9 @@ pub struct Harmonized {
     pub extrema: Vec<(Option<usize>, Option<usize>)>,
     /// The sweeps over the joins.
     pub sweeps: crate::solve::Sweeps,
+    /// The cubics whose curvature defects [`repair`] removed first (none from
+    /// [`harmonize`] alone).
+    pub bumps: Vec<BumpFix>,
 }
 
 /// The handle lengths of the cubics and their tangent directions.
@@ -357,6 +360,7 @@ pub fn harmonize(
         moved,
         extrema,
         sweeps,
+        bumps: Vec::new(),
     })
 }
 
@@ -848,6 +852,232 @@ fn revert_what_got_worse(
     }
 }
 
+/// What [`repair`] does.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Repairs {
+    /// Remove hooks and extra extrema first ([`remove_bumps`]).
+    pub bumps: bool,
+    /// Then harmonize the smooth joins ([`harmonize`]).
+    pub harmonize: bool,
+    /// An extremum within this fraction of the parameter of an end is a hook.
+    pub hook_zone: f64,
+}
+
+impl Default for Repairs {
+    fn default() -> Self {
+        Repairs {
+            bumps: true,
+            harmonize: true,
+            hook_zone: 0.05,
+        }
+    }
+}
+
+/// The repairs of a contour in turn: its curvature defects removed ([`remove_bumps`]), then
+/// its smooth joins harmonized ([`harmonize`]) within what is left of the tolerance (so no
+/// point moves further than it in all), each stage no worse than the one before; the
+/// report compares the result with `segments` (jumps, angles, extrema, moves).
+pub fn repair(
+    segments: &[Vec<Point>],
+    closed: bool,
+    smooth: &[bool],
+    opts: &HarmonizeOptions,
+    what: &Repairs,
+) -> crate::Result<Harmonized> {
+    check_input(segments, closed, smooth, opts)?;
+    let (start, bumps) = if what.bumps {
+        remove_bumps(segments, closed, opts, what.hook_zone)
+    } else {
+        (segments.to_vec(), Vec::new())
+    };
+    let used = bumps.iter().map(|b| b.moved).fold(0.0, f64::max);
+    let rest = HarmonizeOptions {
+        tolerance: (opts.tolerance - used).max(0.0),
+        ..*opts
+    };
+    let none = vec![false; smooth.len()];
+    let mut h = harmonize(
+        &start,
+        closed,
+        if what.harmonize { smooth } else { &none },
+        &rest,
+    )?;
+    // Against the input, not the stage's start.
+    let before = states(segments, closed);
+    for j in &mut h.joins {
+        j.jump.0 = before[j.after_segment].0;
+        j.angle.0 = before[j.after_segment].1;
+    }
+    for (i, s) in segments.iter().enumerate() {
+        h.moved[i] = s
+            .iter()
+            .zip(&h.segments[i])
+            .map(|(a, b)| (*a - *b).hypot())
+            .fold(0.0, f64::max);
+        h.extrema[i].0 = extrema(s);
+    }
+    h.bumps = bumps;
+    Ok(h)
+}
+
+/// One cubic whose curvature defect [`remove_bumps`] removed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BumpFix {
+    /// The segment.
+    pub segment: usize,
+    /// Interior curvature extrema before and after.
+    pub extrema: (usize, usize),
+    /// The largest distance a control point moved.
+    pub moved: f64,
+}
+
+/// The curvature parameters of a cubic's interior extrema (exact test); None for a line
+/// or no verdict.
+fn extrema_at(p: &[Point]) -> Option<Vec<f64>> {
+    if p.len() != 4 {
+        return None;
+    }
+    let b = Bezier::new(p.to_vec()).ok()?;
+    b.curvature_monotone().ok().map(|r| r.extrema)
+}
+
+/// Whether extrema at `ts` are a defect in type design: one within `zone` of an end (a hook
+/// at the join) or more than one.
+fn is_bump(ts: &[f64], zone: f64) -> bool {
+    ts.len() > 1 || ts.iter().any(|t| *t < zone || *t > 1.0 - zone)
+}
+
+/// The curvature defects that matter in type design removed where a change within the
+/// tolerance exists: every cubic with a hook (an extremum within `zone` of an end) or more
+/// than one extremum gets the handle lengths nearest to its own that make its curvature
+/// monotone ([`crate::outline::suggest_handles`]: ends and tangent directions kept), on
+/// the grid (its handles' four roundings tried), taken only where it then has fewer
+/// extrema and no hook, no point moves further than the tolerance, and neither join of the
+/// cubic ends with a larger curvature jump or angle than before. A single smooth extremum
+/// inside a cubic is left (often the design).
+pub fn remove_bumps(
+    segments: &[Vec<Point>],
+    closed: bool,
+    opts: &HarmonizeOptions,
+    zone: f64,
+) -> (Vec<Vec<Point>>, Vec<BumpFix>) {
+    let mut pts = segments.to_vec();
+    let before = states(segments, closed);
+    let mut fixes = Vec::new();
+    for i in 0..pts.len() {
+        let Some(ts) = extrema_at(&segments[i]) else {
+            continue;
+        };
+        if !is_bump(&ts, zone) {
+            continue;
+        }
+        // The monotone handle lengths nearest to the cubic's own first, then the nearest
+        // lengths that at least leave fewer extrema and no hook.
+        let Ok(b) = Bezier::new(segments[i].clone()) else {
+            continue;
+        };
+        let monotone =
+            crate::outline::suggest_handles(&b, opts.tolerance).map(|s| s.curve.points().to_vec());
+        let ctx = ((segments, &before[..]), (closed, opts));
+        let found = monotone
+            .into_iter()
+            .chain(relieving_lengths(&segments[i], opts.tolerance))
+            .find_map(|aim| best_rounding(&mut pts, i, &aim, ctx.0, ctx.1, ts.len(), zone));
+        if let Some((q, after)) = found {
+            let moved = segments[i]
+                .iter()
+                .zip(&q)
+                .map(|(a, b)| (*a - *b).hypot())
+                .fold(0.0, f64::max);
+            pts[i] = q;
+            fixes.push(BumpFix {
+                segment: i,
+                extrema: (ts.len(), after),
+                moved,
+            });
+        }
+    }
+    (pts, fixes)
+}
+
+/// Cubics with the handles of `p` scaled (factors 0.5 to 2, log-spaced, 21 × 21), the
+/// tangent directions kept, moving no control point beyond `tolerance`, nearest first:
+/// candidates for [`remove_bumps`] where no monotone lengths exist.
+fn relieving_lengths(p: &[Point], tolerance: f64) -> impl Iterator<Item = Vec<Point>> {
+    let (h1, h2) = (p[1] - p[0], p[2] - p[3]);
+    let (l1, l2) = (h1.hypot(), h2.hypot());
+    let factor = |k: i32| 2f64.powf(k as f64 / 10.0);
+    let mut out: Vec<(f64, Vec<Point>)> = Vec::new();
+    for i in -10..=10 {
+        for k in -10..=10 {
+            let (a, b) = (factor(i), factor(k));
+            let d = ((a - 1.0).abs() * l1).max((b - 1.0).abs() * l2);
+            if (i, k) != (0, 0) && d <= tolerance {
+                out.push((d, vec![p[0], p[0] + h1 * a, p[3] + h2 * b, p[3]]));
+            }
+        }
+    }
+    out.sort_by(|x, y| x.0.total_cmp(&y.0));
+    out.into_iter().map(|(_, q)| q)
+}
+
+/// The suggested cubic `aim` for segment `i` on the grid (its two handles each at one of
+/// their four roundings, the nearest first), if one has fewer than `had` extrema, no hook,
+/// moves no point beyond the tolerance and leaves both of its joins no worse; with its
+/// extrema count. `pts[i]` is left as it was.
+fn best_rounding(
+    pts: &mut [Vec<Point>],
+    i: usize,
+    aim: &[Point],
+    (input, before): (&[Vec<Point>], &[(f64, f64)]),
+    (closed, opts): (bool, &HarmonizeOptions),
+    had: usize,
+    zone: f64,
+) -> Option<(Vec<Point>, usize)> {
+    let g = opts.grid;
+    let options = |q: Point| -> Vec<Point> {
+        if g <= 0.0 {
+            return vec![q];
+        }
+        let (fx, fy) = ((q.x / g).floor() * g, (q.y / g).floor() * g);
+        let mut v = vec![
+            Point::new(fx, fy),
+            Point::new(fx + g, fy),
+            Point::new(fx, fy + g),
+            Point::new(fx + g, fy + g),
+        ];
+        v.sort_by(|a, b| (*a - q).hypot().total_cmp(&(*b - q).hypot()));
+        v
+    };
+    let keep = pts[i].clone();
+    let touched = touching(pts.len(), closed, i);
+    for h1 in options(aim[1]) {
+        for h2 in options(aim[2]) {
+            let q = vec![aim[0], h1, h2, aim[3]];
+            if q.iter()
+                .zip(&input[i])
+                .any(|(a, b)| (*a - *b).hypot() > opts.tolerance)
+            {
+                continue;
+            }
+            pts[i] = q.clone();
+            let joins_ok = touched.iter().all(|&(j, a, b)| {
+                let (jump, angle) = join_state(&pts[a], &pts[b]);
+                angle <= before[j].1 + 1e-12 && jump <= before[j].0 * (1.0 + 1e-12) + 1e-15
+            });
+            let after = if joins_ok { extrema_at(&q) } else { None };
+            if let Some(ts) = after {
+                if ts.len() < had && !is_bump(&ts, zone) {
+                    pts[i] = keep;
+                    return Some((q, ts.len()));
+                }
+            }
+        }
+    }
+    pts[i] = keep;
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -918,6 +1148,32 @@ mod tests {
             "off the handles' line"
         );
         assert!((a[3] - segs[0][3]).hypot() <= 5.0);
+    }
+
+    /// A cubic with a curvature hook at its start (an extremum at t ≈ 0.04) loses it to
+    /// new handle lengths within the tolerance, its ends and tangents kept; a cubic with one
+    /// smooth extremum inside is left.
+    #[test]
+    fn a_hook_is_removed_within_the_tolerance() {
+        let hooked = vec![vec![p(0.0, 0.0), p(0.5, 2.0), p(6.0, 1.0), p(10.0, 0.0)]];
+        let opts = HarmonizeOptions {
+            tolerance: 3.0,
+            ..Default::default()
+        };
+        let (out, fixes) = remove_bumps(&hooked, false, &opts, 0.05);
+        assert_eq!(fixes.len(), 1, "{fixes:?}");
+        let ts = extrema_at(&out[0]).unwrap();
+        assert!(!is_bump(&ts, 0.05), "{ts:?}");
+        assert!(fixes[0].moved <= 3.0);
+        let (a, b) = (&hooked[0], &out[0]);
+        assert_eq!((a[0], a[3]), (b[0], b[3]));
+        assert!((a[1] - a[0]).cross(b[1] - b[0]).abs() < 1e-9);
+        assert!((a[2] - a[3]).cross(b[2] - b[3]).abs() < 1e-9);
+        // One smooth extremum in the middle: the design, not a bump.
+        let bowl = vec![vec![p(0.0, 0.0), p(3.0, 4.0), p(7.0, 4.0), p(10.0, 0.0)]];
+        let (out, fixes) = remove_bumps(&bowl, false, &opts, 0.05);
+        assert!(fixes.is_empty());
+        assert_eq!(out, bowl);
     }
 
     #[test]

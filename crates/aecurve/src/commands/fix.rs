@@ -45,6 +45,7 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
                 "worse_joins": c.worse, "cubics_with_more_extrema": c.gained_extrema,
                 "changed_segments": c.changed_segments, "max_moved": c.max_moved,
                 "skipped_contours": c.skipped_contours,
+                "bumps_before": c.bumps.0, "bumps_after": c.bumps.1,
             },
             "contours": changes,
         });
@@ -64,6 +65,10 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
     println!(
         "  {} joins worse, {} cubics with more curvature extrema (the exact test); {} segments changed, no point moved more than {:.3} (tolerance {tolerance}, grid {grid})",
         c.worse, c.gained_extrema, c.changed_segments, c.max_moved
+    );
+    println!(
+        "  {} cubics with a curvature hook at an end or several extrema before, {} after",
+        c.bumps.0, c.bumps.1
     );
     if c.skipped_contours > 0 {
         println!("  {} contours left as they are:", c.skipped_contours);
