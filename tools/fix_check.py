@@ -70,8 +70,9 @@ def same_structure(a, b, name, points_move=False):
     return moved
 
 
-def compare_checks(before, after, name):
-    """Per segment extrema and per join jump/angle, before against after."""
+def compare_checks(before, after, name, slack=0.0):
+    """Per segment extrema and per join jump/angle, before against after (`slack`: what
+    the reader's own rounding may change, absolute: usvg reads SVG numbers as f32)."""
     sa = {s["name"]: s for s in before["shapes"]}
     sb = {s["name"]: s for s in after["shapes"]}
     if sa.keys() != sb.keys():
@@ -91,12 +92,12 @@ def compare_checks(before, after, name):
                     fail(f"{name} {g} segment {k}: {len(x['extrema'])} curvature extrema became {len(y['extrema'])}")
             n = len(ca["segments"])
             for ja, jb in zip(ca["joins"], cb["joins"]):
-                if jb["angle_break_degrees"] > ja["angle_break_degrees"] + 1e-9:
+                if jb["angle_break_degrees"] > ja["angle_break_degrees"] + 1e-9 + 100 * slack:
                     fail(f"{name} {g} join after {ja['after_segment']}: angle {ja['angle_break_degrees']} -> {jb['angle_break_degrees']}")
                 x, y = ja.get("curvature_jump"), jb.get("curvature_jump")
                 if x is None or y is None:
                     continue
-                if y > x * (1 + 1e-9) + 1e-12:
+                if y > x * (1 + 1e-9) + 1e-12 + slack:
                     fail(f"{name} {g} join after {ja['after_segment']}: jump {x} -> {y}")
                 k = ja["after_segment"]
                 if ca["segments"][k]["degree"] < 2 or ca["segments"][(k + 1) % n]["degree"] < 2:
@@ -138,4 +139,34 @@ for f in fonts:
               f"under a 1 % curvature jump before, {u1} ({100 * u1 / max(joins, 1):.1f} %) after; none worse, "
               f"no segment with more extrema; cubics with a hook or several extrema {bumps[0]} -> {bumps[1]} "
               f"(check --json on both)")
+# SVG icons (Adwaita's scalable set, every fourth): written back with only the `d` of
+# changed paths replaced; read by usvg (through check) with the same paths and segments,
+# and nothing worse.
+icons = sorted(glob.glob("/usr/share/icons/Adwaita/scalable/*/*.svg"))[::4]
+changed = total = noise = 0
+for icon in icons:
+    dst = f"{scratch.name}/icon-fixed.svg"
+    out = subprocess.run([AECURVE, "fix", icon, "-o", dst, "--tolerance", "0.05"], capture_output=True, text=True)
+    if out.returncode != 0:
+        fail(f"fix {icon}: {out.stderr.strip()}")
+    a, b = check_json(icon), check_json(dst)
+    segs = lambda v: [[len(c["segments"]) for c in s["contours"]] for s in v["shapes"]]
+    sa, sb = segs(a), segs(b)
+    # A closing line of float-noise length (relative commands summed) that usvg keeps in the
+    # input and the written absolute numbers no longer have: one segment less, at most.
+    if [len(x) for x in sa] != [len(x) for x in sb] or any(
+            not 0 <= p - q <= 1 for x, y in zip(sa, sb) for p, q in zip(x, y)):
+        fail(f"{icon}: the fixed file's paths or segments differ: {sa} {sb}")
+    for s, t in zip(a["shapes"], b["shapes"]):
+        keep = [i for i, (c, d) in enumerate(zip(s["contours"], t["contours"]))
+                if len(c["segments"]) == len(d["segments"])]
+        noise += len(s["contours"]) - len(keep)
+        s["contours"] = [s["contours"][i] for i in keep]
+        t["contours"] = [t["contours"][i] for i in keep]
+    compare_checks(a, b, icon, slack=1e-4)
+    total += 1
+    changed += open(icon, "rb").read() != open(dst, "rb").read()
+    subprocess.run(["rm", "-f", dst])
+print(f"{total} Adwaita icons fixed and re-checked ({changed} changed): same paths and segments, nothing "
+      f"worse ({noise} contours lost a closing line of float-noise length and are not compared join by join)")
 print("fix check: ok")

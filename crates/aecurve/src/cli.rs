@@ -200,9 +200,10 @@ pub(crate) enum Cmd {
         /// How far a point may move (font units).
         #[arg(long, default_value_t = 2.0)]
         tolerance: f64,
-        /// The coordinates' grid (1: integer font units; 0: none).
-        #[arg(long, default_value_t = 1.0)]
-        grid: f64,
+        /// The coordinates' grid (default 1 for a UFO: integer font units; for an SVG
+        /// 0.0001 user units, the precision moved numbers are written with).
+        #[arg(long)]
+        grid: Option<f64>,
         /// Leave curvature hooks and extra extrema alone (by default each cubic with a hook
         /// within 5 % of an end, or several extrema, gets monotone handle lengths first where
         /// they exist within the tolerance).

@@ -280,3 +280,265 @@ pub fn fix_json(f: &ContourFix) -> Value {
         (Ok(_), None) => json!({"glyph": f.glyph, "contour": f.contour}),
     }
 }
+
+/// A tangent break of at most this (degrees) counts as a smooth join in an SVG path (SVG
+/// stores no smooth flags; editors keep smooth handles collinear to rounding).
+pub const SVG_SMOOTH_DEGREES: f64 = 0.5;
+
+/// The contours of SVG path data of moves, lines and cubics (`M L H V C S Z`, absolute or
+/// relative), each with whether it closes by `Z` (the closing line, when the last point is
+/// not the first, is a segment for the check but is written back as `Z`). Err for arcs and
+/// quadratics, which `fix` leaves as they are.
+fn svg_contours(d: &str) -> std::result::Result<Vec<(Vec<Vec<Point>>, bool, bool)>, String> {
+    if d.chars().any(|c| "AaQqTt".contains(c)) {
+        return Err("arcs or quadratics: fix works on paths of lines and cubics".into());
+    }
+    let path = kurbo::BezPath::from_svg(d).map_err(|e| format!("path data not read: {e}"))?;
+    let mut out = Vec::new();
+    let mut segs: Vec<Vec<Point>> = Vec::new();
+    let (mut start, mut at) = (Point::ZERO, Point::ZERO);
+    let flush = |segs: &mut Vec<Vec<Point>>, out: &mut Vec<_>, closed: bool, extra: bool| {
+        if !segs.is_empty() {
+            out.push((std::mem::take(segs), closed, extra));
+        }
+    };
+    for el in path.elements() {
+        match *el {
+            kurbo::PathEl::MoveTo(p) => {
+                flush(&mut segs, &mut out, false, false);
+                start = p;
+                at = p;
+            }
+            kurbo::PathEl::LineTo(p) => {
+                segs.push(vec![at, p]);
+                at = p;
+            }
+            kurbo::PathEl::CurveTo(a, b, p) => {
+                segs.push(vec![at, a, b, p]);
+                at = p;
+            }
+            kurbo::PathEl::QuadTo(..) => {
+                return Err("a quadratic: fix works on lines and cubics".into())
+            }
+            kurbo::PathEl::ClosePath => {
+                // Relative commands summed to absolute points miss the start by their
+                // rounding (a unit in the last written place per segment, plus float
+                // noise): that is the start (a reader closes there with no segment).
+                let written = 10f64.powi(-(svg_decimals(d) as i32)) * (segs.len() + 1) as f64;
+                let noise = (1e-9 * start.to_vec2().hypot().max(1.0)).max(written);
+                if at != start && (at - start).hypot() <= noise {
+                    if let Some(last) = segs.last_mut().and_then(|s| s.last_mut()) {
+                        *last = start;
+                    }
+                    at = start;
+                }
+                let extra = at != start;
+                if extra {
+                    segs.push(vec![at, start]);
+                }
+                flush(&mut segs, &mut out, true, extra);
+                at = start;
+            }
+        }
+    }
+    flush(&mut segs, &mut out, false, false);
+    Ok(out)
+}
+
+/// A coordinate as written back, with `decimals` places (trailing zeros dropped): the
+/// input's own precision for points that did not move (relative commands summed to
+/// absolute ones carry rounding below it), 4 or more for moved ones (the grid `fix` puts
+/// them on).
+fn svg_number(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        &s
+    };
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
+
+/// The most decimal places a number of the path data has (at most 9).
+fn svg_decimals(d: &str) -> usize {
+    let mut most = 0;
+    let mut run: Option<usize> = None;
+    for c in d.chars() {
+        match (c, run) {
+            ('.', _) => run = Some(0),
+            (c, Some(k)) if c.is_ascii_digit() => run = Some(k + 1),
+            _ => {
+                most = most.max(run.unwrap_or(0));
+                run = None;
+            }
+        }
+    }
+    most.max(run.unwrap_or(0)).min(9)
+}
+
+/// Path data for the contours (absolute `M L C Z`), `orig` telling which points moved,
+/// unmoved ones with `decimals` places.
+fn svg_data(
+    contours: &[(Vec<Vec<Point>>, bool, bool)],
+    orig: &[(Vec<Vec<Point>>, bool, bool)],
+    decimals: usize,
+) -> String {
+    let mut out = Vec::new();
+    for ((segs, closed, extra), (o, ..)) in contours.iter().zip(orig) {
+        let pt = |p: Point, q: Point| {
+            let k = if p == q { decimals } else { decimals.max(4) };
+            format!("{} {}", svg_number(p.x, k), svg_number(p.y, k))
+        };
+        out.push(format!("M{}", pt(segs[0][0], o[0][0])));
+        let n = segs.len() - usize::from(*extra);
+        for (s, q) in segs.iter().zip(o).take(n) {
+            match s.len() {
+                2 => out.push(format!("L{}", pt(s[1], q[1]))),
+                _ => out.push(format!(
+                    "C{} {} {}",
+                    pt(s[1], q[1]),
+                    pt(s[2], q[2]),
+                    pt(s[3], q[3])
+                )),
+            }
+        }
+        if *closed {
+            out.push("Z".into());
+        }
+    }
+    out.join(" ")
+}
+
+/// Smooth flags of a contour's joins by the angle test ([`SVG_SMOOTH_DEGREES`]).
+fn svg_smooth(segs: &[Vec<Point>], closed: bool) -> Vec<bool> {
+    let n = segs.len();
+    let count = if closed { n } else { n.saturating_sub(1) };
+    (0..count)
+        .map(|j| {
+            let (a, b) = (&segs[j], &segs[(j + 1) % n]);
+            let (ta, tb) = (a[a.len() - 1] - a[a.len() - 2], b[1] - b[0]);
+            let angle = ta.cross(tb).atan2(ta.dot(tb)).abs();
+            angle.to_degrees() <= SVG_SMOOTH_DEGREES
+        })
+        .collect()
+}
+
+/// Fix every `<path>` of the SVG file at `input` (its own user units; the tolerance in
+/// them) and write the file to `output` with only the `d` attributes of changed paths
+/// replaced: everything else byte for byte as it was. Paths with arcs or quadratics are
+/// left as they are and listed.
+pub fn fix_svg(
+    input: &Path,
+    output: &Path,
+    opts: &FixOptions,
+) -> Result<(Vec<ContourFix>, FixCounts)> {
+    let data = crate::outline_io::read_regular_file(input, crate::outline_io::MAX_FILE_BYTES)?;
+    crate::outline_io::read_svg(&data).with_context(|| format!("{}", input.display()))?;
+    let text =
+        std::str::from_utf8(&data).with_context(|| format!("{}: not UTF-8", input.display()))?;
+    let popts = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..Default::default()
+    };
+    let doc = roxmltree::Document::parse_with_options(text, popts)
+        .with_context(|| format!("{}: not an XML document", input.display()))?;
+    let hopts = HarmonizeOptions {
+        tolerance: opts.tolerance,
+        // At least 1e-4 user units: what the written numbers keep.
+        grid: opts.grid.max(1e-4),
+        move_points: opts.move_points,
+        ..HarmonizeOptions::default()
+    };
+    let (mut fixes, mut counts) = (Vec::new(), FixCounts::default());
+    let mut edits: Vec<(std::ops::Range<usize>, String)> = Vec::new();
+    let paths = doc.descendants().filter(|n| n.has_tag_name("path"));
+    for (k, node) in paths.enumerate() {
+        let Some(attr) = node.attributes().find(|a| a.name() == "d") else {
+            continue;
+        };
+        let name = node
+            .attribute("id")
+            .map_or(format!("path {}", k + 1), str::to_string);
+        let parsed = svg_contours(attr.value());
+        let contours = match parsed {
+            Ok(c) => c,
+            Err(why) => {
+                counts.skipped_contours += 1;
+                fixes.push(ContourFix {
+                    glyph: name,
+                    contour: 0,
+                    input: None,
+                    result: Err(why),
+                });
+                continue;
+            }
+        };
+        let mut fixed = contours.clone();
+        for (ci, (segs, closed, extra)) in contours.iter().enumerate() {
+            // A contour under 1,000 grid steps across (0.1 user units at the 1e-4 grid) is
+            // left: the written precision is too coarse for it (a moved handle would turn
+            // by degrees).
+            let (lo, hi) = segs.iter().flatten().fold(
+                (
+                    Point::new(f64::MAX, f64::MAX),
+                    Point::new(f64::MIN, f64::MIN),
+                ),
+                |(lo, hi), p| {
+                    (
+                        Point::new(lo.x.min(p.x), lo.y.min(p.y)),
+                        Point::new(hi.x.max(p.x), hi.y.max(p.y)),
+                    )
+                },
+            );
+            if (hi - lo).hypot() < 1000.0 * hopts.grid {
+                counts.skipped_contours += 1;
+                let why = format!(
+                    "smaller than 1,000 grid steps of {} across: left as it is",
+                    hopts.grid
+                );
+                fixes.push(ContourFix {
+                    glyph: name.clone(),
+                    contour: ci,
+                    input: None,
+                    result: Err(why),
+                });
+                continue;
+            }
+            let c = IndexedContour {
+                segments: segs.clone(),
+                indices: Vec::new(),
+                closed: *closed,
+                smooth: svg_smooth(segs, *closed),
+            };
+            let result =
+                repair(segs, *closed, &c.smooth, &hopts, &opts.repairs).map_err(|e| e.to_string());
+            if let Ok(h) = &result {
+                counts.add(h, &c);
+                fixed[ci] = (h.segments.clone(), *closed, *extra);
+            } else {
+                counts.skipped_contours += 1;
+            }
+            fixes.push(ContourFix {
+                glyph: name.clone(),
+                contour: ci,
+                input: Some(c),
+                result,
+            });
+        }
+        if fixed != contours {
+            let decimals = svg_decimals(attr.value());
+            edits.push((attr.range_value(), svg_data(&fixed, &contours, decimals)));
+        }
+    }
+    let mut out = text.to_string();
+    edits.sort_by_key(|e| std::cmp::Reverse(e.0.start));
+    for (range, d) in edits {
+        out.replace_range(range, &d);
+    }
+    std::fs::write(output, out).with_context(|| format!("writing {}", output.display()))?;
+    Ok((fixes, counts))
+}

@@ -183,7 +183,7 @@ fn run() -> Result<()> {
             &output,
             aecurve::fix::FixOptions {
                 tolerance,
-                grid,
+                grid: grid.unwrap_or(if is_svg(&input) { 1e-4 } else { 1.0 }),
                 move_points,
                 repairs: aesthetic_curves::harmonize::Repairs {
                     bumps: !no_bumps,
@@ -282,4 +282,9 @@ fn run() -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Whether a path names an SVG file (by its extension).
+fn is_svg(p: &std::path::Path) -> bool {
+    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("svg"))
 }

@@ -135,7 +135,7 @@ fn fix_writes_the_same_structure_and_nothing_worse() {
 }
 
 #[test]
-fn fix_refuses_to_replace_a_folder_and_reads_only_ufo() {
+fn fix_refuses_to_replace_a_file_and_reads_only_ufo_and_svg() {
     let dir = scratch("refuse");
     let src = source(&dir);
     let exe = env!("CARGO_BIN_EXE_aecurve");
@@ -143,14 +143,60 @@ fn fix_refuses_to_replace_a_folder_and_reads_only_ufo() {
     let out = run(&["fix", src.to_str().unwrap(), "-o", src.to_str().unwrap()]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("already exists"));
-    let svg = dir.join("a.svg");
-    std::fs::write(&svg, "<svg xmlns=\"http://www.w3.org/2000/svg\"/>").unwrap();
+    let ds = dir.join("a.designspace");
+    std::fs::write(&ds, "<designspace/>").unwrap();
     let out = run(&[
         "fix",
-        svg.to_str().unwrap(),
+        ds.to_str().unwrap(),
         "-o",
-        dir.join("b.svg").to_str().unwrap(),
+        dir.join("b.designspace").to_str().unwrap(),
     ]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("not done yet"));
+}
+
+/// An SVG: only the `d` of the changed path is rewritten (everything else byte for byte),
+/// a path with an arc is left and listed, and the written file reads back with the same
+/// segments and no join worse.
+#[test]
+fn fix_rewrites_only_the_path_data_of_an_svg() {
+    use aecurve::fix::fix_svg;
+    let dir = scratch("svg");
+    let src = dir.join("in.svg");
+    let o = "m 600 0 c 0 265 -270 400 -600 400 c -290 0 -600 -200 -600 -400 \
+             c 0 -250 240 -400 600 -400 c 300 0 600 210 600 400 z";
+    let text = format!(
+        "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"-700 -500 1400 1000\">\n\
+         <!-- kept -->\n<path id=\"o\" fill=\"#123\" d=\"{o}\"/>\n\
+         <path id=\"arc\" d=\"M 0 0 A 50 50 0 0 1 100 0\"/>\n</svg>\n"
+    );
+    std::fs::write(&src, &text).unwrap();
+    let dst = dir.join("out.svg");
+    let opts = FixOptions {
+        tolerance: 40.0,
+        grid: 1e-4,
+        move_points: false,
+        repairs: Default::default(),
+    };
+    let (fixes, counts) = fix_svg(&src, &dst, &opts).unwrap();
+    let out = std::fs::read_to_string(&dst).unwrap();
+    // Outside the o's d attribute, the text is the input's.
+    let (pre, post) = text.split_once(o).unwrap();
+    assert!(out.starts_with(pre) && out.ends_with(post), "{out}");
+    assert!(fixes.iter().any(|f| f.glyph == "arc" && f.result.is_err()));
+    assert!(counts.changed_segments > 0, "{counts:?}");
+    let check = |p: &Path| {
+        let o = read(p).unwrap();
+        let shapes: Vec<_> = o.shapes.iter().filter(|s| s.name == "o").collect();
+        check_shapes(&shapes, &options_for(&o), &|| {})
+            .remove(0)
+            .contours
+            .remove(0)
+    };
+    let (before, after) = (check(&src), check(&dst));
+    assert_eq!(before.segments.len(), after.segments.len());
+    for (x, y) in before.joins.iter().zip(&after.joins) {
+        let (jx, jy) = (x.curvature_jump.unwrap(), y.curvature_jump.unwrap());
+        assert!(jy <= jx + 1e-6, "{x:?} {y:?}");
+    }
 }

@@ -189,7 +189,18 @@ fn relative_jump(a: f64, b: f64) -> f64 {
 
 /// The jump and angle at the join of segments `a` and `b` (control points).
 fn join_state(a: &[Point], b: &[Point]) -> (f64, f64) {
-    let (ta, tb) = (a[a.len() - 1] - a[a.len() - 2], b[1] - b[0]);
+    // The tangents from the nearest distinct control points (a retracted handle gives its
+    // direction to the next one).
+    let end = a[a.len() - 1];
+    let ta = a
+        .iter()
+        .rev()
+        .find(|q| **q != end)
+        .map_or(Vec2::ZERO, |q| end - *q);
+    let tb = b
+        .iter()
+        .find(|q| **q != b[0])
+        .map_or(Vec2::ZERO, |q| *q - b[0]);
     let angle = ta.cross(tb).atan2(ta.dot(tb)).abs();
     // A line's curvature is zero: a join with one keeps its jump (0 or 1) too.
     let ka = if a.len() == 4 {

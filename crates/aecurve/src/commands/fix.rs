@@ -15,12 +15,16 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
         grid.is_finite() && grid >= 0.0,
         "--grid must be a step >= 0 (0: none)"
     );
+    let svg = input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+    let ufo = input.is_dir()
+        && input
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("ufo"));
     anyhow::ensure!(
-        input.is_dir()
-            && input
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("ufo")),
-        "{}: fix reads UFO sources (a .ufo folder); SVG files and designspaces are not done yet",
+        svg || ufo,
+        "{}: fix reads UFO sources (a .ufo folder) and SVG files; designspaces are not done yet",
         input.display()
     );
     anyhow::ensure!(
@@ -32,7 +36,11 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
         std::fs::create_dir_all(parent)
             .map_err(|e| anyhow::anyhow!("creating {}: {e}", parent.display()))?;
     }
-    let (fixes, c) = fix_ufo(input, output, &opts)?;
+    let (fixes, c) = if svg {
+        aecurve::fix::fix_svg(input, output, &opts)?
+    } else {
+        fix_ufo(input, output, &opts)?
+    };
     if json {
         let changes: Vec<_> = fixes.iter().map(fix_json).collect();
         let out = serde_json::json!({
