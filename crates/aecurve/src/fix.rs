@@ -285,11 +285,15 @@ pub fn fix_json(f: &ContourFix) -> Value {
 /// stores no smooth flags; editors keep smooth handles collinear to rounding).
 pub const SVG_SMOOTH_DEGREES: f64 = 0.5;
 
+/// An SVG subpath: its segments' control points, whether it closes (`Z`), and whether its
+/// last segment is the closing line `Z` draws (written back as `Z` alone).
+type SvgContour = (Vec<Vec<Point>>, bool, bool);
+
 /// The contours of SVG path data of moves, lines and cubics (`M L H V C S Z`, absolute or
 /// relative), each with whether it closes by `Z` (the closing line, when the last point is
 /// not the first, is a segment for the check but is written back as `Z`). Err for arcs and
 /// quadratics, which `fix` leaves as they are.
-fn svg_contours(d: &str) -> std::result::Result<Vec<(Vec<Vec<Point>>, bool, bool)>, String> {
+fn svg_contours(d: &str) -> std::result::Result<Vec<SvgContour>, String> {
     if d.chars().any(|c| "AaQqTt".contains(c)) {
         return Err("arcs or quadratics: fix works on paths of lines and cubics".into());
     }
@@ -382,11 +386,7 @@ fn svg_decimals(d: &str) -> usize {
 
 /// Path data for the contours (absolute `M L C Z`), `orig` telling which points moved,
 /// unmoved ones with `decimals` places.
-fn svg_data(
-    contours: &[(Vec<Vec<Point>>, bool, bool)],
-    orig: &[(Vec<Vec<Point>>, bool, bool)],
-    decimals: usize,
-) -> String {
+fn svg_data(contours: &[SvgContour], orig: &[SvgContour], decimals: usize) -> String {
     let mut out = Vec::new();
     for ((segs, closed, extra), (o, ..)) in contours.iter().zip(orig) {
         let pt = |p: Point, q: Point| {
