@@ -15,6 +15,16 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// The exact check of the first contour of the shape named "o" in the file at `p`.
+fn check_o(p: &Path) -> aesthetic_curves::outline::ContourCheck {
+    let o = read(p).unwrap();
+    let shapes: Vec<_> = o.shapes.iter().filter(|s| s.name == "o").collect();
+    check_shapes(&shapes, &options_for(&o), &|| {})
+        .remove(0)
+        .contours
+        .remove(0)
+}
+
 fn point(x: f64, y: f64, typ: PointType, smooth: bool) -> ContourPoint {
     ContourPoint::new(x, y, typ, smooth, None, None)
 }
@@ -110,15 +120,7 @@ fn fix_writes_the_same_structure_and_nothing_worse() {
         b.get_glyph("q").unwrap().contours
     );
     // The exact check of the written file: nothing worse, and the "o" closer to G2.
-    let check = |p: &Path| {
-        let o = read(p).unwrap();
-        let shapes: Vec<_> = o.shapes.iter().filter(|s| s.name == "o").collect();
-        check_shapes(&shapes, &options_for(&o), &|| {})
-            .remove(0)
-            .contours
-            .remove(0)
-    };
-    let (before, after) = (check(&src), check(&dst));
+    let (before, after) = (check_o(&src), check_o(&dst));
     let mut total = (0.0, 0.0);
     for (x, y) in before.joins.iter().zip(&after.joins) {
         let (jx, jy) = (x.curvature_jump.unwrap(), y.curvature_jump.unwrap());
@@ -185,15 +187,7 @@ fn fix_rewrites_only_the_path_data_of_an_svg() {
     assert!(out.starts_with(pre) && out.ends_with(post), "{out}");
     assert!(fixes.iter().any(|f| f.glyph == "arc" && f.result.is_err()));
     assert!(counts.changed_segments > 0, "{counts:?}");
-    let check = |p: &Path| {
-        let o = read(p).unwrap();
-        let shapes: Vec<_> = o.shapes.iter().filter(|s| s.name == "o").collect();
-        check_shapes(&shapes, &options_for(&o), &|| {})
-            .remove(0)
-            .contours
-            .remove(0)
-    };
-    let (before, after) = (check(&src), check(&dst));
+    let (before, after) = (check_o(&src), check_o(&dst));
     assert_eq!(before.segments.len(), after.segments.len());
     for (x, y) in before.joins.iter().zip(&after.joins) {
         let (jx, jy) = (x.curvature_jump.unwrap(), y.curvature_jump.unwrap());
