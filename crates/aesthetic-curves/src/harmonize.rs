@@ -1,6 +1,7 @@
 //! Harmonize: the smooth joins of a contour of cubics made G2 by moving handles along their
 //! own tangent directions, within a tolerance, on a grid, and never making a join or a
-//! segment worse (docs/math.md §10).
+//! segment worse (docs/math.md §10); with [`repair`], curvature hooks and extra extrema
+//! removed first ([`remove_bumps`]).
 //!
 //! **The join.** At a join P between cubic A (a0 a1 a2 P) and cubic B (P b1 b2 b3), with
 //! unit end tangent T_A = (P - a2)/v and start tangent T_B = (b1 - P)/u (v, u the lengths of

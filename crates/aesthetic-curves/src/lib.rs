@@ -85,8 +85,10 @@
 //! - [`deadline`]: cooperative cancellation: work run under a deadline stops with a
 //!   `timeout` error once it has passed.
 //! - [`error`]: the one error type, [`Error`], whose kinds are the JSON protocol's.
-//! - [`harmonize`]: smooth joins of cubic contours made G2 by sliding handles along their
-//!   tangents, within a tolerance and on a grid, never making a join or a segment worse.
+//! - [`harmonize`]: the repair of existing outlines: curvature hooks and extra extrema
+//!   removed by handle lengths, then smooth joins of cubic contours made G2 by sliding
+//!   handles along their tangents (or the join's point along its handles' line), within a
+//!   tolerance and on a grid, never making a join or a segment worse.
 //! - [`lac`]: log-aesthetic curves: standard form, segments from three control points,
 //!   segments with an inflection end.
 //! - [`lac_fit`]: the single least-squares LAC segment through points.
