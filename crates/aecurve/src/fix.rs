@@ -10,7 +10,9 @@
 //! segments (`qcurve`, or one off-curve point) are left as they are and listed: `fix` works
 //! on cubic outlines (convert a TrueType source to cubics first).
 
-use aesthetic_curves::harmonize::{repair, HarmonizeOptions, Harmonized, JoinOutcome, Repairs};
+use aesthetic_curves::harmonize::{
+    has_bump, repair, HarmonizeOptions, Harmonized, JoinOutcome, Repairs,
+};
 use aesthetic_curves::Point;
 use anyhow::{Context, Result};
 use serde_json::{json, Value};
@@ -162,15 +164,15 @@ impl FixCounts {
             self.smooth_cubic_joins += 1;
             self.under_1_percent.0 += (j.jump.0 < 0.01) as usize;
             self.under_1_percent.1 += (j.jump.1 < 0.01) as usize;
-            self.worse += (j.jump.1 > j.jump.0 * (1.0 + 1e-12) + 1e-15
-                || j.angle.1 > j.angle.0 + 1e-12) as usize;
+            self.worse += j.worse() as usize;
         }
         for (b, a) in &h.extrema {
             if let (Some(b), Some(a)) = (b, a) {
                 self.gained_extrema += (a > b) as usize;
             }
         }
-        let bump = |p: &[Point]| hook_or_wobble(p).unwrap_or(false) as usize;
+        let zone = Repairs::default().hook_zone;
+        let bump = |p: &[Point]| has_bump(p, zone).unwrap_or(false) as usize;
         for (s, t) in input.iter().zip(&h.segments) {
             self.bumps.0 += bump(s);
             self.bumps.1 += bump(t);
@@ -180,20 +182,6 @@ impl FixCounts {
     }
 }
 
-/// Whether a cubic has a hook (an extremum within 5 % of an end) or several extrema (None:
-/// not a cubic, or no verdict).
-fn hook_or_wobble(p: &[Point]) -> Option<bool> {
-    use aesthetic_curves::monotone::CurvatureMonotone;
-    if p.len() != 4 {
-        return None;
-    }
-    let r = aesthetic_curves::Bezier::new(p.to_vec())
-        .ok()?
-        .curvature_monotone()
-        .ok()?;
-    Some(r.extrema.len() > 1 || r.extrema.iter().any(|t| *t < 0.05 || *t > 0.95))
-}
-
 /// Fix every glyph of the UFO at `input`'s default layer and write the UFO to `output`:
 /// the per-contour results and the counts.
 pub fn fix_ufo(
@@ -201,10 +189,9 @@ pub fn fix_ufo(
     output: &Path,
     opts: &FixOptions,
 ) -> Result<(Vec<ContourFix>, FixCounts)> {
-    crate::outline_io::read(input)
+    // The readers' folder check and norad's load, once (not `read` and then norad again).
+    let mut font = crate::outline_io::load_ufo_checked(input)
         .with_context(|| format!("{}: not a UFO `fix` reads", input.display()))?;
-    let mut font =
-        norad::Font::load(input).with_context(|| format!("loading {}", input.display()))?;
     let hopts = HarmonizeOptions {
         tolerance: opts.tolerance,
         grid: opts.grid,
@@ -292,8 +279,9 @@ type SvgContour = (Vec<Vec<Point>>, bool, bool);
 /// The contours of SVG path data of moves, lines and cubics (`M L H V C S Z`, absolute or
 /// relative), each with whether it closes by `Z` (the closing line, when the last point is
 /// not the first, is a segment for the check but is written back as `Z`). Err for arcs and
-/// quadratics, which `fix` leaves as they are.
-fn svg_contours(d: &str) -> std::result::Result<Vec<SvgContour>, String> {
+/// quadratics, which `fix` leaves as they are. `decimals`: the most decimal places a number
+/// of `d` has ([`svg_decimals`]).
+fn svg_contours(d: &str, decimals: usize) -> std::result::Result<Vec<SvgContour>, String> {
     if d.chars().any(|c| "AaQqTt".contains(c)) {
         return Err("arcs or quadratics: fix works on paths of lines and cubics".into());
     }
@@ -328,7 +316,7 @@ fn svg_contours(d: &str) -> std::result::Result<Vec<SvgContour>, String> {
                 // Relative commands summed to absolute points miss the start by their
                 // rounding (a unit in the last written place per segment, plus float
                 // noise): that is the start (a reader closes there with no segment).
-                let written = 10f64.powi(-(svg_decimals(d) as i32)) * (segs.len() + 1) as f64;
+                let written = 10f64.powi(-(decimals as i32)) * (segs.len() + 1) as f64;
                 let noise = (1e-9 * start.to_vec2().hypot().max(1.0)).max(written);
                 if at != start && (at - start).hypot() <= noise {
                     if let Some(last) = segs.last_mut().and_then(|s| s.last_mut()) {
@@ -463,7 +451,8 @@ pub fn fix_svg(
         let name = node
             .attribute("id")
             .map_or(format!("path {}", k + 1), str::to_string);
-        let parsed = svg_contours(attr.value());
+        let decimals = svg_decimals(attr.value());
+        let parsed = svg_contours(attr.value(), decimals);
         let contours = match parsed {
             Ok(c) => c,
             Err(why) => {
@@ -530,7 +519,6 @@ pub fn fix_svg(
             });
         }
         if fixed != contours {
-            let decimals = svg_decimals(attr.value());
             edits.push((attr.range_value(), svg_data(&fixed, &contours, decimals)));
         }
     }

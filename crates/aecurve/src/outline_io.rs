@@ -592,13 +592,7 @@ fn svg_path_contours(p: &usvg::Path) -> std::result::Result<Vec<Contour>, String
 /// on-curve points, also a contour of off-curve points alone); components are not resolved
 /// (the glyphs they name are checked themselves).
 pub fn read_ufo(path: &Path) -> Result<Outlines> {
-    let font = norad::Font::load(path).map_err(|e| match first_bad_glif(path) {
-        Some((file, why)) => anyhow::anyhow!(
-            "not a readable UFO: {} cannot be read ({why}); fix or remove that glyph file",
-            file.display()
-        ),
-        None => anyhow::anyhow!("not a readable UFO: {e}"),
-    })?;
+    let font = load_ufo(path)?;
     let mut shapes = Vec::new();
     let mut unreadable = Vec::new();
     let mut glyphs: Vec<_> = font.default_layer().iter().collect();
@@ -622,6 +616,30 @@ pub fn read_ufo(path: &Path) -> Result<Outlines> {
         shapes,
         unreadable,
     }))
+}
+
+/// A UFO source loaded by norad after the readers' folder check (regular files only, depth
+/// and total size capped: what [`read`] does first); an error names the first `.glif` file
+/// that does not load (norad's names only the layer), and a default layer without glyphs
+/// is an error too.
+pub fn load_ufo_checked(path: &Path) -> Result<norad::Font> {
+    check_ufo_folder(path)?;
+    let font = load_ufo(path)?;
+    if font.default_layer().is_empty() {
+        bail!("not a readable UFO: its default layer has no glyphs");
+    }
+    Ok(font)
+}
+
+/// A UFO source loaded by norad; an error names the first `.glif` file that does not load.
+fn load_ufo(path: &Path) -> Result<norad::Font> {
+    norad::Font::load(path).map_err(|e| match first_bad_glif(path) {
+        Some((file, why)) => anyhow::anyhow!(
+            "not a readable UFO: {} cannot be read ({why}); fix or remove that glyph file",
+            file.display()
+        ),
+        None => anyhow::anyhow!("not a readable UFO: {e}"),
+    })
 }
 
 /// The first `.glif` file of a UFO source that does not load, and why (norad's own error

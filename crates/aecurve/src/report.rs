@@ -38,10 +38,21 @@ pub fn outline_report(
 
 /// The report's order: the highest finding score first, then the most findings.
 pub fn worse_first(a: &ShapeCheck, b: &ShapeCheck) -> std::cmp::Ordering {
-    let worst = |c: &ShapeCheck| c.findings.first().map_or(0.0, |f| f.score);
-    worst(b)
-        .total_cmp(&worst(a))
-        .then(b.findings.len().cmp(&a.findings.len()))
+    worse_rank_first(rank(a), rank(b))
+}
+
+/// What [`worse_first`] orders a shape's check by: its worst finding's score and its
+/// number of findings.
+pub fn rank(c: &ShapeCheck) -> (f64, usize) {
+    (
+        c.findings.first().map_or(0.0, |f| f.score),
+        c.findings.len(),
+    )
+}
+
+/// [`worse_first`] on ranks kept without their checks.
+pub fn worse_rank_first(a: (f64, usize), b: (f64, usize)) -> std::cmp::Ordering {
+    b.0.total_cmp(&a.0).then(b.1.cmp(&a.1))
 }
 
 /// The report page of `total` shapes of which `drawn` (in order) are drawn.

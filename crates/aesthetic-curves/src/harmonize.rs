@@ -94,6 +94,42 @@ pub struct JoinReport {
     pub angle: (f64, f64),
 }
 
+impl JoinReport {
+    /// Whether the join ended worse than it began: a larger angle (beyond 1e-12 rad) or a
+    /// larger jump (beyond rounding); the rule every stage of the repair keeps to.
+    pub fn worse(&self) -> bool {
+        worse((self.jump.1, self.angle.1), (self.jump.0, self.angle.0))
+    }
+}
+
+/// Whether a join's (jump, angle) `after` is worse than `before`: a larger angle (beyond
+/// 1e-12 rad: sliding a handle along its tangent turns it by rounding only) or a larger
+/// jump (beyond the rounding of its computation). A NaN jump (a zero-length handle) is
+/// not worse.
+fn worse(after: (f64, f64), before: (f64, f64)) -> bool {
+    after.1 > before.1 + 1e-12 || after.0 > before.0 * (1.0 + 1e-12) + 1e-15
+}
+
+/// The largest distance between the control points of `a` and `b` (a bound of how far the
+/// curve moved: Bernstein weights sum to one).
+fn max_move(a: &[Point], b: &[Point]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (*p - *q).hypot())
+        .fold(0.0, f64::max)
+}
+
+/// The four grid points around `q` (step `g`).
+fn grid_corners(q: Point, g: f64) -> [Point; 4] {
+    let (fx, fy) = ((q.x / g).floor() * g, (q.y / g).floor() * g);
+    [
+        Point::new(fx, fy),
+        Point::new(fx + g, fy),
+        Point::new(fx, fy + g),
+        Point::new(fx + g, fy + g),
+    ]
+}
+
 /// The harmonized contour and what was done.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Harmonized {
@@ -355,12 +391,7 @@ pub fn harmonize(
     let moved = original
         .iter()
         .zip(&pts)
-        .map(|(s, p)| {
-            s.iter()
-                .zip(p)
-                .map(|(a, b)| (*a - *b).hypot())
-                .fold(0.0, f64::max)
-        })
+        .map(|(s, p)| max_move(s, p))
         .collect();
     let extrema = extrema_before
         .into_iter()
@@ -535,13 +566,10 @@ fn states(pts: &[Vec<Point>], closed: bool) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Interior curvature extrema of a cubic (exact test); None for a line or no verdict.
+/// How many interior curvature extrema a cubic has (exact test); None for a line or no
+/// verdict.
 fn extrema(p: &[Point]) -> Option<usize> {
-    if p.len() != 4 {
-        return None;
-    }
-    let b = Bezier::new(p.to_vec()).ok()?;
-    b.curvature_monotone().ok().map(|r| r.extrema.len())
+    extrema_at(p).map(|ts| ts.len())
 }
 
 /// The cost of the joins a handle touches: their jumps, plus the angle beyond the input's
@@ -601,18 +629,12 @@ fn place_on_grid(
     (closed, orig_states): (bool, &[(f64, f64)]),
     opts: &HarmonizeOptions,
 ) {
-    let g = opts.grid;
     let touched = touching(pts.len(), closed, i);
-    let q = pts[i][k];
-    let (fx, fy) = ((q.x / g).floor() * g, (q.y / g).floor() * g);
     let mut best: Option<(f64, Point)> = None;
-    for c in [
-        Point::new(fx, fy),
-        Point::new(fx + g, fy),
-        Point::new(fx, fy + g),
-        Point::new(fx + g, fy + g),
-        input[i][k],
-    ] {
+    for c in grid_corners(pts[i][k], opts.grid)
+        .into_iter()
+        .chain([input[i][k]])
+    {
         if (c - input[i][k]).hypot() > opts.tolerance && c != input[i][k] {
             continue;
         }
@@ -675,12 +697,11 @@ fn improve_join(
     let cost = |pts: &[Vec<Point>]| -> Option<f64> {
         let mut sum = 0.0;
         for &(j, x, y) in &near {
-            let (jump, angle) = join_state(&pts[x], &pts[y]);
-            let worse = angle > before[j].1 + 1e-12 || jump > before[j].0 * (1.0 + 1e-12) + 1e-15;
-            if worse && (pts[x] != input[x] || pts[y] != input[y]) {
+            let state = join_state(&pts[x], &pts[y]);
+            if worse(state, before[j]) && (pts[x] != input[x] || pts[y] != input[y]) {
                 return None;
             }
-            sum += jump;
+            sum += state.0;
         }
         Some(sum)
     };
@@ -796,11 +817,8 @@ fn worse_joins(
 ) -> Vec<(usize, usize, usize)> {
     joins(pts.len(), closed)
         .filter(|&(j, a, b)| {
-            let (jump, angle) = join_state(&pts[a], &pts[b]);
-            // Sliding a handle along its tangent turns it by rounding only (1e-16 rad).
-            let worse_angle = angle > before[j].1 + 1e-12;
-            let worse_jump = !jump.is_nan() && jump > before[j].0 * (1.0 + 1e-12) + 1e-15;
-            (pts[a] != input[a] || pts[b] != input[b]) && (worse_angle || worse_jump)
+            (pts[a] != input[a] || pts[b] != input[b])
+                && worse(join_state(&pts[a], &pts[b]), before[j])
         })
         .collect()
 }
@@ -921,11 +939,7 @@ pub fn repair(
         j.angle.0 = before[j.after_segment].1;
     }
     for (i, s) in segments.iter().enumerate() {
-        h.moved[i] = s
-            .iter()
-            .zip(&h.segments[i])
-            .map(|(a, b)| (*a - *b).hypot())
-            .fold(0.0, f64::max);
+        h.moved[i] = max_move(s, &h.segments[i]);
         h.extrema[i].0 = extrema(s);
     }
     h.bumps = bumps;
@@ -951,6 +965,12 @@ fn extrema_at(p: &[Point]) -> Option<Vec<f64>> {
     }
     let b = Bezier::new(p.to_vec()).ok()?;
     b.curvature_monotone().ok().map(|r| r.extrema)
+}
+
+/// Whether the cubic `p` has a curvature defect of type design: a hook (an interior extremum
+/// within `zone` of an end) or several extrema (exact test); None for a line or no verdict.
+pub fn has_bump(p: &[Point], zone: f64) -> Option<bool> {
+    extrema_at(p).map(|ts| is_bump(&ts, zone))
 }
 
 /// Whether extrema at `ts` are a defect in type design: one within `zone` of an end (a hook
@@ -996,11 +1016,7 @@ pub fn remove_bumps(
             .chain(relieving_lengths(&segments[i], opts.tolerance))
             .find_map(|aim| best_rounding(&mut pts, i, &aim, ctx.0, ctx.1, ts.len(), zone));
         if let Some((q, after)) = found {
-            let moved = segments[i]
-                .iter()
-                .zip(&q)
-                .map(|(a, b)| (*a - *b).hypot())
-                .fold(0.0, f64::max);
+            let moved = max_move(&segments[i], &q);
             pts[i] = q;
             fixes.push(BumpFix {
                 segment: i,
@@ -1051,13 +1067,7 @@ fn best_rounding(
         if g <= 0.0 {
             return vec![q];
         }
-        let (fx, fy) = ((q.x / g).floor() * g, (q.y / g).floor() * g);
-        let mut v = vec![
-            Point::new(fx, fy),
-            Point::new(fx + g, fy),
-            Point::new(fx, fy + g),
-            Point::new(fx + g, fy + g),
-        ];
+        let mut v = grid_corners(q, g).to_vec();
         v.sort_by(|a, b| (*a - q).hypot().total_cmp(&(*b - q).hypot()));
         v
     };
@@ -1066,16 +1076,14 @@ fn best_rounding(
     for h1 in options(aim[1]) {
         for h2 in options(aim[2]) {
             let q = vec![aim[0], h1, h2, aim[3]];
-            if q.iter()
-                .zip(&input[i])
-                .any(|(a, b)| (*a - *b).hypot() > opts.tolerance)
-            {
+            if max_move(&q, &input[i]) > opts.tolerance {
                 continue;
             }
             pts[i] = q.clone();
+            // No join worse, and none with a jump that cannot be told (a NaN jump).
             let joins_ok = touched.iter().all(|&(j, a, b)| {
-                let (jump, angle) = join_state(&pts[a], &pts[b]);
-                angle <= before[j].1 + 1e-12 && jump <= before[j].0 * (1.0 + 1e-12) + 1e-15
+                let state = join_state(&pts[a], &pts[b]);
+                !worse(state, before[j]) && !state.0.is_nan()
             });
             let after = if joins_ok { extrema_at(&q) } else { None };
             if let Some(ts) = after {

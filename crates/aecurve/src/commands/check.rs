@@ -273,8 +273,7 @@ fn fold_checks<'a>(
                 }
                 serde_json::to_writer(&mut **w, &shape_json(&c))?;
             }
-            let worst = c.findings.first().map_or(0.0, |f| f.score);
-            scores.push((round * ROUND + j, worst, c.findings.len()));
+            scores.push((round * ROUND + j, aecurve::report::rank(&c)));
             let shape = shapes[round * ROUND + j];
             ranked.extend(c.findings.into_iter().map(|f| (shape, f)));
         }
@@ -283,11 +282,11 @@ fn fold_checks<'a>(
         w.write_all(b"]").map_err(json_error)?;
     }
     let ranked = rank_once(ranked);
-    scores.sort_by(|a, b| b.1.total_cmp(&a.1).then(b.2.cmp(&a.2)));
+    scores.sort_by(|a, b| aecurve::report::worse_rank_first(a.1, b.1));
     Ok(Folded {
         tally,
         ranked,
-        worst: scores.into_iter().map(|(i, ..)| i).collect(),
+        worst: scores.into_iter().map(|(i, _)| i).collect(),
         check_ms,
     })
 }
@@ -372,7 +371,7 @@ fn print_summary(
         }
     }
     if let Some(t) = suggest {
-        if t_cubics(folded) == 0 {
+        if folded.tally.cubics == 0 {
             println!(
                 "  suggestions: none: the file has no cubic segments (TrueType outlines are quadratic), and --suggest changes cubic handles"
             );
@@ -384,11 +383,6 @@ fn print_summary(
         }
     }
     println!("  read in {read_ms:.1} ms, checked in {check_ms:.1} ms");
-}
-
-/// The cubic segments checked.
-fn t_cubics(folded: &Folded) -> usize {
-    folded.tally.cubics
 }
 
 fn print_findings(ranked: &[Ranked], top: usize) {
