@@ -453,6 +453,19 @@ fn bump(k: &[f64], max_abs: f64) -> f64 {
     ((variation - direct) / (2.0 * max_abs)).max(0.0)
 }
 
+/// How far rounding to `grid` can turn the tangents at a join whose handle legs (from the
+/// on-curve point to the next control point on either side) have lengths `legs`: half a
+/// cell's diagonal over each leg, summed (radians); 0 where a leg is 0 (no tangent from
+/// it) or there is no grid. A join whose break is within this of the G1 angle is G1.
+pub fn g1_slack(grid: f64, legs: (f64, f64)) -> f64 {
+    let slack = std::f64::consts::FRAC_1_SQRT_2 * grid * (1.0 / legs.0 + 1.0 / legs.1);
+    if slack.is_finite() {
+        slack
+    } else {
+        0.0
+    }
+}
+
 /// Check a contour of consecutive segments.
 pub fn check_contour(
     segments: &[RationalBezier],
@@ -489,10 +502,7 @@ pub fn check_contour(
             };
             l.hypot()
         };
-        let slack = std::f64::consts::FRAC_1_SQRT_2
-            * opts.grid
-            * (1.0 / leg(a, true) + 1.0 / leg(b, false));
-        let g1 = angle <= opts.g1_angle + if slack.is_finite() { slack } else { 0.0 };
+        let g1 = angle <= opts.g1_angle + g1_slack(opts.grid, (leg(a, true), leg(b, false)));
         let unbounded = [ka, kb].iter().any(|k| k.is_some_and(|v| v.is_infinite()));
         let jump = match (ka, kb) {
             (Some(ka), Some(kb)) if g1 && !unbounded => {

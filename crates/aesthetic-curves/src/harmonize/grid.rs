@@ -1,0 +1,414 @@
+//! The sweep's handle positions put on the grid for a whole contour at once.
+//!
+//! Rounding each handle to its nearest grid point loses most of what the sweep found: with
+//! a handle 50 units long, one unit changes the curvature at its end by 4 %, and every
+//! handle sets the curvature at both ends of its cubic. So each cubic gets a few *states*
+//! (its two handles each at one of a few candidate points: its input place, grid points
+//! around the sweep's target nearest its tangent line, and one half way), and the states
+//! are chosen together: the curvature jump at a join depends only on the states of the two
+//! cubics it joins, so a cost summed over the joins (the number of joins not under the G2
+//! threshold, then the sum of the jumps) is a chain (a cycle for a closed contour with no
+//! corner) of pairwise costs, minimised exactly by dynamic programming (Viterbi). A pair that makes a join worse than the input (a larger jump, or
+//! a larger angle) costs infinity, so the input's own states, always candidates, keep the
+//! result no worse anywhere. A chosen state that gives its cubic more curvature extrema
+//! (the exact test, too dear to run on every state) is struck out and the chain solved
+//! again.
+
+use super::{gains_extrema, join_state, max_move, worse, HarmonizeOptions};
+use crate::{Point, Vec2};
+
+/// Most rounds of striking out states with more extrema and solving again.
+const STRIKE_ROUNDS: usize = 6;
+
+/// Grid points kept per handle around its target (nearest the tangent line first).
+const NEAR_TARGET: usize = 5;
+
+/// For a cycle with no corner: most states of the cubic where it is cut tried (every
+/// state of a cubic has at most 7 × 7: all of them).
+const CYCLE_STARTS: usize = 64;
+
+/// What the chain knows: the input, the protected joins and their limits.
+pub(super) struct Contour<'a> {
+    /// The segments before the grid (the stage's input).
+    pub input: &'a [Vec<Point>],
+    /// Closed contour.
+    pub closed: bool,
+    /// Per join: harmonized and kept (smooth or G1).
+    pub smooth: &'a [bool],
+    /// Per join: the jump and angle it may not exceed.
+    pub guard: &'a [(f64, f64)],
+    /// Per segment: the input's interior curvature extrema.
+    pub extrema_before: &'a [Option<usize>],
+}
+
+/// The segments on the grid, chosen among each cubic's states around `target` (the
+/// sweep's float result) to minimise the sum of the jumps at the smooth joins, none worse
+/// than `contour.guard` and no cubic with more extrema than the input.
+pub(super) fn place(
+    contour: &Contour,
+    target: &[Vec<Point>],
+    opts: &HarmonizeOptions,
+) -> Vec<Vec<Point>> {
+    let n = contour.input.len();
+    let mut states: Vec<Vec<Vec<Point>>> = (0..n)
+        .map(|i| states_of(&contour.input[i], &target[i], opts))
+        .collect();
+    for round in 0..=STRIKE_ROUNDS {
+        let pick = best_states(contour, &states, opts);
+        let mut struck = false;
+        for i in 0..n {
+            let s = pick[i];
+            if s != 0 && gains_extrema(&states[i][s], contour.extrema_before[i]) {
+                if round == STRIKE_ROUNDS {
+                    states[i].truncate(1);
+                } else {
+                    states[i].remove(s);
+                }
+                struck = true;
+            }
+        }
+        if !struck {
+            return pick
+                .iter()
+                .enumerate()
+                .map(|(i, &s)| states[i][s].clone())
+                .collect();
+        }
+    }
+    // The last round left only input states where it struck: solved once more.
+    let pick = best_states(contour, &states, opts);
+    pick.iter()
+        .enumerate()
+        .map(|(i, &s)| states[i][s].clone())
+        .collect()
+}
+
+/// A cubic's states: its two handles at each of their candidates; the input first. A line
+/// or a cubic the sweep left alone has the input only.
+fn states_of(input: &[Point], target: &[Point], opts: &HarmonizeOptions) -> Vec<Vec<Point>> {
+    if input.len() != 4 || input == target {
+        return vec![input.to_vec()];
+    }
+    let starts = handle_candidates(input[1], target[1], input[0], opts);
+    let ends = handle_candidates(input[2], target[2], input[3], opts);
+    let mut out = Vec::with_capacity(starts.len() * ends.len());
+    for &a in &starts {
+        for &b in &ends {
+            out.push(vec![input[0], a, b, input[3]]);
+        }
+    }
+    out
+}
+
+/// Where one handle may go: its input place first; without a grid the target and half way
+/// to it; on a grid the [`NEAR_TARGET`] grid points of the 5 × 5 around the target nearest
+/// the handle's tangent line (the line through its anchor and its input place), and the
+/// grid point half way nearest it; all within the tolerance of the input place.
+fn handle_candidates(
+    input: Point,
+    target: Point,
+    anchor: Point,
+    opts: &HarmonizeOptions,
+) -> Vec<Point> {
+    let mut out = vec![input];
+    if target == input {
+        return out;
+    }
+    let within = |q: Point| (q - input).hypot() <= opts.tolerance;
+    let half = input + (target - input) * 0.5;
+    if opts.grid <= 0.0 {
+        out.extend([target, half].into_iter().filter(|q| within(*q)));
+        return out;
+    }
+    let dir = unit(input - anchor);
+    let off_line = |q: Point| dir.cross(q - anchor).abs();
+    let rank = |around: Point, radius: i32, keep: usize, out: &mut Vec<Point>| {
+        let g = opts.grid;
+        let (cx, cy) = ((around.x / g).round(), (around.y / g).round());
+        let mut near: Vec<(f64, f64, Point)> = Vec::new();
+        for dx in -radius..=radius {
+            for dy in -radius..=radius {
+                let q = Point::new((cx + dx as f64) * g, (cy + dy as f64) * g);
+                if within(q) && !out.contains(&q) {
+                    near.push((off_line(q), (q - around).hypot(), q));
+                }
+            }
+        }
+        near.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
+        out.extend(near.into_iter().take(keep).map(|x| x.2));
+    };
+    rank(target, 2, NEAR_TARGET, &mut out);
+    rank(half, 1, 1, &mut out);
+    out
+}
+
+fn unit(v: Vec2) -> Vec2 {
+    let l = v.hypot();
+    if l > 0.0 {
+        v / l
+    } else {
+        v
+    }
+}
+
+/// The state per segment minimising the chain's cost (see the module documentation).
+fn best_states(
+    contour: &Contour,
+    states: &[Vec<Vec<Point>>],
+    opts: &HarmonizeOptions,
+) -> Vec<usize> {
+    let n = states.len();
+    let free = |j: usize| !contour.smooth[j];
+    // A join where the chain may be cut: a corner, or (open) the contour's ends.
+    let start = if !contour.closed {
+        Some(0)
+    } else {
+        (0..n).find(|&j| free(j)).map(|j| (j + 1) % n)
+    };
+    let order_from = |s: usize| -> Vec<usize> { (0..n).map(|k| (s + k) % n).collect() };
+    let chain = Chain {
+        contour,
+        states,
+        tol: opts.tolerance,
+        g2: opts.g2_jump,
+    };
+    match start {
+        Some(s) => chain.solve(&order_from(s), None).1,
+        None => {
+            // A cycle: cut at the cubic with the fewest states, each of them tried (the
+            // cheapest alone first, at most CYCLE_STARTS: exact up to that many).
+            let first = (0..n).min_by_key(|&i| states[i].len()).unwrap_or(0);
+            let order = order_from(first);
+            let mut firsts: Vec<usize> = (0..states[first].len()).collect();
+            firsts.sort_by(|&x, &y| chain.unary(first, x).total_cmp(&chain.unary(first, y)));
+            firsts.truncate(CYCLE_STARTS);
+            if !firsts.contains(&0) {
+                firsts.push(0);
+            }
+            firsts
+                .into_iter()
+                .map(|f| chain.solve(&order, Some(f)))
+                .min_by(|x, y| x.0.total_cmp(&y.0))
+                .map(|x| x.1)
+                .unwrap_or_else(|| vec![0; n])
+        }
+    }
+}
+
+/// The chain's costs over the candidate states.
+struct Chain<'a> {
+    contour: &'a Contour<'a>,
+    states: &'a [Vec<Vec<Point>>],
+    tol: f64,
+    /// A jump under this is G2 ([`HarmonizeOptions::g2_jump`]).
+    g2: f64,
+}
+
+impl Chain<'_> {
+    /// A state's own cost: a tie-break towards less movement (far below any jump that
+    /// matters).
+    fn unary(&self, i: usize, s: usize) -> f64 {
+        1e-9 * max_move(&self.contour.input[i], &self.states[i][s]) / self.tol.max(1e-300)
+    }
+
+    /// The cost of join `j` between states `sa` of segment `a` and `sb` of segment `b`:
+    /// its jump, plus one where that is not under the G2 threshold (so the chain makes as
+    /// many joins G2 as it can first, then the jumps small); infinity where it is worse
+    /// than allowed; nothing at a corner.
+    fn pair(&self, (j, a, b): (usize, usize, usize), sa: usize, sb: usize) -> f64 {
+        if !self.contour.smooth[j] {
+            return 0.0;
+        }
+        let (pa, pb) = (&self.states[a][sa], &self.states[b][sb]);
+        let state = join_state(pa, pb);
+        let moved = sa != 0 || sb != 0;
+        if moved && worse(state, self.contour.guard[j]) {
+            return f64::INFINITY;
+        }
+        match state.0 {
+            j if j.is_nan() => 0.0,
+            j if j < self.g2 => j,
+            j => 1.0 + j,
+        }
+    }
+
+    /// Viterbi along `order` (segments in contour order; the join after `order[k]` links
+    /// it to `order[k + 1]`), the first segment's state fixed to `first` when given, and
+    /// then the join closing the cycle counted too. The cost and the state per segment
+    /// (indexed by segment).
+    fn solve(&self, order: &[usize], first: Option<usize>) -> (f64, Vec<usize>) {
+        let n = order.len();
+        let mut cost: Vec<f64> = (0..self.states[order[0]].len())
+            .map(|s| match first {
+                Some(f) if f != s => f64::INFINITY,
+                _ => self.unary(order[0], s),
+            })
+            .collect();
+        let mut back: Vec<Vec<usize>> = Vec::with_capacity(n);
+        for k in 1..n {
+            let (a, b) = (order[k - 1], order[k]);
+            let join = (a, a, b);
+            let mut next = vec![f64::INFINITY; self.states[b].len()];
+            let mut from = vec![0usize; self.states[b].len()];
+            for (sb, slot) in next.iter_mut().enumerate() {
+                let own = self.unary(b, sb);
+                for (sa, &ca) in cost.iter().enumerate() {
+                    if !ca.is_finite() {
+                        continue;
+                    }
+                    let c = ca + self.pair(join, sa, sb) + own;
+                    if c < *slot {
+                        *slot = c;
+                        from[sb] = sa;
+                    }
+                }
+            }
+            cost = next;
+            back.push(from);
+        }
+        // The closing join of a cycle (a closed contour with no corner).
+        if let Some(f) = first {
+            let last = order[n - 1];
+            for (s, c) in cost.iter_mut().enumerate() {
+                *c += self.pair((last, last, order[0]), s, f);
+            }
+        }
+        let (mut s, total) = cost
+            .iter()
+            .enumerate()
+            .min_by(|x, y| x.1.total_cmp(y.1))
+            .map_or((0, f64::INFINITY), |(s, c)| (s, *c));
+        let mut pick = vec![0; n];
+        for k in (0..n).rev() {
+            pick[order[k]] = s;
+            if k > 0 {
+                s = back[k - 1][s];
+            }
+        }
+        if !total.is_finite() {
+            // No finite chain (cannot happen: the input's states are never worse).
+            return (total, vec![0; n]);
+        }
+        (total, pick)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::harmonize::{joins, states};
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    /// The cost of one choice of states, computed join by join from the control points
+    /// (not through the chain): what brute force minimises.
+    fn cost_of(c: &Contour, pts: &[Vec<Point>], g2: f64) -> f64 {
+        let after = states(pts, c.closed);
+        let mut sum = 0.0;
+        for (j, a, b) in joins(pts.len(), c.closed) {
+            if !c.smooth[j] {
+                continue;
+            }
+            let moved = pts[a] != c.input[a] || pts[b] != c.input[b];
+            if moved && worse(after[j], c.guard[j]) {
+                return f64::INFINITY;
+            }
+            sum += if after[j].0 < g2 {
+                after[j].0
+            } else {
+                1.0 + after[j].0
+            };
+        }
+        sum
+    }
+
+    /// An arc of three cubics with jumpy joins, open and closed into a loop with a
+    /// corner and without one: the chain's choice costs exactly what the best of every
+    /// combination of states costs (brute force over all of them), and is one of them.
+    #[test]
+    fn the_chain_finds_the_cheapest_combination_of_states() {
+        let segs = vec![
+            vec![p(0.0, 0.0), p(40.0, 0.0), p(77.0, 17.0), p(100.0, 40.0)],
+            vec![
+                p(100.0, 40.0),
+                p(121.0, 61.0),
+                p(130.0, 88.0),
+                p(130.0, 120.0),
+            ],
+            vec![
+                p(130.0, 120.0),
+                p(130.0, 166.0),
+                p(96.0, 190.0),
+                p(60.0, 190.0),
+            ],
+        ];
+        // Targets: every handle moved a little along its tangent (what a sweep gives).
+        let target: Vec<Vec<Point>> = segs
+            .iter()
+            .map(|s| {
+                vec![
+                    s[0],
+                    s[0] + (s[1] - s[0]) * 1.06,
+                    s[3] + (s[2] - s[3]) * 0.93,
+                    s[3],
+                ]
+            })
+            .collect();
+        let opts = HarmonizeOptions {
+            tolerance: 4.0,
+            grid: 1.0,
+            ..Default::default()
+        };
+        for (closed, smooth) in [
+            (false, vec![true, true]),
+            (true, vec![true, true, false]),
+            (true, vec![true, true, true]),
+        ] {
+            let before = states(&segs, closed);
+            let guard: Vec<(f64, f64)> = before
+                .iter()
+                .zip(&smooth)
+                .map(|(&(j, a), &s)| (if s { j } else { f64::INFINITY }, a))
+                .collect();
+            let none = vec![Some(0); 3];
+            let c = Contour {
+                input: &segs,
+                closed,
+                smooth: &smooth,
+                guard: &guard,
+                extrema_before: &none,
+            };
+            let st: Vec<Vec<Vec<Point>>> = (0..3)
+                .map(|i| states_of(&segs[i], &target[i], &opts))
+                .collect();
+            assert!(
+                st.iter().all(|s| s.len() > 4),
+                "{:?}",
+                st.iter().map(Vec::len).collect::<Vec<_>>()
+            );
+            let pick = best_states(&c, &st, &opts);
+            let chosen: Vec<Vec<Point>> = (0..3).map(|i| st[i][pick[i]].clone()).collect();
+            let mut best = f64::INFINITY;
+            for x in 0..st[0].len() {
+                for y in 0..st[1].len() {
+                    for z in 0..st[2].len() {
+                        let pts = vec![st[0][x].clone(), st[1][y].clone(), st[2][z].clone()];
+                        best = best.min(cost_of(&c, &pts, opts.g2_jump));
+                    }
+                }
+            }
+            let got = cost_of(&c, &chosen, opts.g2_jump);
+            // The chain's tie-break on movement is 1e-9 of a jump: equal within that.
+            assert!(
+                got <= best + 1e-8,
+                "closed {closed} {smooth:?}: {got} vs {best}"
+            );
+            assert!(
+                got <= cost_of(&c, &segs, opts.g2_jump),
+                "no better than the input"
+            );
+        }
+    }
+}
