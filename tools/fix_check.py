@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""`aecurve fix` on real UFO sources (CI step; needs fonts-texgyre from Debian, fontTools,
-ufo-extractor and ufoLib2 from PyPI). Issue 34.
+"""`aecurve fix` on real UFO sources, a designspace and SVG icons (CI step; needs
+fonts-texgyre, fonts-cantarell and adwaita-icon-theme from Debian, fontTools, ufo-extractor
+and ufoLib2 from PyPI). Issue 34.
 
 For UFOs that ufo-extractor makes from TeX Gyre fonts (OpenType/CFF: cubic outlines):
 
@@ -19,6 +20,7 @@ Exits non-zero on the first failure, printing what failed.
 import glob
 import json
 import math
+import os
 import subprocess
 import sys
 import tempfile
@@ -139,6 +141,94 @@ for f in fonts:
               f"under a 1 % curvature jump before, {u1} ({100 * u1 / max(joins, 1):.1f} %) after; none worse, "
               f"no segment with more extrema; cubics with a hook or several extrema {bumps[0]} -> {bumps[1]} "
               f"(check --json on both)")
+# Masters in a designspace: Cantarell's Thin and ExtraBold (fonts-cantarell: static
+# instances of one variable design, so most glyphs agree point for point) as UFOs. After
+# `fix` on the designspace: every master has the same structure as before and moved within
+# the tolerance; fontTools' varLib.interpolatable finds no problem it did not find in the
+# input; and the instance half way between the two masters, made here point by point from
+# the written UFOs (not by aecurve), is no worse than the same instance of the input's
+# masters by `check --json` (no join with a larger jump or angle, no cubic with more
+# extrema).
+from fontTools.designspaceLib import AxisDescriptor, DesignSpaceDocument, SourceDescriptor
+
+
+def interpolatable_problems(paths):
+    out = subprocess.run([sys.executable, "-m", "fontTools.varLib.interpolatable", "--json", *paths],
+                         capture_output=True, text=True)
+    found = json.loads(out.stdout or "{}")
+    return {(g, p["type"]) for g, probs in found.items() for p in probs}
+
+
+def halfway_ufo(a, b, path):
+    """The instance half way between two UFO masters, glyph by glyph where every contour
+    agrees point for point (others left out); components and anchors dropped."""
+    fa, fb = ufoLib2.Font.open(a), ufoLib2.Font.open(b)
+    out = ufoLib2.Font()
+    out.info.unitsPerEm = fa.info.unitsPerEm
+    kept = 0
+    for name in fa.keys():
+        if name not in fb:
+            continue
+        ga, gb = fa[name], fb[name]
+        if not ga.contours or len(ga.contours) != len(gb.contours) or any(
+                [p.type for p in ca.points] != [p.type for p in cb.points]
+                for ca, cb in zip(ga.contours, gb.contours)):
+            continue
+        g = out.newGlyph(name)
+        pen = g.getPointPen()
+        for ca, cb in zip(ga.contours, gb.contours):
+            pen.beginPath()
+            for pa, pb in zip(ca.points, cb.points):
+                pen.addPoint(((pa.x + pb.x) / 2, (pa.y + pb.y) / 2), pa.type, pa.smooth)
+            pen.endPath()
+        kept += 1
+    out.save(path)
+    return kept
+
+
+weights = {"Thin": 100, "ExtraBold": 800}
+if not all(glob.glob(f"/usr/share/fonts/opentype/cantarell/Cantarell-{w}.otf") for w in weights):
+    fail("no Cantarell fonts (apt install fonts-cantarell)")
+ds_dir = f"{scratch.name}/ds"
+os.makedirs(f"{ds_dir}/masters")
+doc = DesignSpaceDocument()
+axis = AxisDescriptor()
+axis.name, axis.tag, axis.minimum, axis.default, axis.maximum = "weight", "wght", 100, 100, 800
+doc.addAxis(axis)
+for w, v in weights.items():
+    ufo = ufoLib2.Font()
+    extractor.extractUFO(f"/usr/share/fonts/opentype/cantarell/Cantarell-{w}.otf", ufo)
+    ufo.save(f"{ds_dir}/masters/Cantarell-{w}.ufo")
+    src = SourceDescriptor()
+    src.filename, src.location, src.name = f"masters/Cantarell-{w}.ufo", {"weight": v}, w
+    doc.addSource(src)
+doc.write(f"{ds_dir}/Cantarell.designspace")
+out = subprocess.run([AECURVE, "fix", f"{ds_dir}/Cantarell.designspace", "-o", f"{ds_dir}/out/Cantarell.designspace",
+                      "--tolerance", str(TOLERANCE), "--json"], capture_output=True, text=True)
+if out.returncode != 0:
+    fail(f"fix designspace: {out.stderr.strip()}")
+report = json.loads(out.stdout)
+ins = [f"{ds_dir}/masters/Cantarell-{w}.ufo" for w in weights]
+outs = [f"{ds_dir}/out/masters/Cantarell-{w}.ufo" for w in weights]
+for a, b, m in zip(ins, outs, report["masters"]):
+    same_structure(ufoLib2.Font.open(a), ufoLib2.Font.open(b), a)
+    if m["counts"]["worse_joins"] != 0 or m["counts"]["cubics_with_more_extrema"] != 0:
+        fail(f"{a}: fix claims {m['counts']}")
+new = interpolatable_problems(outs) - interpolatable_problems(ins)
+if new:
+    fail(f"interpolatable finds problems the input masters did not have: {sorted(new)[:10]}")
+kept = halfway_ufo(*ins, f"{ds_dir}/half-in.ufo")
+halfway_ufo(*outs, f"{ds_dir}/half-out.ufo")
+joins, (u0, u1), bumps = compare_checks(check_json(f"{ds_dir}/half-in.ufo"), check_json(f"{ds_dir}/half-out.ufo"),
+                                        "the instance half way")
+for w, m in zip(weights, report["masters"]):
+    c = m["counts"]
+    print(f"Cantarell {w} master: of {c['smooth_cubic_joins']} smooth joins between cubics, "
+          f"{c['under_1_percent_before']} under a 1 % curvature jump before, {c['under_1_percent_after']} after")
+print(f"designspace: {report['restored_segments']} segments given back in both masters to keep instances no worse; "
+      f"interpolatable: no new problem; the instance half way ({kept} glyphs): of {joins} G1 joins between two "
+      f"curves, {u0} under 1 % before, {u1} after, none worse, no cubic with more extrema")
+
 # SVG icons (Adwaita's scalable set, every fourth): written back with only the `d` of
 # changed paths replaced; read by usvg (through check) with the same paths and segments,
 # and nothing worse.

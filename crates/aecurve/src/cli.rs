@@ -185,16 +185,19 @@ pub(crate) enum Cmd {
         #[command(flatten)]
         thresholds: Thresholds,
     },
-    /// Repair a UFO source's outlines and write it back: every smooth join between two
-    /// cubics moved towards G2 by sliding its handles along their tangents (tangents, and so
-    /// G1, kept), no point further than the tolerance, coordinates on the grid, and no join
-    /// and no cubic left worse than it was (the exact test decides extrema). The same glyphs,
-    /// contours and points are written; contours with quadratic segments are left alone and
-    /// listed.
+    /// Repair a UFO source, a designspace's masters or an SVG file and write it back: every
+    /// smooth join between two cubics moved towards G2 by sliding its handles along their
+    /// tangents (tangents, and so G1, kept), no point further than the tolerance,
+    /// coordinates on the grid, and no join and no cubic left worse than it was (the exact
+    /// test decides extrema). The same glyphs, contours and points are written; contours
+    /// with quadratic segments are left alone and listed. In a designspace, the masters are
+    /// held together: no instance half way between two masters ends worse either
+    /// (interpolation compatibility kept).
     Fix {
-        /// The UFO source (a .ufo folder).
+        /// The UFO source (a .ufo folder), a .designspace file, or an SVG file.
         input: PathBuf,
-        /// Where to write the fixed UFO (a new folder).
+        /// Where to write the result (a new .ufo folder, .svg file, or .designspace file:
+        /// its masters are written beside it at the same relative paths).
         #[arg(short, long)]
         output: PathBuf,
         /// How far a point may move (font units).

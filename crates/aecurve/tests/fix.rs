@@ -137,7 +137,7 @@ fn fix_writes_the_same_structure_and_nothing_worse() {
 }
 
 #[test]
-fn fix_refuses_to_replace_a_file_and_reads_only_ufo_and_svg() {
+fn fix_refuses_to_replace_a_file_and_says_what_it_cannot_read() {
     let dir = scratch("refuse");
     let src = source(&dir);
     let exe = env!("CARGO_BIN_EXE_aecurve");
@@ -145,6 +145,7 @@ fn fix_refuses_to_replace_a_file_and_reads_only_ufo_and_svg() {
     let out = run(&["fix", src.to_str().unwrap(), "-o", src.to_str().unwrap()]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("already exists"));
+    // A designspace with no source, and a file of another kind: said so.
     let ds = dir.join("a.designspace");
     std::fs::write(&ds, "<designspace/>").unwrap();
     let out = run(&[
@@ -154,7 +155,17 @@ fn fix_refuses_to_replace_a_file_and_reads_only_ufo_and_svg() {
         dir.join("b.designspace").to_str().unwrap(),
     ]);
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("not done yet"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no <source>"));
+    let txt = dir.join("a.txt");
+    std::fs::write(&txt, "x").unwrap();
+    let out = run(&[
+        "fix",
+        txt.to_str().unwrap(),
+        "-o",
+        dir.join("b.txt").to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("designspaces and SVG files"));
 }
 
 /// An SVG: only the `d` of the changed path is rewritten (everything else byte for byte),
@@ -193,4 +204,122 @@ fn fix_rewrites_only_the_path_data_of_an_svg() {
         let (jx, jy) = (x.curvature_jump.unwrap(), y.curvature_jump.unwrap());
         assert!(jy <= jx + 1e-6, "{x:?} {y:?}");
     }
+}
+
+/// The UFO at `p` with every point of every contour of "o" mapped by `f`.
+fn mapped(p: &Path, out: &Path, f: impl Fn(f64, f64) -> (f64, f64)) {
+    let mut font = Font::load(p).unwrap();
+    let o = font.default_layer_mut().get_glyph_mut("o").unwrap();
+    for c in &mut o.contours {
+        for q in &mut c.points {
+            let (x, y) = f(q.x, q.y);
+            (q.x, q.y) = (x.round(), y.round());
+        }
+    }
+    font.save(out).unwrap();
+}
+
+/// The instance half way between the "o" of two UFOs (same structure), written as a UFO.
+fn halfway(a: &Path, b: &Path, out: &Path) {
+    let (fa, fb) = (Font::load(a).unwrap(), Font::load(b).unwrap());
+    let mut font = Font::new();
+    let mut g = fa.get_glyph("o").unwrap().clone();
+    let gb = fb.get_glyph("o").unwrap();
+    for (c, cb) in g.contours.iter_mut().zip(&gb.contours) {
+        for (q, qb) in c.points.iter_mut().zip(&cb.points) {
+            (q.x, q.y) = ((q.x + qb.x) / 2.0, (q.y + qb.y) / 2.0);
+        }
+    }
+    font.default_layer_mut().insert_glyph(g);
+    font.save(out).unwrap();
+}
+
+/// Two masters of the "o" whose tangents turn between them (the second sheared and
+/// widened, so the handle ratios at its slanted joins matter to the instances): after
+/// `fix` on the designspace, both masters have the same structure as before, and the
+/// instance half way between them, made here point by point and checked by `check`, has
+/// no join with a larger angle or curvature jump and no segment with more extrema than
+/// the same instance of the input's masters. A sparse master (a layer source) is refused.
+#[test]
+fn fix_on_a_designspace_keeps_the_instances_no_worse() {
+    use aecurve::fix::masters::fix_designspace;
+    let dir = scratch("designspace");
+    let thin = source(&dir);
+    std::fs::create_dir_all(dir.join("masters")).unwrap();
+    let (a, b) = (dir.join("masters/A.ufo"), dir.join("masters/B.ufo"));
+    mapped(&thin, &a, |x, y| (x, y));
+    mapped(&thin, &b, |x, y| (1.3 * x + 0.25 * y, 0.9 * y));
+    let ds = |sources: &str| {
+        format!(
+            "<?xml version='1.0' encoding='UTF-8'?>\n<designspace format=\"5.0\">\n  <axes>\n    \
+             <axis tag=\"wght\" name=\"weight\" minimum=\"100\" maximum=\"800\" default=\"100\"/>\n  \
+             </axes>\n  <sources>\n{sources}  </sources>\n</designspace>\n"
+        )
+    };
+    let source_el = |file: &str, w: u32, extra: &str| {
+        format!(
+            "    <source filename=\"{file}\" name=\"{w}\"{extra}>\n      <location><dimension \
+             name=\"weight\" xvalue=\"{w}\"/></location>\n    </source>\n"
+        )
+    };
+    let input = dir.join("o.designspace");
+    std::fs::write(
+        &input,
+        ds(&(source_el("masters/A.ufo", 100, "") + &source_el("masters/B.ufo", 800, ""))),
+    )
+    .unwrap();
+    let output = dir.join("out/o.designspace");
+    let opts = FixOptions {
+        tolerance: 30.0,
+        grid: 1.0,
+        move_points: false,
+        repairs: Default::default(),
+    };
+    let d = fix_designspace(&input, &output, &opts).unwrap();
+    assert_eq!(d.masters.len(), 2);
+    assert_eq!(d.compatible_contours, 1, "the o's contour is held together");
+    let outs = [dir.join("out/masters/A.ufo"), dir.join("out/masters/B.ufo")];
+    assert!(output.is_file());
+    let mut changed = 0;
+    for (src, out) in [&a, &b].into_iter().zip(&outs) {
+        let (ga, gb) = (
+            Font::load(src).unwrap().get_glyph("o").unwrap().clone(),
+            Font::load(out).unwrap().get_glyph("o").unwrap().clone(),
+        );
+        for (ca, cb) in ga.contours.iter().zip(&gb.contours) {
+            assert_eq!(ca.points.len(), cb.points.len());
+            for (pa, pb) in ca.points.iter().zip(&cb.points) {
+                assert_eq!((pa.typ, pa.smooth, &pa.name), (pb.typ, pb.smooth, &pb.name));
+                changed += ((pa.x, pa.y) != (pb.x, pb.y)) as usize;
+            }
+        }
+    }
+    assert!(changed > 0, "nothing was fixed");
+    halfway(&a, &b, &dir.join("half-in.ufo"));
+    halfway(&outs[0], &outs[1], &dir.join("half-out.ufo"));
+    let (before, after) = (
+        check_o(&dir.join("half-in.ufo")),
+        check_o(&dir.join("half-out.ufo")),
+    );
+    for (x, y) in before.joins.iter().zip(&after.joins) {
+        assert!(y.angle_break <= x.angle_break + 1e-12, "{x:?} -> {y:?}");
+        if let (Some(p), Some(q)) = (x.curvature_jump, y.curvature_jump) {
+            assert!(q <= p * (1.0 + 1e-9) + 1e-12, "{x:?} -> {y:?}");
+        }
+    }
+    for (x, y) in before.segments.iter().zip(&after.segments) {
+        assert!(y.extrema.len() <= x.extrema.len());
+    }
+    // A sparse master: refused, naming the layer.
+    let sparse = dir.join("sparse.designspace");
+    std::fs::write(
+        &sparse,
+        ds(&(source_el("masters/A.ufo", 100, "")
+            + &source_el("masters/B.ufo", 800, " layer=\"bold\""))),
+    )
+    .unwrap();
+    let err = fix_designspace(&sparse, &dir.join("out2/o.designspace"), &opts)
+        .err()
+        .unwrap();
+    assert!(format!("{err:#}").contains("\"bold\""), "{err:#}");
 }

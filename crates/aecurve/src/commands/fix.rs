@@ -1,7 +1,9 @@
-//! `aecurve fix INPUT.ufo -o OUTPUT.ufo`: the UFO's smooth joins harmonized and the source
-//! written back (`aecurve::fix`), with a summary or every change as JSON.
+//! `aecurve fix INPUT -o OUTPUT`: a UFO's, a designspace's masters' or an SVG file's smooth
+//! joins harmonized and the file written back (`aecurve::fix`), with a summary or every
+//! change as JSON.
 
-use aecurve::fix::{fix_json, fix_ufo, FixOptions};
+use aecurve::fix::masters::fix_designspace;
+use aecurve::fix::{fix_json, fix_ufo, ContourFix, FixCounts, FixOptions};
 use anyhow::Result;
 use std::path::Path;
 
@@ -15,18 +17,7 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
         grid.is_finite() && grid >= 0.0,
         "--grid must be a step >= 0 (0: none)"
     );
-    let svg = input
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
-    let ufo = input.is_dir()
-        && input
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("ufo"));
-    anyhow::ensure!(
-        svg || ufo,
-        "{}: fix reads UFO sources (a .ufo folder) and SVG files; designspaces are not done yet",
-        input.display()
-    );
+    let kind = Kind::of(input)?;
     anyhow::ensure!(
         !output.exists(),
         "{}: already exists; fix writes a new folder and never replaces one",
@@ -36,32 +27,104 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
         std::fs::create_dir_all(parent)
             .map_err(|e| anyhow::anyhow!("creating {}: {e}", parent.display()))?;
     }
-    let (fixes, c) = if svg {
+    let head = serde_json::json!({
+        "input": input.display().to_string(), "output": output.display().to_string(),
+        "tolerance": tolerance, "grid": grid, "move_points": opts.move_points,
+    });
+    if kind == Kind::Designspace {
+        let d = fix_designspace(input, output, &opts)?;
+        if json {
+            let masters: Vec<_> = d
+                .masters
+                .iter()
+                .map(|m| {
+                    serde_json::json!({"source": m.filename, "counts": counts_json(&m.counts),
+                        "contours": m.fixes.iter().map(fix_json).collect::<Vec<_>>()})
+                })
+                .collect();
+            let mut out = head;
+            out["masters"] = masters.into();
+            out["compatible_contours"] = d.compatible_contours.into();
+            out["restored_segments"] = d.restored_segments.into();
+            println!("{out}");
+            return Ok(());
+        }
+        println!(
+            "wrote {} and its {} masters",
+            output.display(),
+            d.masters.len()
+        );
+        for m in &d.masters {
+            println!("master {}:", m.filename);
+            summary(&m.fixes, &m.counts, (tolerance, grid));
+        }
+        println!(
+            "  {} contours with the same structure in every master held together: {} segments \
+             given back in every master where an instance half way between two masters (or a \
+             master) ended worse",
+            d.compatible_contours, d.restored_segments
+        );
+        return Ok(());
+    }
+    let (fixes, c) = if kind == Kind::Svg {
         aecurve::fix::fix_svg(input, output, &opts)?
     } else {
         fix_ufo(input, output, &opts)?
     };
     if json {
         let changes: Vec<_> = fixes.iter().map(fix_json).collect();
-        let out = serde_json::json!({
-            "input": input.display().to_string(), "output": output.display().to_string(),
-            "tolerance": tolerance, "grid": grid, "move_points": opts.move_points,
-            "counts": {
-                "smooth_cubic_joins": c.smooth_cubic_joins,
-                "under_1_percent_before": c.under_1_percent.0,
-                "under_1_percent_after": c.under_1_percent.1,
-                "worse_joins": c.worse, "cubics_with_more_extrema": c.gained_extrema,
-                "changed_segments": c.changed_segments, "max_moved": c.max_moved,
-                "skipped_contours": c.skipped_contours,
-                "bumps_before": c.bumps.0, "bumps_after": c.bumps.1,
-            },
-            "contours": changes,
-        });
+        let mut out = head;
+        out["counts"] = counts_json(&c);
+        out["contours"] = changes.into();
         println!("{out}");
         return Ok(());
     }
-    let pct = |k: usize| 100.0 * k as f64 / c.smooth_cubic_joins.max(1) as f64;
     println!("wrote {}", output.display());
+    summary(&fixes, &c, (tolerance, grid));
+    Ok(())
+}
+
+/// What `fix` reads.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Ufo,
+    Svg,
+    Designspace,
+}
+
+impl Kind {
+    fn of(input: &Path) -> Result<Kind> {
+        let ext = |e: &str| input.extension().is_some_and(|x| x.eq_ignore_ascii_case(e));
+        if ext("svg") {
+            Ok(Kind::Svg)
+        } else if ext("designspace") {
+            Ok(Kind::Designspace)
+        } else if ext("ufo") && input.is_dir() {
+            Ok(Kind::Ufo)
+        } else {
+            anyhow::bail!(
+                "{}: fix reads UFO sources (a .ufo folder), designspaces and SVG files",
+                input.display()
+            )
+        }
+    }
+}
+
+fn counts_json(c: &FixCounts) -> serde_json::Value {
+    serde_json::json!({
+        "smooth_cubic_joins": c.smooth_cubic_joins,
+        "under_1_percent_before": c.under_1_percent.0,
+        "under_1_percent_after": c.under_1_percent.1,
+        "worse_joins": c.worse, "cubics_with_more_extrema": c.gained_extrema,
+        "changed_segments": c.changed_segments, "max_moved": c.max_moved,
+        "skipped_contours": c.skipped_contours,
+        "bumps_before": c.bumps.0, "bumps_after": c.bumps.1,
+    })
+}
+
+/// The summary of one file's (or master's) fix.
+fn summary(fixes: &[ContourFix], c: &FixCounts, (tolerance, grid): (f64, f64)) {
+    let pct = |k: usize| 100.0 * k as f64 / c.smooth_cubic_joins.max(1) as f64;
     println!(
         "  {} smooth joins between cubics: {} ({:.1} %) under a 1 % curvature jump before, {} ({:.1} %) after",
         c.smooth_cubic_joins,
@@ -86,5 +149,4 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
             }
         }
     }
-    Ok(())
 }

@@ -101,6 +101,8 @@ pub enum JoinOutcome {
     Partly,
     /// Moved, then given back its handles because the result was worse (after the grid).
     Reverted,
+    /// Held as it was (the caller said so: [`harmonize_holding`]).
+    Held,
 }
 
 /// One join of the result.
@@ -370,11 +372,27 @@ pub fn harmonize(
     smooth: &[bool],
     opts: &HarmonizeOptions,
 ) -> crate::Result<Harmonized> {
+    harmonize_holding(segments, closed, (smooth, &vec![false; smooth.len()]), opts)
+}
+
+/// [`harmonize`], with the joins where `held[j]` kept as they are: no handle at them moves
+/// (so their handles' ratio stays: what keeps the instances of compatible masters G1 where
+/// the tangent turns from master to master), their jumps still may not grow.
+pub fn harmonize_holding(
+    segments: &[Vec<Point>],
+    closed: bool,
+    (smooth, held): (&[bool], &[bool]),
+    opts: &HarmonizeOptions,
+) -> crate::Result<Harmonized> {
     check_input(segments, closed, smooth, opts)?;
+    check_input(segments, closed, held, opts)?;
     let n = segments.len();
     let before = states(segments, closed);
-    let smooth = &g1_or_smooth(segments, (closed, smooth), &before, opts)[..];
-    let guard = guarded(&before, smooth);
+    let kept = g1_or_smooth(segments, (closed, smooth), &before, opts);
+    let guard = guarded(&before, &kept);
+    // The joins whose handles move: kept and not held.
+    let moving: Vec<bool> = kept.iter().zip(held).map(|(k, h)| *k && !*h).collect();
+    let smooth = &moving[..];
     let extrema_before: Vec<Option<usize>> = segments.iter().map(|s| extrema(s)).collect();
     let original = segments;
     // With `move_points`, the joins' on-curve points first (each checked: no cubic with more
@@ -394,10 +412,13 @@ pub fn harmonize(
         (&guard, &extrema_before),
     );
     let target: Vec<Vec<Point>> = (0..n).map(|i| h.points(segments, i)).collect();
+    for (o, _) in outcome.iter_mut().zip(held).filter(|(_, h)| **h) {
+        *o = JoinOutcome::Held;
+    }
     let contour = grid::Contour {
         input: segments,
         closed,
-        smooth,
+        smooth: &kept,
         guard: &guard,
         extrema_before: &extrema_before,
     };
@@ -854,6 +875,49 @@ fn revert_what_got_worse(
     }
 }
 
+/// What got worse from `before` to `after` (the same contour, moved): the segments of
+/// every join with a larger angle, or a larger curvature jump where the join is smooth or
+/// G1 (the rule [`harmonize`] keeps to), and every cubic with more curvature extrema (the
+/// exact test); sorted, once each. What an interpolated instance of repaired masters is
+/// held to, against the same instance of the input's masters.
+pub fn regressions(
+    before: &[Vec<Point>],
+    after: &[Vec<Point>],
+    closed: bool,
+    smooth: &[bool],
+    opts: &HarmonizeOptions,
+) -> Vec<usize> {
+    let states_before = states(before, closed);
+    let smooth = g1_or_smooth(before, (closed, smooth), &states_before, opts);
+    let guard = guarded(&states_before, &smooth);
+    let extrema_before: Vec<Option<usize>> = before.iter().map(|s| extrema(s)).collect();
+    spoiled(before, after, closed, (&guard, &extrema_before))
+}
+
+impl Harmonized {
+    /// Give `segments` back their input's control points (`input`: what the result was
+    /// repaired from) and bring the report up to date: the joins at them `Reverted`, their
+    /// jumps and angles after, the moves and extrema.
+    pub fn restore(&mut self, input: &[Vec<Point>], closed: bool, segments: &[usize]) {
+        for &i in segments {
+            self.segments[i] = input[i].clone();
+            self.moved[i] = 0.0;
+            self.extrema[i].1 = self.extrema[i].0;
+            self.bumps.retain(|b| b.segment != i);
+        }
+        let after = states(&self.segments, closed);
+        let n = self.segments.len();
+        for j in &mut self.joins {
+            let (a, b) = (j.after_segment, (j.after_segment + 1) % n);
+            let touched = segments.contains(&a) || segments.contains(&b);
+            if touched && j.outcome != JoinOutcome::Corner {
+                j.outcome = JoinOutcome::Reverted;
+            }
+            (j.jump.1, j.angle.1) = after[j.after_segment];
+        }
+    }
+}
+
 /// What [`repair`] does.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Repairs {
@@ -886,9 +950,30 @@ pub fn repair(
     opts: &HarmonizeOptions,
     what: &Repairs,
 ) -> crate::Result<Harmonized> {
+    repair_holding(
+        segments,
+        closed,
+        (smooth, &vec![false; smooth.len()]),
+        opts,
+        what,
+    )
+}
+
+/// [`repair`] with the joins where `held[j]` kept as they are ([`harmonize_holding`]; no
+/// bump is removed from a cubic at a held join either).
+pub fn repair_holding(
+    segments: &[Vec<Point>],
+    closed: bool,
+    (smooth, held): (&[bool], &[bool]),
+    opts: &HarmonizeOptions,
+    what: &Repairs,
+) -> crate::Result<Harmonized> {
     check_input(segments, closed, smooth, opts)?;
+    check_input(segments, closed, held, opts)?;
+    let at_held =
+        |i: usize| joins(segments.len(), closed).any(|(j, a, b)| held[j] && (a == i || b == i));
     let (start, bumps) = if what.bumps {
-        remove_bumps(segments, closed, opts, what.hook_zone)
+        remove_bumps_except(segments, closed, opts, what.hook_zone, &at_held)
     } else {
         (segments.to_vec(), Vec::new())
     };
@@ -900,10 +985,10 @@ pub fn repair(
         ..*opts
     };
     let none = vec![false; smooth.len()];
-    let mut h = harmonize(
+    let mut h = harmonize_holding(
         &start,
         closed,
-        if what.harmonize { smooth } else { &none },
+        (if what.harmonize { smooth } else { &none }, held),
         &rest,
     )?;
     // Against the input, not the stage's start.
@@ -967,10 +1052,21 @@ pub fn remove_bumps(
     opts: &HarmonizeOptions,
     zone: f64,
 ) -> (Vec<Vec<Point>>, Vec<BumpFix>) {
+    remove_bumps_except(segments, closed, opts, zone, &|_| false)
+}
+
+/// [`remove_bumps`], leaving the segments where `skip` says so.
+fn remove_bumps_except(
+    segments: &[Vec<Point>],
+    closed: bool,
+    opts: &HarmonizeOptions,
+    zone: f64,
+    skip: &dyn Fn(usize) -> bool,
+) -> (Vec<Vec<Point>>, Vec<BumpFix>) {
     let mut pts = segments.to_vec();
     let before = states(segments, closed);
     let mut fixes = Vec::new();
-    for i in 0..pts.len() {
+    for i in (0..pts.len()).filter(|&i| !skip(i)) {
         let Some(ts) = extrema_at(&segments[i]) else {
             continue;
         };

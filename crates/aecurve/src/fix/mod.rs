@@ -11,9 +11,11 @@
 //! on cubic outlines (convert a TrueType source to cubics first).
 
 use aesthetic_curves::harmonize::{
-    has_bump, repair, HarmonizeOptions, Harmonized, JoinOutcome, Repairs,
+    has_bump, repair, repair_holding, HarmonizeOptions, Harmonized, JoinOutcome, Repairs,
 };
 use aesthetic_curves::Point;
+
+pub mod masters;
 use anyhow::{Context, Result};
 use serde_json::{json, Value};
 use std::path::Path;
@@ -192,26 +194,53 @@ pub fn fix_ufo(
     // The readers' folder check and norad's load, once (not `read` and then norad again).
     let mut font = crate::outline_io::load_ufo_checked(input)
         .with_context(|| format!("{}: not a UFO `fix` reads", input.display()))?;
-    let hopts = HarmonizeOptions {
+    let fixes = fix_font(&font, opts);
+    let counts = write_font_back(&mut font, &fixes);
+    font.save(output)
+        .with_context(|| format!("writing {}", output.display()))?;
+    Ok((fixes, counts))
+}
+
+/// The options of the library's repair for `fix`'s.
+fn harmonize_options(opts: &FixOptions) -> HarmonizeOptions {
+    HarmonizeOptions {
         tolerance: opts.tolerance,
         grid: opts.grid,
         move_points: opts.move_points,
         ..HarmonizeOptions::default()
-    };
+    }
+}
+
+/// Every contour of the font's default layer repaired (nothing written yet), in glyph and
+/// contour order.
+pub fn fix_font(font: &norad::Font, opts: &FixOptions) -> Vec<ContourFix> {
+    fix_font_holding(font, opts, &Held::new())
+}
+
+/// Per (glyph, contour): the joins to keep as they are ([`repair_holding`]).
+pub type Held = std::collections::HashMap<(String, usize), Vec<bool>>;
+
+/// [`fix_font`], keeping the joins `held` names as they are.
+pub fn fix_font_holding(font: &norad::Font, opts: &FixOptions, held: &Held) -> Vec<ContourFix> {
+    let hopts = harmonize_options(opts);
     let mut fixes = Vec::new();
-    let mut counts = FixCounts::default();
-    for glyph in font.default_layer_mut().iter_mut() {
+    for glyph in font.default_layer().iter() {
         let name = glyph.name().to_string();
-        for (ci, contour) in glyph.contours.iter_mut().enumerate() {
+        for (ci, contour) in glyph.contours.iter().enumerate() {
             let indexed = index_contour(&contour.points);
+            let hold = held.get(&(name.clone(), ci));
             let result = indexed.as_ref().map_err(Clone::clone).and_then(|c| {
-                let h = repair(&c.segments, c.closed, &c.smooth, &hopts, &opts.repairs)
-                    .map_err(|e| e.to_string())?;
-                write_back(&mut contour.points, c, &h);
-                counts.add(&h, c);
-                Ok(h)
+                let none = vec![false; c.smooth.len()];
+                let hold = hold.filter(|h| h.len() == none.len()).unwrap_or(&none);
+                repair_holding(
+                    &c.segments,
+                    c.closed,
+                    (&c.smooth, hold),
+                    &hopts,
+                    &opts.repairs,
+                )
+                .map_err(|e| e.to_string())
             });
-            counts.skipped_contours += result.is_err() as usize;
             fixes.push(ContourFix {
                 glyph: name.clone(),
                 contour: ci,
@@ -220,9 +249,27 @@ pub fn fix_ufo(
             });
         }
     }
-    font.save(output)
-        .with_context(|| format!("writing {}", output.display()))?;
-    Ok((fixes, counts))
+    fixes
+}
+
+/// The results of [`fix_font`] written into the font's points; the counts.
+pub fn write_font_back(font: &mut norad::Font, fixes: &[ContourFix]) -> FixCounts {
+    let mut counts = FixCounts::default();
+    let layer = font.default_layer_mut();
+    for f in fixes {
+        let (Ok(h), Some(c)) = (&f.result, &f.input) else {
+            counts.skipped_contours += 1;
+            continue;
+        };
+        if let Some(contour) = layer
+            .get_glyph_mut(f.glyph.as_str())
+            .and_then(|g| g.contours.get_mut(f.contour))
+        {
+            write_back(&mut contour.points, c, h);
+            counts.add(h, c);
+        }
+    }
+    counts
 }
 
 /// The harmonized coordinates into the contour's points (only those that moved).

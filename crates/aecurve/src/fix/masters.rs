@@ -1,0 +1,318 @@
+//! `aecurve fix` on a designspace: every master (source UFO) repaired, then held together
+//! so that the masters stay interpolation-compatible and their instances no worse.
+//!
+//! The repair changes coordinates only, so the masters keep their structure (the same
+//! contours, points and kinds in the same order) by construction. What it could spoil is
+//! the instances between them: at a smooth point whose tangent turns from master to master,
+//! an instance stays G1 only where every master divides its two handles in the same ratio,
+//! and harmonizing each master alone changes that ratio (fontTools' `interpolatable` calls
+//! the result a kink). So, contour by contour across the masters: the instance half way
+//! between every two masters, of the input's masters and of the repaired ones, is checked
+//! with the rule the repair keeps in each master ([`regressions`]: no join with a larger
+//! angle, no smooth or G1 join with a larger curvature jump, no cubic with more curvature
+//! extrema by the exact test), each master against its own input too, and every segment
+//! that fails anywhere gets its input back in every master, until none fails.
+//!
+//! Before that, the joins whose tangent direction turns from master to master are held in
+//! every master ([`held_joins`]): their handles do not move, so their ratios, and the
+//! instances' tangents, stay; the rest is harmonized freely.
+//!
+//! Sources in a layer of another UFO (`layer="..."`, sparse masters) are refused with a
+//! message; a glyph whose contours differ in structure between masters is not
+//! interpolatable anyway and is repaired per master.
+
+use super::{
+    fix_font_holding, harmonize_options, index_contour, write_font_back, ContourFix, FixCounts,
+    FixOptions, Held, IndexedContour,
+};
+use aesthetic_curves::harmonize::{regressions, Harmonized};
+use aesthetic_curves::Point;
+use anyhow::{bail, Context, Result};
+use std::collections::{BTreeSet, HashMap};
+use std::path::{Path, PathBuf};
+
+/// One master's results.
+pub struct MasterFix {
+    /// The source's `filename`, as the designspace says it (relative to it).
+    pub filename: String,
+    /// Per contour.
+    pub fixes: Vec<ContourFix>,
+    /// The counts.
+    pub counts: FixCounts,
+}
+
+/// The whole designspace's results.
+pub struct DesignspaceFix {
+    /// Per master, in the designspace's order.
+    pub masters: Vec<MasterFix>,
+    /// Contours present in every master with the same structure (held together).
+    pub compatible_contours: usize,
+    /// Segments given back their input in every master because an instance or a master
+    /// got worse.
+    pub restored_segments: usize,
+}
+
+/// The sources' filenames of a designspace document.
+fn sources(text: &str, path: &Path) -> Result<Vec<String>> {
+    let doc = roxmltree::Document::parse(text)
+        .with_context(|| format!("{}: not an XML document", path.display()))?;
+    let mut out = Vec::new();
+    for s in doc.descendants().filter(|n| n.has_tag_name("source")) {
+        let Some(file) = s.attribute("filename") else {
+            bail!("{}: a <source> without a filename", path.display());
+        };
+        if let Some(layer) = s.attribute("layer") {
+            bail!(
+                "{}: source {file} is the layer {layer:?} of a UFO (a sparse master): fix \
+                 repairs whole-UFO masters only",
+                path.display()
+            );
+        }
+        out.push(file.to_string());
+    }
+    if out.is_empty() {
+        bail!("{}: no <source> in the designspace", path.display());
+    }
+    Ok(out)
+}
+
+/// Fix every master of the designspace at `input` and write the designspace to `output`
+/// (its text unchanged) with the repaired masters beside it at the same relative paths;
+/// refuses when any of them exists.
+pub fn fix_designspace(input: &Path, output: &Path, opts: &FixOptions) -> Result<DesignspaceFix> {
+    let text =
+        std::fs::read_to_string(input).with_context(|| format!("reading {}", input.display()))?;
+    let files = sources(&text, input)?;
+    let here = input.parent().unwrap_or(Path::new(""));
+    let there = output.parent().unwrap_or(Path::new(""));
+    let targets: Vec<PathBuf> = files.iter().map(|f| there.join(f)).collect();
+    if let Some(t) = targets.iter().find(|t| t.exists()) {
+        bail!(
+            "{}: already exists; fix writes new masters and never replaces one",
+            t.display()
+        );
+    }
+    let mut fonts = Vec::with_capacity(files.len());
+    for f in &files {
+        let path = here.join(f);
+        fonts.push(
+            crate::outline_io::load_ufo_checked(&path)
+                .with_context(|| format!("{}: master {f} not read", input.display()))?,
+        );
+    }
+    let held = held_joins(&fonts);
+    let mut all: Vec<Vec<ContourFix>> = fonts
+        .iter()
+        .map(|f| fix_font_holding(f, opts, &held))
+        .collect();
+    let (compatible_contours, restored_segments) = hold_together(&mut all, opts);
+    let mut masters = Vec::with_capacity(files.len());
+    for ((font, fixes), (file, target)) in fonts.iter_mut().zip(all).zip(files.iter().zip(&targets))
+    {
+        let counts = write_font_back(font, &fixes);
+        if let Some(dir) = target.parent() {
+            std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        }
+        font.save(target)
+            .with_context(|| format!("writing {}", target.display()))?;
+        masters.push(MasterFix {
+            filename: file.clone(),
+            fixes,
+            counts,
+        });
+    }
+    std::fs::write(output, &text).with_context(|| format!("writing {}", output.display()))?;
+    Ok(DesignspaceFix {
+        masters,
+        compatible_contours,
+        restored_segments,
+    })
+}
+
+/// Per contour present in every master with the same structure: the joins whose tangent
+/// direction turns from master to master (on either side). Their handles stay where they
+/// are in every master: an instance between masters is G1 there only while every master
+/// divides the two handles in the ratio it has (where the direction is the same in all
+/// masters, any lengths interpolate to collinear handles).
+fn held_joins(fonts: &[norad::Font]) -> Held {
+    let mut held = Held::new();
+    let Some((first, rest)) = fonts.split_first() else {
+        return held;
+    };
+    for glyph in first.default_layer().iter() {
+        let name = glyph.name().as_str();
+        let others: Option<Vec<&norad::Glyph>> = rest
+            .iter()
+            .map(|f| f.default_layer().get_glyph(name))
+            .collect();
+        let Some(others) = others else { continue };
+        for (ci, contour) in glyph.contours.iter().enumerate() {
+            let Ok(c0) = index_contour(&contour.points) else {
+                continue;
+            };
+            let cs: Option<Vec<IndexedContour>> = others
+                .iter()
+                .map(|g| {
+                    g.contours
+                        .get(ci)
+                        .and_then(|c| index_contour(&c.points).ok())
+                        .filter(|c| c.indices == c0.indices && c.closed == c0.closed)
+                })
+                .collect();
+            let Some(cs) = cs else { continue };
+            let turns: Vec<bool> = (0..c0.smooth.len())
+                .map(|j| cs.iter().any(|c| tangents_differ(&c0, c, j)))
+                .collect();
+            held.insert((name.to_string(), ci), turns);
+        }
+    }
+    held
+}
+
+/// Whether the tangent directions on either side of join `j` differ between two masters'
+/// contours of the same structure (beyond 1e-9 rad).
+fn tangents_differ(a: &IndexedContour, b: &IndexedContour, j: usize) -> bool {
+    let n = a.segments.len();
+    let dirs = |c: &IndexedContour| {
+        let (s, t) = (&c.segments[j], &c.segments[(j + 1) % n]);
+        let p = s[s.len() - 1];
+        let back = s.iter().rev().find(|q| **q != p).map(|q| p - *q);
+        let ahead = t.iter().find(|q| **q != p).map(|q| *q - p);
+        [back, ahead]
+    };
+    dirs(a).iter().zip(dirs(b)).any(|(u, v)| match (u, v) {
+        (Some(u), Some(v)) => u.cross(v).atan2(u.dot(v)).abs() > 1e-9,
+        _ => false,
+    })
+}
+
+/// Every contour present in all masters with the same structure held together (see the
+/// module documentation): how many such contours, and how many segments were given back.
+fn hold_together(all: &mut [Vec<ContourFix>], opts: &FixOptions) -> (usize, usize) {
+    // Where each (glyph, contour) of the first master sits in the others.
+    let index: Vec<HashMap<(String, usize), usize>> = all
+        .iter()
+        .map(|m| {
+            m.iter()
+                .enumerate()
+                .map(|(k, f)| ((f.glyph.clone(), f.contour), k))
+                .collect()
+        })
+        .collect();
+    let (mut compatible, mut restored) = (0, 0);
+    for k in 0..all.first().map_or(0, Vec::len) {
+        let key = (all[0][k].glyph.clone(), all[0][k].contour);
+        let Some(at): Option<Vec<usize>> = index.iter().map(|ix| ix.get(&key).copied()).collect()
+        else {
+            continue;
+        };
+        // The contour of every master taken out, held together, and put back.
+        let mut members: Vec<ContourFix> = at
+            .iter()
+            .enumerate()
+            .map(|(m, &p)| std::mem::replace(&mut all[m][p], placeholder()))
+            .collect();
+        if let Some(n) = hold_contour(&mut members, opts) {
+            compatible += 1;
+            restored += n;
+        }
+        for ((m, &p), f) in at.iter().enumerate().zip(members) {
+            all[m][p] = f;
+        }
+    }
+    (compatible, restored)
+}
+
+/// What stands in a master's list while its contour is held together with the others'.
+fn placeholder() -> ContourFix {
+    ContourFix {
+        glyph: String::new(),
+        contour: 0,
+        input: None,
+        result: Err(String::new()),
+    }
+}
+
+/// One contour across the masters (see the module documentation); None when the masters'
+/// contours differ in structure or one was not repaired; else how many segments went back.
+fn hold_contour(members: &mut [ContourFix], opts: &FixOptions) -> Option<usize> {
+    let first = members.first()?.input.as_ref()?;
+    let same = members.iter().all(|m| {
+        m.result.is_ok()
+            && m.input
+                .as_ref()
+                .is_some_and(|c| c.indices == first.indices && c.closed == first.closed)
+    });
+    if !same {
+        return None;
+    }
+    let closed = first.closed;
+    let hopts = harmonize_options(opts);
+    let inputs: Vec<Vec<Vec<Point>>> = members
+        .iter()
+        .map(|m| {
+            m.input
+                .as_ref()
+                .map(|c| c.segments.clone())
+                .unwrap_or_default()
+        })
+        .collect();
+    let smooth: Vec<Vec<bool>> = members
+        .iter()
+        .map(|m| {
+            m.input
+                .as_ref()
+                .map(|c| c.smooth.clone())
+                .unwrap_or_default()
+        })
+        .collect();
+    let mut restored = 0;
+    let n = inputs[0].len();
+    for _round in 0..=n {
+        let results: Vec<&Harmonized> = members
+            .iter()
+            .filter_map(|m| m.result.as_ref().ok())
+            .collect();
+        let mut bad = BTreeSet::new();
+        for (k, r) in results.iter().enumerate() {
+            bad.extend(regressions(
+                &inputs[k],
+                &r.segments,
+                closed,
+                &smooth[k],
+                &hopts,
+            ));
+        }
+        for k in 0..results.len() {
+            for l in k + 1..results.len() {
+                let either: Vec<bool> = smooth[k]
+                    .iter()
+                    .zip(&smooth[l])
+                    .map(|(a, b)| *a || *b)
+                    .collect();
+                let before = halfway(&inputs[k], &inputs[l]);
+                let after = halfway(&results[k].segments, &results[l].segments);
+                bad.extend(regressions(&before, &after, closed, &either, &hopts));
+            }
+        }
+        if bad.is_empty() {
+            break;
+        }
+        let bad: Vec<usize> = bad.into_iter().collect();
+        restored += bad.len();
+        for (k, m) in members.iter_mut().enumerate() {
+            if let Ok(h) = m.result.as_mut() {
+                h.restore(&inputs[k], closed, &bad);
+            }
+        }
+    }
+    Some(restored)
+}
+
+/// The instance half way between two masters' segments (same structure).
+fn halfway(a: &[Vec<Point>], b: &[Vec<Point>]) -> Vec<Vec<Point>> {
+    a.iter()
+        .zip(b)
+        .map(|(s, t)| s.iter().zip(t).map(|(p, q)| p.midpoint(*q)).collect())
+        .collect()
+}
