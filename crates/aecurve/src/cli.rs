@@ -223,6 +223,10 @@ pub(crate) enum Cmd {
         /// Print every change as JSON instead of the summary.
         #[arg(long)]
         json: bool,
+        /// Also write an HTML page of the changed glyphs or paths, before and after side by
+        /// side with their curvature combs and the moved points marked.
+        #[arg(long, value_name = "HTML")]
+        report: Option<PathBuf>,
     },
     /// Write the gallery of examples (HTML + SVG) to a folder.
     Demo {

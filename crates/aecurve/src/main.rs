@@ -178,6 +178,7 @@ fn run() -> Result<()> {
             no_bumps,
             no_harmonize,
             json,
+            report,
         } => commands::fix::fix(
             &input,
             &output,
@@ -191,7 +192,7 @@ fn run() -> Result<()> {
                     ..Default::default()
                 },
             },
-            json,
+            (json, report.as_deref()),
         )?,
         Cmd::Check {
             file,

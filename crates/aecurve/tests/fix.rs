@@ -323,3 +323,39 @@ fn fix_on_a_designspace_keeps_the_instances_no_worse() {
         .unwrap();
     assert!(format!("{err:#}").contains("\"bold\""), "{err:#}");
 }
+
+/// `fix --report`: a page with the changed glyph drawn before and after (its moved points
+/// marked in their own colour), and nothing for the glyph left alone.
+#[test]
+fn fix_report_draws_the_changed_glyphs_before_and_after() {
+    let dir = scratch("report");
+    let src = source(&dir);
+    let page = dir.join("fix.html");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_aecurve"))
+        .args(["fix", src.to_str().unwrap(), "-o"])
+        .arg(dir.join("fixed.ufo"))
+        .args(["--tolerance", "40", "--report"])
+        .arg(&page)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(html.contains("<b>o</b>"), "the o is drawn");
+    assert!(
+        !html.contains("<b>q</b>"),
+        "the quadratic q was not changed"
+    );
+    assert_eq!(html.matches("<svg").count(), 2, "before and after");
+    let after = &html[html.rfind("<svg").unwrap()..];
+    let before = &html[html.find("<svg").unwrap()..html.rfind("<svg").unwrap()];
+    assert!(
+        after.contains("fill=\"#c2189b\""),
+        "moved points marked after"
+    );
+    assert!(!before.contains("#c2189b"), "nothing marked before");
+    assert!(html.contains("1 shapes changed"));
+}

@@ -3,11 +3,16 @@
 //! change as JSON.
 
 use aecurve::fix::masters::fix_designspace;
-use aecurve::fix::{fix_json, fix_ufo, ContourFix, FixCounts, FixOptions};
+use aecurve::fix::{figures, fix_json, fix_ufo, ContourFix, FixCounts, FixOptions};
 use anyhow::Result;
 use std::path::Path;
 
-pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> Result<()> {
+pub(crate) fn fix(
+    input: &Path,
+    output: &Path,
+    opts: FixOptions,
+    (json, report): (bool, Option<&Path>),
+) -> Result<()> {
     let (tolerance, grid) = (opts.tolerance, opts.grid);
     anyhow::ensure!(
         tolerance.is_finite() && tolerance >= 0.0,
@@ -33,6 +38,16 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
     });
     if kind == Kind::Designspace {
         let d = fix_designspace(input, output, &opts)?;
+        if let Some(page) = report {
+            let mut all = Vec::new();
+            let mut total = 0;
+            for m in &d.masters {
+                let (f, n) = figures(&m.fixes, &format!("{}: ", m.filename), REPORT_FIGURES);
+                all.extend(f);
+                total += n;
+            }
+            write_report(page, input, true, &all, total)?;
+        }
         if json {
             let masters: Vec<_> = d
                 .masters
@@ -71,6 +86,10 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
     } else {
         fix_ufo(input, output, &opts)?
     };
+    if let Some(page) = report {
+        let (f, n) = figures(&fixes, "", REPORT_FIGURES);
+        write_report(page, input, kind != Kind::Svg, &f, n)?;
+    }
     if json {
         let changes: Vec<_> = fixes.iter().map(fix_json).collect();
         let mut out = head;
@@ -82,6 +101,21 @@ pub(crate) fn fix(input: &Path, output: &Path, opts: FixOptions, json: bool) -> 
     println!("wrote {}", output.display());
     summary(&fixes, &c, (tolerance, grid));
     Ok(())
+}
+
+/// Most figures on the `--report` page (per master in a designspace).
+const REPORT_FIGURES: usize = 80;
+
+fn write_report(
+    page: &Path,
+    input: &Path,
+    y_up: bool,
+    figures: &[aecurve::fix::report::FixFigure],
+    total: usize,
+) -> Result<()> {
+    let title = format!("aecurve fix: {}", input.display());
+    let html = aecurve::fix::report::fix_report(&title, y_up, figures, total);
+    std::fs::write(page, html).map_err(|e| anyhow::anyhow!("writing {}: {e}", page.display()))
 }
 
 /// What `fix` reads.

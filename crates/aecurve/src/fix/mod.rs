@@ -16,6 +16,7 @@ use aesthetic_curves::harmonize::{
 use aesthetic_curves::Point;
 
 pub mod masters;
+pub mod report;
 use anyhow::{Context, Result};
 use serde_json::{json, Value};
 use std::path::Path;
@@ -270,6 +271,54 @@ pub fn write_font_back(font: &mut norad::Font, fixes: &[ContourFix]) -> FixCount
         }
     }
     counts
+}
+
+/// The figures of `fix --report` ([`report::fix_report`]): one per glyph or path with a
+/// changed segment (its contours `fix` read, before and after), the most joins brought under
+/// a 1 % jump first, at most `limit`; and how many shapes changed. `prefix` goes before each
+/// name (a designspace's master).
+pub fn figures(
+    fixes: &[ContourFix],
+    prefix: &str,
+    limit: usize,
+) -> (Vec<report::FixFigure>, usize) {
+    let mut out: Vec<report::FixFigure> = Vec::new();
+    let mut changed = false;
+    for (k, f) in fixes.iter().enumerate() {
+        let new_shape = k == 0 || fixes[k - 1].glyph != f.glyph;
+        if new_shape {
+            if !changed {
+                out.pop();
+            }
+            changed = false;
+            out.push(report::FixFigure {
+                name: format!("{prefix}{}", f.glyph),
+                before: Vec::new(),
+                after: Vec::new(),
+                joins: (0, 0, 0),
+                moved: 0.0,
+            });
+        }
+        let (Ok(h), Some(c), Some(fig)) = (&f.result, &f.input, out.last_mut()) else {
+            continue;
+        };
+        let mut counts = FixCounts::default();
+        counts.add(h, c);
+        changed |= counts.changed_segments > 0;
+        fig.joins.0 += counts.smooth_cubic_joins;
+        fig.joins.1 += counts.under_1_percent.0;
+        fig.joins.2 += counts.under_1_percent.1;
+        fig.moved = fig.moved.max(counts.max_moved);
+        fig.before.push(c.segments.clone());
+        fig.after.push(h.segments.clone());
+    }
+    if !changed {
+        out.pop();
+    }
+    let total = out.len();
+    out.sort_by_key(|f| std::cmp::Reverse(f.joins.2 as i64 - f.joins.1 as i64));
+    out.truncate(limit);
+    (out, total)
 }
 
 /// The harmonized coordinates into the contour's points (only those that moved).
