@@ -11,7 +11,7 @@
 
 import { chromium } from 'playwright-core';
 import { spawn } from 'node:child_process';
-import { mkdirSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import assert from 'node:assert/strict';
 
 const root = new URL('..', import.meta.url).pathname;
@@ -333,6 +333,42 @@ await step('outline check: the sample contour, pasted path data, a dragged point
   await idle();
   assert.equal(await page.evaluate(() => window.__editor.state.outline.shape), 1);
   assert.ok(!(await text('status')).includes('could not load'), await text('status'));
+});
+
+await step('outline fix: a curvature jump at a smooth join fixed, the comb before in grey, saved as .glif and SVG, undone', async () => {
+  // Two cubics meeting smoothly at (5, 5) with a 44 % curvature jump, closed by a line.
+  await page.fill('#outline-path', 'M 0 0 C 0 3 2 5 5 5 C 9 5 10 3 10 0 Z');
+  await page.click('#outline-load');
+  await page.waitForFunction(() => window.__editor.state.outline.p.length === 7, null, { timeout: 15000 });
+  await idle();
+  const before = await page.evaluate(() => JSON.parse(JSON.stringify(window.__editor.state.outline.p)));
+  await page.fill('#outline-tolerance', '1');
+  await page.click('#outline-fix');
+  await page.waitForFunction(() => document.body.dataset.fixed !== undefined, null, { timeout: 15000 });
+  await idle();
+  const status = await page.evaluate(() => document.body.dataset.fixed);
+  assert.match(status, /^fixed: [1-9]/, status);
+  assert.equal(await text('hint'), status, 'the note of the fix stays on the page');
+  assert.match(status, /under a 1 % curvature jump 0 → 1 of 1/, status);
+  const after = await page.evaluate(() => window.__editor.state.outline.p);
+  let moved = 0;
+  for (let i = 0; i < before.length; i++) moved = Math.max(moved, Math.hypot(after[i][0] - before[i][0], after[i][1] - before[i][1]));
+  assert.ok(moved > 0 && moved <= 1 + 1e-9, `moved ${moved}`);
+  assert.ok(await page.evaluate(() => window.__editor.state.outline.ghost !== null), 'the comb before the fix is kept');
+  await shot('11-outline-fixed');
+  const [glif] = await Promise.all([page.waitForEvent('download'), page.click('#outline-save-glif')]);
+  await glif.saveAs(`${out}outline.glif`);
+  const g = readFileSync(`${out}outline.glif`, 'utf8');
+  assert.equal((g.match(/type="curve"/g) || []).length, 2, g);
+  assert.equal((g.match(/type="line"/g) || []).length, 1, g);
+  assert.equal((g.match(/smooth="yes"/g) || []).length, 1, g);
+  const [svg] = await Promise.all([page.waitForEvent('download'), page.click('#export-svg')]);
+  await svg.saveAs(`${out}outline.svg`);
+  const d = readFileSync(`${out}outline.svg`, 'utf8');
+  assert.match(d, /d="M 0 0 C [^"]+ C [^"]+ Z"/, d);
+  await page.keyboard.press('Control+z');
+  await idle();
+  assert.deepEqual(await page.evaluate(() => window.__editor.state.outline.p), before);
 });
 
 await step('an answer is never shown under another mode', async () => {

@@ -53,6 +53,7 @@ pub const OPS: &[&str] = &[
     "lac.fit",
     "sketch.fit",
     "outline.check",
+    "outline.fix",
 ];
 
 /// Answer one request line (JSON text) with one response object.
@@ -127,6 +128,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "lac.fit" => lac_fit(obj),
         "sketch.fit" => sketch_fit(obj),
         "outline.check" => outline_check(obj),
+        "outline.fix" => outline_fix(obj),
         _ => Err(ProtoError {
             kind: "unknown_op",
             message: format!(
@@ -807,6 +809,125 @@ pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Val
     o
 }
 
+/// An optional boolean (`default` when absent or null).
+fn bool_param(obj: &Map<String, Value>, field: &str, default: bool) -> Result<bool, ProtoError> {
+    match obj.get(field) {
+        None | Some(Value::Null) => Ok(default),
+        Some(Value::Bool(b)) => Ok(*b),
+        Some(_) => Err(ProtoError::invalid(field, "must be true or false")),
+    }
+}
+
+/// `outline.fix`: one contour of lines and cubics repaired as `aecurve fix` repairs an SVG
+/// path (smooth joins by a tangent break of at most 0.5°; bumps first, then the joins), and
+/// the result with what changed.
+fn outline_fix(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let Some(Value::Array(segs)) = obj.get("segments") else {
+        return Err(ProtoError::invalid(
+            "segments",
+            "must be an array of segments, each with control_points",
+        ));
+    };
+    if segs.is_empty() || segs.len() > MAX_OUTLINE_SEGMENTS {
+        return Err(ProtoError::invalid(
+            "segments",
+            format!("must hold 1 to {MAX_OUTLINE_SEGMENTS} segments"),
+        ));
+    }
+    let mut segments = Vec::with_capacity(segs.len());
+    for (i, v) in segs.iter().enumerate() {
+        let field = format!("segments[{i}].control_points");
+        let o = v.as_object().ok_or_else(|| {
+            ProtoError::invalid(
+                &format!("segments[{i}]"),
+                "must be an object with control_points",
+            )
+        })?;
+        let pts = points_param(o, "control_points", 2, 4)
+            .map_err(|e| ProtoError::invalid(&field, e.message))?;
+        let weights = format!("segments[{i}].weights");
+        let w = numbers_param(o, "weights", pts.len())
+            .map_err(|e| ProtoError::invalid(&weights, e.message))?;
+        if w.is_some_and(|w| w.iter().any(|x| *x != 1.0)) {
+            return Err(ProtoError::invalid(
+                &weights,
+                "outline.fix repairs lines and polynomial cubics: weights must be 1",
+            ));
+        }
+        if pts.len() == 3 {
+            return Err(ProtoError::invalid(
+                &field,
+                "a quadratic: outline.fix repairs lines (2 points) and cubics (4)",
+            ));
+        }
+        if let Some(prev) = segments.last().and_then(|s: &Vec<Point>| s.last()) {
+            let size = (pts[0] - pts[pts.len() - 1]).hypot().max(1.0);
+            if (*prev - pts[0]).hypot() > 1e-9 * size {
+                return Err(ProtoError::invalid(
+                    &format!("segments[{i}]"),
+                    "must start where the previous segment ends",
+                ));
+            }
+        }
+        segments.push(pts);
+    }
+    let closed = bool_param(obj, "closed", false)?;
+    let tolerance = finite_number(obj.get("tolerance").unwrap_or(&Value::Null), "tolerance")?;
+    if tolerance <= 0.0 {
+        return Err(ProtoError::invalid("tolerance", "must be a distance > 0"));
+    }
+    let grid = optional_number(obj, "grid")?.unwrap_or(0.0);
+    if grid < 0.0 {
+        return Err(ProtoError::invalid("grid", "must be a step >= 0 (0: none)"));
+    }
+    let opts = crate::fix::FixOptions {
+        tolerance,
+        grid,
+        move_points: bool_param(obj, "move_points", false)?,
+        repairs: aesthetic_curves::harmonize::Repairs {
+            bumps: bool_param(obj, "bumps", true)?,
+            ..Default::default()
+        },
+    };
+    let (h, smooth) = crate::fix::fix_segments(&segments, closed, &opts)?;
+    let pts = |v: &[Point]| v.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
+    let joins: Vec<Value> = h
+        .joins
+        .iter()
+        .map(|j| {
+            json!({"after_segment": j.after_segment, "smooth": smooth[j.after_segment],
+                "outcome": format!("{:?}", j.outcome).to_lowercase(),
+                "jump": [crate::json_out::finite_or_null(j.jump.0), crate::json_out::finite_or_null(j.jump.1)],
+                "angle_degrees": [j.angle.0.to_degrees(), j.angle.1.to_degrees()]})
+        })
+        .collect();
+    let changed = h
+        .segments
+        .iter()
+        .zip(&segments)
+        .filter(|(a, b)| a != b)
+        .count();
+    Ok(object([
+        (
+            "segments",
+            Value::Array(
+                h.segments
+                    .iter()
+                    .map(|s| json!({"control_points": pts(s)}))
+                    .collect(),
+            ),
+        ),
+        ("closed", json!(closed)),
+        ("joins", Value::Array(joins)),
+        ("changed_segments", json!(changed)),
+        (
+            "max_moved",
+            json!(h.moved.iter().copied().fold(0.0, f64::max)),
+        ),
+        ("bumps_removed", json!(h.bumps.len())),
+    ]))
+}
+
 /// Longest SVG path data `outline.check` accepts (characters).
 pub const MAX_PATH_DATA: usize = 1 << 20;
 
@@ -1470,5 +1591,65 @@ mod tests {
         assert_eq!(r["ok"], true, "{r}");
         assert_eq!(r["result"]["monotone"], false);
         assert_eq!(r["result"]["samples"], 200);
+    }
+
+    /// outline.fix: the jump at the smooth join of two cubics goes (under the tolerance,
+    /// tangents kept, the corners left alone), and bad input is named.
+    #[test]
+    fn outline_fix_harmonizes_a_smooth_join_and_names_bad_input() {
+        let ok = handle_line(
+            r#"{"op": "outline.fix", "closed": true, "tolerance": 1, "segments": [{"control_points": [[0, 0], [0, 3], [2, 5], [5, 5]]}, {"control_points": [[5, 5], [9, 5], [10, 3], [10, 0]]}, {"control_points": [[10, 0], [0, 0]]}]}"#,
+        );
+        let r = &ok["result"];
+        assert_eq!(r["changed_segments"], 2, "{ok}");
+        let j = &r["joins"][0];
+        assert_eq!(j["smooth"], true);
+        assert!(
+            j["jump"][1].as_f64().unwrap() < 1e-9 && j["jump"][0].as_f64().unwrap() > 0.4,
+            "{j}"
+        );
+        assert!(r["max_moved"].as_f64().unwrap() <= 1.0);
+        // The join's tangent stays horizontal: the moved handles keep y = 5.
+        assert_eq!(r["segments"][0]["control_points"][2][1], 5.0);
+        assert_eq!(r["segments"][1]["control_points"][1][1], 5.0);
+        assert_eq!(r["joins"][1]["outcome"], "corner");
+        for (bad, field) in [
+            (r#"{"op": "outline.fix", "tolerance": 1}"#, "segments"),
+            (
+                r#"{"op": "outline.fix", "segments": [{"control_points": [[0, 0], [1, 0]]}]}"#,
+                "tolerance",
+            ),
+            (
+                r#"{"op": "outline.fix", "tolerance": 0, "segments": [{"control_points": [[0, 0], [1, 0]]}]}"#,
+                "tolerance",
+            ),
+            (
+                r#"{"op": "outline.fix", "tolerance": 1, "segments": [{"control_points": [[0, 0], [1, 1], [2, 0]]}]}"#,
+                "segments[0].control_points",
+            ),
+            (
+                r#"{"op": "outline.fix", "tolerance": 1, "segments": [{"control_points": [[0, 0], [1, 1], [2, 1], [3, 0]], "weights": [1, 2, 1, 1]}]}"#,
+                "segments[0].weights",
+            ),
+            (
+                r#"{"op": "outline.fix", "tolerance": 1, "segments": [{"control_points": [[0, 0], [1, 0]]}, {"control_points": [[5, 5], [6, 0]]}]}"#,
+                "segments[1]",
+            ),
+            (
+                r#"{"op": "outline.fix", "tolerance": 1, "grid": -1, "segments": [{"control_points": [[0, 0], [1, 0]]}]}"#,
+                "grid",
+            ),
+            (
+                r#"{"op": "outline.fix", "tolerance": 1, "closed": 3, "segments": [{"control_points": [[0, 0], [1, 0]]}]}"#,
+                "closed",
+            ),
+        ] {
+            let v = handle_line(bad);
+            assert_eq!(kind(&v), "invalid_input", "{bad}");
+            assert!(
+                v["error"]["message"].as_str().unwrap().contains(field),
+                "{bad}: {v}"
+            );
+        }
     }
 }

@@ -8,7 +8,7 @@
 
 import { api, post, timing } from './api.js';
 import { drawCurvature, drawLcg, drawStage } from './draw.js';
-import { loadOutline, MODES } from './modes.js';
+import { contourState, fontSource, loadOutline, MODES, outlineSegments } from './modes.js';
 import { $, fmt, setNumbers, setStatus, setVerdict } from './ui.js';
 import { Viewport } from './view.js';
 
@@ -329,6 +329,8 @@ function syncOutline() {
 }
 async function outlineLoad(req, shape, contour, firstDrawn) {
   const st = JSON.parse(JSON.stringify(state.outline));
+  st.ghost = null;
+  $('outline-tolerance').value = '';
   try {
     await loadOutline(st, req, shape, contour, firstDrawn);
   } catch (e) {
@@ -345,6 +347,102 @@ async function outlineLoad(req, shape, contour, firstDrawn) {
   vp.fit([[b[0], b[1]], [b[2], b[3]]]);
   requestUpdate();
 }
+// ---------- outline mode: fix and save ----------
+// The tolerance box shows the default for the contour: 0.5 % of its size (at least 1 unit on
+// a font's grid).
+function outlineTolerance(st) {
+  const v = parseFloat($('outline-tolerance').value);
+  if (v > 0) return v;
+  const xs = st.p.map((q) => q[0]), ys = st.p.map((q) => q[1]);
+  const size = Math.max(Math.max(...xs) - Math.min(...xs), Math.max(...ys) - Math.min(...ys));
+  const t = fontSource(st) ? Math.max(1, Math.round(0.005 * size)) : Number((0.005 * size).toPrecision(2));
+  $('outline-tolerance').value = String(t);
+  return t;
+}
+async function outlineFix() {
+  const st = state.outline;
+  const tolerance = outlineTolerance(st);
+  let r;
+  try {
+    r = await api({ op: 'outline.fix', segments: outlineSegments(st), closed: st.closed, tolerance, grid: fontSource(st) ? 1 : 0 });
+  } catch (e) {
+    setStatus(`fix failed: ${e.message}`, true);
+    return;
+  }
+  if (state.mode !== 'outline' || state.outline !== st) return;
+  const smooth = r.joins.filter((j) => j.smooth && j.jump[0] !== null);
+  const under = (k) => smooth.filter((j) => j.jump[k] < 0.01).length;
+  remember('outline');
+  const ghost = frame && frame.mode === 'outline' ? { curve: frame.shown.curve, kappa: frame.shown.kappa, normals: frame.shown.normals } : null;
+  Object.assign(st, contourState({ closed: r.closed, segments: r.segments.map((s) => ({ control_points: s.control_points, weights: s.control_points.map(() => 1) })) }), { ghost: st.ghost || ghost });
+  const note = `fixed: ${r.changed_segments} segment(s) changed, ${r.bumps_removed} hook(s) removed; smooth joins under a 1 % curvature jump ${under(0)} → ${under(1)} of ${smooth.length}; no point moved more than ${fmt(r.max_moved, 3)} (tolerance ${tolerance})`;
+  setStatus(note);
+  // Kept for the page (and the tests) after the re-check's own status replaces it.
+  $('hint').textContent = note;
+  document.body.dataset.fixed = note;
+  requestUpdate();
+}
+$('outline-fix').addEventListener('click', outlineFix);
+
+// The contour as text a designer's tools read: SVG path data (y flipped back for a font or a
+// drawing, so the file shows it upright) and a UFO .glif (font units as they are).
+function contourSvg(st) {
+  const flip = fontSource(st);
+  const q = (p) => `${fmt(p[0], 6)} ${fmt(flip ? -p[1] : p[1], 6)}`;
+  let d = '';
+  st.segs.forEach((idx, k) => {
+    const pts = idx.map((i) => st.p[i]);
+    if (k === 0) d += `M ${q(pts[0])}`;
+    d += pts.length === 4 ? ` C ${q(pts[1])} ${q(pts[2])} ${q(pts[3])}` : pts.length === 3 ? ` Q ${q(pts[1])} ${q(pts[2])}` : ` L ${q(pts[pts.length - 1])}`;
+  });
+  if (st.closed) d += ' Z';
+  const xs = st.p.map((p) => p[0]), ys = st.p.map((p) => (flip ? -p[1] : p[1]));
+  const [x0, y0] = [Math.min(...xs), Math.min(...ys)];
+  const [w, h] = [Math.max(...xs) - x0 || 1, Math.max(...ys) - y0 || 1];
+  const pad = 0.05 * Math.max(w, h);
+  return `<svg xmlns="http://www.w3.org/2000/svg" viewBox="${fmt(x0 - pad, 6)} ${fmt(y0 - pad, 6)} ${fmt(w + 2 * pad, 6)} ${fmt(h + 2 * pad, 6)}">\n  <path fill="none" stroke="black" stroke-width="${fmt(0.004 * Math.max(w, h), 3)}" d="${d}"/>\n</svg>\n`;
+}
+function contourGlif(st) {
+  const name = String(st.name || 'contour').replace(/[&<>"]/g, '_');
+  const pts = [];
+  const n = st.segs.length;
+  st.segs.forEach((idx, k) => {
+    const c = idx.map((i) => st.p[i]);
+    // Smooth where the tangent breaks by at most 0.5° (what fix takes as smooth).
+    const next = st.segs[(k + 1) % n].map((i) => st.p[i]);
+    const a = [c[c.length - 1][0] - c[c.length - 2][0], c[c.length - 1][1] - c[c.length - 2][1]];
+    const b = [next[1][0] - next[0][0], next[1][1] - next[0][1]];
+    const joined = st.closed || k < n - 1;
+    const smooth = joined && Math.abs(Math.atan2(a[0] * b[1] - a[1] * b[0], a[0] * b[0] + a[1] * b[1])) <= 0.5 * Math.PI / 180;
+    const type = c.length === 4 ? 'curve' : c.length === 3 ? 'qcurve' : 'line';
+    c.slice(1, -1).forEach((p) => pts.push(`      <point x="${fmt(p[0], 6)}" y="${fmt(p[1], 6)}"/>`));
+    pts.push(`      <point x="${fmt(c[c.length - 1][0], 6)}" y="${fmt(c[c.length - 1][1], 6)}" type="${type}"${smooth ? ' smooth="yes"' : ''}/>`);
+  });
+  if (!st.closed) {
+    const p0 = st.p[st.segs[0][0]];
+    pts.unshift(`      <point x="${fmt(p0[0], 6)}" y="${fmt(p0[1], 6)}" type="move"/>`);
+  } else {
+    // A closed contour starts at its first on-curve point: the last point written is it.
+    pts.unshift(pts.pop());
+  }
+  return `<?xml version="1.0" encoding="UTF-8"?>\n<glyph name="${name}" format="2">\n  <outline>\n    <contour>\n${pts.join('\n')}\n    </contour>\n  </outline>\n</glyph>\n`;
+}
+function download(text, filename, type) {
+  const blob = new Blob([text], { type });
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(blob);
+  a.download = filename;
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+  setStatus(`saved ${filename} (${blob.size} bytes)`);
+  document.body.dataset.exported = `${filename}:${blob.size}`;
+}
+$('outline-save-glif').addEventListener('click', () => {
+  const st = state.outline;
+  download(contourGlif(st), `${String(st.name || 'contour').replace(/[^\w.-]/g, '_')}.glif`, 'application/xml');
+});
+
 // A file: SVG as text, fonts and DXF as base64 (the server reads every one).
 async function outlineFile(file) {
   if (file.size > 3 * 1024 * 1024) {
@@ -404,6 +502,16 @@ async function cadSpline(m) {
 
 async function exportAs(format) {
   const m = state.mode;
+  if (m === 'outline') {
+    // The edited or fixed contour itself: as SVG path data (DXF and STEP are for curves drawn here).
+    if (format !== 'svg') {
+      setStatus('an outline is saved as SVG (Export SVG) or as a UFO .glif (Save .glif)', true);
+      return;
+    }
+    const st = state.outline;
+    download(contourSvg(st), `${String(st.name || 'contour').replace(/[^\w.-]/g, '_')}.svg`, 'image/svg+xml');
+    return;
+  }
   let cad;
   try {
     cad = await cadSpline(m);

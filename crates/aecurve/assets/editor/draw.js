@@ -61,12 +61,18 @@ export function drawStage(vp, ctx, shown, region, opts) {
   if (shown.stroke) line(shown.stroke, '#bbb', 1.5);
   if (shown.polygon) line(shown.polygon, '#999', 1, [5, 4]);
   if (shown.overlayPolygon) line(shown.overlayPolygon, 'rgba(30, 80, 200, 0.35)', 1, [2, 4]);
-  // Curvature comb: teeth along the normal, away from the centre of curvature.
+  // Curvature comb: teeth along the normal, away from the centre of curvature. A ghost (the
+  // comb before an outline fix) is drawn first, in grey, on the same tooth scale.
   if (shown.curve && opts.comb) {
     const c = shown.curve;
     const b = vp.box;
-    const kmax = Math.max(1e-12, ...shown.kappa.map(Math.abs));
+    const g = shown.ghost;
+    const kmax = Math.max(1e-12, ...shown.kappa.map(Math.abs), ...(g ? g.kappa.map(Math.abs) : []));
     const len = 0.18 * Math.min(b.x1 - b.x0, b.y1 - b.y0) / kmax;
+    if (g) {
+      const gt = g.curve.map((p, i) => [p[0] - g.normals[i][0] * (g.kappa[i] || 0) * len, p[1] - g.normals[i][1] * (g.kappa[i] || 0) * len]);
+      line(gt, '#9a9a9a', 1.2, [4, 3]);
+    }
     const tips = c.map((p, i) => {
       const n = shown.normals[i];
       const k = shown.kappa[i] || 0;

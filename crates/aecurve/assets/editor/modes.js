@@ -271,13 +271,20 @@ export async function loadOutline(st, req, shape, contour, firstDrawn) {
   });
 }
 
-function outlineSegments(st) {
+// Whether the outline came from a font or a DXF drawing (coordinates with y up, on a font's
+// 1-unit grid for a font) rather than SVG path data (y down).
+export function fontSource(st) {
+  const name = st.source && st.source.file ? st.source.file.name : '';
+  return /\.(ttf|otf|dxf)$/i.test(name);
+}
+
+export function outlineSegments(st) {
   return st.segs.map((idx, k) => ({ control_points: idx.map((i) => st.p[i]), weights: st.weights[k] }));
 }
 
 export const OUTLINE = {
   box: { x0: -1, y0: -2, x1: 15, y1: 9 },
-  hint: 'Paste SVG path data (Load) or drop an SVG, a font or a DXF file; pick a path or glyph and a contour. Circles: curvature extrema, inflections, near-breaks and curvature jumps at smooth joins. Drag any point: the contour is re-checked.',
+  hint: 'Paste SVG path data (Load) or drop an SVG, a font or a DXF file; pick a path or glyph and a contour. Circles: curvature extrema, inflections, near-breaks and curvature jumps at smooth joins. Drag any point: the contour is re-checked. Fix: smooth joins towards G2 and hooks removed within the tolerance (the comb before the fix stays in grey); Save .glif or Export SVG writes the contour.',
   controls: ['outline-box'],
   polygon: true,
   initial: () => Object.assign(
@@ -308,7 +315,7 @@ export const OUTLINE = {
     const jumps = k.joins.filter((j) => j.g1 && j.g2 === false).length;
     const polygon = st.closed ? st.p.concat([st.p[0]]) : st.p;
     return {
-      shown: Object.assign(curveOf(d), { handles: st.p, polygon, marks }),
+      shown: Object.assign(curveOf(d), { handles: st.p, polygon, marks, ghost: st.ghost || null }),
       nurbs: null,
       numbers: [
         ['outline', 'outline', `${st.name} (contour ${st.contour + 1} of ${st.contours})`],

@@ -511,6 +511,25 @@ fn svg_smooth(segs: &[Vec<Point>], closed: bool) -> Vec<bool> {
         .collect()
 }
 
+/// One contour of lines (2 points) and cubics (4) repaired as `fix` repairs an SVG path:
+/// its joins smooth where the tangent breaks by at most [`SVG_SMOOTH_DEGREES`]; the result
+/// and those smooth flags (the protocol's `outline.fix`, the editor's Fix).
+pub fn fix_segments(
+    segments: &[Vec<Point>],
+    closed: bool,
+    opts: &FixOptions,
+) -> aesthetic_curves::Result<(Harmonized, Vec<bool>)> {
+    let smooth = svg_smooth(segments, closed);
+    let h = repair(
+        segments,
+        closed,
+        &smooth,
+        &harmonize_options(opts),
+        &opts.repairs,
+    )?;
+    Ok((h, smooth))
+}
+
 /// Fix every `<path>` of the SVG file at `input` (its own user units; the tolerance in
 /// them) and write the file to `output` with only the `d` attributes of changed paths
 /// replaced: everything else byte for byte as it was. Paths with arcs or quadratics are
