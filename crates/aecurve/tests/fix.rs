@@ -130,7 +130,15 @@ fn fix_writes_the_same_structure_and_nothing_worse() {
         );
         total = (total.0 + jx, total.1 + jy);
     }
-    assert!(total.1 < 0.5 * total.0, "jumps {total:?}");
+    // Closer to G2: the sum of the jumps down by more than 40 % (G2 everywhere would push
+    // the cubics' extrema into hooks at the joins, which the fix never makes).
+    assert!(total.1 < 0.6 * total.0, "jumps {total:?}");
+    for (x, y) in before.segments.iter().zip(&after.segments) {
+        let hook = |s: &aesthetic_curves::outline::SegmentCheck| {
+            s.extrema.iter().any(|(t, _)| *t < 0.05 || *t > 0.95)
+        };
+        assert!(!hook(y) || hook(x), "a new hook: {y:?}");
+    }
     for (x, y) in before.segments.iter().zip(&after.segments) {
         assert!(y.extrema.len() <= x.extrema.len());
     }

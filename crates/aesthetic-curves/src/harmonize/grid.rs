@@ -10,9 +10,9 @@
 //! threshold, then the sum of the jumps) is a chain (a cycle for a closed contour with no
 //! corner) of pairwise costs, minimised exactly by dynamic programming (Viterbi). A pair that makes a join worse than the input (a larger jump, or
 //! a larger angle) costs infinity, so the input's own states, always candidates, keep the
-//! result no worse anywhere. A chosen state that gives its cubic more curvature extrema
-//! (the exact test, too dear to run on every state) is struck out and the chain solved
-//! again.
+//! result no worse anywhere. A chosen state that gives its cubic more curvature extrema or
+//! a new hook (the exact test, too dear to run on every state) is struck out with its near
+//! twins (within two grid cells) and the chain solved again.
 
 use super::{gains_extrema, join_state, max_move, worse, HarmonizeOptions};
 use crate::{Point, Vec2};
@@ -38,7 +38,7 @@ pub(super) struct Contour<'a> {
     /// Per join: the jump and angle it may not exceed.
     pub guard: &'a [(f64, f64)],
     /// Per segment: the input's interior curvature extrema.
-    pub extrema_before: &'a [Option<usize>],
+    pub extrema_before: &'a [Option<super::Profile>],
 }
 
 /// The segments on the grid, chosen among each cubic's states around `target` (the
@@ -62,7 +62,15 @@ pub(super) fn place(
                 if round == STRIKE_ROUNDS {
                     states[i].truncate(1);
                 } else {
-                    states[i].remove(s);
+                    // The state and its near twins (within two grid cells: the others
+                    // around the same target spoil the same way); never the input.
+                    let bad = states[i][s].clone();
+                    let near = 2.0 * opts.grid;
+                    let mut k = 0;
+                    states[i].retain(|q| {
+                        k += 1;
+                        k == 1 || max_move(q, &bad) > near
+                    });
                 }
                 struck = true;
             }
@@ -372,7 +380,7 @@ mod tests {
                 .zip(&smooth)
                 .map(|(&(j, a), &s)| (if s { j } else { f64::INFINITY }, a))
                 .collect();
-            let none = vec![Some(0); 3];
+            let none = vec![Some((0, false)); 3];
             let c = Contour {
                 input: &segs,
                 closed,

@@ -18,9 +18,9 @@
 //! tangent, and its distance from T_A's line changes unless the two tangents are parallel),
 //! which the join before solves. The joins are therefore swept in turn until nothing moves
 //! ([`crate::solve::sweep_to_fixed_point`]). A cubic the result spoils (more curvature
-//! extrema than the input, or a join of its worse) is held at its input lengths and the
-//! rest swept again, so that its neighbours make up for it from their other sides
-//! ([`settle`]).
+//! extrema than the input, a hook it did not have, or a join of its worse) is held half
+//! way back (then at a quarter, then at its input) and the rest swept again, so that its
+//! neighbours make up for it from their other sides ([`settle`]).
 //!
 //! **Which joins.** Those marked smooth, and those whose tangents meet within
 //! [`HarmonizeOptions::g1_angle`] (G1 in the check's eyes, marked or not). At a corner no
@@ -183,8 +183,10 @@ struct Handles {
     orig: Vec<(f64, f64)>,
     /// Per segment: the current lengths.
     len: Vec<(f64, f64)>,
-    /// Per segment: held at the input's lengths (a sweep spoiled it).
+    /// Per segment: held at its current lengths (a sweep spoiled it).
     held: Vec<bool>,
+    /// Per segment: how often it was held back.
+    holds: Vec<u8>,
 }
 
 impl Handles {
@@ -206,6 +208,7 @@ impl Handles {
         }
         Handles {
             held: vec![false; dirs.len()],
+            holds: vec![0; dirs.len()],
             dirs,
             len: orig.clone(),
             orig,
@@ -309,8 +312,14 @@ fn solve_join(
     let (v0, u0) = (h.orig[ia].1, h.orig[ib].0);
     match (h.held[ia], h.held[ib]) {
         (true, true) => return Err(JoinOutcome::Reverted),
-        (true, false) => return Ok(one_sided(rho * v0, u0, tol).map_u(v0)),
-        (false, true) => return Ok(one_sided(u0 / rho, v0, tol).map_v(u0)),
+        (true, false) => {
+            let v = h.len[ia].1;
+            return Ok(one_sided(rho * v, u0, tol).map_u(v));
+        }
+        (false, true) => {
+            let u = h.len[ib].0;
+            return Ok(one_sided(u / rho, v0, tol).map_v(u));
+        }
         (false, false) => {}
     }
     // Least change of (ln v, ln u) on the line ln u - ln v = ln ρ.
@@ -393,7 +402,7 @@ pub fn harmonize_holding(
     // The joins whose handles move: kept and not held.
     let moving: Vec<bool> = kept.iter().zip(held).map(|(k, h)| *k && !*h).collect();
     let smooth = &moving[..];
-    let extrema_before: Vec<Option<usize>> = segments.iter().map(|s| extrema(s)).collect();
+    let extrema_before: Vec<Option<Profile>> = segments.iter().map(|s| profile(s)).collect();
     let original = segments;
     // With `move_points`, the joins' on-curve points first (each checked: no cubic with more
     // extrema, no join worse); the handles then slide from there.
@@ -447,6 +456,7 @@ pub fn harmonize_holding(
         .collect();
     let extrema = extrema_before
         .into_iter()
+        .map(|b| b.map(|b| b.0))
         .zip(pts.iter().map(|p| extrema(p)))
         .collect();
     Ok(Harmonized {
@@ -518,17 +528,21 @@ fn guarded(before: &[(f64, f64)], smooth: &[bool]) -> Vec<(f64, f64)> {
 /// Rounds of [`settle`]: each holds the cubics the sweep before spoiled and sweeps again.
 const SETTLE_ROUNDS: usize = 6;
 
+/// How often [`settle`] halves a spoiled cubic's move before it holds it at its input.
+const HOLD_STEPS: u8 = 3;
+
 /// The joins swept to G2 ([`sweep_joins`]); then every cubic the result spoils (more
-/// curvature extrema than the input, after the grid, or a join of its worse than the
-/// input's) is held at its input lengths and the rest swept again, so that the joins next
-/// to it make up for it from their other side, for at most [`SETTLE_ROUNDS`] rounds. What
+/// curvature extrema than the input or a new hook, or a join of its worse than the
+/// input's) is held half way back (then half of that, then at its input lengths) and the
+/// rest swept again, so that the joins next to it make up for it from their other side,
+/// for at most [`SETTLE_ROUNDS`] rounds. What
 /// the last round still spoils is left to the grid stage and [`revert_what_got_worse`].
 fn settle(
     segments: &[Vec<Point>],
     h: &mut Handles,
     (closed, smooth): (bool, &[bool]),
     opts: &HarmonizeOptions,
-    (guard, extrema_before): (&[(f64, f64)], &[Option<usize>]),
+    (guard, extrema_before): (&[(f64, f64)], &[Option<Profile>]),
 ) -> (crate::solve::Sweeps, Vec<JoinOutcome>) {
     let mut total = crate::solve::Sweeps {
         sweeps: 0,
@@ -547,9 +561,17 @@ fn settle(
         if spoiled.is_empty() {
             break;
         }
+        // Held half way back (in the logarithms of the lengths), then half of that, ...,
+        // and at the input's lengths after HOLD_STEPS.
         for i in spoiled {
+            h.holds[i] += 1;
             h.held[i] = true;
-            h.len[i] = h.orig[i];
+            h.len[i] = if h.holds[i] >= HOLD_STEPS {
+                h.orig[i]
+            } else {
+                let mix = |a: f64, b: f64| a * (b / a).sqrt();
+                (mix(h.orig[i].0, h.len[i].0), mix(h.orig[i].1, h.len[i].1))
+            };
         }
     }
     (total, outcome)
@@ -561,7 +583,7 @@ fn spoiled(
     input: &[Vec<Point>],
     pts: &[Vec<Point>],
     closed: bool,
-    (guard, extrema_before): (&[(f64, f64)], &[Option<usize>]),
+    (guard, extrema_before): (&[(f64, f64)], &[Option<Profile>]),
 ) -> Vec<usize> {
     let mut out: Vec<usize> = (0..pts.len())
         .filter(|&i| pts[i] != input[i] && gains_extrema(&pts[i], extrema_before[i]))
@@ -670,7 +692,7 @@ fn move_on_curve_points(
     segments: &[Vec<Point>],
     (closed, smooth): (bool, &[bool]),
     opts: &HarmonizeOptions,
-    (before, extrema_before): (&[(f64, f64)], &[Option<usize>]),
+    (before, extrema_before): (&[(f64, f64)], &[Option<Profile>]),
 ) -> Vec<Vec<Point>> {
     let mut pts = segments.to_vec();
     for (j, a, b) in joins(pts.len(), closed) {
@@ -762,19 +784,37 @@ fn grid_candidates(target: Point, input: Point, opts: &HarmonizeOptions) -> Vec<
     out
 }
 
-/// Whether the cubic `p` has more interior curvature extrema than `before` (or no verdict
-/// where there was one).
-fn gains_extrema(p: &[Point], before: Option<usize>) -> bool {
-    match (before, extrema(p)) {
-        (Some(b), Some(a)) => a > b,
+/// Whether the cubic `p` has more interior curvature extrema than `before`, or a hook where
+/// it had none (or no verdict where there was one).
+fn gains_extrema(p: &[Point], before: Option<Profile>) -> bool {
+    match (before, profile(p)) {
+        (Some(b), Some(a)) => a.0 > b.0 || (a.1 && !b.1),
         (Some(_), None) => true,
         _ => false,
     }
 }
 
+/// A cubic's curvature profile for the no-worse rule: its interior extrema, and whether one
+/// is a hook (within [`HOOK_ZONE`] of an end).
+type Profile = (usize, bool);
+
+/// An extremum within this fraction of the parameter of an end is a hook (a defect at the
+/// join: [`Repairs::hook_zone`]'s default, and what no repair may create).
+pub const HOOK_ZONE: f64 = 0.05;
+
+/// The exact test's [`Profile`]; None for a line or no verdict.
+fn profile(p: &[Point]) -> Option<Profile> {
+    extrema_at(p).map(|ts| {
+        (
+            ts.len(),
+            ts.iter().any(|t| *t < HOOK_ZONE || *t > 1.0 - HOOK_ZONE),
+        )
+    })
+}
+
 /// The cubic `moved` pulled back towards `input` (its handles' moves halved, up to five
 /// times, each time on the grid) until it has no more extrema than before; else `input`.
-fn pull_back(input: &[Point], moved: &[Point], before: Option<usize>, grid: f64) -> Vec<Point> {
+fn pull_back(input: &[Point], moved: &[Point], before: Option<Profile>, grid: f64) -> Vec<Point> {
     let on_grid = |v: f64| {
         if grid > 0.0 {
             (v / grid).round() * grid
@@ -824,7 +864,7 @@ fn revert_what_got_worse(
     input: &[Vec<Point>],
     pts: &mut [Vec<Point>],
     (closed, grid): (bool, f64),
-    (before, extrema_before): (&[(f64, f64)], &[Option<usize>]),
+    (before, extrema_before): (&[(f64, f64)], &[Option<Profile>]),
     outcome: &mut [JoinOutcome],
 ) {
     let n = pts.len();
@@ -890,7 +930,7 @@ pub fn regressions(
     let states_before = states(before, closed);
     let smooth = g1_or_smooth(before, (closed, smooth), &states_before, opts);
     let guard = guarded(&states_before, &smooth);
-    let extrema_before: Vec<Option<usize>> = before.iter().map(|s| extrema(s)).collect();
+    let extrema_before: Vec<Option<Profile>> = before.iter().map(|s| profile(s)).collect();
     spoiled(before, after, closed, (&guard, &extrema_before))
 }
 
@@ -934,7 +974,7 @@ impl Default for Repairs {
         Repairs {
             bumps: true,
             harmonize: true,
-            hook_zone: 0.05,
+            hook_zone: HOOK_ZONE,
         }
     }
 }
