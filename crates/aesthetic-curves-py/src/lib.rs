@@ -1323,5 +1323,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit_sketch, m)?)?;
     m.add_function(wrap_pyfunction!(outline::check_outline, m)?)?;
     m.add_function(wrap_pyfunction!(outline::harmonize, m)?)?;
+    m.add_function(wrap_pyfunction!(outline::index_contour, m)?)?;
     Ok(())
 }

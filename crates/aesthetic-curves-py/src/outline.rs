@@ -137,13 +137,16 @@ pub(crate) fn check_outline<'py>(
     Ok(out)
 }
 
-/// Harmonize one contour of lines (2 points) and cubics (4 points): `smooth[j]` says
-/// whether the join after segment j is meant smooth. Returns `{"segments": [...], "joins":
-/// [...], "moved": [...]}`: the new control points (only handles move, along their
-/// tangents, at most `tolerance`, on the `grid`), and per join `after_segment`, `outcome`,
-/// `jump` and `angle_degrees` (each a (before, after) pair).
+/// Repair one contour of lines (2 points) and cubics (4 points) as `aecurve fix` does:
+/// `smooth[j]` says whether the join after segment j is meant smooth; with `bumps`, cubics
+/// with a curvature hook near an end or several extrema get monotone handle lengths first
+/// where some exist within the tolerance. Returns `{"segments": [...], "joins": [...],
+/// "moved": [...], "bumps": [...]}`: the new control points (only handles move, along their
+/// tangents, at most `tolerance`, on the `grid`), per join `after_segment`, `outcome`,
+/// `jump` and `angle_degrees` (each a (before, after) pair), and the segments whose bump
+/// was removed.
 #[pyfunction]
-#[pyo3(signature = (segments, closed, smooth, tolerance = 2.0, grid = 0.0))]
+#[pyo3(signature = (segments, closed, smooth, tolerance = 2.0, grid = 0.0, bumps = true))]
 pub(crate) fn harmonize<'py>(
     py: Python<'py>,
     segments: &Bound<'py, PyAny>,
@@ -151,6 +154,7 @@ pub(crate) fn harmonize<'py>(
     smooth: Vec<bool>,
     tolerance: f64,
     grid: f64,
+    bumps: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mut segs = Vec::new();
     for (i, s) in segments.try_iter()?.enumerate() {
@@ -161,8 +165,12 @@ pub(crate) fn harmonize<'py>(
         grid,
         ..Default::default()
     };
+    let what = ac::harmonize::Repairs {
+        bumps,
+        ..Default::default()
+    };
     let h = py
-        .detach(|| ac::harmonize::harmonize(&segs, closed, &smooth, &opts))
+        .detach(|| ac::harmonize::repair(&segs, closed, &smooth, &opts, &what))
         .map_err(err)?;
     let out = PyDict::new(py);
     let pts: Vec<Vec<(f64, f64)>> = h
@@ -185,5 +193,56 @@ pub(crate) fn harmonize<'py>(
         joins.append(e)?;
     }
     out.set_item("joins", joins)?;
+    let fixed: Vec<usize> = h.bumps.iter().map(|b| b.segment).collect();
+    out.set_item("bumps", fixed)?;
+    Ok(out)
+}
+
+/// The segments of a UFO-style point list (`points`: `(x, y, type, smooth)` with `type` one
+/// of "move", "line", "curve", "qcurve" or None for an off-curve point) with the indices of
+/// their points: `(segments, indices, closed, smooth)`, or `(None, reason)` when the contour
+/// is not one of lines and cubics (the same reader as `aecurve fix`).
+#[pyfunction]
+pub(crate) fn index_contour<'py>(
+    py: Python<'py>,
+    points: Vec<(f64, f64, Option<String>, bool)>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use ac::contour_points::{ListPoint, PointKind as K};
+    let mut list = Vec::with_capacity(points.len());
+    for (i, (x, y, t, smooth)) in points.into_iter().enumerate() {
+        let kind = match t.as_deref() {
+            None => K::OffCurve,
+            Some("move") => K::Move,
+            Some("line") => K::Line,
+            Some("curve") => K::Curve,
+            Some("qcurve") => K::QCurve,
+            Some(other) => {
+                return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                    "points[{i}]: type {other:?} is not move, line, curve, qcurve or None"
+                )))
+            }
+        };
+        list.push(ListPoint {
+            at: ac::Point::new(x, y),
+            kind,
+            smooth,
+        });
+    }
+    let out = match ac::contour_points::index_contour(&list) {
+        Ok(c) => {
+            let segs: Vec<Vec<(f64, f64)>> = c
+                .segments
+                .iter()
+                .map(|s| s.iter().map(|p| (p.x, p.y)).collect())
+                .collect();
+            (segs, c.indices, c.closed, c.smooth)
+                .into_pyobject(py)?
+                .into_any()
+        }
+        Err(ac::Error::InvalidInput { message, .. }) => {
+            (py.None(), message).into_pyobject(py)?.into_any()
+        }
+        Err(e) => return Err(err(e)),
+    };
     Ok(out)
 }

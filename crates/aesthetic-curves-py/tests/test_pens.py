@@ -81,7 +81,8 @@ def test_fix_glyph_moves_handles_only_within_the_tolerance_and_nothing_worse():
         assert float(x1).is_integer() and float(y1).is_integer()
     j1 = jumps(g)
     assert all(b <= a * (1 + 1e-9) for a, b in zip(j0, j1)), (j0, j1)
-    assert sum(j1) < 0.5 * sum(j0), (j0, j1)
+    # Down by more than 40 % (all the way would push the extrema into hooks at the joins).
+    assert sum(j1) < 0.6 * sum(j0), (j0, j1)
     assert report[0]["contour"] == 0 and len(report[0]["joins"]) == 4
 
 
@@ -127,3 +128,46 @@ def test_the_fontbakery_profile_runs_on_a_real_font():
     assert "aesthetic_curves/curvature" in r.stdout
     assert "places where the curvature is worth a look" in r.stdout
     assert "ERROR: 0" in r.stdout and "WARN: 1" in r.stdout
+
+
+def test_fix_glyph_removes_a_hook_first_and_can_be_told_not_to():
+    """A cubic whose curvature has an extremum at t = 0.96 (a hook at its end): fixed to
+    monotone within 8 units, the check of the result says so; with bumps=False it stays."""
+    def glyph():
+        font = ufoLib2.Font()
+        g = font.newGlyph("h")
+        c = ufoLib2.objects.Contour()
+        for x, y, t in [(0, 0, "curve"), (0, 164, None), (86, 286, None), (200, 300, "curve"),
+                        (300, 300, None), (300, 0, None)]:
+            c.points.append(ufoLib2.objects.Point(x, y, t))
+        g.contours.append(c)
+        return g
+
+    def first_extrema(g):
+        pen = pens.CheckPen()
+        g.draw(pen)
+        return pen.check(grid=1)["contours"][0]["segments"][0]["extrema"]
+
+    g = glyph()
+    assert [t > 0.95 for t in first_extrema(g)] == [True]
+    report = pens.fix_glyph(g, tolerance=8, grid=1)
+    assert report[0]["bumps"] == [0]
+    assert first_extrema(g) == []
+    for p, q in zip(glyph().contours[0].points, g.contours[0].points):
+        assert math.hypot(p.x - q.x, p.y - q.y) <= 8
+    g = glyph()
+    assert pens.fix_glyph(g, tolerance=8, grid=1, bumps=False)[0]["bumps"] == []
+    assert len(first_extrema(g)) == 1
+
+
+def test_index_contour_reads_point_lists_as_aecurve_fix_does():
+    import aesthetic_curves as ac
+    segs, idx, closed, smooth = ac.index_contour(
+        [(0, 10, None, False), (5, 12, None, False), (10, 10, "curve", True), (10, 0, "line", False),
+         (0, 0, "line", False)])
+    assert closed and idx == [[2, 3], [3, 4], [4, 0, 1, 2]] and smooth == [False, False, True]
+    assert segs[2] == [(0, 0), (0, 10), (5, 12), (10, 10)]
+    none, why = ac.index_contour([(0, 0, "qcurve", False), (1, 0, None, False), (1, 1, "qcurve", False)])
+    assert none is None and "quadratic" in why
+    with pytest.raises(ValueError, match="points\\[1\\]"):
+        ac.index_contour([(0, 0, "move", False), (1, 0, "spline", False)])

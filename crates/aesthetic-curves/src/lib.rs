@@ -127,6 +127,7 @@ pub mod bernstein;
 pub mod bezier;
 pub mod bezpath;
 pub mod bspline;
+pub mod contour_points;
 pub mod curve;
 pub mod deadline;
 pub mod error;

@@ -21,91 +21,34 @@ use anyhow::{Context, Result};
 use serde_json::{json, Value};
 use std::path::Path;
 
-/// One contour read for the fix: its segments' control points, the indices of those points
-/// in the contour's point list, whether it is closed, and each join's smooth flag.
-#[derive(Clone, Debug, PartialEq)]
-pub struct IndexedContour {
-    /// Control points per segment (2: a line, 4: a cubic).
-    pub segments: Vec<Vec<Point>>,
-    /// For each control point, its index in the UFO contour's points.
-    pub indices: Vec<Vec<usize>>,
-    /// Closed (no `move` point).
-    pub closed: bool,
-    /// Per join (after segment j): the designer's smooth flag at that on-curve point.
-    pub smooth: Vec<bool>,
-}
+pub use aesthetic_curves::contour_points::IndexedContour;
 
-/// The segments of a UFO contour with the indices of their points; Err says why the contour
-/// is not one `fix` works on.
+/// The segments of a UFO contour with the indices of their points (the library's
+/// [`aesthetic_curves::contour_points::index_contour`] on norad's points); Err says why the
+/// contour is not one `fix` works on.
 pub fn index_contour(
     points: &[norad::ContourPoint],
 ) -> std::result::Result<IndexedContour, String> {
+    use aesthetic_curves::contour_points::{ListPoint, PointKind as K};
     use norad::PointType as T;
-    let n = points.len();
-    if n < 2 {
-        return Err("fewer than two points".into());
-    }
-    let open = points[0].typ == T::Move;
-    let start = if open {
-        0
-    } else {
-        points
-            .iter()
-            .position(|q| q.typ != T::OffCurve)
-            .ok_or("off-curve points only (implied quadratics): not a cubic outline")?
-    };
-    let at = |k: usize| (start + k) % n;
-    let mut out = IndexedContour {
-        segments: Vec::new(),
-        indices: Vec::new(),
-        closed: !open,
-        smooth: Vec::new(),
-    };
-    let mut current = vec![at(0)];
-    let steps = if open { n - 1 } else { n };
-    for k in 1..=steps {
-        let i = at(k);
-        let q = &points[i];
-        current.push(i);
-        match q.typ {
-            T::OffCurve => continue,
-            T::QCurve => {
-                return Err("a quadratic (qcurve) segment: fix works on cubic outlines".into())
-            }
-            _ => {}
-        }
-        match current.len() {
-            2 | 4 => {}
-            3 => {
-                return Err(
-                    "a curve with one off-curve point (a quadratic): fix works on cubic outlines"
-                        .into(),
-                )
-            }
-            m => {
-                return Err(format!(
-                    "a curve point after {} off-curve points (at most 2)",
-                    m - 2
-                ))
-            }
-        }
-        out.segments.push(
-            current
-                .iter()
-                .map(|&j| Point::new(points[j].x, points[j].y))
-                .collect(),
-        );
-        out.indices.push(std::mem::replace(&mut current, vec![i]));
-        out.smooth.push(q.smooth);
-    }
-    if current.len() > 1 {
-        return Err("off-curve points after the last on-curve point of an open contour".into());
-    }
-    // An open contour has no join after its last segment.
-    if open {
-        out.smooth.pop();
-    }
-    Ok(out)
+    let list: Vec<ListPoint> = points
+        .iter()
+        .map(|q| ListPoint {
+            at: Point::new(q.x, q.y),
+            kind: match q.typ {
+                T::Move => K::Move,
+                T::Line => K::Line,
+                T::Curve => K::Curve,
+                T::QCurve => K::QCurve,
+                T::OffCurve => K::OffCurve,
+            },
+            smooth: q.smooth,
+        })
+        .collect();
+    aesthetic_curves::contour_points::index_contour(&list).map_err(|e| match e {
+        aesthetic_curves::Error::InvalidInput { message, .. } => message,
+        e => e.to_string(),
+    })
 }
 
 /// What `fix` does.

@@ -32,6 +32,7 @@ from ._native import (
     fit_lac,
     fit_sketch,
     harmonize,
+    index_contour,
     pseudo_elastic,
 )
 
@@ -61,6 +62,7 @@ __all__ = [
     "fit_lac",
     "fit_sketch",
     "harmonize",
+    "index_contour",
     "plot_comb",
     "pseudo_elastic",
 ]

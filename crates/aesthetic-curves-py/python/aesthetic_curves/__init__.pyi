@@ -36,6 +36,7 @@ __all__ = [
     "fit_lac",
     "fit_sketch",
     "harmonize",
+    "index_contour",
     "plot_comb",
     "pseudo_elastic",
 ]
@@ -264,7 +265,15 @@ def check_outline(
     near_break: float = 3.0,
     min_bump: float = 0.05,
 ) -> dict[str, Any]: ...
+def index_contour(
+    points: Sequence[tuple[float, float, Optional[str], bool]],
+) -> tuple[Any, ...]: ...
 def harmonize(
-    segments: Any, closed: bool, smooth: Sequence[bool], tolerance: float = 2.0, grid: float = 0.0
+    segments: Any,
+    closed: bool,
+    smooth: Sequence[bool],
+    tolerance: float = 2.0,
+    grid: float = 0.0,
+    bumps: bool = True,
 ) -> dict[str, Any]: ...
 def plot_comb(curve: Any, ax: Any = None, samples: int = 200, scale: Optional[float] = None, **line_kwargs: Any) -> Any: ...

@@ -15,7 +15,7 @@ angle and the curvature jump; the findings worst first.
 
 from fontTools.pens.basePen import BasePen
 
-from ._native import check_outline, harmonize
+from ._native import check_outline, harmonize, index_contour
 
 __all__ = ["CheckPen", "fix_glyph"]
 
@@ -79,51 +79,28 @@ def _point_type(p):
 
 def _index_contour(points):
     """The segments of a UFO-style point list with the indices of their points, or the
-    reason the contour is not a cubic outline ``fix_glyph`` works on."""
-    n = len(points)
-    if n < 2:
-        return None, "fewer than two points"
-    types = [_point_type(p) for p in points]
-    open_ = types[0] == "move"
-    if open_:
-        start = 0
-    else:
-        on = [i for i, t in enumerate(types) if t is not None]
-        if not on:
-            return None, "off-curve points only (implied quadratics): not a cubic outline"
-        start = on[0]
-    segments, indices, smooth = [], [], []
-    current = [start]
-    for k in range(1, n if open_ else n + 1):
-        i = (start + k) % n
-        current.append(i)
-        t = types[i]
-        if t is None:
-            continue
-        if t == "qcurve" or len(current) == 3:
-            return None, "a quadratic segment: fix_glyph works on cubic outlines"
-        if len(current) not in (2, 4):
-            return None, f"a curve point after {len(current) - 2} off-curve points (at most 2)"
-        segments.append([(float(points[j].x), float(points[j].y)) for j in current])
-        indices.append(current)
-        smooth.append(bool(getattr(points[i], "smooth", False)))
-        current = [i]
-    if len(current) > 1:
-        return None, "off-curve points after the last on-curve point of an open contour"
-    if open_:
-        smooth.pop()
-    return (segments, indices, not open_, smooth), None
+    reason the contour is not a cubic outline ``fix_glyph`` works on (the library's reader,
+    the one ``aecurve fix`` uses)."""
+    found = index_contour(
+        [(float(p.x), float(p.y), _point_type(p), bool(getattr(p, "smooth", False))) for p in points]
+    )
+    if found[0] is None:
+        return None, found[1]
+    return found, None
 
 
-def fix_glyph(glyph, tolerance=2.0, grid=1.0):
-    """Harmonize a glyph in place: every smooth join between two cubics (the points'
-    ``smooth`` flags) moved towards G2 by sliding its handles along their tangents, no
-    point further than ``tolerance``, on the ``grid``, and no join or cubic left worse
-    (the library's ``harmonize``; ``aecurve fix`` does the same to a whole UFO). Works on
-    glyphs whose ``contours`` hold ``points`` with ``x``, ``y``, ``type`` (or
-    ``segmentType``) and ``smooth`` (ufoLib2, defcon). Returns one dict per contour: its
-    index and either ``joins`` (``after_segment``, ``outcome``, ``jump`` and
-    ``angle_degrees`` before and after) and ``moved``, or ``skipped`` with the reason."""
+def fix_glyph(glyph, tolerance=2.0, grid=1.0, bumps=True):
+    """Repair a glyph in place as ``aecurve fix`` repairs a UFO: with ``bumps``, cubics
+    with a curvature hook near an end or several extrema first get monotone handle lengths
+    where some exist; then every smooth join between two cubics (the points' ``smooth``
+    flags, or G1 within rounding) moved towards G2 by sliding its handles along their
+    tangents; no point further than ``tolerance``, on the ``grid``, and no join or cubic
+    left worse, no new hook (the library's ``harmonize::repair``). Works on glyphs whose
+    ``contours`` hold ``points`` with ``x``, ``y``, ``type`` (or ``segmentType``) and
+    ``smooth`` (ufoLib2, defcon). Returns one dict per contour: its index and either
+    ``joins`` (``after_segment``, ``outcome``, ``jump`` and ``angle_degrees`` before and
+    after), ``moved`` and ``bumps`` (the segments whose bump was removed), or ``skipped``
+    with the reason."""
     out = []
     for ci, contour in enumerate(glyph.contours):
         points = list(contour.points)
@@ -132,9 +109,9 @@ def fix_glyph(glyph, tolerance=2.0, grid=1.0):
             out.append({"contour": ci, "skipped": why})
             continue
         segments, indices, closed, smooth = indexed
-        h = harmonize(segments, closed, smooth, tolerance=tolerance, grid=grid)
+        h = harmonize(segments, closed, smooth, tolerance=tolerance, grid=grid, bumps=bumps)
         for idx, pts in zip(indices, h["segments"]):
             for i, (x, y) in zip(idx, pts):
                 points[i].x, points[i].y = x, y
-        out.append({"contour": ci, "joins": h["joins"], "moved": h["moved"]})
+        out.append({"contour": ci, "joins": h["joins"], "moved": h["moved"], "bumps": h["bumps"]})
     return out
