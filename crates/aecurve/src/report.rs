@@ -9,8 +9,21 @@ use crate::outline_io::{Shape, ShapeCheck};
 use aesthetic_curves::{Curve, Point};
 use std::fmt::Write;
 
+/// The start of a report page: its head with the shared style (and `css`), the body's
+/// title.
+pub(crate) fn page_start(title: &str, css: &str) -> String {
+    format!(
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{t}</title>\
+         <style>body{{font-family:sans-serif;margin:1.5em;color:#222}}\
+         .grid{{display:flex;flex-wrap:wrap;gap:14px}}\
+         figcaption{{font-size:12px}} figcaption b{{font-size:14px}}\
+         .key span{{margin-right:1.2em}}{css}</style></head><body>\n<h1>{t}</h1>\n",
+        t = esc(title)
+    )
+}
+
 /// Escape text for HTML.
-fn esc(s: &str) -> String {
+pub(crate) fn esc(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -62,16 +75,13 @@ pub fn outline_report_drawn(
     total: usize,
     drawn: &[(&Shape, &ShapeCheck)],
 ) -> String {
-    let mut html = String::new();
+    let mut html = page_start(
+        title,
+        "figure{margin:0;width:330px;border:1px solid #ddd;padding:6px}",
+    );
     let _ = write!(
         html,
-        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{t}</title>\
-         <style>body{{font-family:sans-serif;margin:1.5em;color:#222}}\
-         .grid{{display:flex;flex-wrap:wrap;gap:14px}}\
-         figure{{margin:0;width:330px;border:1px solid #ddd;padding:6px}}\
-         figcaption{{font-size:12px}} figcaption b{{font-size:14px}}\
-         .key span{{margin-right:1.2em}}</style></head><body>\n\
-         <h1>{t}</h1>\n<p class=\"key\"><span style=\"color:#d62728\">curve</span>\
+        "<p class=\"key\"><span style=\"color:#d62728\">curve</span>\
          <span style=\"color:#6baed6\">curvature comb</span>\
          <span style=\"color:#1f77b4\">&#9675; curvature extremum</span>\
          <span style=\"color:#2ca02c\">&#9671; inflection</span>\
@@ -79,7 +89,6 @@ pub fn outline_report_drawn(
          <span style=\"color:#ff9f40\">&#9675; smooth join, curvature jumps (not G2)</span>\
          <span style=\"color:#2ca02c\">- - suggested handles (monotone)</span></p>\n\
          <p>{n} shapes, the worst first{more}.</p>\n<div class=\"grid\">\n",
-        t = esc(title),
         n = total,
         more = if total > drawn.len() {
             format!("; the first {} are drawn", drawn.len())

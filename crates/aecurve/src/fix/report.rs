@@ -4,6 +4,7 @@
 //! points marked in a colour of their own with their handle lines, and the joins' counts
 //! under the pictures. No script: a static page.
 
+use crate::report::esc;
 use aesthetic_curves::{Bezier, Curve, Point};
 use std::fmt::Write;
 
@@ -26,31 +27,20 @@ const W: f64 = 280.0;
 /// The moved points' colour.
 const MOVED: &str = "#c2189b";
 
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-/// The page: `figures` in order, at most `limit` of them drawn, `total` changed shapes.
+/// The page: `figures` in order, of `total` changed shapes.
 pub fn fix_report(title: &str, y_up: bool, figures: &[FixFigure], total: usize) -> String {
-    let mut html = String::new();
+    let mut html = crate::report::page_start(
+        title,
+        "figure{margin:0;border:1px solid #ddd;padding:6px}\
+         .pair{display:flex;gap:4px} .pair div{font-size:11px;color:#666;text-align:center}",
+    );
     let _ = write!(
         html,
-        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{t}</title>\
-         <style>body{{font-family:sans-serif;margin:1.5em;color:#222}}\
-         .grid{{display:flex;flex-wrap:wrap;gap:14px}}\
-         figure{{margin:0;border:1px solid #ddd;padding:6px}}\
-         figcaption{{font-size:12px}} figcaption b{{font-size:14px}}\
-         .pair{{display:flex;gap:4px}} .pair div{{font-size:11px;color:#666;text-align:center}}\
-         .key span{{margin-right:1.2em}}</style></head><body>\n\
-         <h1>{t}</h1>\n<p class=\"key\"><span style=\"color:#d62728\">outline</span>\
+        "<p class=\"key\"><span style=\"color:#d62728\">outline</span>\
          <span style=\"color:#3182bd\">curvature comb (one scale for before and after: a step in it at a join is a curvature jump)</span>\
          <span style=\"color:{MOVED}\">&#9679; moved control point, its handle</span></p>\n\
          <p>{total} shapes changed; {n} drawn, the most joins brought under a 1 % curvature \
          jump first.</p>\n<div class=\"grid\">\n",
-        t = esc(title),
         n = figures.len(),
     );
     for f in figures {
