@@ -390,19 +390,18 @@ pub struct Thresholds {
 impl Thresholds {
     /// The library's options (the grid and the suggestion set apart).
     pub fn options(&self) -> anyhow::Result<aesthetic_curves::outline::OutlineOptions> {
-        let ok = |v: f64| v.is_finite() && v >= 0.0;
-        anyhow::ensure!(
-            [self.g1_angle, self.g2_jump, self.near_break, self.min_bump]
-                .iter()
-                .all(|v| ok(*v)),
-            "--g1-angle, --g2-jump, --near-break and --min-bump take numbers >= 0"
-        );
-        Ok(aesthetic_curves::outline::OutlineOptions {
-            g1_angle: self.g1_angle.to_radians(),
+        aesthetic_curves::outline::Thresholds {
+            g1_angle_degrees: self.g1_angle,
             g2_jump: self.g2_jump,
-            near_break: self.near_break.to_radians(),
+            near_break_degrees: self.near_break,
             min_bump: self.min_bump,
-            ..Default::default()
+        }
+        .options(0.0)
+        .map_err(|e| match e {
+            aesthetic_curves::Error::InvalidInput { field, message } => {
+                anyhow::anyhow!("--{}: {message}", field.replace('_', "-"))
+            }
+            e => e.into(),
         })
     }
 }

@@ -2,7 +2,7 @@
 //! so that a fontTools pen (`aesthetic_curves.pens`) can feed them glyph by glyph.
 
 use crate::{err, points_arg};
-use ac::outline::{check_contour, findings, OutlineOptions};
+use ac::outline::{check_contour, findings};
 use ac::Point;
 use aesthetic_curves as ac;
 use pyo3::exceptions::PyValueError;
@@ -57,27 +57,14 @@ pub(crate) fn check_outline<'py>(
     min_bump: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let input = contours_arg(contours)?;
-    for (name, v) in [
-        ("grid", grid),
-        ("g1_angle", g1_angle),
-        ("g2_jump", g2_jump),
-        ("near_break", near_break),
-        ("min_bump", min_bump),
-    ] {
-        if !(v.is_finite() && v >= 0.0) {
-            return Err(PyValueError::new_err(format!(
-                "{name}: must be a number >= 0"
-            )));
-        }
-    }
-    let opts = OutlineOptions {
-        g1_angle: g1_angle.to_radians(),
+    let opts = ac::outline::Thresholds {
+        g1_angle_degrees: g1_angle,
         g2_jump,
-        near_break: near_break.to_radians(),
-        grid,
+        near_break_degrees: near_break,
         min_bump,
-        ..OutlineOptions::default()
-    };
+    }
+    .options(grid)
+    .map_err(err)?;
     let mut beziers = Vec::with_capacity(input.len());
     for (segs, closed) in &input {
         let mut row = Vec::with_capacity(segs.len());

@@ -71,6 +71,46 @@ impl Default for OutlineOptions {
     }
 }
 
+/// The thresholds as a user states them: angles in degrees, the rest as fractions; what
+/// `aecurve check --g1-angle ...` and Python's `check_outline` take.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Thresholds {
+    /// [`OutlineOptions::g1_angle`], in degrees.
+    pub g1_angle_degrees: f64,
+    /// [`OutlineOptions::g2_jump`].
+    pub g2_jump: f64,
+    /// [`OutlineOptions::near_break`], in degrees.
+    pub near_break_degrees: f64,
+    /// [`OutlineOptions::min_bump`].
+    pub min_bump: f64,
+}
+
+impl Thresholds {
+    /// The check's options with these thresholds on `grid`; an invalid-input error naming
+    /// the first one (or the grid) that is not a finite number >= 0.
+    pub fn options(&self, grid: f64) -> crate::Result<OutlineOptions> {
+        for (name, v) in [
+            ("g1_angle", self.g1_angle_degrees),
+            ("g2_jump", self.g2_jump),
+            ("near_break", self.near_break_degrees),
+            ("min_bump", self.min_bump),
+            ("grid", grid),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(crate::Error::invalid(name, "must be a number >= 0"));
+            }
+        }
+        Ok(OutlineOptions {
+            g1_angle: self.g1_angle_degrees.to_radians(),
+            g2_jump: self.g2_jump,
+            near_break: self.near_break_degrees.to_radians(),
+            grid,
+            min_bump: self.min_bump,
+            ..OutlineOptions::default()
+        })
+    }
+}
+
 /// What the check found on one segment.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SegmentCheck {
@@ -610,6 +650,33 @@ pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn thresholds_in_degrees_become_options_and_bad_ones_are_named() {
+        let t = Thresholds {
+            g1_angle_degrees: 0.1,
+            g2_jump: 0.02,
+            near_break_degrees: 2.0,
+            min_bump: 0.1,
+        };
+        let o = t.options(1.0).unwrap();
+        assert!((o.g1_angle - 0.1f64.to_radians()).abs() < 1e-15 && o.grid == 1.0);
+        for bad in [
+            Thresholds { g2_jump: -0.1, ..t },
+            Thresholds {
+                near_break_degrees: f64::NAN,
+                ..t
+            },
+        ] {
+            let e = bad.options(0.0).unwrap_err().to_string();
+            assert!(e.contains("g2_jump") || e.contains("near_break"), "{e}");
+        }
+        assert!(t
+            .options(f64::INFINITY)
+            .unwrap_err()
+            .to_string()
+            .contains("grid"));
+    }
     use crate::Bezier;
 
     /// A four-cubic circle (handles 0.5523 of the radius) varies in curvature by a few per

@@ -14,7 +14,7 @@
 //! that fails anywhere gets its input back in every master, until none fails.
 //!
 //! Before that, the joins whose tangent direction turns from master to master are held in
-//! every master ([`held_joins`]): their handles do not move, so their ratios, and the
+//! every master (`held_joins`): their handles do not move, so their ratios, and the
 //! instances' tangents, stay; the rest is harmonized freely.
 //!
 //! Sources in a layer of another UFO (`layer="..."`, sparse masters) are refused with a

@@ -20,7 +20,7 @@
 //! ([`crate::solve::sweep_to_fixed_point`]). A cubic the result spoils (more curvature
 //! extrema than the input, a hook it did not have, or a join of its worse) is held half
 //! way back (then at a quarter, then at its input) and the rest swept again, so that its
-//! neighbours make up for it from their other sides ([`settle`]).
+//! neighbours make up for it from their other sides (`settle`).
 //!
 //! **Which joins.** Those marked smooth, and those whose tangents meet within
 //! [`HarmonizeOptions::g1_angle`] (G1 in the check's eyes, marked or not). At a corner no
@@ -30,7 +30,7 @@
 //! handles at their input places, at grid points around the sweep's targets nearest their
 //! tangent lines, or half way), and the states of the whole contour are chosen together by
 //! dynamic programming: as many joins under [`HarmonizeOptions::g2_jump`] as the grid
-//! allows, then the smallest jumps, no join worse than the input ([`grid`]).
+//! allows, then the smallest jumps, no join worse than the input (`harmonize/grid.rs`).
 //!
 //! **No worse.** Last, every join whose curvature jump or angle is worse than in the input,
 //! and every cubic that has more curvature extrema than before (the exact test), gets its
