@@ -175,7 +175,8 @@ def over_budget(p, addr):
 def fuzz(addr, n=1500):
     rnd = random.Random(2026)
     ops = ["bezier.curvature_monotone", "lac.point", "lac.segment", "lac.inflection_segment",
-           "lcg.estimate", "lac.rational_approx", "spline.pseudo_elastic", "lac.fit", "sketch.fit"]
+           "lcg.estimate", "lac.rational_approx", "spline.pseudo_elastic", "lac.fit", "sketch.fit",
+           "outline.fix"]
 
     def num():
         return rnd.choice([0, 1, -1, 0.5, 1e-300, 1e300, -1e308, 3.7, rnd.uniform(-10, 10), rnd.uniform(-1e6, 1e6)])
@@ -213,6 +214,10 @@ def fuzz(addr, n=1500):
             r.update(control_points=pts(rnd.randrange(2, 8)))
         elif op == "spline.pseudo_elastic":
             r.update(points=pts(rnd.randrange(2, 20)))
+        elif op == "outline.fix":
+            p = pts(3 * rnd.randrange(1, 6) + 1)
+            r.update(segments=[{"control_points": p[k:k + 4]} for k in range(0, len(p) - 3, 3)],
+                     closed=rnd.random() < 0.5, tolerance=num(), grid=rnd.choice([0, 1, num()]))
         else:
             r.update(points=[[i + rnd.uniform(0, 0.5), rnd.uniform(-3, 3)] for i in range(rnd.randrange(4, 60))])
         return json.dumps(r)

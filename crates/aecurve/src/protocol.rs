@@ -895,10 +895,14 @@ fn outline_fix(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         .joins
         .iter()
         .map(|j| {
-            json!({"after_segment": j.after_segment, "smooth": smooth[j.after_segment],
+            let mut v = json!({"after_segment": j.after_segment, "smooth": smooth[j.after_segment],
                 "outcome": format!("{:?}", j.outcome).to_lowercase(),
-                "jump": [crate::json_out::finite_or_null(j.jump.0), crate::json_out::finite_or_null(j.jump.1)],
-                "angle_degrees": [j.angle.0.to_degrees(), j.angle.1.to_degrees()]})
+                "angle_degrees": [j.angle.0.to_degrees(), j.angle.1.to_degrees()]});
+            // Undefined at a retracted handle: left out rather than null.
+            if j.jump.0.is_finite() && j.jump.1.is_finite() {
+                v["jump"] = json!([j.jump.0, j.jump.1]);
+            }
+            v
         })
         .collect();
     let changed = h

@@ -158,7 +158,7 @@ fn arb_number() -> impl Strategy<Value = f64> {
 
 fn arb_lac_request() -> impl Strategy<Value = Value> {
     (
-        0usize..8,
+        0usize..9,
         arb_number(),
         arb_number(),
         prop::collection::vec(arb_number(), 0..6),
@@ -175,6 +175,20 @@ fn arb_lac_request() -> impl Strategy<Value = Value> {
                 5 => json!({"id": 6, "op": "sketch.fit", "points": control, "tolerance": lambda}),
                 6 => json!({"id": 7, "op": "spline.pseudo_elastic", "points": control}),
                 7 => json!({"id": 8, "op": "spline.pseudo_elastic", "points": control, "closed": true}),
+                8 => {
+                    // Cubics end to end from the points (and a line for what is left).
+                    let mut segs: Vec<Value> = control
+                        .windows(4)
+                        .step_by(3)
+                        .map(|w| json!({"control_points": w}))
+                        .collect();
+                    if segs.is_empty() {
+                        segs.push(json!({"control_points": control[..2]}));
+                    }
+                    json!({"id": 9, "op": "outline.fix", "segments": segs, "tolerance": lambda,
+                        "closed": alpha > 0.0, "grid": theta.first().copied().unwrap_or(0.0),
+                        "move_points": alpha < -1.0})
+                }
                 _ => json!({"id": 4, "op": "lcg.estimate", "points": control}),
             };
             if let Some(s) = samples {

@@ -370,7 +370,7 @@ async function outlineFix() {
     return;
   }
   if (state.mode !== 'outline' || state.outline !== st) return;
-  const smooth = r.joins.filter((j) => j.smooth && j.jump[0] !== null);
+  const smooth = r.joins.filter((j) => j.smooth && j.jump);
   const under = (k) => smooth.filter((j) => j.jump[k] < 0.01).length;
   remember('outline');
   const ghost = frame && frame.mode === 'outline' ? { curve: frame.shown.curve, kappa: frame.shown.kappa, normals: frame.shown.normals } : null;

@@ -181,7 +181,7 @@ fn tangents_differ(a: &IndexedContour, b: &IndexedContour, j: usize) -> bool {
         [back, ahead]
     };
     dirs(a).iter().zip(dirs(b)).any(|(u, v)| match (u, v) {
-        (Some(u), Some(v)) => u.cross(v).atan2(u.dot(v)).abs() > 1e-9,
+        (Some(u), Some(v)) => aesthetic_curves::harmonize::tangent_angle(*u, v) > 1e-9,
         _ => false,
     })
 }

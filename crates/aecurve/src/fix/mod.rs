@@ -448,7 +448,7 @@ fn svg_smooth(segs: &[Vec<Point>], closed: bool) -> Vec<bool> {
         .map(|j| {
             let (a, b) = (&segs[j], &segs[(j + 1) % n]);
             let (ta, tb) = (a[a.len() - 1] - a[a.len() - 2], b[1] - b[0]);
-            let angle = ta.cross(tb).atan2(ta.dot(tb)).abs();
+            let angle = aesthetic_curves::harmonize::tangent_angle(ta, tb);
             angle.to_degrees() <= SVG_SMOOTH_DEGREES
         })
         .collect()

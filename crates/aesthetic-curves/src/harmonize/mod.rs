@@ -254,6 +254,22 @@ fn relative_jump(a: f64, b: f64) -> f64 {
     }
 }
 
+/// The angle (radians, 0 to π) between two tangent vectors, each scaled to its largest
+/// coordinate first so that the cross and dot products cannot overflow (coordinates near
+/// 1e308); 0 where either is zero.
+pub fn tangent_angle(a: Vec2, b: Vec2) -> f64 {
+    let unit = |v: Vec2| {
+        let m = v.x.abs().max(v.y.abs());
+        if m > 0.0 && m.is_finite() {
+            v / m
+        } else {
+            Vec2::ZERO
+        }
+    };
+    let (a, b) = (unit(a), unit(b));
+    a.cross(b).atan2(a.dot(b)).abs()
+}
+
 /// The jump and angle at the join of segments `a` and `b` (control points).
 fn join_state(a: &[Point], b: &[Point]) -> (f64, f64) {
     // The tangents from the nearest distinct control points (a retracted handle gives its
@@ -268,7 +284,7 @@ fn join_state(a: &[Point], b: &[Point]) -> (f64, f64) {
         .iter()
         .find(|q| **q != b[0])
         .map_or(Vec2::ZERO, |q| *q - b[0]);
-    let angle = ta.cross(tb).atan2(ta.dot(tb)).abs();
+    let angle = tangent_angle(ta, tb);
     // A line's curvature is zero: a join with one keeps its jump (0 or 1) too.
     let ka = if a.len() == 4 {
         end_curvatures(a).1
@@ -1211,6 +1227,17 @@ fn best_rounding(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The angle between tangents near 1e308 is what it is at unit size (no overflow to
+    /// NaN), and 0 for a zero vector.
+    #[test]
+    fn tangent_angles_do_not_overflow() {
+        let (a, b) = (Vec2::new(1.0, 2.0), Vec2::new(-1.0, -1.0));
+        let want = tangent_angle(a, b);
+        let huge = tangent_angle(a * 1e300, b * 1e300);
+        assert!(want.is_finite() && (huge - want).abs() < 1e-15, "{huge} vs {want}");
+        assert_eq!(tangent_angle(a * 1e-300, Vec2::ZERO), 0.0);
+    }
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)
