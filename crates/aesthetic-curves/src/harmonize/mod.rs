@@ -1235,7 +1235,10 @@ mod tests {
         let (a, b) = (Vec2::new(1.0, 2.0), Vec2::new(-1.0, -1.0));
         let want = tangent_angle(a, b);
         let huge = tangent_angle(a * 1e300, b * 1e300);
-        assert!(want.is_finite() && (huge - want).abs() < 1e-15, "{huge} vs {want}");
+        assert!(
+            want.is_finite() && (huge - want).abs() < 1e-15,
+            "{huge} vs {want}"
+        );
         assert_eq!(tangent_angle(a * 1e-300, Vec2::ZERO), 0.0);
     }
 
