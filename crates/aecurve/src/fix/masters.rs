@@ -8,7 +8,7 @@
 //! and harmonizing each master alone changes that ratio (fontTools' `interpolatable` calls
 //! the result a kink). So, contour by contour across the masters: the instance half way
 //! between every two masters, of the input's masters and of the repaired ones, is checked
-//! with the rule the repair keeps in each master ([`regressions`]: no join with a larger
+//! with the rule the repair keeps in each master ([`Baseline`]: no join with a larger
 //! angle, no smooth or G1 join with a larger curvature jump, no cubic with more curvature
 //! extrema by the exact test), each master against its own input too, and every segment
 //! that fails anywhere gets its input back in every master, until none fails.
@@ -25,7 +25,7 @@ use super::{
     fix_font_holding, harmonize_options, index_contour, write_font_back, ContourFix, FixCounts,
     FixOptions, Held, IndexedContour,
 };
-use aesthetic_curves::harmonize::{regressions, Harmonized};
+use aesthetic_curves::harmonize::{Baseline, Harmonized};
 use aesthetic_curves::Point;
 use anyhow::{bail, Context, Result};
 use std::collections::{BTreeSet, HashMap};
@@ -174,11 +174,7 @@ fn held_joins(fonts: &[norad::Font]) -> Held {
 fn tangents_differ(a: &IndexedContour, b: &IndexedContour, j: usize) -> bool {
     let n = a.segments.len();
     let dirs = |c: &IndexedContour| {
-        let (s, t) = (&c.segments[j], &c.segments[(j + 1) % n]);
-        let p = s[s.len() - 1];
-        let back = s.iter().rev().find(|q| **q != p).map(|q| p - *q);
-        let ahead = t.iter().find(|q| **q != p).map(|q| *q - p);
-        [back, ahead]
+        aesthetic_curves::harmonize::join_tangents(&c.segments[j], &c.segments[(j + 1) % n])
     };
     dirs(a).iter().zip(dirs(b)).any(|(u, v)| match (u, v) {
         (Some(u), Some(v)) => aesthetic_curves::harmonize::tangent_angle(*u, v) > 1e-9,
@@ -266,6 +262,25 @@ fn hold_contour(members: &mut [ContourFix], opts: &FixOptions) -> Option<usize> 
                 .unwrap_or_default()
         })
         .collect();
+    // Each master's input and the input's half-way instance of every two masters, computed
+    // once (their joins and the exact test of their cubics) and held to in every round.
+    let masters: Vec<Baseline> = inputs
+        .iter()
+        .zip(&smooth)
+        .map(|(s, f)| Baseline::new(s, closed, f, &hopts))
+        .collect();
+    let mut pairs = Vec::new();
+    for k in 0..inputs.len() {
+        for l in k + 1..inputs.len() {
+            let either: Vec<bool> = smooth[k]
+                .iter()
+                .zip(&smooth[l])
+                .map(|(a, b)| *a || *b)
+                .collect();
+            let before = halfway(&inputs[k], &inputs[l]);
+            pairs.push((k, l, Baseline::new(&before, closed, &either, &hopts)));
+        }
+    }
     let mut restored = 0;
     let n = inputs[0].len();
     for _round in 0..=n {
@@ -274,26 +289,11 @@ fn hold_contour(members: &mut [ContourFix], opts: &FixOptions) -> Option<usize> 
             .filter_map(|m| m.result.as_ref().ok())
             .collect();
         let mut bad = BTreeSet::new();
-        for (k, r) in results.iter().enumerate() {
-            bad.extend(regressions(
-                &inputs[k],
-                &r.segments,
-                closed,
-                &smooth[k],
-                &hopts,
-            ));
+        for (base, r) in masters.iter().zip(&results) {
+            bad.extend(base.regressions(&r.segments));
         }
-        for k in 0..results.len() {
-            for l in k + 1..results.len() {
-                let either: Vec<bool> = smooth[k]
-                    .iter()
-                    .zip(&smooth[l])
-                    .map(|(a, b)| *a || *b)
-                    .collect();
-                let before = halfway(&inputs[k], &inputs[l]);
-                let after = halfway(&results[k].segments, &results[l].segments);
-                bad.extend(regressions(&before, &after, closed, &either, &hopts));
-            }
+        for (k, l, base) in &pairs {
+            bad.extend(base.regressions(&halfway(&results[*k].segments, &results[*l].segments)));
         }
         if bad.is_empty() {
             break;

@@ -270,20 +270,22 @@ pub fn tangent_angle(a: Vec2, b: Vec2) -> f64 {
     a.cross(b).atan2(a.dot(b)).abs()
 }
 
+/// The tangent vectors at the join of segments `a` and `b` (control points), into the join
+/// and out of it, each from the nearest control point distinct from the join's point (a
+/// retracted handle gives its direction to the next one); None where all coincide.
+pub fn join_tangents(a: &[Point], b: &[Point]) -> [Option<Vec2>; 2] {
+    let p = a[a.len() - 1];
+    [
+        a.iter().rev().find(|q| **q != p).map(|q| p - *q),
+        b.iter().find(|q| **q != p).map(|q| *q - p),
+    ]
+}
+
 /// The jump and angle at the join of segments `a` and `b` (control points).
 fn join_state(a: &[Point], b: &[Point]) -> (f64, f64) {
     // The tangents from the nearest distinct control points (a retracted handle gives its
     // direction to the next one).
-    let end = a[a.len() - 1];
-    let ta = a
-        .iter()
-        .rev()
-        .find(|q| **q != end)
-        .map_or(Vec2::ZERO, |q| end - *q);
-    let tb = b
-        .iter()
-        .find(|q| **q != b[0])
-        .map_or(Vec2::ZERO, |q| *q - b[0]);
+    let [ta, tb] = join_tangents(a, b).map(|t| t.unwrap_or(Vec2::ZERO));
     let angle = tangent_angle(ta, tb);
     // A line's curvature is zero: a join with one keeps its jump (0 or 1) too.
     let ka = if a.len() == 4 {
@@ -412,13 +414,15 @@ pub fn harmonize_holding(
     check_input(segments, closed, smooth, opts)?;
     check_input(segments, closed, held, opts)?;
     let n = segments.len();
-    let before = states(segments, closed);
-    let kept = g1_or_smooth(segments, (closed, smooth), &before, opts);
-    let guard = guarded(&before, &kept);
+    let Limits {
+        before,
+        kept,
+        guard,
+        profiles: extrema_before,
+    } = Limits::of(segments, (closed, smooth), opts);
     // The joins whose handles move: kept and not held.
     let moving: Vec<bool> = kept.iter().zip(held).map(|(k, h)| *k && !*h).collect();
     let smooth = &moving[..];
-    let extrema_before: Vec<Option<Profile>> = segments.iter().map(|s| profile(s)).collect();
     let original = segments;
     // With `move_points`, the joins' on-curve points first (each checked: no cubic with more
     // extrema, no join worse); the handles then slide from there.
@@ -931,23 +935,68 @@ fn revert_what_got_worse(
     }
 }
 
-/// What got worse from `before` to `after` (the same contour, moved): the segments of
-/// every join with a larger angle, or a larger curvature jump where the join is smooth or
-/// G1 (the rule [`harmonize`] keeps to), and every cubic with more curvature extrema (the
+/// A contour to hold moved versions of it to: what got worse from it to a moved version
+/// ([`Baseline::regressions`]) is the segments of every join with a larger angle, or a
+/// larger curvature jump where the join is smooth or G1 (the rule [`harmonize`] keeps to), and every cubic with more curvature extrema (the
 /// exact test); sorted, once each. What an interpolated instance of repaired masters is
 /// held to, against the same instance of the input's masters.
-pub fn regressions(
-    before: &[Vec<Point>],
-    after: &[Vec<Point>],
+///
+/// The input's side (its joins, the exact test of its cubics) is computed once, when the
+/// baseline is made, and serves every comparison after.
+pub struct Baseline {
+    segments: Vec<Vec<Point>>,
     closed: bool,
-    smooth: &[bool],
-    opts: &HarmonizeOptions,
-) -> Vec<usize> {
-    let states_before = states(before, closed);
-    let smooth = g1_or_smooth(before, (closed, smooth), &states_before, opts);
-    let guard = guarded(&states_before, &smooth);
-    let extrema_before: Vec<Option<Profile>> = before.iter().map(|s| profile(s)).collect();
-    spoiled(before, after, closed, (&guard, &extrema_before))
+    limits: Limits,
+}
+
+impl Baseline {
+    /// The baseline of `segments` (`smooth[j]`: the join after segment j is marked smooth).
+    pub fn new(
+        segments: &[Vec<Point>],
+        closed: bool,
+        smooth: &[bool],
+        opts: &HarmonizeOptions,
+    ) -> Self {
+        Baseline {
+            segments: segments.to_vec(),
+            closed,
+            limits: Limits::of(segments, (closed, smooth), opts),
+        }
+    }
+
+    /// The segments of `after` (the same contour, moved) that got worse (see [`Baseline`]).
+    pub fn regressions(&self, after: &[Vec<Point>]) -> Vec<usize> {
+        let l = &self.limits;
+        spoiled(&self.segments, after, self.closed, (&l.guard, &l.profiles))
+    }
+}
+
+/// What a repair of a contour is held to, from its input: the joins' jumps and angles, which
+/// joins are kept (smooth or G1), the limits no join may pass, and the cubics' profiles.
+struct Limits {
+    before: Vec<(f64, f64)>,
+    kept: Vec<bool>,
+    guard: Vec<(f64, f64)>,
+    profiles: Vec<Option<Profile>>,
+}
+
+impl Limits {
+    fn of(
+        segments: &[Vec<Point>],
+        (closed, smooth): (bool, &[bool]),
+        opts: &HarmonizeOptions,
+    ) -> Self {
+        let before = states(segments, closed);
+        let kept = g1_or_smooth(segments, (closed, smooth), &before, opts);
+        let guard = guarded(&before, &kept);
+        let profiles = segments.iter().map(|s| profile(s)).collect();
+        Limits {
+            before,
+            kept,
+            guard,
+            profiles,
+        }
+    }
 }
 
 impl Harmonized {
