@@ -187,8 +187,8 @@ pub(crate) enum Cmd {
     },
     /// Repair a UFO source, a designspace's masters or an SVG file and write it back: every
     /// smooth join between two cubics moved towards G2 by sliding its handles along their
-    /// tangents (tangents, and so G1, kept), no point further than the tolerance,
-    /// coordinates on the grid, and no join and no cubic left worse than it was (the exact
+    /// tangents (tangents, and so G1, kept), no outline further than the tolerance from
+    /// the original, coordinates on the grid, and no join and no cubic left worse than it was (the exact
     /// test decides extrema). The same glyphs, contours and points are written; contours
     /// with quadratic segments are left alone and listed. In a designspace, the masters are
     /// held together: no instance half way between two masters ends worse either
@@ -200,7 +200,10 @@ pub(crate) enum Cmd {
         /// its masters are written beside it at the same relative paths).
         #[arg(short, long)]
         output: PathBuf,
-        /// How far a point may move (font units).
+        /// How far the outline may move (font units): every segment within this of the
+        /// original at equal parameters. On-curve points move at most this much; a handle
+        /// may move further (alone up to 9/4 of it: it pulls its cubic by at most 4/9 of
+        /// its own move).
         #[arg(long, default_value_t = 2.0)]
         tolerance: f64,
         /// The coordinates' grid (default 1 for a UFO: integer font units; for an SVG

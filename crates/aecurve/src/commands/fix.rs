@@ -168,7 +168,7 @@ fn summary(fixes: &[ContourFix], c: &FixCounts, (tolerance, grid): (f64, f64)) {
         pct(c.under_1_percent.1)
     );
     println!(
-        "  {} joins worse, {} cubics with more curvature extrema (the exact test); {} segments changed, no point moved more than {:.3} (tolerance {tolerance}, grid {grid})",
+        "  {} joins worse, {} cubics with more curvature extrema (the exact test); {} segments changed, no outline moved more than {:.3} (tolerance {tolerance}, grid {grid})",
         c.worse, c.gained_extrema, c.changed_segments, c.max_moved
     );
     println!(

@@ -1,8 +1,8 @@
 //! `aecurve fix`: a UFO source's smooth joins harmonized (the library's `harmonize`) and the
 //! UFO written back with the same structure: same glyphs, contours, points, kinds, names,
 //! identifiers, anchors and components; only off-curve coordinates move (and, with
-//! `--move-points`, on-curve points of smooth joins, along their handles' line), never
-//! further than the tolerance, on the grid.
+//! `--move-points`, on-curve points of smooth joins, along their handles' line), no
+//! outline further than the tolerance from the original, on the grid.
 //!
 //! A contour is taken as the designer drew it: its segments are read from the points in
 //! order (an open contour from its `move`, a closed one from its first on-curve point), and a
@@ -89,7 +89,7 @@ pub struct FixCounts {
     pub gained_extrema: usize,
     /// Segments changed.
     pub changed_segments: usize,
-    /// Largest distance a point moved.
+    /// How far the outline moved, the largest over the segments.
     pub max_moved: f64,
     /// Contours left alone (quadratic or unreadable).
     pub skipped_contours: usize,

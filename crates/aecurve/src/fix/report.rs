@@ -189,7 +189,7 @@ fn figure(f: &FixFigure, y_up: bool) -> String {
     format!(
         "<figure><div class=\"pair\"><div>{}<br>before</div><div>{}<br>after</div></div>\
          <figcaption><b>{}</b><br>{n} smooth joins between cubics: {u0} under a 1 % curvature \
-         jump before, {u1} after; no point moved more than {:.2}</figcaption></figure>\n",
+         jump before, {u1} after; no outline moved more than {:.2}</figcaption></figure>\n",
         picture(&f.before, None, &fr),
         picture(&f.after, Some(&f.before), &fr),
         esc(&f.name),

@@ -31,6 +31,8 @@ const CYCLE_STARTS: usize = 64;
 pub(super) struct Contour<'a> {
     /// The segments before the grid (the stage's input).
     pub input: &'a [Vec<Point>],
+    /// What the tolerance allows (from the repair's original).
+    pub reach: &'a super::Reach<'a>,
     /// Closed contour.
     pub closed: bool,
     /// Per join: harmonized and kept (smooth or G1).
@@ -51,7 +53,7 @@ pub(super) fn place(
 ) -> Vec<Vec<Point>> {
     let n = contour.input.len();
     let mut states: Vec<Vec<Vec<Point>>> = (0..n)
-        .map(|i| states_of(&contour.input[i], &target[i], opts))
+        .map(|i| states_of(contour, i, &target[i], opts))
         .collect();
     for round in 0..=STRIKE_ROUNDS {
         let pick = best_states(contour, &states, opts);
@@ -91,18 +93,30 @@ pub(super) fn place(
         .collect()
 }
 
-/// A cubic's states: its two handles at each of their candidates; the input first. A line
+/// A cubic's states: its two handles at each of their candidates, where the outline stays
+/// within the tolerance of the original ([`super::Reach::allows`]); the input first. A line
 /// or a cubic the sweep left alone has the input only.
-fn states_of(input: &[Point], target: &[Point], opts: &HarmonizeOptions) -> Vec<Vec<Point>> {
-    if input.len() != 4 || input == target {
+fn states_of(
+    contour: &Contour,
+    i: usize,
+    target: &[Point],
+    opts: &HarmonizeOptions,
+) -> Vec<Vec<Point>> {
+    let input = &contour.input[i];
+    if input.len() != 4 || input[..] == target[..] {
         return vec![input.to_vec()];
     }
-    let starts = handle_candidates(input[1], target[1], input[0], opts);
-    let ends = handle_candidates(input[2], target[2], input[3], opts);
-    let mut out = Vec::with_capacity(starts.len() * ends.len());
+    let (reach, original) = (contour.reach, &contour.reach.original[i]);
+    let radius = reach.handle_radius(i, input, true);
+    let starts = handle_candidates((input[1], target[1]), input[0], (original[1], radius), opts);
+    let ends = handle_candidates((input[2], target[2]), input[3], (original[2], radius), opts);
+    let mut out = vec![input.to_vec()];
     for &a in &starts {
         for &b in &ends {
-            out.push(vec![input[0], a, b, input[3]]);
+            let q = vec![input[0], a, b, input[3]];
+            if q != out[0] && reach.allows(i, &q) {
+                out.push(q);
+            }
         }
     }
     out
@@ -111,18 +125,19 @@ fn states_of(input: &[Point], target: &[Point], opts: &HarmonizeOptions) -> Vec<
 /// Where one handle may go: its input place first; without a grid the target and half way
 /// to it; on a grid the [`NEAR_TARGET`] grid points of the 5 × 5 around the target nearest
 /// the handle's tangent line (the line through its anchor and its input place), and the
-/// grid point half way nearest it; all within the tolerance of the input place.
+/// grid point half way nearest it; all within `radius` of the original place (the most a
+/// handle alone may move: the cubic's states are checked whole after).
 fn handle_candidates(
-    input: Point,
-    target: Point,
+    (input, target): (Point, Point),
     anchor: Point,
+    (original, radius): (Point, f64),
     opts: &HarmonizeOptions,
 ) -> Vec<Point> {
     let mut out = vec![input];
     if target == input {
         return out;
     }
-    let within = |q: Point| (q - input).hypot() <= opts.tolerance;
+    let within = |q: Point| (q - original).hypot() <= radius;
     let half = input + (target - input) * 0.5;
     if opts.grid <= 0.0 {
         out.extend([target, half].into_iter().filter(|q| within(*q)));
@@ -381,16 +396,25 @@ mod tests {
                 .map(|(&(j, a), &s)| (if s { j } else { f64::INFINITY }, a))
                 .collect();
             let none = vec![Some((0, false)); 3];
+            let reach = super::super::Reach {
+                original: &segs,
+                tolerance: opts.tolerance,
+            };
             let c = Contour {
                 input: &segs,
+                reach: &reach,
                 closed,
                 smooth: &smooth,
                 guard: &guard,
                 extrema_before: &none,
             };
             let st: Vec<Vec<Vec<Point>>> = (0..3)
-                .map(|i| states_of(&segs[i], &target[i], &opts))
+                .map(|i| states_of(&c, i, &target[i], &opts))
                 .collect();
+            // Every state keeps its cubic's outline within the tolerance.
+            assert!(st.iter().enumerate().all(|(i, s)| s
+                .iter()
+                .all(|q| super::super::outline_move(&segs[i], q) <= opts.tolerance)));
             assert!(
                 st.iter().all(|s| s.len() > 4),
                 "{:?}",
