@@ -34,6 +34,8 @@
 //!
 //! The result reports its inflections and curvature extrema ([`count_events`]).
 
+pub mod contour;
+
 use crate::approx::{
     fit_inflection_cubic_from, fit_rational_cubic, ApproxOptions, RationalCubicFit,
 };

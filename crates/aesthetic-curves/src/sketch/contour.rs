@@ -1,0 +1,582 @@
+//! Pen strokes as contours: corners, straight runs and closed loops.
+//!
+//! A designer's stroke is not always one fair curve: an L has a corner, a rectangle four,
+//! a straight stroke none and no curvature, a loop ends where it began. [`fit_contour`]
+//! takes the stroke in stages, each a function of its own:
+//!
+//! 1. **open or closed** ([`closes`]): as the caller says, else closed when the stroke ends
+//!    near its start (within 3 tolerances or 5 % of its size) after going around (its
+//!    length at least twice its size); an overshoot past the start is trimmed;
+//! 2. **corners** ([`corners`]): at each point, the directions of the stroke over the
+//!    stretches of arc length `w` before and after it (least-squares lines: the noise of a
+//!    hand averages out over a few dozen points) turn by θ_w. A corner is a turn above
+//!    [`ContourOptions::corner_angle`] that happens in a short stretch: over windows a third
+//!    as long the turn is nearly as large (θ_w/3 ≥ [`SHORT_SHARE`] θ_w), over windows twice
+//!    as long hardly larger (θ_2w < [`CONCENTRATION`] θ_w); on an arc of radius R,
+//!    θ_w ≈ w / R at every scale. `w` is [`WINDOW_TOLERANCES`] tolerances (at most a sixth
+//!    of the stroke). The largest turns are kept first, none within `w` of another, each
+//!    then put where it splits the stroke into the two straightest stretches around it;
+//! 3. **runs**: the points from one corner to the next (both included, so the runs meet at
+//!    the corner exactly); a closed contour with corners starts at its first corner, one
+//!    without is one run from its first point around to it again;
+//! 4. **each run**: a line where every point lies within the tolerance of the chord (a
+//!    straight stroke is the limit of every LAC: zero curvature), else the G2 sketch of
+//!    [`super::fit_sketch`].
+//!
+//! Known limits: a straight stretch inside a curved run is fitted with the run's pieces,
+//! not as a line piece with G2 joins; the seam of a closed loop without corners is G0
+//! (both ends at the same point), its tangent and curvature jumps reported in [`Seam`].
+
+use super::{bbox_diagonal, default_tolerance, fit_sketch, Sketch, SketchOptions};
+use crate::error::{Error, Result};
+use kurbo::{Point, Vec2};
+
+/// Window length of the corner test, in tolerances.
+pub const WINDOW_TOLERANCES: f64 = 6.0;
+
+/// A corner's turn over windows of `2w` is less than this times its turn over `w` (on a
+/// smooth arc it is about twice).
+pub const CONCENTRATION: f64 = 1.35;
+
+/// A corner's turn over windows of `w / 3` is at least this share of its turn over `w` (on
+/// a smooth arc about a third).
+pub const SHORT_SHARE: f64 = 0.7;
+
+/// What [`fit_contour`] may do.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContourOptions {
+    /// Largest distance from an input point to the result; `None`: [`default_tolerance`].
+    pub tolerance: Option<f64>,
+    /// Closed or open; `None`: decided from the stroke ([`closes`]).
+    pub closed: Option<bool>,
+    /// The least turn of a corner (radians).
+    pub corner_angle: f64,
+}
+
+impl Default for ContourOptions {
+    fn default() -> Self {
+        ContourOptions {
+            tolerance: None,
+            closed: None,
+            corner_angle: 35f64.to_radians(),
+        }
+    }
+}
+
+/// One run of a contour: a line, or a G2 curve of LAC pieces.
+#[derive(Clone, Debug)]
+pub enum Run {
+    /// A straight run from `start` to `end` (zero curvature).
+    Line {
+        /// The first point.
+        start: Point,
+        /// The last point.
+        end: Point,
+    },
+    /// A fair run ([`super::fit_sketch`]).
+    Curve(Box<Sketch>),
+}
+
+impl Run {
+    /// `"line"` or `"curve"` (the protocol's names).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Run::Line { .. } => "line",
+            Run::Curve(_) => "curve",
+        }
+    }
+
+    /// Its first and last points.
+    pub fn ends(&self) -> (Point, Point) {
+        match self {
+            Run::Line { start, end } => (*start, *end),
+            Run::Curve(s) => {
+                let j = s.joints();
+                (j[0], j[j.len() - 1])
+            }
+        }
+    }
+
+    /// Unit tangents at its start and end (curve order).
+    fn tangents(&self) -> (Vec2, Vec2) {
+        match self {
+            Run::Line { start, end } => {
+                let d = unit(*end - *start);
+                (d, d)
+            }
+            Run::Curve(s) => {
+                let (first, last) = (
+                    &s.pieces[0].rational,
+                    &s.pieces[s.pieces.len() - 1].rational,
+                );
+                let (p, q) = (first.points(), last.points());
+                (unit(p[1] - p[0]), unit(q[q.len() - 1] - q[q.len() - 2]))
+            }
+        }
+    }
+
+    /// Signed curvatures at its start and end.
+    fn end_curvatures(&self) -> (f64, f64) {
+        match self {
+            Run::Line { .. } => (0.0, 0.0),
+            Run::Curve(s) => (
+                s.pieces[0].end_curvatures.0,
+                s.pieces[s.pieces.len() - 1].end_curvatures.1,
+            ),
+        }
+    }
+}
+
+/// A corner of the contour: where one run ends and the next begins.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Corner {
+    /// The input point it sits on.
+    pub index: usize,
+    /// Its place.
+    pub point: Point,
+    /// How far the stroke turns there (radians, the window test's θ_w).
+    pub angle: f64,
+}
+
+/// The seam of a closed contour without corners: where the one run ends at its start.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Seam {
+    /// The angle between the tangents there (radians).
+    pub angle: f64,
+    /// The relative curvature jump there.
+    pub curvature_jump: f64,
+}
+
+/// The result of [`fit_contour`].
+#[derive(Clone, Debug)]
+pub struct SketchContour {
+    /// The runs in order (for a closed contour the last ends where the first starts).
+    pub runs: Vec<Run>,
+    /// The corners in order: `corners[k]` between `runs[k]` and `runs[k + 1]` (closed:
+    /// the last between the last run and the first).
+    pub corners: Vec<Corner>,
+    /// Closed.
+    pub closed: bool,
+    /// The seam of a closed contour without corners.
+    pub seam: Option<Seam>,
+    /// The tolerance used.
+    pub tolerance: f64,
+    /// Largest distance from an input point (of the stroke as kept: an overshoot past the
+    /// start of a closed one trimmed) to the result.
+    pub max_deviation: f64,
+    /// Input points trimmed from the end of a closed stroke (its overshoot).
+    pub trimmed: usize,
+}
+
+/// A pen stroke as a contour of runs joined at corners (see the module documentation).
+pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchContour> {
+    if points.len() < 2 {
+        return Err(Error::invalid("points", "a stroke needs at least 2 points"));
+    }
+    if points.iter().any(|q| !q.is_finite()) {
+        return Err(Error::invalid("points", "must be finite"));
+    }
+    let size = bbox_diagonal(points);
+    if !size.is_finite() {
+        return Err(Error::invalid(
+            "points",
+            "the coordinates are too large: their extent overflows f64",
+        ));
+    }
+    if size == 0.0 {
+        return Err(Error::Degenerate(format!(
+            "all {} points coincide: no curve runs through them",
+            points.len()
+        )));
+    }
+    if !(opts.corner_angle > 0.0 && opts.corner_angle < std::f64::consts::PI) {
+        return Err(Error::invalid("corner_angle", "must lie in (0, π) radians"));
+    }
+    let tolerance = match opts.tolerance {
+        Some(t) => {
+            Error::check_positive("tolerance", t)?;
+            t
+        }
+        None if points.len() >= 4 => default_tolerance(points),
+        None => 0.005 * size,
+    };
+    let (closed, kept) = closes(points, tolerance, opts.closed);
+    let stroke = &points[..kept];
+    let corners = corners(stroke, closed, tolerance, opts.corner_angle);
+    let runs = runs_of(stroke, closed, &corners);
+    let fitted: Vec<Run> = runs
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            fit_run(r, tolerance).map_err(|e| match e {
+                Error::NoSegment(m) => Error::NoSegment(format!("run {k}: {m}")),
+                Error::NoConvergence(m) => Error::NoConvergence(format!("run {k}: {m}")),
+                other => other,
+            })
+        })
+        .collect::<Result<_>>()?;
+    let max_deviation = runs
+        .iter()
+        .zip(&fitted)
+        .map(|(r, f)| deviation(r, f))
+        .fold(0.0, f64::max);
+    let seam = (closed && corners.is_empty()).then(|| seam(&fitted[0]));
+    // corners[k] between runs[k] and runs[k + 1]: a closed contour's runs start at its
+    // first corner, so that one comes last.
+    let mut corners = corners;
+    if closed && !corners.is_empty() {
+        corners.rotate_left(1);
+    }
+    Ok(SketchContour {
+        runs: fitted,
+        corners: corners
+            .iter()
+            .map(|&(index, angle)| Corner {
+                index,
+                point: stroke[index],
+                angle,
+            })
+            .collect(),
+        closed,
+        seam,
+        tolerance,
+        max_deviation,
+        trimmed: points.len() - kept,
+    })
+}
+
+/// Whether the stroke is closed (`given`, else: it ends within 3 tolerances or 5 % of its
+/// size of its start, and is at least twice as long as its size), and how many of its
+/// points to keep: a closed stroke's overshoot past its start (the points after the one
+/// nearest the start in its last tenth) is trimmed, and a last point on the first dropped.
+pub fn closes(points: &[Point], tolerance: f64, given: Option<bool>) -> (bool, usize) {
+    let n = points.len();
+    let size = bbox_diagonal(points);
+    let length: f64 = points.windows(2).map(|w| (w[1] - w[0]).hypot()).sum();
+    let near = (3.0 * tolerance).max(0.05 * size);
+    let start = points[0];
+    // The point of the last tenth nearest the start: where the pen came back.
+    let tail = (n - n / 10).min(n - 1).max(1);
+    let back = (tail..n)
+        .min_by(|&a, &b| {
+            (points[a] - start)
+                .hypot()
+                .total_cmp(&(points[b] - start).hypot())
+        })
+        .unwrap_or(n - 1);
+    let auto = n >= 8 && (points[back] - start).hypot() <= near && length >= 2.0 * size;
+    let closed = given.unwrap_or(auto);
+    if !closed || n < 4 {
+        return (closed, n);
+    }
+    let mut keep = if auto { back + 1 } else { n };
+    while keep > 3 && points[keep - 1] == start {
+        keep -= 1;
+    }
+    (true, keep)
+}
+
+/// The corners of a stroke: (index, turn) in stroke order (see the module documentation).
+pub fn corners(
+    points: &[Point],
+    closed: bool,
+    tolerance: f64,
+    min_angle: f64,
+) -> Vec<(usize, f64)> {
+    let n = points.len();
+    if n < 5 {
+        return Vec::new();
+    }
+    let arc = ArcLength::of(points, closed);
+    let w = (WINDOW_TOLERANCES * tolerance).min(arc.total / 6.0);
+    let mut found: Vec<(usize, f64)> = (0..n)
+        .filter_map(|i| {
+            // Whole windows: a turn nearer an open stroke's end than w is its end's own
+            // business (a pen's flick), not a corner between two runs.
+            let near = arc.turn(points, i, w, 0.9)?;
+            (near >= min_angle && arc.concentrated(points, i, w, near)).then_some((i, near))
+        })
+        .collect();
+    found.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let mut kept: Vec<(usize, f64)> = Vec::new();
+    for (i, a) in found {
+        if kept.iter().all(|&(k, _)| arc.between(i, k) > w) {
+            kept.push((i, a));
+        }
+    }
+    let mut out: Vec<(usize, f64)> = kept
+        .into_iter()
+        .map(|(i, a)| (arc.apex(points, i, w), a))
+        .collect();
+    out.sort_by_key(|c| c.0);
+    out.dedup_by_key(|c| c.0);
+    out
+}
+
+/// Arc length along a stroke (closed: around, the closing step included).
+struct ArcLength {
+    s: Vec<f64>,
+    total: f64,
+    closed: bool,
+}
+
+impl ArcLength {
+    fn of(points: &[Point], closed: bool) -> ArcLength {
+        let mut s = vec![0.0; points.len()];
+        for i in 1..points.len() {
+            s[i] = s[i - 1] + (points[i] - points[i - 1]).hypot();
+        }
+        let last = *s.last().unwrap_or(&0.0);
+        let total = if closed {
+            last + (points[0] - points[points.len() - 1]).hypot()
+        } else {
+            last
+        };
+        ArcLength { s, total, closed }
+    }
+
+    /// Arc length between points `i` and `k` (closed: the shorter way around).
+    fn between(&self, i: usize, k: usize) -> f64 {
+        let d = (self.s[i] - self.s[k]).abs();
+        if self.closed {
+            d.min(self.total - d)
+        } else {
+            d
+        }
+    }
+
+    /// The points within arc length `w` before (`dir` -1) or after (+1) point `i`, `i`
+    /// included, in stroke order (at least three); None where the stroke ends (or comes
+    /// round) before `fill` of `w`.
+    fn window(&self, i: usize, w: f64, dir: i64, fill: f64) -> Option<Vec<usize>> {
+        let n = self.s.len() as i64;
+        let mut out = vec![i];
+        let mut k = i as i64;
+        let mut run = 0.0;
+        let mut ended = false;
+        loop {
+            let next = k + dir;
+            let j = if self.closed {
+                next.rem_euclid(n)
+            } else if next < 0 || next >= n {
+                ended = true;
+                break;
+            } else {
+                next
+            };
+            if j as usize == i {
+                ended = true;
+                break;
+            }
+            // At least three points however sparse the stroke (a line needs them).
+            let step = self.between(k as usize, j as usize);
+            if run + step > w && out.len() >= 3 {
+                break;
+            }
+            run += step;
+            out.push(j as usize);
+            k = j;
+        }
+        if (ended && run < fill * w) || out.len() < 3 {
+            return None;
+        }
+        if dir < 0 {
+            out.reverse();
+        }
+        Some(out)
+    }
+
+    /// Whether the turn `near` over windows `w` at point `i` happens in a short stretch:
+    /// over windows a third as long it is nearly as large (on an arc a third), and over
+    /// windows twice as long hardly larger (on an arc twice); a window that does not fit
+    /// (the stroke's end, too few points) leaves the decision to the others.
+    fn concentrated(&self, points: &[Point], i: usize, w: f64, near: f64) -> bool {
+        let short = self
+            .turn(points, i, w / 3.0, 0.9)
+            .is_none_or(|t| t >= SHORT_SHARE * near);
+        let long = self
+            .turn(points, i, 2.0 * w, 0.5)
+            .is_none_or(|t| t < CONCENTRATION * near);
+        short && long
+    }
+
+    /// Where exactly the corner found at `i` is: the stretch of the stroke within `1.5 w`
+    /// of it split into the two straightest pieces (least sum of the squared distances
+    /// from their least-squares lines, each piece at least three points).
+    fn apex(&self, points: &[Point], i: usize, w: f64) -> usize {
+        let (Some(before), Some(after)) = (
+            self.window(i, 1.5 * w, -1, 0.0),
+            self.window(i, 1.5 * w, 1, 0.0),
+        ) else {
+            return i;
+        };
+        let stretch: Vec<usize> = before.iter().chain(&after[1..]).copied().collect();
+        let m = stretch.len();
+        (2..m - 2)
+            .map(|k| {
+                let cost =
+                    line_residual(points, &stretch[..=k]) + line_residual(points, &stretch[k..]);
+                (cost, stretch[k])
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0))
+            .map_or(i, |x| x.1)
+    }
+
+    /// The turn at point `i` between the least-squares directions of the stretches of
+    /// length `w` before and after it (each at least `fill` of `w` long: near an open
+    /// stroke's ends they are cut short); None where one does not fit.
+    fn turn(&self, points: &[Point], i: usize, w: f64, fill: f64) -> Option<f64> {
+        let (a, b) = (self.window(i, w, -1, fill)?, self.window(i, w, 1, fill)?);
+        // A stretch that goes back and forth (samples out of order, a scribble) has no
+        // direction to turn from.
+        let goes = |idx: &[usize]| {
+            let (first, last) = (idx[0], idx[idx.len() - 1]);
+            let along: f64 = idx.windows(2).map(|p| self.between(p[0], p[1])).sum();
+            (points[last] - points[first]).hypot() >= 0.5 * along
+        };
+        if !goes(&a) || !goes(&b) {
+            return None;
+        }
+        let before = direction(points, &a)?;
+        let after = direction(points, &b)?;
+        Some(before.cross(after).atan2(before.dot(after)).abs())
+    }
+}
+
+/// The scatter of the points `idx` about their centroid: (sxx, sxy, syy).
+fn scatter(points: &[Point], idx: &[usize]) -> (f64, f64, f64) {
+    let m = idx.len() as f64;
+    let c = idx.iter().fold(Vec2::ZERO, |a, &i| a + points[i].to_vec2()) / m;
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for &i in idx {
+        let d = points[i].to_vec2() - c;
+        sxx += d.x * d.x;
+        sxy += d.x * d.y;
+        syy += d.y * d.y;
+    }
+    (sxx, sxy, syy)
+}
+
+/// The sum of the squared distances of the points `idx` from their least-squares line (the
+/// scatter's smaller eigenvalue).
+fn line_residual(points: &[Point], idx: &[usize]) -> f64 {
+    let (sxx, sxy, syy) = scatter(points, idx);
+    let half = 0.5 * (sxx + syy);
+    let root = (0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy).sqrt();
+    (half - root).max(0.0)
+}
+
+/// The least-squares direction of the points `idx` (the principal axis of their scatter),
+/// pointing from the first towards the last.
+fn direction(points: &[Point], idx: &[usize]) -> Option<Vec2> {
+    let (sxx, sxy, syy) = scatter(points, idx);
+    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    let axis = Vec2::new(angle.cos(), angle.sin());
+    let travel = points[idx[idx.len() - 1]] - points[idx[0]];
+    let dot = axis.dot(travel);
+    if dot == 0.0 || !dot.is_finite() {
+        return None;
+    }
+    Some(if dot > 0.0 { axis } else { -axis })
+}
+
+/// The runs' points: from corner to corner, both included (closed with corners: from the
+/// first corner around to it; closed without: from the first point around to it).
+fn runs_of(points: &[Point], closed: bool, corners: &[(usize, f64)]) -> Vec<Vec<Point>> {
+    let n = points.len();
+    let cuts: Vec<usize> = corners.iter().map(|c| c.0).collect();
+    if !closed {
+        let mut bounds = vec![0];
+        bounds.extend(cuts.iter().copied().filter(|&c| c > 0 && c < n - 1));
+        bounds.push(n - 1);
+        return bounds
+            .windows(2)
+            .map(|w| points[w[0]..=w[1]].to_vec())
+            .collect();
+    }
+    if cuts.is_empty() {
+        let mut run = points.to_vec();
+        run.push(points[0]);
+        return vec![run];
+    }
+    (0..cuts.len())
+        .map(|k| {
+            let (a, b) = (cuts[k], cuts[(k + 1) % cuts.len()]);
+            let len = if b > a { b - a } else { b + n - a };
+            (0..=len).map(|j| points[(a + j) % n]).collect()
+        })
+        .collect()
+}
+
+/// One run fitted: a line where every point lies within the tolerance of its chord, else
+/// the G2 sketch (a straight run it cannot fit is a line too).
+fn fit_run(points: &[Point], tolerance: f64) -> Result<Run> {
+    let (start, end) = (points[0], points[points.len() - 1]);
+    let line = Run::Line { start, end };
+    if points.len() < 4 || chord_deviation(points) <= tolerance {
+        return Ok(line);
+    }
+    match fit_sketch(points, &SketchOptions::with_tolerance(tolerance)) {
+        Ok(s) => Ok(Run::Curve(Box::new(s))),
+        Err(Error::Degenerate(m)) => Err(Error::Degenerate(format!(
+            "a run of {} points that is not straight within the tolerance: {m}",
+            points.len()
+        ))),
+        Err(e) => Err(e),
+    }
+}
+
+/// The largest distance of the points from the segment between the first and the last.
+fn chord_deviation(points: &[Point]) -> f64 {
+    let (a, b) = (points[0], points[points.len() - 1]);
+    points
+        .iter()
+        .map(|&q| segment_distance(q, a, b))
+        .fold(0.0, f64::max)
+}
+
+fn segment_distance(q: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let l2 = ab.hypot2();
+    let t = if l2 > 0.0 {
+        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (q - (a + ab * t)).hypot()
+}
+
+/// A run's largest distance from its points.
+fn deviation(points: &[Point], run: &Run) -> f64 {
+    match run {
+        Run::Line { start, end } => points
+            .iter()
+            .map(|&q| segment_distance(q, *start, *end))
+            .fold(0.0, f64::max),
+        Run::Curve(s) => s.max_deviation,
+    }
+}
+
+/// The seam of a closed run: its end against its start.
+fn seam(run: &Run) -> Seam {
+    let (t0, t1) = run.tangents();
+    let (k0, k1) = run.end_curvatures();
+    let scale = k0.abs().max(k1.abs());
+    Seam {
+        angle: t1.cross(t0).atan2(t1.dot(t0)).abs(),
+        curvature_jump: if scale > 0.0 {
+            (k0 - k1).abs() / scale
+        } else {
+            0.0
+        },
+    }
+}
+
+fn unit(v: Vec2) -> Vec2 {
+    let l = v.hypot();
+    if l > 0.0 {
+        v / l
+    } else {
+        v
+    }
+}

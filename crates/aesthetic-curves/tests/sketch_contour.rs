@@ -1,0 +1,367 @@
+//! Pen strokes as contours (`sketch::contour`): straight strokes, corners, closed loops,
+//! drawn with a fixed-seed hand jitter of ±1.5 px at the default tolerance; and the strokes
+//! without corners (the jittery S, arc, spiral and wave, the Prius key lines) found to
+//! have none.
+
+use aesthetic_curves::sketch::contour::{fit_contour, ContourOptions, Run, SketchContour};
+use aesthetic_curves::{Point, Vec2};
+use std::f64::consts::PI;
+
+fn p(x: f64, y: f64) -> Point {
+    Point::new(x, y)
+}
+
+/// A hand's jitter: uniform in ±`amp` per coordinate, fixed seed.
+struct Jitter(u64);
+
+impl Jitter {
+    fn next(&mut self, amp: f64) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0) * amp
+    }
+
+    fn apply(&mut self, pts: &[Point], amp: f64) -> Vec<Point> {
+        pts.iter()
+            .map(|q| p(q.x + self.next(amp), q.y + self.next(amp)))
+            .collect()
+    }
+}
+
+/// Points every `step` along the polyline through `corners` (as a pen samples a stroke).
+fn along(corners: &[Point], step: f64) -> Vec<Point> {
+    let mut out = vec![corners[0]];
+    for w in corners.windows(2) {
+        let n = ((w[1] - w[0]).hypot() / step).ceil().max(1.0) as usize;
+        for k in 1..=n {
+            out.push(w[0] + (w[1] - w[0]) * (k as f64 / n as f64));
+        }
+    }
+    out
+}
+
+fn fit(pts: &[Point]) -> SketchContour {
+    fit_contour(pts, &ContourOptions::default()).unwrap()
+}
+
+fn kinds(c: &SketchContour) -> Vec<&'static str> {
+    c.runs.iter().map(Run::kind).collect()
+}
+
+fn assert_within_tolerance(name: &str, c: &SketchContour) {
+    assert!(
+        c.max_deviation <= c.tolerance,
+        "{name}: deviation {} over the tolerance {}",
+        c.max_deviation,
+        c.tolerance
+    );
+}
+
+/// The runs meet: each ends exactly where the next starts (closed: the last where the
+/// first starts), at the corner between them.
+fn assert_connected(name: &str, c: &SketchContour) {
+    let n = c.runs.len();
+    let joins = if c.closed { n } else { n - 1 };
+    for k in 0..joins {
+        let (a, b) = (c.runs[k].ends().1, c.runs[(k + 1) % n].ends().0);
+        assert_eq!(
+            a,
+            b,
+            "{name}: run {k} ends at {a:?}, run {} starts at {b:?}",
+            k + 1
+        );
+        if !c.corners.is_empty() {
+            assert_eq!(a, c.corners[k].point, "{name}: corner {k}");
+        }
+    }
+}
+
+#[test]
+fn a_straight_stroke_is_one_line() {
+    let clean = along(&[p(20.0, 30.0), p(420.0, 180.0)], 2.0);
+    let jittery = Jitter(1).apply(&clean, 1.5);
+    for (name, pts) in [("clean", &clean), ("jittery", &jittery)] {
+        let c = fit(pts);
+        assert_eq!(kinds(&c), ["line"], "{name}");
+        assert!(c.corners.is_empty() && !c.closed, "{name}");
+        assert_within_tolerance(name, &c);
+    }
+    // The tolerance follows the jitter: at most about twice its amplitude... not asked of
+    // the contour's default here (item 3 of issue 35), only that the line meets it.
+}
+
+#[test]
+fn an_l_is_two_lines_and_one_corner() {
+    let clean = along(&[p(50.0, 50.0), p(50.0, 400.0), p(400.0, 400.0)], 2.0);
+    let pts = Jitter(2).apply(&clean, 1.5);
+    let c = fit(&pts);
+    assert_eq!(kinds(&c), ["line", "line"]);
+    assert_eq!(c.corners.len(), 1);
+    let k = c.corners[0];
+    assert!((k.point - p(50.0, 400.0)).hypot() < 6.0, "{k:?}");
+    assert!((k.angle.to_degrees() - 90.0).abs() < 10.0, "{k:?}");
+    assert!(!c.closed);
+    assert_connected("L", &c);
+    assert_within_tolerance("L", &c);
+}
+
+#[test]
+fn a_sharp_v_and_a_zigzag_have_their_corners() {
+    let v = along(&[p(0.0, 0.0), p(150.0, 400.0), p(300.0, 0.0)], 2.0);
+    let z = along(
+        &[p(0.0, 0.0), p(100.0, 200.0), p(200.0, 0.0), p(300.0, 200.0)],
+        2.0,
+    );
+    for (name, clean, want) in [("V", &v, 1), ("zigzag", &z, 2)] {
+        let c = fit(&Jitter(3).apply(clean, 1.5));
+        assert_eq!(c.corners.len(), want, "{name}: {:?}", c.corners);
+        assert!(kinds(&c).iter().all(|k| *k == "line"), "{name}");
+        assert_connected(name, &c);
+        assert_within_tolerance(name, &c);
+    }
+}
+
+#[test]
+fn a_square_and_a_triangle_in_one_stroke_come_back_closed_with_their_corners() {
+    // Started in the middle of a side, ended back there with a small overshoot.
+    let square = along(
+        &[
+            p(250.0, 50.0),
+            p(450.0, 50.0),
+            p(450.0, 450.0),
+            p(50.0, 450.0),
+            p(50.0, 50.0),
+            p(262.0, 50.0),
+        ],
+        2.0,
+    );
+    let triangle = along(
+        &[
+            p(100.0, 400.0),
+            p(250.0, 100.0),
+            p(400.0, 400.0),
+            p(100.0, 400.0),
+        ],
+        2.0,
+    );
+    for (name, clean, want) in [("square", &square, 4), ("triangle", &triangle, 3)] {
+        let c = fit(&Jitter(4).apply(clean, 1.5));
+        assert!(c.closed, "{name}");
+        assert_eq!(c.corners.len(), want, "{name}: {:?}", c.corners);
+        assert_eq!(c.runs.len(), want, "{name}");
+        assert!(
+            kinds(&c).iter().all(|k| *k == "line"),
+            "{name}: {:?}",
+            kinds(&c)
+        );
+        assert_connected(name, &c);
+        assert_within_tolerance(name, &c);
+    }
+}
+
+#[test]
+fn a_circle_in_one_stroke_comes_back_closed_without_corners() {
+    let clean: Vec<Point> = (0..=420)
+        .map(|i| {
+            // A little past the start, as a hand overshoots.
+            let a = 2.0 * PI * i as f64 / 400.0;
+            p(250.0 + 200.0 * a.cos(), 250.0 + 200.0 * a.sin())
+        })
+        .collect();
+    let c = fit(&Jitter(5).apply(&clean, 1.5));
+    assert!(c.closed && c.corners.is_empty(), "{:?}", c.corners);
+    assert!(c.trimmed > 0, "the overshoot is trimmed");
+    assert_eq!(kinds(&c), ["curve"]);
+    let Run::Curve(s) = &c.runs[0] else {
+        unreachable!()
+    };
+    assert!(
+        s.g2 && s.all_monotone && s.pieces.len() <= 8,
+        "{} pieces",
+        s.pieces.len()
+    );
+    assert_connected("circle", &c);
+    assert_within_tolerance("circle", &c);
+    assert!(c.seam.is_some());
+}
+
+/// Strokes that are one fair curve have no corner: the jittery strokes of the sketch tests
+/// and the measured Prius key lines.
+#[test]
+fn fair_strokes_have_no_corners() {
+    let mut j = Jitter(7);
+    let shapes: Vec<(&str, usize, Box<dyn Fn(f64) -> Point>)> = vec![
+        (
+            "wave",
+            140,
+            Box::new(|t| p(50.0 + 400.0 * t, 250.0 + 120.0 * (3.0 * PI * t).sin())),
+        ),
+        (
+            "s",
+            120,
+            Box::new(|t| p(250.0 + 150.0 * (2.0 * PI * t).sin(), 50.0 + 400.0 * t)),
+        ),
+        (
+            "arc",
+            130,
+            Box::new(|t| {
+                let a = PI * (0.1 + 0.8 * t);
+                p(250.0 + 200.0 * a.cos(), 60.0 + 200.0 * a.sin())
+            }),
+        ),
+        (
+            "spiral",
+            160,
+            Box::new(|t| {
+                let a = 3.5 * PI * t;
+                let r = 40.0 + 160.0 * t;
+                p(250.0 + r * a.cos(), 250.0 + r * a.sin())
+            }),
+        ),
+    ];
+    for (name, n, f) in &shapes {
+        let clean: Vec<Point> = (0..*n).map(|i| f(i as f64 / (*n - 1) as f64)).collect();
+        let c = fit(&j.apply(&clean, 1.5));
+        assert!(c.corners.is_empty(), "{name}: {:?}", c.corners);
+        assert!(!c.closed, "{name}");
+        assert_eq!(kinds(&c), ["curve"], "{name}");
+        assert_within_tolerance(name, &c);
+    }
+    let strokes: serde_json::Value =
+        serde_json::from_str(include_str!("data/editor-strokes.json")).unwrap();
+    for (name, pts) in strokes["strokes"].as_object().unwrap() {
+        let pts: Vec<Point> = pts
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|q| p(q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+            .collect();
+        let c = fit(&pts);
+        assert!(c.corners.is_empty(), "editor {name}: {:?}", c.corners);
+        assert_eq!(kinds(&c), ["curve"], "editor {name}");
+    }
+    for (i, line) in aesthetic_curves_data::PRIUS.iter().enumerate() {
+        let pts: Vec<Point> = line.points().into_iter().map(|[x, y]| p(x, y)).collect();
+        let opts = ContourOptions {
+            tolerance: Some(0.3),
+            ..Default::default()
+        };
+        let c = fit_contour(&pts, &opts).unwrap();
+        assert!(c.corners.is_empty(), "prius {}: {:?}", i + 1, c.corners);
+        assert!(!c.closed, "prius {}", i + 1);
+    }
+}
+
+/// A similarity (rotation, scale 1000, a far translation) and the reversal of the stroke
+/// give the same corners (moved, or in reverse order) and runs of the same kinds.
+#[test]
+fn corners_are_similarity_and_reversal_invariant() {
+    let clean = along(
+        &[
+            p(50.0, 50.0),
+            p(50.0, 400.0),
+            p(400.0, 400.0),
+            p(300.0, 100.0),
+        ],
+        2.0,
+    );
+    let pts = Jitter(8).apply(&clean, 1.5);
+    let c = fit(&pts);
+    assert_eq!(c.corners.len(), 2);
+    let (rot, scale, shift) = (0.7f64, 1000.0, Vec2::new(3.0e7, -1.0e7));
+    let moved: Vec<Point> = pts
+        .iter()
+        .map(|q| {
+            let (s, co) = rot.sin_cos();
+            p((co * q.x - s * q.y) * scale, (s * q.x + co * q.y) * scale) + shift
+        })
+        .collect();
+    let m = fit_contour(
+        &moved,
+        &ContourOptions {
+            tolerance: Some(c.tolerance * scale),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let idx = |c: &SketchContour| c.corners.iter().map(|k| k.index).collect::<Vec<_>>();
+    assert_eq!(idx(&m), idx(&c));
+    assert_eq!(kinds(&m), kinds(&c));
+    let rev: Vec<Point> = pts.iter().rev().copied().collect();
+    let r = fit_contour(
+        &rev,
+        &ContourOptions {
+            tolerance: Some(c.tolerance),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let n = pts.len() - 1;
+    let mut back: Vec<usize> = idx(&r).iter().map(|i| n - i).collect();
+    back.sort();
+    // The same corners within a sample or two (the window test's maximum on noise).
+    assert_eq!(back.len(), 2);
+    for (a, b) in back.iter().zip(idx(&c)) {
+        assert!(a.abs_diff(b) <= 2, "{back:?} vs {:?}", idx(&c));
+    }
+}
+
+#[test]
+fn bad_strokes_get_typed_errors() {
+    let o = ContourOptions::default();
+    assert!(fit_contour(&[p(0.0, 0.0)], &o).is_err());
+    assert!(fit_contour(&[p(0.0, 0.0), p(f64::NAN, 1.0)], &o).is_err());
+    let same = vec![p(3.0, 3.0); 10];
+    assert_eq!(fit_contour(&same, &o).unwrap_err().kind(), "degenerate");
+    let bad = ContourOptions {
+        tolerance: Some(-1.0),
+        ..Default::default()
+    };
+    assert!(fit_contour(&[p(0.0, 0.0), p(1.0, 1.0)], &bad).is_err());
+    // Two points: a line.
+    let c = fit_contour(&[p(0.0, 0.0), p(10.0, 5.0)], &o).unwrap();
+    assert_eq!(kinds(&c), ["line"]);
+}
+
+/// A rectangle with rounded corners (radius 40) drawn in one stroke: closed, and its
+/// rounded corners are not corners (a fair curve follows them).
+#[test]
+fn a_rounded_rectangle_has_no_corners() {
+    let mut pts = Vec::new();
+    let (x0, y0, x1, y1, r) = (50.0, 50.0, 450.0, 350.0, 40.0);
+    let centres = [
+        (x1 - r, y0 + r),
+        (x1 - r, y1 - r),
+        (x0 + r, y1 - r),
+        (x0 + r, y0 + r),
+    ];
+    for (k, (cx, cy)) in centres.iter().enumerate() {
+        let a0 = -PI / 2.0 + k as f64 * PI / 2.0;
+        for i in 0..=20 {
+            let a = a0 + PI / 2.0 * i as f64 / 20.0;
+            pts.push(p(cx + r * a.cos(), cy + r * a.sin()));
+        }
+    }
+    pts.push(pts[0]);
+    let clean = along(&pts, 2.0);
+    let t0 = std::time::Instant::now();
+    let c = fit(&Jitter(9).apply(&clean, 1.5));
+    let pieces: Vec<usize> = c
+        .runs
+        .iter()
+        .map(|r| match r {
+            Run::Curve(s) => s.pieces.len(),
+            Run::Line { .. } => 1,
+        })
+        .collect();
+    println!(
+        "rounded rectangle: {:?} {pieces:?} in {:?}, seam {:?}",
+        kinds(&c),
+        t0.elapsed(),
+        c.seam
+    );
+    assert!(c.closed && c.corners.is_empty(), "{:?}", c.corners);
+    assert_within_tolerance("rounded rectangle", &c);
+}
