@@ -192,7 +192,8 @@ fn a_circle_in_one_stroke_comes_back_closed_without_corners() {
 #[test]
 fn fair_strokes_have_no_corners() {
     let mut j = Jitter(7);
-    let shapes: Vec<(&str, usize, Box<dyn Fn(f64) -> Point>)> = vec![
+    type Shape = (&'static str, usize, Box<dyn Fn(f64) -> Point>);
+    let shapes: Vec<Shape> = vec![
         (
             "wave",
             140,
