@@ -176,7 +176,7 @@ def fuzz(addr, n=1500):
     rnd = random.Random(2026)
     ops = ["bezier.curvature_monotone", "lac.point", "lac.segment", "lac.inflection_segment",
            "lcg.estimate", "lac.rational_approx", "spline.pseudo_elastic", "lac.fit", "sketch.fit",
-           "outline.fix"]
+           "sketch.contour", "outline.fix"]
 
     def num():
         return rnd.choice([0, 1, -1, 0.5, 1e-300, 1e300, -1e308, 3.7, rnd.uniform(-10, 10), rnd.uniform(-1e6, 1e6)])
@@ -220,6 +220,8 @@ def fuzz(addr, n=1500):
                      closed=rnd.random() < 0.5, tolerance=num(), grid=rnd.choice([0, 1, num()]))
         else:
             r.update(points=[[i + rnd.uniform(0, 0.5), rnd.uniform(-3, 3)] for i in range(rnd.randrange(4, 60))])
+            if op == "sketch.contour":
+                r.update(closed=rnd.choice([True, False, None]))
         return json.dumps(r)
 
     answered, bad, slowest, timeouts = 0, [], (0.0, b""), []

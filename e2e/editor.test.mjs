@@ -272,6 +272,55 @@ await step('sketch: jittery hand strokes (S, arc, spiral, wave) at the default t
   }
 });
 
+await step('sketch: an L, a straight stroke and a closed loop drawn by hand come back as contours', async () => {
+  // Fixed-seed jitter of ±1.5 px in page coordinates; world shapes in the visible box.
+  let seed = 20261202;
+  const rnd = () => {
+    seed = (seed * 1103515245 + 12345) % 2147483648;
+    return seed / 2147483648;
+  };
+  const along = (corners, n) => {
+    const out = [];
+    for (let k = 0; k + 1 < corners.length; k++) {
+      const [a, b] = [corners[k], corners[k + 1]];
+      for (let i = 0; i < n; i++) out.push([a[0] + (b[0] - a[0]) * i / n, a[1] + (b[1] - a[1]) * i / n]);
+    }
+    out.push(corners[corners.length - 1]);
+    return out;
+  };
+  const draw = async (world) => {
+    const pts = (await page.evaluate((ps) => ps.map((p) => window.__editor.pageOf(p)), world))
+      .map(([x, y]) => [x + 3 * rnd() - 1.5, y + 3 * rnd() - 1.5]);
+    await page.mouse.move(...pts[0]);
+    await page.mouse.down();
+    for (const p of pts.slice(1)) await page.mouse.move(...p);
+    await page.mouse.up();
+    await idle();
+  };
+  const circle = [];
+  for (let i = 0; i <= 150; i++) {
+    const a = 2 * Math.PI * i / 144; // a little past the start, as a hand overshoots
+    circle.push([7 + 2.5 * Math.cos(a), 4.2 + 2.5 * Math.sin(a)]);
+  }
+  const strokes = [
+    ['L', along([[3, 6.5], [3, 2], [11, 2]], 90), { runs: '2 (2)', corners: 1, closed: /^no/ }],
+    ['straight', along([[2.5, 2.5], [11.5, 6]], 160), { runs: '1 (1)', corners: 0, closed: /^no/ }],
+    ['closed loop', circle, { runs: '1 (0)', corners: 0, closed: /^yes/ }],
+  ];
+  for (const [name, world, want] of strokes) {
+    await draw(world);
+    const got = { runs: await text('n-runs'), corners: await num('corners'), closed: await text('n-closed') };
+    console.log(`     ${name}: runs ${got.runs}, corners ${got.corners}, closed ${got.closed}, ${await num('pieces')} pieces, deviation ${await num('max_deviation')} of ${await num('tolerance')}`);
+    assert.equal(got.runs, want.runs, `${name}: runs`);
+    assert.equal(got.corners, want.corners, `${name}: corners`);
+    assert.match(got.closed, want.closed, `${name}: closed`);
+    assert.ok((await num('max_deviation')) <= (await num('tolerance')), `${name}: tolerance`);
+    assert.match(await text('verdict'), /every piece: curvature monotone/);
+    if (name === 'closed loop') assert.equal(await text('n-g2'), 'yes', 'G2 inside the loop');
+    await shot(`06-sketch-contour-${name.replace(' ', '-')}`);
+  }
+});
+
 await step('Bézier: select a control point, see its monotone region, drag it', async () => {
   await page.click('#mode-bezier');
   await idle();

@@ -52,6 +52,7 @@ pub const OPS: &[&str] = &[
     "spline.pseudo_elastic",
     "lac.fit",
     "sketch.fit",
+    "sketch.contour",
     "outline.check",
     "outline.fix",
 ];
@@ -127,6 +128,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "spline.pseudo_elastic" => spline_pseudo_elastic(obj),
         "lac.fit" => lac_fit(obj),
         "sketch.fit" => sketch_fit(obj),
+        "sketch.contour" => sketch_contour(obj),
         "outline.check" => outline_check(obj),
         "outline.fix" => outline_fix(obj),
         _ => Err(ProtoError {
@@ -747,6 +749,77 @@ fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     if let Some(n) = draw {
         drawing_budget(sk.pieces.len(), n)?;
         let curve = sk.as_curve();
+        let nurbs = curve.to_nurbs(0.0)?;
+        out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
+    }
+    Ok(out)
+}
+
+fn sketch_contour(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    use aesthetic_curves::sketch::contour::{fit_contour, ContourOptions, Run};
+    let points = points_param(obj, "points", 2, MAX_SKETCH_POINTS)?;
+    let tolerance = match optional_number(obj, "tolerance")? {
+        Some(t) if t > 0.0 => Some(t),
+        Some(_) => return Err(ProtoError::invalid("tolerance", "must be positive")),
+        None => None,
+    };
+    let closed = match obj.get("closed") {
+        None | Some(Value::Null) => None,
+        Some(Value::Bool(b)) => Some(*b),
+        Some(_) => return Err(ProtoError::invalid("closed", "must be true, false or null")),
+    };
+    let mut opts = ContourOptions {
+        tolerance,
+        closed,
+        ..Default::default()
+    };
+    if let Some(a) = optional_number(obj, "corner_angle_degrees")? {
+        if !(a > 0.0 && a < 180.0) {
+            return Err(ProtoError::invalid(
+                "corner_angle_degrees",
+                "must lie in (0, 180)",
+            ));
+        }
+        opts.corner_angle = a.to_radians();
+    }
+    let draw = draw_param(obj)?;
+    let c = fit_contour(&points, &opts)?;
+    let xy = |p: aesthetic_curves::Point| [p.x, p.y];
+    let runs: Vec<Value> = c
+        .runs
+        .iter()
+        .map(|r| match r {
+            Run::Line { start, end } => {
+                json!({"kind": "line", "start": xy(*start), "end": xy(*end)})
+            }
+            Run::Curve(sk) => {
+                let mut o = sketch_json(sk, c.tolerance);
+                o["kind"] = json!("curve");
+                o
+            }
+        })
+        .collect();
+    let corners: Vec<Value> = c
+        .corners
+        .iter()
+        .map(|k| json!({"index": k.index, "point": xy(k.point), "angle_degrees": k.angle.to_degrees()}))
+        .collect();
+    let mut out = json!({
+        "runs": runs,
+        "corners": corners,
+        "closed": c.closed,
+        "pieces": c.pieces(),
+        "tolerance": c.tolerance,
+        "max_deviation": c.max_deviation,
+        "trimmed": c.trimmed,
+    });
+    if let Some(s) = c.seam {
+        out["seam"] =
+            json!({"angle_degrees": s.angle.to_degrees(), "curvature_jump": s.curvature_jump});
+    }
+    if let Some(n) = draw {
+        drawing_budget(c.pieces(), n)?;
+        let curve = c.as_curve()?;
         let nurbs = curve.to_nurbs(0.0)?;
         out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
     }

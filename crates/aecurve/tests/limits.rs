@@ -150,6 +150,10 @@ fn requests_at_the_limits() -> Vec<(&'static str, Value)> {
             json!({"op": "sketch.fit", "points": wave(20_000), "draw": 1000}),
         ),
         (
+            "sketch.contour, 20,000 points, draw 1000",
+            json!({"op": "sketch.contour", "points": wave(20_000), "draw": 1000}),
+        ),
+        (
             "outline.check, 10,000 cubics as a path, draw 20",
             json!({"op": "outline.check", "path": path, "draw": 20}),
         ),

@@ -31,8 +31,8 @@ function regionImage(region) {
   return c;
 }
 
-// shown: {curve, kappa, normals, overlay, overlayPolygon, pieces, marks, polygon, handles,
-// selected, stroke}; region: {grid, rows} or null; opts: {comb}.
+// shown: {curve, kappa, normals, overlay, overlayPolygon, pieces, marks, corners, polygon,
+// handles, selected, stroke}; region: {grid, rows} or null; opts: {comb}.
 export function drawStage(vp, ctx, shown, region, opts) {
   const view = vp.canvas;
   ctx.clearRect(0, 0, view.width, view.height);
@@ -101,6 +101,13 @@ export function drawStage(vp, ctx, shown, region, opts) {
     ctx.strokeStyle = '#000';
     ctx.lineWidth = 2;
     ctx.stroke();
+  }
+  // Corners of a contour: squares.
+  for (const m of shown.corners || []) {
+    const [x, y] = vp.toScreen(m);
+    ctx.strokeStyle = '#000';
+    ctx.lineWidth = 2;
+    ctx.strokeRect(x - 6, y - 6, 12, 12);
   }
   (shown.handles || []).forEach((p, i) => {
     const [x, y] = vp.toScreen(p);

@@ -145,7 +145,7 @@ export const MODES = {
 
   sketch: {
     box: { x0: 0, y0: 0, x1: 14, y1: 10 },
-    hint: 'Draw with the mouse or a pen: the stroke becomes a G2 curve of log-aesthetic pieces (colours; circles: joints).',
+    hint: 'Draw with the mouse or a pen: the stroke becomes a contour of fair runs, G2 curves of log-aesthetic pieces and straight lines (colours; circles: joints; squares: corners). A stroke that ends at its start closes.',
     controls: ['clear'],
     draws: true,
     initial: () => ({ stroke: [] }),
@@ -155,20 +155,31 @@ export const MODES = {
       if (s.length < 8) {
         return { shown: { stroke: s }, nurbs: null, numbers: [['pieces', 'pieces', 0]], verdict: ['draw a stroke'], lcg: { fit: null, note: 'draw a stroke' } };
       }
-      const r = await api({ op: 'sketch.fit', points: s, draw: DRAW.sketch });
-      const joints = r.segments.map((g) => g.control[0]).concat([r.segments[r.segments.length - 1].control[2]]);
+      const r = await api({ op: 'sketch.contour', points: s, draw: DRAW.sketch });
+      const curves = r.runs.filter((u) => u.kind === 'curve');
+      const segments = curves.flatMap((u) => u.segments);
+      // Joints: where pieces meet inside a curve run (the corners are drawn apart).
+      const joints = curves.flatMap((u) => u.segments.slice(1).map((g) => g.control[0]));
+      const corners = r.corners.map((k) => k.point);
+      const g2 = curves.every((u) => u.g2);
+      const monotone = curves.every((u) => u.all_monotone);
+      const jump = curves.reduce((m, u) => Math.max(m, u.max_curvature_jump ?? 0), 0);
+      const lines = r.runs.length - curves.length;
       return {
-        shown: Object.assign(curveOf(r.drawing), { pieces: piecesOf(r.drawing), marks: joints, stroke: s }),
+        shown: Object.assign(curveOf(r.drawing), { pieces: piecesOf(r.drawing), marks: joints, corners, stroke: s }),
         nurbs: r.drawing.nurbs,
         numbers: [
-          ['pieces', 'pieces', r.segments.length],
+          ['pieces', 'pieces', r.pieces],
+          ['runs', 'runs (lines)', `${r.runs.length} (${lines})`],
+          ['corners', 'corners', r.corners.length],
+          ['closed', 'closed', r.closed ? (r.seam ? `yes, seam ${fmt(r.seam.angle_degrees, 1)}°` : 'yes') : 'no'],
           ['max_deviation', 'max deviation', r.max_deviation],
           ['tolerance', 'tolerance', r.tolerance],
-          ['g2', 'G2', r.g2 ? 'yes' : 'no'],
-          ['max_curvature_jump', 'largest curvature jump', r.max_curvature_jump ?? 0],
-          ['alphas', 'alphas', r.segments.map((g) => fmt(g.alpha, 2)).join(' ')],
+          ['g2', 'G2 inside the runs', g2 ? 'yes' : 'no'],
+          ['max_curvature_jump', 'largest curvature jump', jump],
+          ['alphas', 'alphas', segments.map((g) => fmt(g.alpha, 2)).join(' ') || '—'],
         ],
-        verdict: [r.all_monotone ? 'every piece: curvature monotone (proven)' : 'some piece is NOT monotone', r.all_monotone],
+        verdict: [monotone ? 'every piece: curvature monotone (proven)' : 'some piece is NOT monotone', monotone],
         lcg: { fit: null, note: 'one graph per piece: see the alphas' },
       };
     },

@@ -168,6 +168,37 @@ pub struct SketchContour {
     pub trimmed: usize,
 }
 
+impl SketchContour {
+    /// The contour as one curve of rational cubics in order: a line run as the cubic with
+    /// its inner control points at its thirds (straight, zero curvature), a curve run as its
+    /// pieces' cubics.
+    pub fn as_curve(&self) -> Result<crate::curve::Pieces<crate::bezier::RationalBezier>> {
+        let mut out = Vec::new();
+        for run in &self.runs {
+            match run {
+                Run::Line { start, end } => {
+                    let d = *end - *start;
+                    let pts = vec![*start, *start + d / 3.0, *start + d * (2.0 / 3.0), *end];
+                    out.push(crate::bezier::RationalBezier::new(pts, vec![1.0; 4])?);
+                }
+                Run::Curve(s) => out.extend(s.pieces.iter().map(|p| p.rational.clone())),
+            }
+        }
+        Ok(crate::curve::Pieces(out))
+    }
+
+    /// How many pieces: one per line run, a curve run's pieces.
+    pub fn pieces(&self) -> usize {
+        self.runs
+            .iter()
+            .map(|r| match r {
+                Run::Line { .. } => 1,
+                Run::Curve(s) => s.pieces.len(),
+            })
+            .sum()
+    }
+}
+
 /// A pen stroke as a contour of runs joined at corners (see the module documentation).
 pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchContour> {
     if points.len() < 2 {
