@@ -1237,6 +1237,128 @@ fn fit_sketch(py: Python<'_>, points: &Bound<'_, PyAny>, tolerance: f64) -> PyRe
     })
 }
 
+/// A pen stroke as a contour: runs (lines and G2 curves of LAC pieces) joined at corners.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+struct SketchContour {
+    /// The whole contour, one NURBS of its rational cubics (a line as a straight cubic).
+    nurbs: Nurbs,
+    /// Each piece's rational cubic, in order.
+    pieces: Vec<RationalBezier>,
+    /// Each run's kind, in order: "line" or "curve".
+    runs: Vec<&'static str>,
+    /// Each run's pieces (a line: 1).
+    run_pieces: Vec<usize>,
+    /// Each curve run's α per piece (a line: empty).
+    alphas: Vec<Vec<f64>>,
+    /// The corners in order, as (x, y, turn in degrees, index of the input point);
+    /// `corners[k]` between run k and run k + 1 (closed: the last between the last and
+    /// the first).
+    corners: Vec<(f64, f64, f64, usize)>,
+    /// Closed.
+    closed: bool,
+    /// A closed contour without corners: (angle in degrees, relative curvature jump) where
+    /// its one run ends at its start.
+    seam: Option<(f64, f64)>,
+    /// The tolerance used.
+    tolerance: f64,
+    /// Largest distance from an input point to the result.
+    max_deviation: f64,
+    /// Points of a closed stroke's overshoot past its start, left out.
+    trimmed: usize,
+    /// Every curve run is G2 inside.
+    g2: bool,
+    /// Every piece is proven curvature-monotone.
+    all_monotone: bool,
+}
+
+/// A pen stroke (`points`, in drawing order) as a contour: corners found, straight runs
+/// as lines, a stroke that ends at its start closed (`closed`: None decides from the
+/// stroke); `tolerance` None for the default from the points' size and noise;
+/// `corner_angle` the least turn of a corner (degrees).
+#[pyfunction]
+#[pyo3(signature = (points, tolerance=None, closed=None, corner_angle=35.0))]
+fn fit_contour(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    tolerance: Option<f64>,
+    closed: Option<bool>,
+    corner_angle: f64,
+) -> PyResult<SketchContour> {
+    use ac::sketch::contour::{fit_contour, ContourOptions, Run};
+    let p = points_arg("points", points)?;
+    let opts = ContourOptions {
+        tolerance,
+        closed,
+        corner_angle: corner_angle.to_radians(),
+    };
+    let c = py.detach(move || fit_contour(&p, &opts)).map_err(err)?;
+    let curve = c.as_curve().map_err(err)?;
+    let curves = || {
+        c.runs.iter().filter_map(|r| match r {
+            Run::Curve(s) => Some(s),
+            Run::Line { .. } => None,
+        })
+    };
+    Ok(SketchContour {
+        nurbs: Nurbs {
+            inner: curve.to_nurbs(0.0).map_err(err)?,
+        },
+        pieces: curve
+            .0
+            .into_iter()
+            .map(|inner| RationalBezier { inner })
+            .collect(),
+        runs: c.runs.iter().map(Run::kind).collect(),
+        run_pieces: c
+            .runs
+            .iter()
+            .map(|r| match r {
+                Run::Line { .. } => 1,
+                Run::Curve(s) => s.pieces.len(),
+            })
+            .collect(),
+        alphas: c
+            .runs
+            .iter()
+            .map(|r| match r {
+                Run::Line { .. } => Vec::new(),
+                Run::Curve(s) => s.pieces.iter().map(|p| p.alpha).collect(),
+            })
+            .collect(),
+        corners: c
+            .corners
+            .iter()
+            .map(|k| (k.point.x, k.point.y, k.angle.to_degrees(), k.index))
+            .collect(),
+        closed: c.closed,
+        seam: c.seam.map(|s| (s.angle.to_degrees(), s.curvature_jump)),
+        tolerance: c.tolerance,
+        max_deviation: c.max_deviation,
+        trimmed: c.trimmed,
+        g2: curves().all(|s| s.g2),
+        all_monotone: curves().all(|s| s.all_monotone),
+    })
+}
+
+impl SketchContour {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(self.nurbs.inner.clone())
+    }
+}
+
+pymethods_with_exports!(SketchContour {
+    /// The parameter interval of `at`: (0, n) for n pieces (piece i on [i, i + 1]).
+    fn domain(&self) -> (f64, f64) {
+        (0.0, self.pieces.len() as f64)
+    }
+    /// Point, first and second derivatives, curvature and dκ/ds at `u` (a float or an
+    /// array; piece `floor(u)` at its own t = u - floor(u); clamped into the domain).
+    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+        let pieces = ac::Pieces(self.pieces.iter().map(|p| p.inner.clone()).collect());
+        curve_at(py, &pieces, u)
+    }
+});
+
 impl Bezier {
     fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
         Ok(ac::Nurbs::from_bezier(&self.inner.to_rational()))
@@ -1317,10 +1439,12 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PseudoSpline>()?;
     m.add_class::<LacFit>()?;
     m.add_class::<Sketch>()?;
+    m.add_class::<SketchContour>()?;
     m.add_function(wrap_pyfunction!(are_curvature_monotone, m)?)?;
     m.add_function(wrap_pyfunction!(pseudo_elastic, m)?)?;
     m.add_function(wrap_pyfunction!(fit_lac, m)?)?;
     m.add_function(wrap_pyfunction!(fit_sketch, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_contour, m)?)?;
     m.add_function(wrap_pyfunction!(outline::check_outline, m)?)?;
     m.add_function(wrap_pyfunction!(outline::harmonize, m)?)?;
     m.add_function(wrap_pyfunction!(outline::index_contour, m)?)?;

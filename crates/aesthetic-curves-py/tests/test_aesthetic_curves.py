@@ -524,3 +524,30 @@ def test_the_type_stubs_match_the_module():
         capture_output=True, text=True, cwd=tempfile.gettempdir(),
     )
     assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_fit_contour_finds_the_corner_of_an_l_and_closes_a_square():
+    rng = np.random.default_rng(35)
+    leg = np.linspace(0, 1, 150)[:, None]
+    l_pts = np.vstack([[50, 50] + leg * [0, 350], [50, 400] + leg[1:] * [350, 0]])
+    l_pts = l_pts + rng.uniform(-1.5, 1.5, l_pts.shape)
+    c = ac.fit_contour(l_pts)
+    assert c.runs == ["line", "line"] and len(c.corners) == 1 and not c.closed
+    x, y, angle, index = c.corners[0]
+    assert math.hypot(x - 50, y - 400) < 6 and abs(angle - 90) < 10
+    assert c.max_deviation <= c.tolerance
+    # The same answer as the protocol's sketch.contour.
+    want = batch({"op": "sketch.contour", "points": l_pts.tolist()})[0]
+    assert [k["index"] for k in want["corners"]] == [index]
+    assert want["tolerance"] == c.tolerance and want["max_deviation"] == c.max_deviation
+    # A square drawn in one stroke, from the middle of a side back to it.
+    corners = [(250, 50), (450, 50), (450, 450), (50, 450), (50, 50), (250, 50)]
+    sq = np.vstack([np.linspace(a, b, 100, endpoint=False) for a, b in zip(corners, corners[1:])] + [[corners[-1]]])
+    sq = sq + rng.uniform(-1.5, 1.5, sq.shape)
+    c = ac.fit_contour(sq)
+    assert c.closed and len(c.corners) == 4 and c.runs == ["line"] * 4 and c.seam is None
+    # The whole contour as one NURBS, starting and ending at the first corner.
+    lo, hi = c.nurbs.domain()
+    assert np.allclose(c.nurbs.eval(lo), c.nurbs.eval(hi), atol=1e-9)
+    with pytest.raises(ac.InvalidInputError):
+        ac.fit_contour([(0, 0)])

@@ -35,6 +35,8 @@ __all__ = [
     "check_outline",
     "fit_lac",
     "fit_sketch",
+    "fit_contour",
+    "SketchContour",
     "harmonize",
     "index_contour",
     "plot_comb",
@@ -257,6 +259,32 @@ class Sketch(_Exportable):
         """Piece ``floor(u)`` at its own t = u - floor(u) (clamped into (0, n))."""
 
 def fit_sketch(points: _Points, tolerance: float) -> Sketch: ...
+
+@final
+class SketchContour(_Exportable):
+    nurbs: Nurbs
+    pieces: list[RationalBezier]
+    runs: list[str]
+    run_pieces: list[int]
+    alphas: list[list[float]]
+    corners: list[tuple[float, float, float, int]]
+    closed: bool
+    seam: Optional[tuple[float, float]]
+    tolerance: float
+    max_deviation: float
+    trimmed: int
+    g2: bool
+    all_monotone: bool
+    def domain(self) -> Tuple[float, float]: ...
+    def at(self, u: _Params) -> CurveAt:
+        """Piece ``floor(u)`` at its own t = u - floor(u) (clamped into (0, n))."""
+
+def fit_contour(
+    points: _Points,
+    tolerance: Optional[float] = None,
+    closed: Optional[bool] = None,
+    corner_angle: float = 35.0,
+) -> SketchContour: ...
 def check_outline(
     contours: Any,
     grid: float = 0.0,
