@@ -172,7 +172,9 @@ export const MODES = {
           ['pieces', 'pieces', r.pieces],
           ['runs', 'runs (lines)', `${r.runs.length} (${lines})`],
           ['corners', 'corners', r.corners.length],
-          ['closed', 'closed', r.closed ? (r.seam ? `yes, seam ${fmt(r.seam.angle_degrees, 1)}°` : 'yes') : 'no'],
+          ['closed', 'closed', !r.closed ? 'no' : !r.seam ? 'yes'
+            : r.seam.angle_degrees < 1e-6 && r.seam.curvature_jump < 1e-6 ? 'yes, G2 at the seam'
+              : `yes, seam ${fmt(r.seam.angle_degrees, 1)}°, jump ${fmt(r.seam.curvature_jump, 2)}`],
           ['max_deviation', 'max deviation', r.max_deviation],
           ['tolerance', 'tolerance', r.tolerance],
           ['g2', 'G2 inside the runs', g2 ? 'yes' : 'no'],

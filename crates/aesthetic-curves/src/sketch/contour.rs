@@ -23,9 +23,12 @@
 //!    straight stroke is the limit of every LAC: zero curvature), else the G2 sketch of
 //!    [`super::fit_sketch`].
 //!
-//! Known limits: a straight stretch inside a curved run is fitted with the run's pieces,
-//! not as a line piece with G2 joins; the seam of a closed loop without corners is G0
-//! (both ends at the same point), its tangent and curvature jumps reported in [`Seam`].
+//! A closed contour without corners is one run whose seam is faired like every joint of the
+//! sketch ([`SketchOptions::closed`]: one tangent at both ends, the curvature jump across the
+//! seam among the fairing's equations); [`Seam`] reports what is left there.
+//!
+//! Known limit: a straight stretch inside a curved run is fitted with the run's pieces, not
+//! as a line piece with G2 joins.
 
 use super::{bbox_diagonal, default_tolerance, fit_sketch, Sketch, SketchOptions};
 use crate::error::{Error, Result};
@@ -239,7 +242,9 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
         .iter()
         .enumerate()
         .map(|(k, r)| {
-            fit_run(r, tolerance).map_err(|e| match e {
+            // A closed contour without corners is one run whose seam is faired G2.
+            let loop_run = closed && corners.is_empty();
+            fit_run(r, tolerance, loop_run).map_err(|e| match e {
                 Error::NoSegment(m) => Error::NoSegment(format!("run {k}: {m}")),
                 Error::NoConvergence(m) => Error::NoConvergence(format!("run {k}: {m}")),
                 other => other,
@@ -540,14 +545,18 @@ fn runs_of(points: &[Point], closed: bool, corners: &[(usize, f64)]) -> Vec<Vec<
 }
 
 /// One run fitted: a line where every point lies within the tolerance of its chord, else
-/// the G2 sketch (a straight run it cannot fit is a line too).
-fn fit_run(points: &[Point], tolerance: f64) -> Result<Run> {
+/// the G2 sketch (`closed`: a loop, G2 across its seam).
+fn fit_run(points: &[Point], tolerance: f64, closed: bool) -> Result<Run> {
     let (start, end) = (points[0], points[points.len() - 1]);
     let line = Run::Line { start, end };
-    if points.len() < 4 || chord_deviation(points) <= tolerance {
+    if !closed && (points.len() < 4 || chord_deviation(points) <= tolerance) {
         return Ok(line);
     }
-    match fit_sketch(points, &SketchOptions::with_tolerance(tolerance)) {
+    let opts = SketchOptions {
+        closed,
+        ..SketchOptions::with_tolerance(tolerance)
+    };
+    match fit_sketch(points, &opts) {
         Ok(s) => Ok(Run::Curve(Box::new(s))),
         Err(Error::Degenerate(m)) => Err(Error::Degenerate(format!(
             "a run of {} points that is not straight within the tolerance: {m}",

@@ -66,6 +66,9 @@ pub struct SketchOptions {
     pub max_fairing_iterations: usize,
     /// Options of the rational cubic per piece.
     pub approx: ApproxOptions,
+    /// The points form a closed loop (the last is the first): the curve ends where it
+    /// starts with the same tangent, and the seam is faired G2 like every joint.
+    pub closed: bool,
 }
 
 impl SketchOptions {
@@ -79,6 +82,7 @@ impl SketchOptions {
             g2_tolerance: 1e-10,
             max_fairing_iterations: 60,
             approx: ApproxOptions::default(),
+            closed: false,
         }
     }
 }
@@ -822,11 +826,46 @@ fn curvature_scale(built: &[Built]) -> f64 {
         .max(f64::MIN_POSITIVE)
 }
 
+/// The pieces before and after joint `j` of `m` pieces: joint j (1 to m - 1) starts piece
+/// j; joint 0 is a closed curve's seam, from the last piece to the first.
+fn sides(j: usize, m: usize) -> (usize, usize) {
+    if j == 0 {
+        (m - 1, 0)
+    } else {
+        (j - 1, j)
+    }
+}
+
+/// Joint `j`'s tangent turned by `h` (the seam's at both ends of the curve, which share it).
+fn turn_joint(dirs: &mut [Vec2], j: usize, h: f64) {
+    dirs[j] = rotate(dirs[j], h);
+    if j == 0 {
+        let m = dirs.len() - 1;
+        dirs[m] = dirs[0];
+    }
+}
+
+/// The pieces on both sides of joint `j` rebuilt in `built` with the tangents `dirs`.
+fn rebuild_joint(
+    built: &mut [Built],
+    (slots, pts, dirs): (&[Slot], &[Point], &[Vec2]),
+    j: usize,
+) -> Option<()> {
+    let (a, b) = sides(j, slots.len());
+    for i in [a, b] {
+        built[i] = build_piece(&slots[i], pts[i], dirs[i], pts[i + 1], dirs[i + 1]).ok()?;
+    }
+    Some(())
+}
+
 /// The curvature mismatch at each active joint over `scale`.
 fn mismatches(built: &[Built], active: &[usize], scale: f64) -> Vec<f64> {
     active
         .iter()
-        .map(|&j| (built[j].kappa.0 - built[j - 1].kappa.1) / scale)
+        .map(|&j| {
+            let (a, b) = sides(j, built.len());
+            (built[b].kappa.0 - built[a].kappa.1) / scale
+        })
         .collect()
 }
 
@@ -870,22 +909,25 @@ fn fair(
     // other joint (an inflection cut whose piece could not be an inflection piece too) is
     // faired.
     let zero_both = |built: &[Built], j: usize| {
+        let (a, b) = sides(j, m);
         matches!(
-            built[j - 1].curve,
+            built[a].curve,
             PieceCurve::Inflection {
                 inflection_at_start: false,
                 ..
             }
         ) && matches!(
-            built[j].curve,
+            built[b].curve,
             PieceCurve::Inflection {
                 inflection_at_start: true,
                 ..
             }
         )
     };
+    // A closed curve's seam (joint 0) is faired too.
+    let first = usize::from(!opts.closed);
     let faired =
-        |built: &[Built]| -> Vec<usize> { (1..m).filter(|&j| !zero_both(built, j)).collect() };
+        |built: &[Built]| -> Vec<usize> { (first..m).filter(|&j| !zero_both(built, j)).collect() };
     let active = faired(&built);
     // The merit's scale stays that of the first build: measured against the trial's own
     // largest curvature, a step that blows one free end up into a hook (a triangle at the
@@ -904,11 +946,9 @@ fn fair(
         let column = |j: usize| -> Option<Vec<f64>> {
             let at = |h: f64| -> Option<Vec<f64>> {
                 let mut trial = dirs.to_vec();
-                trial[j] = rotate(dirs[j], h);
+                turn_joint(&mut trial, j, h);
                 let mut b2 = built.clone();
-                b2[j - 1] =
-                    build_piece(&slots[j - 1], pts[j - 1], trial[j - 1], pts[j], trial[j]).ok()?;
-                b2[j] = build_piece(&slots[j], pts[j], trial[j], pts[j + 1], trial[j + 1]).ok()?;
+                rebuild_joint(&mut b2, (slots, pts, &trial), j)?;
                 Some(mismatches(&b2, &active, scale))
             };
             let h = 1e-6;
@@ -935,7 +975,7 @@ fn fair(
     let trial = |(dirs, _): &(Vec<Vec2>, Vec<Built>), step: &[f64], lam: f64| {
         let mut trial = dirs.to_vec();
         for (k, &j) in active.iter().enumerate() {
-            trial[j] = rotate(dirs[j], lam * step[k]);
+            turn_joint(&mut trial, j, lam * step[k]);
         }
         let b2 = build_all(slots, pts, &trial).ok()?;
         let d2 = mismatches(&b2, &active, scale);
@@ -1012,7 +1052,8 @@ fn free_alphas(
     let mut free: Vec<usize> = Vec::new();
     for (k, &j) in active.iter().enumerate() {
         if d0[k].abs() > tol {
-            for i in [j - 1, j] {
+            let (a, b) = sides(j, built.len());
+            for i in [a, b] {
                 if matches!(built[i].curve, PieceCurve::Lac(_)) && !free.contains(&i) {
                     free.push(i);
                 }
@@ -1048,12 +1089,8 @@ fn free_alphas(
                 if c < na {
                     let j = active[c];
                     let mut trial = dirs.to_vec();
-                    trial[j] = rotate(dirs[j], h);
-                    b2[j - 1] =
-                        build_piece(&local[j - 1], pts[j - 1], trial[j - 1], pts[j], trial[j])
-                            .ok()?;
-                    b2[j] =
-                        build_piece(&local[j], pts[j], trial[j], pts[j + 1], trial[j + 1]).ok()?;
+                    turn_joint(&mut trial, j, h);
+                    rebuild_joint(&mut b2, (local, pts, &trial), j)?;
                 } else {
                     let i = free[c - na];
                     let mut sl = local[i].clone();
@@ -1101,7 +1138,7 @@ fn free_alphas(
     let trial = |(dirs, local, _): &State, step: &[f64], lam: f64| {
         let mut trial = dirs.to_vec();
         for (k, &j) in active.iter().enumerate() {
-            trial[j] = rotate(dirs[j], lam * step[k]);
+            turn_joint(&mut trial, j, lam * step[k]);
         }
         let mut tl = local.clone();
         for (k, &i) in free.iter().enumerate() {
@@ -1313,7 +1350,8 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
             .enumerate()
             .filter(|(_, s)| !s.fitted)
             .for_each(|(i, s)| {
-                fit_slot_alpha(&track, &fit, s, ends, i == 0 || i == last);
+                let end = !opts.closed && (i == 0 || i == last);
+                fit_slot_alpha(&track, &fit, s, ends, end);
             });
         let pts: Vec<Point> = slots
             .iter()
@@ -1335,6 +1373,17 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
         }
         if let Some(d) = slots.last().unwrap().dir_b {
             *dirs.last_mut().unwrap() = d;
+        }
+        // A closed curve's two ends are one point with one tangent: the two ends' spline
+        // tangents averaged.
+        if opts.closed {
+            let m = dirs.len() - 1;
+            let both = dirs[0] + dirs[m];
+            let l = both.hypot();
+            if l > 0.0 {
+                dirs[0] = both / l;
+                dirs[m] = dirs[0];
+            }
         }
         let failed = settle_inflections(&slots, &pts, &mut dirs);
         if !failed.is_empty() && peak_splits < 2 * opts.max_pieces && slots.len() < opts.max_pieces
@@ -1610,9 +1659,14 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                     .max(p.rational.kappa_end().abs())
             })
             .fold(0.0, f64::max);
+        // Every joint, and a closed curve's seam.
+        let seam = opts.closed.then(|| {
+            (pieces[pieces.len() - 1].rational.kappa_end() - pieces[0].rational.kappa_start()).abs()
+        });
         let jump = pieces
             .windows(2)
             .map(|w| (w[0].rational.kappa_end() - w[1].rational.kappa_start()).abs())
+            .chain(seam)
             .fold(0.0, f64::max)
             / kmax.max(f64::MIN_POSITIVE);
         let ends: Vec<(f64, f64)> = pieces
