@@ -329,10 +329,8 @@ fn bad_strokes_get_typed_errors() {
     assert_eq!(kinds(&c), ["line"]);
 }
 
-/// A rectangle with rounded corners (radius 40) drawn in one stroke: closed, and its
-/// rounded corners are not corners (a fair curve follows them).
-#[test]
-fn a_rounded_rectangle_has_no_corners() {
+/// A rectangle with rounded corners (radius 40) drawn in one stroke.
+fn rounded_rectangle() -> Vec<Point> {
     let mut pts = Vec::new();
     let (x0, y0, x1, y1, r) = (50.0, 50.0, 450.0, 350.0, 40.0);
     let centres = [
@@ -349,20 +347,39 @@ fn a_rounded_rectangle_has_no_corners() {
         }
     }
     pts.push(pts[0]);
-    let clean = along(&pts, 2.0);
+    Jitter(9).apply(&along(&pts, 2.0), 1.5)
+}
+
+/// Its rounded corners are not corners (a fair curve follows them), and it closes.
+#[test]
+fn a_rounded_rectangle_closes_and_has_no_corners() {
+    use aesthetic_curves::sketch::contour::{closes, corners};
+    use aesthetic_curves::sketch::default_tolerance;
+    let pts = rounded_rectangle();
+    let tol = default_tolerance(&pts);
+    let (closed, kept) = closes(&pts, tol, None);
+    assert!(closed);
+    let found = corners(
+        &pts[..kept],
+        true,
+        tol,
+        ContourOptions::default().corner_angle,
+    );
+    assert!(found.is_empty(), "{found:?}");
+}
+
+/// The whole fit of the rounded rectangle, measured (seconds in release, far longer in a
+/// debug build: CI runs it with --release --ignored): within the tolerance; its straight
+/// sides are not line pieces yet (a known limit, see docs/math.md §6.1).
+#[test]
+#[ignore = "seconds in release, minutes in a debug build; CI runs it with --release --ignored"]
+fn a_rounded_rectangle_is_fitted_within_the_tolerance() {
     let t0 = std::time::Instant::now();
-    let c = fit(&Jitter(9).apply(&clean, 1.5));
-    let pieces: Vec<usize> = c
-        .runs
-        .iter()
-        .map(|r| match r {
-            Run::Curve(s) => s.pieces.len(),
-            Run::Line { .. } => 1,
-        })
-        .collect();
+    let c = fit(&rounded_rectangle());
     println!(
-        "rounded rectangle: {:?} {pieces:?} in {:?}, seam {:?}",
+        "rounded rectangle: {:?}, {} pieces in {:?}, seam {:?}",
         kinds(&c),
+        c.pieces(),
         t0.elapsed(),
         c.seam
     );
