@@ -124,6 +124,21 @@ const idle = async () => {
 const text = (id) => page.textContent(`#${id}`);
 const num = async (id) => parseFloat(await text(`n-${id}`));
 const shot = (name) => page.screenshot({ path: `${out}${name}.png` });
+// A hand's fixed-seed jitter: uniform numbers in [0, 1) from `seed`.
+const jitterFrom = (seed) => () => {
+  seed = (seed * 1103515245 + 12345) % 2147483648;
+  return seed / 2147483648;
+};
+// Draw a stroke through world points with the mouse, each point jittered by ±1.5 page px.
+async function drawStroke(world, rnd) {
+  const pts = (await page.evaluate((ps) => ps.map((p) => window.__editor.pageOf(p)), world))
+    .map(([x, y]) => [x + 3 * rnd() - 1.5, y + 3 * rnd() - 1.5]);
+  await page.mouse.move(...pts[0]);
+  await page.mouse.down();
+  for (const p of pts.slice(1)) await page.mouse.move(...p);
+  await page.mouse.up();
+  await idle();
+}
 const canvasShot = () => page.locator('#view').screenshot();
 async function dragHandle(i, dx, dy) {
   const [x, y] = await page.evaluate((k) => window.__editor.screenOf(k), i);
@@ -231,11 +246,7 @@ await step('sketch: a drawn stroke becomes a G2 curve of monotone pieces', async
 await step('sketch: jittery hand strokes (S, arc, spiral, wave) at the default tolerance', async () => {
   // Fixed-seed jitter of ±1.5 px in page coordinates, as a hand has; world shapes in the
   // visible box (2..12, 1.5..7).
-  let seed = 20261130;
-  const rnd = () => {
-    seed = (seed * 1103515245 + 12345) % 2147483648;
-    return seed / 2147483648;
-  };
+  const rnd = jitterFrom(20261130);
   const shapes = [
     ['s', 120, (t) => [7 + 2.5 * Math.sin(2 * Math.PI * t), 1.5 + 5.5 * t]],
     ['arc', 130, (t) => {
@@ -252,13 +263,7 @@ await step('sketch: jittery hand strokes (S, arc, spiral, wave) at the default t
   for (const [name, n, f] of shapes) {
     const world = [];
     for (let i = 0; i < n; i++) world.push(f(i / (n - 1)));
-    const pts = (await page.evaluate((ps) => ps.map((p) => window.__editor.pageOf(p)), world))
-      .map(([x, y]) => [x + 3 * rnd() - 1.5, y + 3 * rnd() - 1.5]);
-    await page.mouse.move(...pts[0]);
-    await page.mouse.down();
-    for (const p of pts.slice(1)) await page.mouse.move(...p);
-    await page.mouse.up();
-    await idle();
+    await drawStroke(world, rnd);
     const pieces = await num('pieces');
     const g2 = await text('n-g2');
     console.log(`     ${name}: ${pieces} pieces, G2 ${g2}, deviation ${await num('max_deviation')} of ${await num('tolerance')}`);
@@ -274,11 +279,7 @@ await step('sketch: jittery hand strokes (S, arc, spiral, wave) at the default t
 
 await step('sketch: an L, a straight stroke and a closed loop drawn by hand come back as contours', async () => {
   // Fixed-seed jitter of ±1.5 px in page coordinates; world shapes in the visible box.
-  let seed = 20261202;
-  const rnd = () => {
-    seed = (seed * 1103515245 + 12345) % 2147483648;
-    return seed / 2147483648;
-  };
+  const rnd = jitterFrom(20261202);
   const along = (corners, n) => {
     const out = [];
     for (let k = 0; k + 1 < corners.length; k++) {
@@ -287,15 +288,6 @@ await step('sketch: an L, a straight stroke and a closed loop drawn by hand come
     }
     out.push(corners[corners.length - 1]);
     return out;
-  };
-  const draw = async (world) => {
-    const pts = (await page.evaluate((ps) => ps.map((p) => window.__editor.pageOf(p)), world))
-      .map(([x, y]) => [x + 3 * rnd() - 1.5, y + 3 * rnd() - 1.5]);
-    await page.mouse.move(...pts[0]);
-    await page.mouse.down();
-    for (const p of pts.slice(1)) await page.mouse.move(...p);
-    await page.mouse.up();
-    await idle();
   };
   const circle = [];
   for (let i = 0; i <= 150; i++) {
@@ -308,7 +300,7 @@ await step('sketch: an L, a straight stroke and a closed loop drawn by hand come
     ['closed loop', circle, { runs: '1 (0)', corners: 0, closed: /^yes, G2 at the seam/ }],
   ];
   for (const [name, world, want] of strokes) {
-    await draw(world);
+    await drawStroke(world, rnd);
     const got = { runs: await text('n-runs'), corners: await num('corners'), closed: await text('n-closed') };
     console.log(`     ${name}: runs ${got.runs}, corners ${got.corners}, closed ${got.closed}, ${await num('pieces')} pieces, deviation ${await num('max_deviation')} of ${await num('tolerance')}`);
     assert.equal(got.runs, want.runs, `${name}: runs`);

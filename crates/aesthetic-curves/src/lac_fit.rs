@@ -299,15 +299,11 @@ pub(crate) fn nearest_chords(poly: &[Point], points: &[Point]) -> Vec<(f64, usiz
         })
         .collect();
     let chord = |k: usize, q: Point| {
-        let (a, b) = (poly[k], poly[k + 1]);
-        let ab = b - a;
-        let l2 = ab.hypot2();
-        let t = if l2 > 0.0 {
-            ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (a + ab * t - q).hypot()
+        use kurbo::ParamCurveNearest;
+        kurbo::Line::new(poly[k], poly[k + 1])
+            .nearest(q, 0.0)
+            .distance_sq
+            .sqrt()
     };
     let mut hint = 0usize;
     points

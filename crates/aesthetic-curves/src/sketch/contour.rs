@@ -575,15 +575,11 @@ fn chord_deviation(points: &[Point]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The distance from `q` to the segment from `a` to `b` (kurbo's nearest point on a line;
+/// a zero-length segment is its point).
 fn segment_distance(q: Point, a: Point, b: Point) -> f64 {
-    let ab = b - a;
-    let l2 = ab.hypot2();
-    let t = if l2 > 0.0 {
-        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (q - (a + ab * t)).hypot()
+    use kurbo::ParamCurveNearest;
+    kurbo::Line::new(a, b).nearest(q, 0.0).distance_sq.sqrt()
 }
 
 /// A run's largest distance from its points.
