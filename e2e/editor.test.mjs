@@ -311,6 +311,19 @@ await step('sketch: an L, a straight stroke and a closed loop drawn by hand come
     if (name === 'closed loop') assert.equal(await text('n-g2'), 'yes', 'G2 inside the loop');
     await shot(`06-sketch-contour-${name.replace(' ', '-')}`);
   }
+  // The tolerance control: a tighter tolerance set by hand is the one used, and met;
+  // emptied, the default from the stroke comes back.
+  const auto = await num('tolerance');
+  await page.fill('#sketch-tolerance', String(auto / 2));
+  await page.dispatchEvent('#sketch-tolerance', 'change');
+  await idle();
+  assert.ok(Math.abs((await num('tolerance')) - auto / 2) < 1e-4, `tolerance ${await num('tolerance')}`);
+  assert.match(await page.textContent('#numbers'), /tolerance \(set\)/);
+  assert.ok((await num('max_deviation')) <= auto / 2, 'the set tolerance is met');
+  await page.fill('#sketch-tolerance', '');
+  await page.dispatchEvent('#sketch-tolerance', 'change');
+  await idle();
+  assert.equal(await num('tolerance'), auto);
 });
 
 await step('Bézier: select a control point, see its monotone region, drag it', async () => {

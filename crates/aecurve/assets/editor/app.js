@@ -297,7 +297,12 @@ $('clear').addEventListener('click', () => {
 for (const b of document.querySelectorAll('#modes button')) {
   b.addEventListener('click', () => setMode(b.dataset.mode));
 }
-const OPTIONAL = ['alpha-box', 'closed-box', 'region-box', 'add-point', 'remove-point', 'clear', 'outline-box'];
+$('sketch-tolerance').addEventListener('change', () => {
+  const v = parseFloat($('sketch-tolerance').value);
+  edited().tolerance = v > 0 ? v : null;
+  requestUpdate();
+});
+const OPTIONAL = ['alpha-box', 'closed-box', 'region-box', 'add-point', 'remove-point', 'clear', 'outline-box', 'sketch-tolerance-box'];
 function setMode(m) {
   state.mode = m;
   vp.box = views[m];

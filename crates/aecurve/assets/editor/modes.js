@@ -146,16 +146,18 @@ export const MODES = {
   sketch: {
     box: { x0: 0, y0: 0, x1: 14, y1: 10 },
     hint: 'Draw with the mouse or a pen: the stroke becomes a contour of fair runs, G2 curves of log-aesthetic pieces and straight lines (colours; circles: joints; squares: corners). A stroke that ends at its start closes.',
-    controls: ['clear'],
+    controls: ['clear', 'sketch-tolerance-box'],
     draws: true,
-    initial: () => ({ stroke: [] }),
+    initial: () => ({ stroke: [], tolerance: null }),
     handles: () => [],
     async update(st) {
       const s = st.stroke;
       if (s.length < 8) {
         return { shown: { stroke: s }, nurbs: null, numbers: [['pieces', 'pieces', 0]], verdict: ['draw a stroke'], lcg: { fit: null, note: 'draw a stroke' } };
       }
-      const r = await api({ op: 'sketch.contour', points: s, draw: DRAW.sketch });
+      const req = { op: 'sketch.contour', points: s, draw: DRAW.sketch };
+      if (st.tolerance > 0) req.tolerance = st.tolerance;
+      const r = await api(req);
       const curves = r.runs.filter((u) => u.kind === 'curve');
       const segments = curves.flatMap((u) => u.segments);
       // Joints: where pieces meet inside a curve run (the corners are drawn apart).
@@ -176,7 +178,7 @@ export const MODES = {
             : r.seam.angle_degrees < 1e-6 && r.seam.curvature_jump < 1e-6 ? 'yes, G2 at the seam'
               : `yes, seam ${fmt(r.seam.angle_degrees, 1)}°, jump ${fmt(r.seam.curvature_jump, 2)}`],
           ['max_deviation', 'max deviation', r.max_deviation],
-          ['tolerance', 'tolerance', r.tolerance],
+          ['tolerance', st.tolerance > 0 ? 'tolerance (set)' : 'tolerance (auto: size and noise)', r.tolerance],
           ['g2', 'G2 inside the runs', g2 ? 'yes' : 'no'],
           ['max_curvature_jump', 'largest curvature jump', jump],
           ['alphas', 'alphas', segments.map((g) => fmt(g.alpha, 2)).join(' ') || '—'],
