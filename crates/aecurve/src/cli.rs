@@ -145,6 +145,10 @@ pub(crate) enum Cmd {
         /// box diagonal).
         #[arg(long, allow_hyphen_values = true, value_parser = positive)]
         tolerance: Option<f64>,
+        /// Take the stroke as a contour: corners found, straight runs as lines, a stroke
+        /// that ends at its start closed (docs/math.md §6.1; the protocol's sketch.contour).
+        #[arg(long)]
+        contour: bool,
         #[command(flatten)]
         out: CurveOutput,
     },

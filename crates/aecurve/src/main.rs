@@ -16,7 +16,7 @@ use commands::demo::demo;
 use commands::lac::lac;
 use commands::lcg::{lcg, LcgSource};
 use commands::monotone::monotone;
-use commands::sketch::sketch;
+use commands::sketch::{sketch, sketch_contour};
 use commands::spline::spline;
 
 fn main() {
@@ -241,8 +241,15 @@ fn run() -> Result<()> {
         Cmd::Sketch {
             input,
             tolerance,
+            contour,
             out,
-        } => sketch(&input, tolerance, &out)?,
+        } => {
+            if contour {
+                sketch_contour(&input, tolerance, &out)?
+            } else {
+                sketch(&input, tolerance, &out)?
+            }
+        }
         Cmd::Approx {
             alpha,
             control,

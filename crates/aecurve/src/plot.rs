@@ -497,7 +497,10 @@ pub fn comb_svg_in(
     } else {
         kmax
     };
-    let comb = if kscale > 0.0 {
+    // A curvature under 1e-9 of the size's is the rounding of zero (a line drawn as a
+    // cubic): no tooth, and no comb scaled up from such noise.
+    let flat = 1e-9 / size;
+    let comb = if kscale > flat {
         -0.25 * size / kscale
     } else {
         0.0
@@ -505,7 +508,10 @@ pub fn comb_svg_in(
     let kclip = 1.5 * kscale;
     let tips: Vec<Point> = samples
         .iter()
-        .map(|(p, nv, k)| *p + *nv * (k.clamp(-kclip, kclip) * comb))
+        .map(|(p, nv, k)| {
+            let k = if k.abs() < flat { 0.0 } else { *k };
+            *p + *nv * (k.clamp(-kclip, kclip) * comb)
+        })
         .collect();
     let clipped = kmax > kclip;
     for p in tips.iter().filter(|p| p.is_finite()) {

@@ -756,7 +756,7 @@ fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
 }
 
 fn sketch_contour(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
-    use aesthetic_curves::sketch::contour::{fit_contour, ContourOptions, Run};
+    use aesthetic_curves::sketch::contour::{fit_contour, ContourOptions};
     let points = points_param(obj, "points", 2, MAX_SKETCH_POINTS)?;
     let tolerance = match optional_number(obj, "tolerance")? {
         Some(t) if t > 0.0 => Some(t),
@@ -784,6 +784,19 @@ fn sketch_contour(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     }
     let draw = draw_param(obj)?;
     let c = fit_contour(&points, &opts)?;
+    let mut out = contour_json(&c);
+    if let Some(n) = draw {
+        drawing_budget(c.pieces(), n)?;
+        let curve = c.as_curve()?;
+        let nurbs = curve.to_nurbs(0.0)?;
+        out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
+    }
+    Ok(out)
+}
+
+/// The `sketch.contour` result of a contour (shared with `aecurve sketch --contour --json`).
+pub fn contour_json(c: &aesthetic_curves::sketch::contour::SketchContour) -> Value {
+    use aesthetic_curves::sketch::contour::Run;
     let xy = |p: aesthetic_curves::Point| [p.x, p.y];
     let runs: Vec<Value> = c
         .runs
@@ -817,13 +830,7 @@ fn sketch_contour(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         out["seam"] =
             json!({"angle_degrees": s.angle.to_degrees(), "curvature_jump": s.curvature_jump});
     }
-    if let Some(n) = draw {
-        drawing_budget(c.pieces(), n)?;
-        let curve = c.as_curve()?;
-        let nurbs = curve.to_nurbs(0.0)?;
-        out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
-    }
-    Ok(out)
+    out
 }
 
 /// The `sketch.fit` result of a sketch (shared with `aecurve sketch --json`).

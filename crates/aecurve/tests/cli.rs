@@ -972,3 +972,63 @@ fn editor_export_simple_knots_and_huge_coordinates() {
     child.kill().unwrap();
     let _ = child.wait();
 }
+
+/// `aecurve sketch --contour`: an L written as CSV comes back as two lines and one corner,
+/// in the summary and in the JSON (the protocol's `sketch.contour`), and its SVG has no
+/// comb on the straight runs (zero curvature drawn as none).
+#[test]
+fn sketch_contour_command() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-contour-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("l.csv");
+    let mut text = String::from("x,y\n");
+    for i in 0..=100 {
+        text += &format!("0,{}\n", 2 * i);
+    }
+    for i in 1..=100 {
+        text += &format!("{},200\n", 2 * i);
+    }
+    std::fs::write(&csv, text).unwrap();
+    let v = json_output(aecurve().args(["sketch", "--contour", "--json"]).arg(&csv));
+    let kinds: Vec<&str> = v["runs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["line", "line"], "{v}");
+    assert_eq!(v["corners"][0]["index"], 100, "{v}");
+    let svg = dir.join("l.svg");
+    let out = aecurve()
+        .args(["sketch", "--contour"])
+        .arg(&csv)
+        .arg("-o")
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let summary = String::from_utf8_lossy(&out.stdout);
+    assert!(summary.contains("2 runs, 1 corners"), "{summary}");
+    let doc = std::fs::read_to_string(&svg).unwrap();
+    assert!(doc.contains("<path"), "{doc}");
+    // Every comb tooth (a light blue line from the curve) has zero length.
+    let attr = |tag: &str, name: &str| -> f64 {
+        let at = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        tag[at..at + tag[at..].find('"').unwrap()].parse().unwrap()
+    };
+    let teeth: Vec<&str> = doc
+        .split("<line ")
+        .skip(1)
+        .filter(|t| t.contains("stroke=\"#9ecae1\""))
+        .collect();
+    assert!(!teeth.is_empty());
+    for t in teeth {
+        let t = format!(" {t}");
+        assert_eq!(
+            (attr(&t, "x1"), attr(&t, "y1")),
+            (attr(&t, "x2"), attr(&t, "y2")),
+            "{t}"
+        );
+    }
+}

@@ -407,9 +407,19 @@ pub fn curve_samples(
 pub fn svg_document(c: &Nurbs, tol: f64, comb: &[CombSample], caption: &str) -> Option<String> {
     let d = svg_path_data(c, tol)?;
     let size = c.size().max(1e-300);
+    // A curvature under 1e-9 of the size's is the rounding of zero (a line drawn as a
+    // cubic): no tooth, and no comb scaled up from such noise.
+    let flat = 1e-9 / size;
     let kmax = comb.iter().map(|s| s.2.abs()).fold(0.0, f64::max);
-    let scale = if kmax > 0.0 { -0.25 * size / kmax } else { 0.0 };
-    let tips: Vec<Point> = comb.iter().map(|(p, n, k)| *p + *n * (k * scale)).collect();
+    let scale = if kmax > flat {
+        -0.25 * size / kmax
+    } else {
+        0.0
+    };
+    let tips: Vec<Point> = comb
+        .iter()
+        .map(|(p, n, k)| *p + *n * (if k.abs() < flat { 0.0 } else { *k } * scale))
+        .collect();
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for p in c.control_points.iter().chain(&tips) {
         x0 = x0.min(p.x);

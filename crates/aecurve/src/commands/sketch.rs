@@ -49,3 +49,83 @@ pub(crate) fn sketch(
     )?;
     Ok(())
 }
+
+/// `aecurve sketch --contour`: the stroke as a contour of runs joined at corners.
+pub(crate) fn sketch_contour(
+    input: &std::path::Path,
+    tolerance: Option<f64>,
+    out: &CurveOutput,
+) -> Result<()> {
+    use aesthetic_curves::sketch::contour::{fit_contour, ContourOptions, Run};
+    let pts = aecurve::read_points_file(input)?;
+    let opts = ContourOptions {
+        tolerance,
+        ..Default::default()
+    };
+    let c = fit_contour(&pts, &opts)?;
+    if out.json {
+        println!("{}", aecurve::protocol::contour_json(&c));
+    } else {
+        let seam = match c.seam {
+            Some(s) => format!(
+                ", seam: {:.2e} deg, curvature jump {:.1e}",
+                s.angle.to_degrees(),
+                s.curvature_jump
+            ),
+            None => String::new(),
+        };
+        println!(
+            "contour of {} points: {} runs, {} corners, {}{seam}; {} pieces, deviation {:.3e} (tolerance {:.3e})",
+            pts.len(),
+            c.runs.len(),
+            c.corners.len(),
+            if c.closed { "closed" } else { "open" },
+            c.pieces(),
+            c.max_deviation,
+            c.tolerance
+        );
+        for (k, run) in c.runs.iter().enumerate() {
+            let (a, b) = run.ends();
+            let what = match run {
+                Run::Line { .. } => "line".to_string(),
+                Run::Curve(s) => format!(
+                    "curve of {} LAC pieces, G2 {}",
+                    s.pieces.len(),
+                    if s.g2 { "yes" } else { "no" }
+                ),
+            };
+            println!(
+                "  run {k}: {what}, ({:.4}, {:.4}) -> ({:.4}, {:.4})",
+                a.x, a.y, b.x, b.y
+            );
+        }
+        for k in &c.corners {
+            println!(
+                "  corner at point {} ({:.4}, {:.4}): turns {:.1} deg",
+                k.index,
+                k.point.x,
+                k.point.y,
+                k.angle.to_degrees()
+            );
+        }
+    }
+    let curve = c.as_curve()?;
+    let nurbs = curve.to_nurbs(0.0)?;
+    let comb = plot::curve_samples(&curve, 61)?;
+    let caption = format!(
+        "sketch contour: {} runs, {} corners, {} pieces, deviation {:.3e}",
+        c.runs.len(),
+        c.corners.len(),
+        c.pieces(),
+        c.max_deviation
+    );
+    let marks: Vec<aesthetic_curves::Point> = c.corners.iter().map(|k| k.point).collect();
+    out.write(
+        "sketch",
+        &mut || Ok(nurbs.clone()),
+        &comb,
+        &caption,
+        &mut || Ok(plot::comb_svg(&comb, &pts, &marks, &caption)),
+    )?;
+    Ok(())
+}
