@@ -519,6 +519,27 @@ impl Sketch {
     }
 }
 
+impl crate::sketch::contour::SketchContour {
+    /// The contour as one curve of rational cubics in order ([`Pieces`], its [`Curve`]): a
+    /// line run as the cubic with its inner control points at its thirds (straight, zero
+    /// curvature), a curve run as its pieces' cubics.
+    pub fn as_curve(&self) -> Result<Pieces<RationalBezier>> {
+        use crate::sketch::contour::Run;
+        let mut out = Vec::new();
+        for run in &self.runs {
+            match run {
+                Run::Line { start, end } => {
+                    let d = *end - *start;
+                    let pts = vec![*start, *start + d / 3.0, *start + d * (2.0 / 3.0), *end];
+                    out.push(RationalBezier::new(pts, vec![1.0; 4])?);
+                }
+                Run::Curve(s) => out.extend(s.pieces.iter().map(|p| p.rational.clone())),
+            }
+        }
+        Ok(Pieces(out))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -172,24 +172,6 @@ pub struct SketchContour {
 }
 
 impl SketchContour {
-    /// The contour as one curve of rational cubics in order: a line run as the cubic with
-    /// its inner control points at its thirds (straight, zero curvature), a curve run as its
-    /// pieces' cubics.
-    pub fn as_curve(&self) -> Result<crate::curve::Pieces<crate::bezier::RationalBezier>> {
-        let mut out = Vec::new();
-        for run in &self.runs {
-            match run {
-                Run::Line { start, end } => {
-                    let d = *end - *start;
-                    let pts = vec![*start, *start + d / 3.0, *start + d * (2.0 / 3.0), *end];
-                    out.push(crate::bezier::RationalBezier::new(pts, vec![1.0; 4])?);
-                }
-                Run::Curve(s) => out.extend(s.pieces.iter().map(|p| p.rational.clone())),
-            }
-        }
-        Ok(crate::curve::Pieces(out))
-    }
-
     /// How many pieces: one per line run, a curve run's pieces.
     pub fn pieces(&self) -> usize {
         self.runs
