@@ -735,11 +735,8 @@ pub const MAX_SKETCH_POINTS: usize = 20_000;
 
 fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let points = points_param(obj, "points", 4, MAX_SKETCH_POINTS)?;
-    let tolerance = match optional_number(obj, "tolerance")? {
-        Some(t) if t > 0.0 => t,
-        Some(_) => return Err(ProtoError::invalid("tolerance", "must be positive")),
-        None => aesthetic_curves::sketch::default_tolerance(&points),
-    };
+    let tolerance = sketch_tolerance(obj)?
+        .unwrap_or_else(|| aesthetic_curves::sketch::default_tolerance(&points));
     let draw = draw_param(obj)?;
     let sk = aesthetic_curves::sketch::fit_sketch(
         &points,
@@ -747,22 +744,35 @@ fn sketch_fit(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     )?;
     let mut out = sketch_json(&sk, tolerance);
     if let Some(n) = draw {
-        drawing_budget(sk.pieces.len(), n)?;
-        let curve = sk.as_curve();
-        let nurbs = curve.to_nurbs(0.0)?;
-        out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
+        out["drawing"] = pieces_drawing(&sk.as_curve(), n)?;
     }
     Ok(out)
+}
+
+/// The optional `tolerance` of the sketch ops: positive, or absent for the default.
+fn sketch_tolerance(obj: &Map<String, Value>) -> Result<Option<f64>, ProtoError> {
+    match optional_number(obj, "tolerance")? {
+        Some(t) if t > 0.0 => Ok(Some(t)),
+        Some(_) => Err(ProtoError::invalid("tolerance", "must be positive")),
+        None => Ok(None),
+    }
+}
+
+/// The drawing of a curve of rational cubics (a sketch, a contour), within the drawing
+/// budget for its pieces.
+fn pieces_drawing(
+    curve: &aesthetic_curves::Pieces<aesthetic_curves::RationalBezier>,
+    n: usize,
+) -> Result<Value, ProtoError> {
+    drawing_budget(curve.0.len(), n)?;
+    let nurbs = curve.to_nurbs(0.0)?;
+    Ok(drawing_json(curve, n, Some(&nurbs))?)
 }
 
 fn sketch_contour(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     use aesthetic_curves::sketch::contour::{fit_contour, ContourOptions};
     let points = points_param(obj, "points", 2, MAX_SKETCH_POINTS)?;
-    let tolerance = match optional_number(obj, "tolerance")? {
-        Some(t) if t > 0.0 => Some(t),
-        Some(_) => return Err(ProtoError::invalid("tolerance", "must be positive")),
-        None => None,
-    };
+    let tolerance = sketch_tolerance(obj)?;
     let closed = match obj.get("closed") {
         None | Some(Value::Null) => None,
         Some(Value::Bool(b)) => Some(*b),
@@ -786,10 +796,7 @@ fn sketch_contour(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let c = fit_contour(&points, &opts)?;
     let mut out = contour_json(&c);
     if let Some(n) = draw {
-        drawing_budget(c.pieces(), n)?;
-        let curve = c.as_curve()?;
-        let nurbs = curve.to_nurbs(0.0)?;
-        out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
+        out["drawing"] = pieces_drawing(&c.as_curve()?, n)?;
     }
     Ok(out)
 }

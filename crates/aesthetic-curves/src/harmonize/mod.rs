@@ -42,6 +42,7 @@
 
 mod grid;
 
+use crate::bezier::outline_move;
 use crate::monotone::CurvatureMonotone;
 use crate::{Bezier, Point, Vec2};
 
@@ -144,55 +145,6 @@ fn max_move(a: &[Point], b: &[Point]) -> f64 {
         .zip(b)
         .map(|(p, q)| (*p - *q).hypot())
         .fold(0.0, f64::max)
-}
-
-/// How far the outline moved from Bézier `a` to Bézier `b` (the same degree): an upper
-/// bound of `max_t |b(t) - a(t)|`, so of the distance between the two curves, within
-/// 1e-4 of the exact maximum (relative). The difference `b(t) - a(t)` is the Bézier curve
-/// of the differences of the control points; the largest of its control points bounds it
-/// (the convex hull), and that bound is split at t = 1/2 until it is within 1e-4 of the
-/// values at the pieces' ends (a lower bound), at most 12 levels deep. A handle alone moving
-/// by `d` moves its cubic by at most 4/9 d (`max 3t(1-t)²`), both handles by `d` each at
-/// most 3/4 d.
-pub fn outline_move(a: &[Point], b: &[Point]) -> f64 {
-    let d: Vec<Vec2> = a.iter().zip(b).map(|(p, q)| *q - *p).collect();
-    if d.is_empty() {
-        return 0.0;
-    }
-    let norm = |v: &Vec2| v.hypot();
-    let ends = |c: &[Vec2]| norm(&c[0]).max(norm(&c[c.len() - 1]));
-    let mut lower = ends(&d);
-    let mut upper = 0.0f64;
-    let mut stack = vec![(d, 0u8)];
-    while let Some((c, depth)) = stack.pop() {
-        let hull = c.iter().map(norm).fold(0.0, f64::max);
-        if hull <= lower * (1.0 + 1e-4) || depth >= 12 {
-            upper = upper.max(hull);
-            continue;
-        }
-        let (l, r) = split_half(&c);
-        lower = lower.max(ends(&l)).max(ends(&r));
-        stack.push((l, depth + 1));
-        stack.push((r, depth + 1));
-    }
-    // The float rounding of the splits, far below any tolerance that matters.
-    upper.max(lower) * (1.0 + 1e-12)
-}
-
-/// A Bézier curve's control points (vectors) split at t = 1/2 (de Casteljau).
-fn split_half(c: &[Vec2]) -> (Vec<Vec2>, Vec<Vec2>) {
-    let mut work = c.to_vec();
-    let mut left = vec![work[0]];
-    let mut right = vec![work[work.len() - 1]];
-    for k in 1..c.len() {
-        for i in 0..c.len() - k {
-            work[i] = (work[i] + work[i + 1]) * 0.5;
-        }
-        left.push(work[0]);
-        right.push(work[c.len() - k - 1]);
-    }
-    right.reverse();
-    (left, right)
 }
 
 /// What the tolerance allows: the outline of each segment within `tolerance` of the
@@ -336,6 +288,28 @@ impl Handles {
             length_range((s[3], -d1), o[2], (radius, floor_v), v),
         );
     }
+
+    /// The control points of segment `i` with the current lengths (exactly the input's
+    /// points where a length is unchanged).
+    fn points(&self, segs: &[Vec<Point>], i: usize) -> Vec<Point> {
+        let s = &segs[i];
+        if self.dirs[i].is_none() {
+            return s.clone();
+        }
+        let (u0, v0) = self.orig[i];
+        let (u, v) = self.len[i];
+        let p1 = if u == u0 {
+            s[1]
+        } else {
+            s[0] + (s[1] - s[0]) * (u / u0)
+        };
+        let p2 = if v == v0 {
+            s[2]
+        } else {
+            s[3] + (s[2] - s[3]) * (v / v0)
+        };
+        vec![s[0], p1, p2, s[3]]
+    }
 }
 
 /// The lengths `L` for which the handle `anchor + L k` stays within `radius` of `original`
@@ -357,30 +331,6 @@ fn length_range(
         (lo, hi)
     } else {
         (now, now)
-    }
-}
-
-impl Handles {
-    /// The control points of segment `i` with the current lengths (exactly the input's
-    /// points where a length is unchanged).
-    fn points(&self, segs: &[Vec<Point>], i: usize) -> Vec<Point> {
-        let s = &segs[i];
-        if self.dirs[i].is_none() {
-            return s.clone();
-        }
-        let (u0, v0) = self.orig[i];
-        let (u, v) = self.len[i];
-        let p1 = if u == u0 {
-            s[1]
-        } else {
-            s[0] + (s[1] - s[0]) * (u / u0)
-        };
-        let p2 = if v == v0 {
-            s[2]
-        } else {
-            s[3] + (s[2] - s[3]) * (v / v0)
-        };
-        vec![s[0], p1, p2, s[3]]
     }
 }
 
@@ -602,15 +552,17 @@ fn harmonize_within(
     } else {
         &[0.0]
     };
-    let mut best: Option<(Shortfall, Harmonized)> = None;
-    for &share in shares {
+    let score = |h: &Harmonized| Shortfall::of(h, &limits.kept, opts.g2_jump);
+    let first = stage.run(shares[0]);
+    let mut best = (score(&first), first);
+    for &share in &shares[1..] {
         let h = stage.run(share);
-        let score = Shortfall::of(&h, &limits.kept, opts.g2_jump);
-        if best.as_ref().is_none_or(|(s, _)| score < *s) {
-            best = Some((score, h));
+        let s = score(&h);
+        if s < best.0 {
+            best = (s, h);
         }
     }
-    best.map(|b| b.1).unwrap_or_else(|| stage.run(0.0))
+    best.1
 }
 
 /// How far a result is from G2 at its kept joins: how many are not under the threshold,
@@ -655,8 +607,8 @@ impl Stage<'_> {
             profiles: extrema_before,
         } = self.limits;
         let n = self.input.len();
+        let limits = (&guard[..], &extrema_before[..]);
         let start = if share > 0.0 {
-            let limits = (&guard[..], &extrema_before[..]);
             let cap = opts.tolerance * share;
             let points = (opts, reach, cap);
             move_on_curve_points(self.input, (closed, self.moving), points, limits)
@@ -665,7 +617,6 @@ impl Stage<'_> {
         };
         let segments = &start[..];
         let mut h = Handles::within(segments, reach);
-        let limits = (&guard[..], &extrema_before[..]);
         let (sweeps, mut outcome) = settle(segments, &mut h, (closed, self.moving), opts, limits);
         let target: Vec<Vec<Point>> = (0..n).map(|i| h.points(segments, i)).collect();
         for (o, _) in outcome.iter_mut().zip(self.held).filter(|(_, h)| **h) {

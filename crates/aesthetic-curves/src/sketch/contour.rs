@@ -30,7 +30,7 @@
 //! Known limit: a straight stretch inside a curved run is fitted with the run's pieces, not
 //! as a line piece with G2 joins.
 
-use super::{bbox_diagonal, default_tolerance, fit_sketch, Sketch, SketchOptions};
+use super::{bbox_diagonal, check_points, default_tolerance, fit_sketch, Sketch, SketchOptions};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 
@@ -189,22 +189,7 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     if points.len() < 2 {
         return Err(Error::invalid("points", "a stroke needs at least 2 points"));
     }
-    if points.iter().any(|q| !q.is_finite()) {
-        return Err(Error::invalid("points", "must be finite"));
-    }
-    let size = bbox_diagonal(points);
-    if !size.is_finite() {
-        return Err(Error::invalid(
-            "points",
-            "the coordinates are too large: their extent overflows f64",
-        ));
-    }
-    if size == 0.0 {
-        return Err(Error::Degenerate(format!(
-            "all {} points coincide: no curve runs through them",
-            points.len()
-        )));
-    }
+    let size = check_points(points)?;
     if !(opts.corner_angle > 0.0 && opts.corner_angle < std::f64::consts::PI) {
         return Err(Error::invalid("corner_angle", "must lie in (0, π) radians"));
     }
@@ -220,13 +205,13 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     let stroke = &points[..kept];
     let corners = corners(stroke, closed, tolerance, opts.corner_angle);
     let runs = runs_of(stroke, closed, &corners);
+    // A closed contour without corners is one run whose seam is faired G2.
+    let one_loop = closed && corners.is_empty();
     let fitted: Vec<Run> = runs
         .iter()
         .enumerate()
         .map(|(k, r)| {
-            // A closed contour without corners is one run whose seam is faired G2.
-            let loop_run = closed && corners.is_empty();
-            fit_run(r, tolerance, loop_run).map_err(|e| match e {
+            fit_run(r, tolerance, one_loop).map_err(|e| match e {
                 Error::NoSegment(m) => Error::NoSegment(format!("run {k}: {m}")),
                 Error::NoConvergence(m) => Error::NoConvergence(format!("run {k}: {m}")),
                 other => other,
@@ -238,7 +223,7 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
         .zip(&fitted)
         .map(|(r, f)| deviation(r, f))
         .fold(0.0, f64::max);
-    let seam = (closed && corners.is_empty()).then(|| seam(&fitted[0]));
+    let seam = one_loop.then(|| seam(&fitted[0]));
     // corners[k] between runs[k] and runs[k + 1]: a closed contour's runs start at its
     // first corner, so that one comes last.
     let mut corners = corners;
@@ -364,9 +349,9 @@ impl ArcLength {
     }
 
     /// The points within arc length `w` before (`dir` -1) or after (+1) point `i`, `i`
-    /// included, in stroke order (at least three); None where the stroke ends (or comes
-    /// round) before `fill` of `w`.
-    fn window(&self, i: usize, w: f64, dir: i64, fill: f64) -> Option<Vec<usize>> {
+    /// included, in stroke order (at least three), and their arc length; None where the
+    /// stroke ends (or comes round) before `fill` of `w`.
+    fn window(&self, i: usize, w: f64, dir: i64, fill: f64) -> Option<(Vec<usize>, f64)> {
         let n = self.s.len() as i64;
         let mut out = vec![i];
         let mut k = i as i64;
@@ -401,7 +386,7 @@ impl ArcLength {
         if dir < 0 {
             out.reverse();
         }
-        Some(out)
+        Some((out, run))
     }
 
     /// Whether the turn `near` over windows `w` at point `i` happens in a short stretch:
@@ -422,7 +407,7 @@ impl ArcLength {
     /// of it split into the two straightest pieces (least sum of the squared distances
     /// from their least-squares lines, each piece at least three points).
     fn apex(&self, points: &[Point], i: usize, w: f64) -> usize {
-        let (Some(before), Some(after)) = (
+        let (Some((before, _)), Some((after, _))) = (
             self.window(i, 1.5 * w, -1, 0.0),
             self.window(i, 1.5 * w, 1, 0.0),
         ) else {
@@ -447,16 +432,15 @@ impl ArcLength {
         let (a, b) = (self.window(i, w, -1, fill)?, self.window(i, w, 1, fill)?);
         // A stretch that goes back and forth (samples out of order, a scribble) has no
         // direction to turn from.
-        let goes = |idx: &[usize]| {
+        let goes = |(idx, along): &(Vec<usize>, f64)| {
             let (first, last) = (idx[0], idx[idx.len() - 1]);
-            let along: f64 = idx.windows(2).map(|p| self.between(p[0], p[1])).sum();
             (points[last] - points[first]).hypot() >= 0.5 * along
         };
         if !goes(&a) || !goes(&b) {
             return None;
         }
-        let before = direction(points, &a)?;
-        let after = direction(points, &b)?;
+        let before = direction(points, &a.0)?;
+        let after = direction(points, &b.0)?;
         Some(before.cross(after).atan2(before.dot(after)).abs())
     }
 }

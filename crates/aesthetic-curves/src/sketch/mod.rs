@@ -1207,32 +1207,10 @@ fn project(c: &RationalBezier, q: Point, samples: &[(f64, Point)]) -> (f64, f64)
 /// enough for the tolerance.
 pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     // The points first: a tolerance derived from unusable points is not the cause.
-    if points.iter().any(|q| !q.is_finite()) {
-        return Err(Error::invalid("points", "must be finite"));
-    }
-    let diagonal = if points.len() >= 2 {
-        bbox_diagonal(points)
-    } else {
-        0.0
-    };
-    if !diagonal.is_finite() {
-        return Err(Error::invalid(
-            "points",
-            "the coordinates are too large: their extent overflows f64",
-        ));
-    }
-    if points.len() >= 2 && diagonal == 0.0 {
-        return Err(Error::Degenerate(format!(
-            "all {} points coincide: no curve runs through them",
-            points.len()
-        )));
-    }
+    check_points(points)?;
     Error::check_positive("tolerance", opts.tolerance)?;
     if !(opts.max_turn > 0.1 && opts.max_turn < 3.0) {
         return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
-    }
-    if points.iter().any(|q| !q.is_finite()) {
-        return Err(Error::invalid("points", "must be finite"));
     }
     // The B-spline follows the data as closely as its noise allows (tangents and curvature
     // graphs of noise-free input come out accurate), and never looser than half the
@@ -1770,6 +1748,31 @@ fn split_at_mid_turn(track: &Track, slots: &mut Vec<Slot>, i: usize) -> Result<(
 }
 
 /// Diagonal of the bounding box.
+/// The points of a stroke checked: finite, their extent within f64, and (two or more) not
+/// all one point; their bounding box's diagonal (0 for fewer than two).
+fn check_points(points: &[Point]) -> Result<f64> {
+    if points.iter().any(|q| !q.is_finite()) {
+        return Err(Error::invalid("points", "must be finite"));
+    }
+    if points.len() < 2 {
+        return Ok(0.0);
+    }
+    let diagonal = bbox_diagonal(points);
+    if !diagonal.is_finite() {
+        return Err(Error::invalid(
+            "points",
+            "the coordinates are too large: their extent overflows f64",
+        ));
+    }
+    if diagonal == 0.0 {
+        return Err(Error::Degenerate(format!(
+            "all {} points coincide: no curve runs through them",
+            points.len()
+        )));
+    }
+    Ok(diagonal)
+}
+
 fn bbox_diagonal(points: &[Point]) -> f64 {
     let (mut lo, mut hi) = (
         Point::new(f64::MAX, f64::MAX),
