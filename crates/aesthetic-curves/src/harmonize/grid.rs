@@ -107,9 +107,22 @@ fn states_of(
         return vec![input.to_vec()];
     }
     let (reach, original) = (contour.reach, &contour.reach.original[i]);
-    let radius = reach.handle_radius(i, input, true);
-    let starts = handle_candidates((input[1], target[1]), input[0], (original[1], radius), opts);
-    let ends = handle_candidates((input[2], target[2]), input[3], (original[2], radius), opts);
+    // A handle alone may move 9/4 T; both together further where their moves cancel (the
+    // joint stage's targets can): the target's own distance and two cells more.
+    let lone = reach.handle_radius(i, input, true);
+    let radius = |k: usize| lone.max((target[k] - original[k]).hypot() + 2.0 * opts.grid);
+    let starts = handle_candidates(
+        (input[1], target[1]),
+        input[0],
+        (original[1], radius(1)),
+        opts,
+    );
+    let ends = handle_candidates(
+        (input[2], target[2]),
+        input[3],
+        (original[2], radius(2)),
+        opts,
+    );
     let mut out = vec![input.to_vec()];
     for &a in &starts {
         for &b in &ends {
@@ -126,7 +139,8 @@ fn states_of(
 /// to it; on a grid the [`NEAR_TARGET`] grid points of the 5 × 5 around the target nearest
 /// the handle's tangent line (the line through its anchor and its input place), and the
 /// grid point half way nearest it; all within `radius` of the original place (the most a
-/// handle alone may move: the cubic's states are checked whole after).
+/// handle alone may move, or the target's distance: the cubic's states are checked whole
+/// after).
 fn handle_candidates(
     (input, target): (Point, Point),
     anchor: Point,
@@ -239,14 +253,14 @@ impl Chain<'_> {
     /// many joins G2 as it can first, then the jumps small); infinity where it is worse
     /// than allowed; nothing at a corner.
     fn pair(&self, (j, a, b): (usize, usize, usize), sa: usize, sb: usize) -> f64 {
-        if !self.contour.smooth[j] {
-            return 0.0;
-        }
         let (pa, pb) = (&self.states[a][sa], &self.states[b][sb]);
         let state = join_state(pa, pb);
         let moved = sa != 0 || sb != 0;
         if moved && worse(state, self.contour.guard[j]) {
             return f64::INFINITY;
+        }
+        if !self.contour.smooth[j] {
+            return 0.0;
         }
         match state.0 {
             j if j.is_nan() => 0.0,

@@ -19,7 +19,8 @@
 //! evaluated. It never loops past its limits and never panics on NaN residuals (a point with
 //! a non-finite cost is refused like an invalid one).
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::allocator::Allocator;
+use nalgebra::{Const, DefaultAllocator, Dim, Dyn, OMatrix, OVector};
 
 /// Stopping rules and damping of [`levenberg_marquardt`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -142,17 +143,149 @@ pub fn levenberg_marquardt_jac<const N: usize>(
 
 fn solve<const N: usize>(
     residuals: &mut ResidualFn<N>,
-    mut jacobian: Option<&mut JacobianFn<N>>,
+    jacobian: Option<&mut JacobianFn<N>>,
     feasible: &dyn Fn(&[f64; N]) -> bool,
     x0: [f64; N],
     opts: &LmOptions,
 ) -> LeastSquares<N> {
+    let mut res = |x: &[f64], r: &mut Vec<f64>| residuals(<&[f64; N]>::try_from(x).ok()?, r);
+    let feas = |x: &[f64]| <&[f64; N]>::try_from(x).is_ok_and(feasible);
+    let fit = match jacobian {
+        Some(jf) => {
+            let mut jac = |x: &[f64], r: &mut Vec<f64>, j: &mut [Vec<f64>]| {
+                jf(
+                    <&[f64; N]>::try_from(x).ok()?,
+                    r,
+                    <&mut [Vec<f64>; N]>::try_from(j).ok()?,
+                )
+            };
+            solve_in(
+                Const::<N>,
+                &mut res,
+                Some(&mut jac),
+                &feas,
+                x0.to_vec(),
+                opts,
+            )
+        }
+        None => solve_in(Const::<N>, &mut res, None, &feas, x0.to_vec(), opts),
+    };
+    LeastSquares {
+        x: <[f64; N]>::try_from(&fit.x[..]).unwrap_or(x0),
+        cost: fit.cost,
+        evaluations: fit.evaluations,
+        iterations: fit.iterations,
+        stop: fit.stop,
+    }
+}
+
+/// The residuals of a point of any dimension (see [`ResidualFn`]).
+pub type DynResidualFn<'a> = dyn FnMut(&[f64], &mut Vec<f64>) -> Option<()> + 'a;
+
+/// The residuals of a point of any dimension and their columns (see [`JacobianFn`]).
+pub type DynJacobianFn<'a> = dyn FnMut(&[f64], &mut Vec<f64>, &mut [Vec<f64>]) -> Option<()> + 'a;
+
+/// The result of [`levenberg_marquardt_dyn`]: as [`LeastSquares`], of any dimension.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LeastSquaresDyn {
+    /// The best point found.
+    pub x: Vec<f64>,
+    /// Its sum of squared residuals (infinite for [`Stop::InvalidStart`]).
+    pub cost: f64,
+    /// Residual evaluations spent (the Jacobian's included).
+    pub evaluations: usize,
+    /// Iterations done.
+    pub iterations: usize,
+    /// Why the run ended.
+    pub stop: Stop,
+}
+
+/// [`levenberg_marquardt_jac`] for a number of parameters known only at run time (the
+/// handle lengths of a whole contour): `jacobian` (None: forward differences) fills the
+/// residuals and one column per parameter. The same algorithm and stopping rules.
+pub fn levenberg_marquardt_dyn(
+    residuals: &mut DynResidualFn,
+    jacobian: Option<&mut DynJacobianFn>,
+    feasible: &dyn Fn(&[f64]) -> bool,
+    x0: Vec<f64>,
+    opts: &LmOptions,
+) -> LeastSquaresDyn {
+    solve_in(Dyn(x0.len()), residuals, jacobian, feasible, x0, opts)
+}
+
+/// The forward-difference columns at `x` (backwards where the forward point cannot be
+/// evaluated); false where neither can, with the evaluations spent added.
+fn differences(
+    residuals: &mut DynResidualFn,
+    (x, r): (&[f64], &[f64]),
+    jac: &mut [Vec<f64>],
+    (fd_step, evaluations): (f64, &mut usize),
+) -> bool {
+    let mut rp = Vec::new();
+    let mut xp = x.to_vec();
+    for (i, col) in jac.iter_mut().enumerate() {
+        let h = fd_step * x[i].abs().max(1.0);
+        xp[i] = x[i] + h;
+        *evaluations += 1;
+        let s = if residuals(&xp, &mut rp).is_some() {
+            h
+        } else {
+            xp[i] = x[i] - h;
+            *evaluations += 1;
+            if residuals(&xp, &mut rp).is_none() {
+                return false;
+            }
+            -h
+        };
+        xp[i] = x[i];
+        col.clear();
+        col.extend(rp.iter().zip(r).map(|(a, b)| (a - b) / s));
+    }
+    true
+}
+
+/// JᵀJ and Jᵀr of the columns `jac` and residuals `r`.
+fn normal_equations<D: Dim>(
+    dim: D,
+    jac: &[Vec<f64>],
+    r: &[f64],
+) -> (OMatrix<f64, D, D>, OVector<f64, D>)
+where
+    DefaultAllocator: Allocator<D, D> + Allocator<D>,
+{
+    let n = jac.len();
+    let mut jtj = OMatrix::<f64, D, D>::zeros_generic(dim, dim);
+    let mut g = OVector::<f64, D>::zeros_generic(dim, Const::<1>);
+    for i in 0..n {
+        for j in i..n {
+            let v: f64 = jac[i].iter().zip(&jac[j]).map(|(a, b)| a * b).sum();
+            jtj[(i, j)] = v;
+            jtj[(j, i)] = v;
+        }
+        g[i] = jac[i].iter().zip(r).map(|(a, b)| a * b).sum();
+    }
+    (jtj, g)
+}
+
+/// The algorithm, with its matrices of dimension `dim` (on the stack for a `Const`).
+fn solve_in<D: Dim>(
+    dim: D,
+    residuals: &mut DynResidualFn,
+    mut jacobian: Option<&mut DynJacobianFn>,
+    feasible: &dyn Fn(&[f64]) -> bool,
+    x0: Vec<f64>,
+    opts: &LmOptions,
+) -> LeastSquaresDyn
+where
+    DefaultAllocator: Allocator<D, D> + Allocator<D>,
+{
+    let n = x0.len();
     let sum_sq = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>();
     let mut x = x0;
     let mut r = Vec::new();
     let mut rp = Vec::new();
-    let mut out = LeastSquares {
-        x,
+    let mut out = LeastSquaresDyn {
+        x: x.clone(),
         cost: f64::INFINITY,
         evaluations: 1,
         iterations: 0,
@@ -167,13 +300,13 @@ fn solve<const N: usize>(
     }
     out.cost = cost;
     let mut mu = opts.mu0;
-    let mut jac: [Vec<f64>; N] = std::array::from_fn(|_| Vec::new());
+    let mut jac: Vec<Vec<f64>> = vec![Vec::new(); n];
     out.stop = Stop::IterationLimit;
     let mut trusted = false;
     // With a closed-form Jacobian, trial points are evaluated with it (most are accepted,
     // and then the next iteration needs it there): `have_jac` says `jac` belongs to `x`.
     let mut have_jac = false;
-    let mut jac_trial: [Vec<f64>; N] = std::array::from_fn(|_| Vec::new());
+    let mut jac_trial: Vec<Vec<f64>> = vec![Vec::new(); n];
     for iter in 0..opts.max_iterations {
         if iter >= opts.abandon_after && cost > opts.abandon_above {
             out.stop = Stop::Abandoned;
@@ -184,55 +317,28 @@ fn solve<const N: usize>(
             break;
         }
         out.iterations = iter + 1;
-        // Forward differences, backwards where the forward point cannot be evaluated.
-        let mut evaluable = true;
-        if let Some(jf) = jacobian.as_deref_mut() {
+        let evaluable = if let Some(jf) = jacobian.as_deref_mut() {
             // (An accepted trial point brought its Jacobian along.)
-            if !have_jac {
+            let ok = have_jac || {
                 out.evaluations += 1;
-                evaluable = jf(&x, &mut r, &mut jac).is_some();
-            }
+                jf(&x, &mut r, &mut jac).is_some()
+            };
             have_jac = false;
+            ok
         } else {
-            for (i, col) in jac.iter_mut().enumerate() {
-                let h = opts.fd_step * x[i].abs().max(1.0);
-                let mut xp = x;
-                xp[i] = x[i] + h;
-                out.evaluations += 1;
-                let s = if residuals(&xp, &mut rp).is_some() {
-                    h
-                } else {
-                    xp[i] = x[i] - h;
-                    out.evaluations += 1;
-                    if residuals(&xp, &mut rp).is_none() {
-                        evaluable = false;
-                        break;
-                    }
-                    -h
-                };
-                col.clear();
-                col.extend(rp.iter().zip(&r).map(|(a, b)| (a - b) / s));
-            }
-        }
+            let spent = (opts.fd_step, &mut out.evaluations);
+            differences(residuals, (&x, &r), &mut jac, spent)
+        };
         if !evaluable {
             out.stop = Stop::Unevaluable;
             break;
         }
-        let mut jtj = SMatrix::<f64, N, N>::zeros();
-        let mut g = SVector::<f64, N>::zeros();
-        for i in 0..N {
-            for j in i..N {
-                let v: f64 = jac[i].iter().zip(&jac[j]).map(|(a, b)| a * b).sum();
-                jtj[(i, j)] = v;
-                jtj[(j, i)] = v;
-            }
-            g[i] = jac[i].iter().zip(&r).map(|(a, b)| a * b).sum();
-        }
+        let (jtj, g) = normal_equations(dim, &jac, &r);
         // The Gauss–Newton step's predicted gain, -gᵀd (JᵀJ d = -g): when even it is below
         // the progress asked for, no damped step does better, and none is tried (with an
         // exact Jacobian, the steps at a minimum only find rounding).
-        if let Some(ch) = jtj.cholesky() {
-            let d = ch.solve(&(-g));
+        if let Some(ch) = jtj.clone().cholesky() {
+            let d = ch.solve(&(-&g));
             let predicted = -g.dot(&d);
             if predicted.is_finite() && predicted <= opts.rel_progress * cost {
                 out.stop = Stop::Converged;
@@ -250,15 +356,15 @@ fn solve<const N: usize>(
         }
         let mut improved = false;
         for _ in 0..opts.max_damping_tries {
-            let mut m = jtj;
-            for i in 0..N {
+            let mut m = jtj.clone();
+            for i in 0..n {
                 m[(i, i)] += mu * (jtj[(i, i)] + opts.damping_floor);
             }
-            let Some(step) = m.cholesky().map(|ch| ch.solve(&(-g))) else {
+            let Some(step) = m.cholesky().map(|ch| ch.solve(&(-&g))) else {
                 mu *= 10.0;
                 continue;
             };
-            let xn: [f64; N] = std::array::from_fn(|i| x[i] + step[i]);
+            let xn: Vec<f64> = x.iter().zip(step.iter()).map(|(a, d)| a + d).collect();
             let evaluated = feasible(&xn)
                 && match jacobian.as_deref_mut() {
                     Some(jf) => jf(&xn, &mut rp, &mut jac_trial).is_some(),
@@ -274,7 +380,7 @@ fn solve<const N: usize>(
                 let small = step.iter().map(|d| d.abs()).sum::<f64>() < opts.min_step
                     || cost - new_cost <= opts.rel_progress * cost;
                 // The model's gain for this step: -(2 gᵀd + dᵀ JᵀJ d).
-                let model_gain = -(2.0 * g.dot(&step) + step.dot(&(jtj * step)));
+                let model_gain = -(2.0 * g.dot(&step) + step.dot(&(&jtj * &step)));
                 let ratio = (cost - new_cost) / model_gain;
                 trusted = (0.9..=1.1).contains(&ratio);
                 x = xn;
