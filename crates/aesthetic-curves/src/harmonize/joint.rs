@@ -28,6 +28,7 @@
 use super::{end_curvatures, Handles, Reach};
 use crate::solve::least_squares::{levenberg_marquardt_dyn, LmOptions, Stop};
 use crate::{Point, Vec2};
+use kurbo::ParamCurve;
 
 /// Samples of t for the tolerance's boundary.
 const SAMPLES: usize = 64;
@@ -126,7 +127,9 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
-    /// The control points of segment `i` with `len` (the input's where unchanged).
+    /// The control points of cubic `i` with `len`, each handle rebuilt from its unit
+    /// direction (within rounding of [`Handles::points`], which the stage delivers and the
+    /// grid stage checks again with the sound bound).
     fn cubic(&self, i: usize, len: (f64, f64)) -> [Point; 4] {
         let s = &self.segs[i];
         let (d0, d1) = self.h.dirs[i].unwrap_or((Vec2::ZERO, Vec2::ZERO));
@@ -216,20 +219,13 @@ fn free(
     if !(mask.0 || mask.1) {
         return None;
     }
-    let (s, o) = (&segs[i], &reach.original[i]);
-    let at = |p: &[Point], t: f64| {
-        let m = 1.0 - t;
-        let w = [m * m * m, 3.0 * t * m * m, 3.0 * t * t * m, t * t * t];
-        Vec2::new(
-            (0..4).map(|k| w[k] * p[k].x).sum(),
-            (0..4).map(|k| w[k] * p[k].y).sum(),
-        )
-    };
+    let cubic = |p: &[Point]| kurbo::CubicBez::new(p[0], p[1], p[2], p[3]);
+    let (s, o) = (cubic(&segs[i]), cubic(&reach.original[i]));
     let samples = (0..=SAMPLES)
         .map(|k| {
             let t = k as f64 / SAMPLES as f64;
             let m = 1.0 - t;
-            let f = at(s, t) - at(o, t);
+            let f = s.eval(t) - o.eval(t);
             (f, d0 * (3.0 * t * m * m), -d1 * (3.0 * t * t * m))
         })
         .collect();
@@ -305,7 +301,7 @@ pub(super) fn refine(
     };
     let mut res = |x: &[f64], r: &mut Vec<f64>| problem.residuals(x, r);
     let mut jac = |x: &[f64], r: &mut Vec<f64>, c: &mut [Vec<f64>]| problem.jacobian(x, r, c);
-    let fit = levenberg_marquardt_dyn(&mut res, Some(&mut jac), &|_| true, x0.clone(), &opts);
+    let fit = levenberg_marquardt_dyn(&mut res, Some(&mut jac), &|_| true, x0, &opts);
     if fit.cost.is_infinite() {
         return Some(fit.stop);
     }
@@ -325,9 +321,8 @@ pub(super) fn refine(
             len[f.seg] = problem.h.len[f.seg];
         }
     }
-    let stop = fit.stop;
     h.len = len;
-    Some(stop)
+    Some(fit.stop)
 }
 
 #[cfg(test)]

@@ -318,6 +318,11 @@ impl Handles {
         };
         vec![s[0], p1, p2, s[3]]
     }
+
+    /// Every segment's control points with the current lengths ([`Handles::points`]).
+    fn contour(&self, segs: &[Vec<Point>]) -> Vec<Vec<Point>> {
+        (0..segs.len()).map(|i| self.points(segs, i)).collect()
+    }
 }
 
 /// The lengths `L` for which the handle `anchor + L k` stays within `radius` of `original`
@@ -646,18 +651,17 @@ impl Stage<'_> {
             reach,
             limits,
         );
-        let pts: Vec<Vec<Point>> = (0..n).map(|i| h.points(segments, i)).collect();
+        let target = h.contour(segments);
+        // The joins the joint stage solved (all solvable ones but the flat), by their result.
         for (j, a, b) in joins(n, closed) {
-            let moved = matches!(outcome[j], JoinOutcome::Reverted) && solvable[j];
-            if moved || matches!(outcome[j], JoinOutcome::Harmonized | JoinOutcome::Limited) {
-                outcome[j] = if join_state(&pts[a], &pts[b]).0 < opts.g2_jump {
+            if solvable[j] && outcome[j] != JoinOutcome::AlreadyG2 {
+                outcome[j] = if join_state(&target[a], &target[b]).0 < opts.g2_jump {
                     JoinOutcome::Harmonized
                 } else {
                     JoinOutcome::Limited
                 };
             }
         }
-        let target: Vec<Vec<Point>> = (0..n).map(|i| h.points(segments, i)).collect();
         for (o, _) in outcome.iter_mut().zip(self.held).filter(|(_, h)| **h) {
             *o = JoinOutcome::Held;
         }
@@ -677,7 +681,6 @@ impl Stage<'_> {
             (guard, extrema_before),
             &mut outcome,
         );
-
         mark_given_back(&contour, (&target, &pts), opts.g2_jump, &mut outcome);
         let after = states(&pts, closed);
         let joins = joins(n, closed)
@@ -724,7 +727,7 @@ fn jointly(
         if joint::refine(segments, h, (closed, moving, held), &hold, reach).is_none() {
             return;
         }
-        let pts: Vec<Vec<Point>> = (0..segments.len()).map(|i| h.points(segments, i)).collect();
+        let pts = h.contour(segments);
         let spoiled = spoiled(segments, &pts, closed, limits);
         if spoiled.is_empty() {
             return;
@@ -823,7 +826,7 @@ fn settle(
         total.sweeps += sweeps.sweeps;
         total.last_change = sweeps.last_change;
         total.converged = sweeps.converged;
-        let pts: Vec<Vec<Point>> = (0..segments.len()).map(|i| h.points(segments, i)).collect();
+        let pts = h.contour(segments);
         let spoiled = spoiled(segments, &pts, closed, (guard, extrema_before));
         if spoiled.is_empty() {
             break;
