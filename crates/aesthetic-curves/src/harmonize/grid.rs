@@ -14,18 +14,18 @@
 //! a new hook (the exact test, too dear to run on every state) is struck out with its near
 //! twins (within two grid cells) and the chain solved again.
 
-use super::{gains_extrema, join_state, max_move, worse, HarmonizeOptions};
+use super::{gains_extrema, max_move, worse, Ends, HarmonizeOptions};
 use crate::{Point, Vec2};
 
 /// Most rounds of striking out states with more extrema and solving again.
 const STRIKE_ROUNDS: usize = 6;
 
 /// Grid points kept per handle around its target (nearest the tangent line first).
-const NEAR_TARGET: usize = 5;
+const NEAR_TARGET: usize = 9;
 
 /// For a cycle with no corner: most states of the cubic where it is cut tried (every
-/// state of a cubic has at most 7 × 7: all of them).
-const CYCLE_STARTS: usize = 64;
+/// state of a cubic has at most 11 × 11: all of them).
+const CYCLE_STARTS: usize = 121;
 
 /// What the chain knows: the input, the protected joins and their limits.
 pub(super) struct Contour<'a> {
@@ -136,7 +136,7 @@ fn states_of(
 }
 
 /// Where one handle may go: its input place first; without a grid the target and half way
-/// to it; on a grid the [`NEAR_TARGET`] grid points of the 5 × 5 around the target nearest
+/// to it; on a grid the [`NEAR_TARGET`] grid points of the 9 × 9 around the target nearest
 /// the handle's tangent line (the line through its anchor and its input place), and the
 /// grid point half way nearest it; all within `radius` of the original place (the most a
 /// handle alone may move, or the target's distance: the cubic's states are checked whole
@@ -174,7 +174,7 @@ fn handle_candidates(
         near.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
         out.extend(near.into_iter().take(keep).map(|x| x.2));
     };
-    rank(target, 2, NEAR_TARGET, &mut out);
+    rank(target, 4, NEAR_TARGET, &mut out);
     rank(half, 1, 1, &mut out);
     out
 }
@@ -206,6 +206,9 @@ fn best_states(
     let chain = Chain {
         contour,
         states,
+        ends: (states.iter())
+            .map(|s| s.iter().map(|q| Ends::of(q)).collect())
+            .collect(),
         tol: opts.tolerance,
         g2: opts.g2_jump,
     };
@@ -236,6 +239,8 @@ fn best_states(
 struct Chain<'a> {
     contour: &'a Contour<'a>,
     states: &'a [Vec<Vec<Point>>],
+    /// Every state's [`Ends`], once.
+    ends: Vec<Vec<Ends>>,
     tol: f64,
     /// A jump under this is G2 ([`HarmonizeOptions::g2_jump`]).
     g2: f64,
@@ -253,8 +258,7 @@ impl Chain<'_> {
     /// many joins G2 as it can first, then the jumps small); infinity where it is worse
     /// than allowed; nothing at a corner.
     fn pair(&self, (j, a, b): (usize, usize, usize), sa: usize, sb: usize) -> f64 {
-        let (pa, pb) = (&self.states[a][sa], &self.states[b][sb]);
-        let state = join_state(pa, pb);
+        let state = self.ends[a][sa].join(&self.ends[b][sb]);
         let moved = sa != 0 || sb != 0;
         if moved && worse(state, self.contour.guard[j]) {
             return f64::INFINITY;

@@ -392,22 +392,64 @@ pub fn join_tangents(a: &[Point], b: &[Point]) -> [Option<Vec2>; 2] {
 
 /// The jump and angle at the join of segments `a` and `b` (control points).
 fn join_state(a: &[Point], b: &[Point]) -> (f64, f64) {
-    // The tangents from the nearest distinct control points (a retracted handle gives its
-    // direction to the next one).
-    let [ta, tb] = join_tangents(a, b).map(|t| t.unwrap_or(Vec2::ZERO));
-    let angle = tangent_angle(ta, tb);
-    // A line's curvature is zero: a join with one keeps its jump (0 or 1) too.
-    let ka = if a.len() == 4 {
-        end_curvatures(a).1
-    } else {
-        0.0
-    };
-    let kb = if b.len() == 4 {
-        end_curvatures(b).0
-    } else {
-        0.0
-    };
-    (relative_jump(ka, kb), angle)
+    Ends::of(a).join(&Ends::of(b))
+}
+
+/// What a segment brings to its joins: the tangent at each end (from the nearest distinct
+/// control point: a retracted handle gives its direction to the next one; zero where all
+/// coincide) and the curvature there (0 on a line: a join with one keeps its jump, 0 or 1).
+#[derive(Clone, Copy)]
+struct Ends {
+    /// Out of the start.
+    start: Vec2,
+    /// Into the end.
+    end: Vec2,
+    /// At the start and at the end ([`end_curvature`]).
+    curvature: (f64, f64),
+}
+
+impl Ends {
+    fn of(p: &[Point]) -> Ends {
+        let (first, last) = (p[0], p[p.len() - 1]);
+        let start = p
+            .iter()
+            .find(|q| **q != first)
+            .map_or(Vec2::ZERO, |q| *q - first);
+        let end = (p.iter().rev())
+            .find(|q| **q != last)
+            .map_or(Vec2::ZERO, |q| last - *q);
+        let curvature = if p.len() == 4 {
+            (end_curvature(p, 0), end_curvature(p, 1))
+        } else {
+            (0.0, 0.0)
+        };
+        Ends {
+            start,
+            end,
+            curvature,
+        }
+    }
+
+    /// The jump and angle at the join of this segment's end with `next`'s start.
+    fn join(&self, next: &Ends) -> (f64, f64) {
+        let angle = tangent_angle(self.end, next.start);
+        (relative_jump(self.curvature.1, next.curvature.0), angle)
+    }
+}
+
+/// The curvature of the cubic `p` at its end `end` (0 or 1) as the check sees it: at a
+/// handle retracted onto its point (no formula: the speed vanishes) the exact test's limit
+/// (0 on a straight stretch), NaN where it grows without bound (no jump to compare).
+fn end_curvature(p: &[Point], end: usize) -> f64 {
+    let retracted = if end == 0 { p[1] == p[0] } else { p[2] == p[3] };
+    if !retracted {
+        let k = end_curvatures(p);
+        return if end == 0 { k.0 } else { k.1 };
+    }
+    let report = Bezier::new(p.to_vec()).and_then(|b| b.curvature_monotone());
+    (report.ok())
+        .and_then(|r| r.ends[end].value())
+        .unwrap_or(f64::NAN)
 }
 
 /// The new lengths (v of A's end handle, u of B's start handle) for G2 at the join of
@@ -647,7 +689,7 @@ impl Stage<'_> {
         jointly(
             segments,
             &mut h,
-            (closed, &solvable, self.held),
+            (closed, &solvable, self.held, opts.g2_jump),
             reach,
             limits,
         );
@@ -713,29 +755,50 @@ const JOINT_ROUNDS: usize = 3;
 
 /// The joint stage ([`joint::refine`]) after the sweep: a cubic its result spoils (as in
 /// [`settle`]) gets the sweep's lengths back and is held, and the rest is solved again, for
-/// at most [`JOINT_ROUNDS`] rounds.
+/// at most [`JOINT_ROUNDS`] rounds; the sweep's lengths stay where they leave the moving
+/// joins nearer G2 ([`Shortfall`]: the joint problem weighs the extrema rule's margins
+/// against G2 and can settle short of a G2 the sweep found).
 fn jointly(
     segments: &[Vec<Point>],
     h: &mut Handles,
-    (closed, moving, held): (bool, &[bool], &[bool]),
+    (closed, moving, held, g2): (bool, &[bool], &[bool], f64),
     reach: &Reach,
     limits: (&[(f64, f64)], &[Option<Profile>]),
 ) {
     let swept = h.len.clone();
+    let shortfall = |h: &Handles| {
+        let pts = h.contour(segments);
+        let jumps = (joins(pts.len(), closed).filter(|&(j, ..)| moving[j]))
+            .map(|(_, a, b)| join_state(&pts[a], &pts[b]).0)
+            .filter(|j| j.is_finite());
+        jumps.fold(Shortfall(0, 0.0), |s, j| {
+            Shortfall(s.0 + (j >= g2) as usize, s.1 + j)
+        })
+    };
+    let before = shortfall(h);
     let mut hold = vec![false; segments.len()];
     for _ in 0..JOINT_ROUNDS {
-        if joint::refine(segments, h, (closed, moving, held), &hold, reach).is_none() {
-            return;
+        let joins = joint::Joins {
+            closed,
+            moving,
+            held,
+            guard: limits.0,
+        };
+        if joint::refine(segments, h, &joins, &hold, reach).is_none() {
+            break;
         }
         let pts = h.contour(segments);
         let spoiled = spoiled(segments, &pts, closed, limits);
         if spoiled.is_empty() {
-            return;
+            break;
         }
         for i in spoiled {
             h.len[i] = swept[i];
             hold[i] = true;
         }
+    }
+    if before < shortfall(h) {
+        h.len = swept;
     }
 }
 
@@ -1563,6 +1626,44 @@ mod tests {
         a[2] = a[3] + (a[2] - a[3]) * 0.8;
         b[1] = b[0] + (b[1] - b[0]) * 1.4;
         vec![a, b]
+    }
+
+    #[test]
+    fn a_join_at_a_retracted_handle_has_the_checks_jump() {
+        // The last join of TeX Gyre Adventor's `ringhalfright` after an earlier stage made
+        // its first cubic straight (both handles retracted): the curvature there is 0 (the
+        // exact test's limit), so the jump is 1 as `check` says, not NaN (which the
+        // safety net takes for "cannot tell" and let through).
+        let a = vec![
+            p(71.0, 453.0),
+            p(67.0, 453.0),
+            p(62.0, 448.0),
+            p(63.0, 445.0),
+        ];
+        let b = vec![
+            p(63.0, 445.0),
+            p(63.0, 445.0),
+            p(64.0, 442.0),
+            p(64.0, 442.0),
+        ];
+        let (jump, angle) = join_state(&a, &b);
+        assert_eq!(jump, 1.0);
+        assert!(angle < 1e-12);
+        let check = crate::outline::check_contour(
+            &[a.clone(), b.clone()].map(|s| crate::RationalBezier::new(s, vec![1.0; 4]).unwrap()),
+            false,
+            &crate::outline::OutlineOptions::default(),
+        );
+        assert_eq!(check.joins[0].curvature_jump, Some(jump));
+        // One retracted handle on a curved cubic: the curvature grows without bound, no
+        // jump (NaN here, None in the check).
+        let c = vec![
+            p(63.0, 445.0),
+            p(63.0, 445.0),
+            p(70.0, 440.0),
+            p(80.0, 442.0),
+        ];
+        assert!(join_state(&a, &c).0.is_nan());
     }
 
     #[test]
