@@ -258,7 +258,7 @@ impl Chain<'_> {
     /// many joins G2 as it can first, then the jumps small); infinity where it is worse
     /// than allowed; nothing at a corner.
     fn pair(&self, (j, a, b): (usize, usize, usize), sa: usize, sb: usize) -> f64 {
-        let state = self.ends[a][sa].join(&self.ends[b][sb]);
+        let state = self.ends[a][sa].join_fast(&self.ends[b][sb]);
         let moved = sa != 0 || sb != 0;
         if moved && worse(state, self.contour.guard[j]) {
             return f64::INFINITY;

@@ -406,6 +406,8 @@ struct Ends {
     end: Vec2,
     /// At the start and at the end ([`end_curvature`]).
     curvature: (f64, f64),
+    /// The directions of `start` and `end` (radians; NaN for a zero tangent).
+    directions: (f64, f64),
 }
 
 impl Ends {
@@ -423,11 +425,34 @@ impl Ends {
         } else {
             (0.0, 0.0)
         };
+        let direction = |v: Vec2| {
+            if v == Vec2::ZERO {
+                f64::NAN
+            } else {
+                v.y.atan2(v.x)
+            }
+        };
         Ends {
             start,
             end,
             curvature,
+            directions: (direction(start), direction(end)),
         }
+    }
+
+    /// [`Ends::join`] with the angle from the two directions (no atan2 per pair: within
+    /// a few units in the last place of it; what the grid's chain ranks, the safety net
+    /// checking the chosen states with [`join_state`] after).
+    fn join_fast(&self, next: &Ends) -> (f64, f64) {
+        let d = (next.directions.0 - self.directions.1).abs();
+        let angle = if d.is_nan() {
+            0.0
+        } else if d > std::f64::consts::PI {
+            std::f64::consts::TAU - d
+        } else {
+            d
+        };
+        (relative_jump(self.curvature.1, next.curvature.0), angle)
     }
 
     /// The jump and angle at the join of this segment's end with `next`'s start.
