@@ -5,7 +5,7 @@
 //! joint stage, grid), tolerance 2 units, grid 1.
 
 use aecurve::outline_io::read_font;
-use aesthetic_curves::harmonize::{repair, HarmonizeOptions, Repairs};
+use aesthetic_curves::harmonize::{repair, tangent_angle, HarmonizeOptions, Repairs};
 use aesthetic_curves::Point;
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -42,9 +42,8 @@ fn jobs() -> Vec<Job> {
             let smooth = (0..joins)
                 .map(|j| {
                     let (a, b) = (&segs[j], &segs[(j + 1) % n]);
-                    let ta = a[a.len() - 1] - a[a.len() - 2];
-                    let tb = b[1] - b[0];
-                    ta.cross(tb).atan2(ta.dot(tb)).abs() < 0.05f64.to_radians()
+                    let (ta, tb) = (a[a.len() - 1] - a[a.len() - 2], b[1] - b[0]);
+                    tangent_angle(ta, tb) < 0.05f64.to_radians()
                 })
                 .collect();
             out.push((segs, c.closed, smooth));

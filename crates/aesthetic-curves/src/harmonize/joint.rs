@@ -122,7 +122,6 @@ fn shape_samples(original: &[Point], hook_zone: f64) -> Vec<Sample> {
                 t,
                 sign: g.signum(),
                 inv: 1.0 / (scale * g.abs().max(0.05 * top)),
-                margin: SHAPE_MARGIN,
             }
         })
         .collect()
@@ -136,8 +135,6 @@ struct Sample {
     sign: f64,
     /// One over the original's slope scale there.
     inv: f64,
-    /// The share of that scale the slope keeps.
-    margin: f64,
 }
 
 /// One free cubic: its start and what its outline's move is made of.
@@ -261,10 +258,16 @@ impl Problem<'_> {
         z
     }
 
-    /// The residual of the join (a, b) with the lengths `len`.
-    fn residual(&self, (a, b): (usize, usize), len: &[(f64, f64)]) -> f64 {
+    /// The curvatures on both sides of the join (a, b) with the lengths `len`.
+    fn sides(&self, (a, b): (usize, usize), len: &[(f64, f64)]) -> (f64, f64) {
         let ka = end_curvatures(&self.cubic(a, len[a])).1;
         let kb = end_curvatures(&self.cubic(b, len[b])).0;
+        (ka, kb)
+    }
+
+    /// The residual of the join (a, b) with the lengths `len`.
+    fn residual(&self, join: (usize, usize), len: &[(f64, f64)]) -> f64 {
+        let (ka, kb) = self.sides(join, len);
         let m = (ka * ka + kb * kb).sqrt();
         let r = if m > 0.0 { (ka - kb) / m } else { 0.0 };
         ROBUST * (r / ROBUST).asinh()
@@ -272,8 +275,7 @@ impl Problem<'_> {
 
     /// The hinge of a guarded join: how far its jump passes the input's.
     fn guard(&self, (a, b, limit): (usize, usize, f64), len: &[(f64, f64)]) -> f64 {
-        let ka = end_curvatures(&self.cubic(a, len[a])).1;
-        let kb = end_curvatures(&self.cubic(b, len[b])).0;
+        let (ka, kb) = self.sides((a, b), len);
         GUARD_WEIGHT * (super::relative_jump(ka, kb) - GUARD_SHARE * limit).max(0.0)
     }
 
@@ -285,7 +287,7 @@ impl Problem<'_> {
         let sq: f64 = (f.shape.iter())
             .map(|s| {
                 let slope = curvature_slope(&q, s.t).1 * s.sign * s.inv;
-                (s.margin - slope).max(0.0).powi(2)
+                (SHAPE_MARGIN - slope).max(0.0).powi(2)
             })
             .sum();
         SHAPE_WEIGHT * sq.sqrt()
@@ -544,7 +546,7 @@ mod tests {
         for s in &samples {
             assert!(!(0.05..=0.95).contains(&s.t), "{s:?}");
             let slope = curvature_slope(&bump, s.t).1;
-            assert!(slope * s.sign * s.inv >= s.margin, "{s:?}: {slope}");
+            assert!(slope * s.sign * s.inv >= SHAPE_MARGIN, "{s:?}: {slope}");
         }
         let arc = [p(0.0, 0.0), p(40.0, 0.0), p(70.0, 10.0), p(90.0, 30.0)];
         assert!(super::super::extrema_at(&arc).unwrap().is_empty());
@@ -552,9 +554,7 @@ mod tests {
         let zone = |a: f64, b: f64| samples.iter().filter(|s| s.t >= a && s.t <= b).count();
         assert!(zone(0.0, 0.05) >= 4 && zone(0.95, 1.0) >= 4 && zone(0.3, 0.7) >= 20);
         let sign = samples[0].sign;
-        assert!(samples
-            .iter()
-            .all(|s| s.sign == sign && s.margin == SHAPE_MARGIN));
+        assert!(samples.iter().all(|s| s.sign == sign));
     }
 
     #[test]

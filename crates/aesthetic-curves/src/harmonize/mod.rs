@@ -383,10 +383,16 @@ pub fn tangent_angle(a: Vec2, b: Vec2) -> f64 {
 /// and out of it, each from the nearest control point distinct from the join's point (a
 /// retracted handle gives its direction to the next one); None where all coincide.
 pub fn join_tangents(a: &[Point], b: &[Point]) -> [Option<Vec2>; 2] {
-    let p = a[a.len() - 1];
+    [end_tangents(a)[1], end_tangents(b)[0]]
+}
+
+/// The tangent vectors of a segment (control points) out of its start and into its end,
+/// each from the nearest control point distinct from that end's; None where all coincide.
+fn end_tangents(p: &[Point]) -> [Option<Vec2>; 2] {
+    let (first, last) = (p[0], p[p.len() - 1]);
     [
-        a.iter().rev().find(|q| **q != p).map(|q| p - *q),
-        b.iter().find(|q| **q != p).map(|q| *q - p),
+        p.iter().find(|q| **q != first).map(|q| *q - first),
+        p.iter().rev().find(|q| **q != last).map(|q| last - *q),
     ]
 }
 
@@ -412,14 +418,7 @@ struct Ends {
 
 impl Ends {
     fn of(p: &[Point]) -> Ends {
-        let (first, last) = (p[0], p[p.len() - 1]);
-        let start = p
-            .iter()
-            .find(|q| **q != first)
-            .map_or(Vec2::ZERO, |q| *q - first);
-        let end = (p.iter().rev())
-            .find(|q| **q != last)
-            .map_or(Vec2::ZERO, |q| last - *q);
+        let [start, end] = end_tangents(p).map(|t| t.unwrap_or(Vec2::ZERO));
         let curvature = if p.len() == 4 {
             (end_curvature(p, 0), end_curvature(p, 1))
         } else {
@@ -652,12 +651,15 @@ struct Shortfall(usize, f64);
 
 impl Shortfall {
     fn of(h: &Harmonized, kept: &[bool], g2: f64) -> Shortfall {
-        let jumps = h
-            .joins
-            .iter()
-            .filter(|j| kept[j.after_segment] && j.jump.1.is_finite())
+        let jumps = (h.joins.iter())
+            .filter(|j| kept[j.after_segment])
             .map(|j| j.jump.1);
-        jumps.fold(Shortfall(0, 0.0), |s, j| {
+        Shortfall::of_jumps(jumps, g2)
+    }
+
+    /// Of the finite ones among `jumps`.
+    fn of_jumps(jumps: impl Iterator<Item = f64>, g2: f64) -> Shortfall {
+        (jumps.filter(|j| j.is_finite())).fold(Shortfall(0, 0.0), |s, j| {
             Shortfall(s.0 + (j >= g2) as usize, s.1 + j)
         })
     }
@@ -794,11 +796,8 @@ fn jointly(
     let shortfall = |h: &Handles| {
         let pts = h.contour(segments);
         let jumps = (joins(pts.len(), closed).filter(|&(j, ..)| moving[j]))
-            .map(|(_, a, b)| join_state(&pts[a], &pts[b]).0)
-            .filter(|j| j.is_finite());
-        jumps.fold(Shortfall(0, 0.0), |s, j| {
-            Shortfall(s.0 + (j >= g2) as usize, s.1 + j)
-        })
+            .map(|(_, a, b)| join_state(&pts[a], &pts[b]).0);
+        Shortfall::of_jumps(jumps, g2)
     };
     let before = shortfall(h);
     let mut hold = vec![false; segments.len()];
