@@ -23,9 +23,14 @@ pub(crate) fn fix(
         "--grid must be a step >= 0 (0: none)"
     );
     let kind = Kind::of(input)?;
+    let what = match kind {
+        Kind::Svg => "file",
+        Kind::Ufo => "folder",
+        Kind::Designspace => "designspace",
+    };
     anyhow::ensure!(
         !output.exists(),
-        "{}: already exists; fix writes a new folder and never replaces one",
+        "{}: already exists; fix writes a new {what} and never replaces one",
         output.display()
     );
     if let Some(parent) = output.parent().filter(|p| !p.as_os_str().is_empty()) {

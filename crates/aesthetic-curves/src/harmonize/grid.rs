@@ -13,6 +13,16 @@
 //! result no worse anywhere. A chosen state that gives its cubic more curvature extrema or
 //! a new hook (the exact test, too dear to run on every state) is struck out with its near
 //! twins (within two grid cells) and the chain solved again.
+//!
+//! The float stages' target can be a poor guide: where every small change spoils the
+//! extrema rule (a round dot's quarter arcs, whose curvature wobbles by a per cent) they
+//! leave a cubic alone, and the states around its input are then its only ones. So where
+//! the chain leaves a smooth join not G2, the cubics at those joins get a second set of
+//! states too (each handle at the grid points nearest its tangent line, up to
+//! [`LINE_STEPS`] grid steps longer or shorter: a search of the lengths themselves, the
+//! exact test behind it) and the chain is solved again; the result nearer G2 is kept. On
+//! TeX Gyre Bonum at T = 2 this takes the joins under 1 % from 70.2 % to 76.5 % and the
+//! hooked cubics from 678 to 81.
 
 use super::{gains_extrema, max_move, worse, Ends, HarmonizeOptions};
 use crate::{Point, Vec2};
@@ -26,6 +36,11 @@ const NEAR_TARGET: usize = 9;
 /// For a cycle with no corner: most states of the cubic where it is cut tried (every
 /// state of a cubic has at most 11 × 11: all of them).
 const CYCLE_STARTS: usize = 121;
+
+/// Grid steps along its tangent a handle may take in [`line_states`] (TeX Gyre Adventor
+/// at T = 2, before the union with the target's states: 4 gives 79.6 % of the joins under
+/// 1 %, 6 gives 80.4 %, 8 no more).
+const LINE_STEPS: usize = 6;
 
 /// What the chain knows: the input, the protected joins and their limits.
 pub(super) struct Contour<'a> {
@@ -45,16 +60,71 @@ pub(super) struct Contour<'a> {
 
 /// The segments on the grid, chosen among each cubic's states around `target` (the
 /// sweep's float result) to minimise the sum of the jumps at the smooth joins, none worse
-/// than `contour.guard` and no cubic with more extrema than the input.
+/// than `contour.guard` and no cubic with more extrema than the input; where that leaves a
+/// smooth join not G2, solved again with [`line_states`] added at the cubics it joins, and
+/// the result nearer G2 ([`super::Shortfall`]) kept.
 pub(super) fn place(
     contour: &Contour,
     target: &[Vec<Point>],
     opts: &HarmonizeOptions,
 ) -> Vec<Vec<Point>> {
     let n = contour.input.len();
-    let mut states: Vec<Vec<Vec<Point>>> = (0..n)
+    let states: Vec<Vec<Vec<Point>>> = (0..n)
         .map(|i| states_of(contour, i, &target[i], opts))
         .collect();
+    let first = place_among(contour, states, opts);
+    let touch = short_of_g2(contour, &first, opts.g2_jump);
+    if opts.grid <= 0.0 || !touch.iter().any(|t| *t) {
+        return first;
+    }
+    let states: Vec<Vec<Vec<Point>>> = (0..n)
+        .map(|i| {
+            let mut s = states_of(contour, i, &target[i], opts);
+            if touch[i] {
+                for q in line_states(contour, i, opts) {
+                    if !s.contains(&q) {
+                        s.push(q);
+                    }
+                }
+            }
+            s
+        })
+        .collect();
+    let second = place_among(contour, states, opts);
+    let shortfall = |pts: &[Vec<Point>]| {
+        let st = super::states(pts, contour.closed);
+        let jumps = (super::joins(n, contour.closed))
+            .filter(|&(j, ..)| contour.smooth[j])
+            .map(|(j, ..)| st[j].0);
+        super::Shortfall::of_jumps(jumps, opts.g2_jump)
+    };
+    if shortfall(&second) < shortfall(&first) {
+        second
+    } else {
+        first
+    }
+}
+
+/// Per segment: whether it is at a smooth join of `pts` whose jump is not under `g2`.
+fn short_of_g2(contour: &Contour, pts: &[Vec<Point>], g2: f64) -> Vec<bool> {
+    let st = super::states(pts, contour.closed);
+    let mut touch = vec![false; pts.len()];
+    for (j, a, b) in super::joins(pts.len(), contour.closed) {
+        if contour.smooth[j] && st[j].0 >= g2 {
+            touch[a] = true;
+            touch[b] = true;
+        }
+    }
+    touch
+}
+
+/// [`place`] among given states.
+fn place_among(
+    contour: &Contour,
+    mut states: Vec<Vec<Vec<Point>>>,
+    opts: &HarmonizeOptions,
+) -> Vec<Vec<Point>> {
+    let n = contour.input.len();
     for round in 0..=STRIKE_ROUNDS {
         let pick = best_states(contour, &states, opts);
         let mut struck = false;
@@ -103,8 +173,11 @@ fn states_of(
     opts: &HarmonizeOptions,
 ) -> Vec<Vec<Point>> {
     let input = &contour.input[i];
-    if input.len() != 4 || input[..] == target[..] {
+    if input.len() != 4 {
         return vec![input.to_vec()];
+    }
+    if input[..] == target[..] {
+        return line_states(contour, i, opts);
     }
     let (reach, original) = (contour.reach, &contour.reach.original[i]);
     // A handle alone may move 9/4 T; both together further where their moves cancel (the
@@ -128,6 +201,45 @@ fn states_of(
         for &b in &ends {
             let q = vec![input[0], a, b, input[3]];
             if q != out[0] && reach.allows(i, &q) {
+                out.push(q);
+            }
+        }
+    }
+    out
+}
+
+/// A cubic's states from its input alone: its handles at the grid points nearest their
+/// tangent lines, up to [`LINE_STEPS`] grid steps longer or shorter, where the outline
+/// stays within the tolerance; the input first. For a cubic the float stages left alone,
+/// and at the joins their target leaves short of G2.
+fn line_states(contour: &Contour, i: usize, opts: &HarmonizeOptions) -> Vec<Vec<Point>> {
+    let input = &contour.input[i];
+    let mut out = vec![input.to_vec()];
+    if input.len() != 4 || opts.grid <= 0.0 {
+        return out;
+    }
+    let along = |anchor: Point, handle: Point| -> Vec<Point> {
+        let dir = unit(handle - anchor);
+        let mut c = vec![handle];
+        for k in 1..=LINE_STEPS {
+            for sign in [-1.0, 1.0] {
+                let q = handle + dir * (sign * k as f64 * opts.grid);
+                let q = Point::new(
+                    (q.x / opts.grid).round() * opts.grid,
+                    (q.y / opts.grid).round() * opts.grid,
+                );
+                if !c.contains(&q) && q != anchor {
+                    c.push(q);
+                }
+            }
+        }
+        c
+    };
+    let (starts, ends) = (along(input[0], input[1]), along(input[3], input[2]));
+    for &a in &starts {
+        for &b in &ends {
+            let q = vec![input[0], a, b, input[3]];
+            if q != out[0] && contour.reach.allows(i, &q) {
                 out.push(q);
             }
         }
