@@ -349,8 +349,8 @@ pub const MAX_SOLVE_POINTS: usize = 1000;
 /// Levenberg–Marquardt iterations of the polish on every point.
 const POLISH_ITERATIONS: usize = 8;
 
-/// The range of alpha of a free fit.
-pub const ALPHA_RANGE: (f64, f64) = (-5.0, 5.0);
+/// The range of alpha of a free fit: the library's one bound (the sketch's pieces share it).
+pub use crate::lac::ALPHA_RANGE;
 
 /// How much more sharply than the smoothest spline as close to the points a fitted segment
 /// may bend (see [`fit_lac`]).

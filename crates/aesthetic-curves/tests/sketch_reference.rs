@@ -412,6 +412,16 @@ fn jittery_strokes_at_the_default_tolerance() {
             sk.pieces.len()
         );
         assert!(kmax <= 2.0 * kref, "{name}: hook {kmax} vs {kref}");
+        // One α range for the library: a piece on or beyond it says so.
+        let (lo, hi) = aesthetic_curves::lac::ALPHA_RANGE;
+        for (i, q) in sk.pieces.iter().enumerate() {
+            let inside = lo + 1e-9 < q.alpha && q.alpha < hi - 1e-9;
+            assert!(
+                inside || q.alpha_at_bound,
+                "{name} piece {i}: alpha {} not flagged",
+                q.alpha
+            );
+        }
     }
 }
 

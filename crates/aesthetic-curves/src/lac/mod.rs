@@ -33,6 +33,13 @@ pub use segment::LacSegment;
 
 pub use standard::{LacStandard, MAX_ABS_ALPHA, MAX_QUARTER_TURNS};
 
+/// The range of α a fit to data may return, in the whole library (`lac_fit`'s free α,
+/// `sketch`'s pieces): beyond it the logarithmic curvature graph is so steep that points
+/// cannot tell alphas apart, and a result on the bound says so (its
+/// `alpha_at_bound`). [`MAX_ABS_ALPHA`] is what a curve can be built with, not what a fit
+/// should conclude.
+pub const ALPHA_RANGE: (f64, f64) = (-5.0, 5.0);
+
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 

@@ -15,7 +15,7 @@
 //!    the triangle of its end points and tangents, the tangent at the curve's ends fitted
 //!    with it; a piece with an inflection at one end becomes an inflection-end segment
 //!    (docs/math.md §3.2, α from its triangle). α outside the triangle's existence region
-//!    moves to the nearest admissible value; α on its bound ([`ALPHA_BOUNDS`]) is reported;
+//!    moves to the nearest admissible value; α on its bound ([`ALPHA_RANGE`]) is reported;
 //!    α keeps the segment's end curvatures within `HOOK_FACTOR` times the fair spline's
 //!    largest over the piece (no hooks from triangles at the edge of their existence region);
 //! 5. **G2 fairing**: the tangent directions at the joints are the unknowns, the curvature
@@ -43,7 +43,7 @@ use crate::bernstein::sign_change_roots;
 use crate::bezier::{Bezier, PlanarCurve, RationalBezier};
 use crate::bspline::{self, BSpline, FitOptions};
 use crate::error::{Error, Result};
-use crate::lac::{LacInflectionSegment, LacSegment};
+use crate::lac::{LacInflectionSegment, LacSegment, ALPHA_RANGE};
 use crate::lcg::{fit_line, lcg_point};
 use kurbo::{Point, Vec2};
 use nalgebra::{DMatrix, DVector};
@@ -143,8 +143,10 @@ pub struct SketchPiece {
     pub rational_error: f64,
     /// Curvature monotonicity of the rational cubic, proven by the exact test.
     pub monotone: bool,
-    /// α sits on a bound of its least-squares fit ([`ALPHA_BOUNDS`]): the data do not pin
-    /// it down (a shallow piece) or want a steeper curvature graph than allowed.
+    /// α sits on a bound of its least-squares fit ([`ALPHA_RANGE`]): the data do not pin
+    /// it down (a shallow piece) or want a steeper curvature graph than allowed; for an
+    /// inflection piece, whose α its control triangle fixes, α on or beyond the range (a
+    /// known limit: such a piece is still returned).
     pub alpha_at_bound: bool,
     /// Parameter range on the intermediate B-spline.
     pub u_range: (f64, f64),
@@ -1034,7 +1036,7 @@ fn fair(
 /// inflection-end piece, whose end curvature its triangle fixes, and a short piece whose
 /// least-squares α sits on its bound can have no tangent that matches). More unknowns than
 /// equations: the minimum-norm Gauss–Newton step (α weighted by [`ALPHA_WEIGHT`]), α kept
-/// within [`ALPHA_BOUNDS`], the same merit and line search as the first stage.
+/// within [`ALPHA_RANGE`], the same merit and line search as the first stage.
 #[allow(clippy::too_many_arguments)]
 fn free_alphas(
     slots: &[Slot],
@@ -1095,7 +1097,7 @@ fn free_alphas(
                     let i = free[c - na];
                     let mut sl = local[i].clone();
                     let a = sl.alpha? + h;
-                    if !(ALPHA_BOUNDS.0..=ALPHA_BOUNDS.1).contains(&a) {
+                    if !(ALPHA_RANGE.0..=ALPHA_RANGE.1).contains(&a) {
                         return None;
                     }
                     sl.alpha = Some(a);
@@ -1143,7 +1145,7 @@ fn free_alphas(
         let mut tl = local.clone();
         for (k, &i) in free.iter().enumerate() {
             let a = tl[i].alpha.unwrap_or(1.0) + lam * step[na + k];
-            tl[i].alpha = Some(a.clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1));
+            tl[i].alpha = Some(a.clamp(ALPHA_RANGE.0, ALPHA_RANGE.1));
         }
         let b2 = build_all(&tl, pts, &trial).ok()?;
         let d2 = mismatches(&b2, active, scale);
@@ -1527,8 +1529,7 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
                 rational: rat.curve,
                 rational_error: rat.max_error,
                 monotone: rat.monotone,
-                alpha_at_bound: kind == PieceKind::Lac
-                    && (alpha <= ALPHA_BOUNDS.0 + 1e-9 || alpha >= ALPHA_BOUNDS.1 - 1e-9),
+                alpha_at_bound: alpha <= ALPHA_RANGE.0 + 1e-9 || alpha >= ALPHA_RANGE.1 - 1e-9,
                 u_range: (s.ua, s.ub),
             });
         }
@@ -1898,18 +1899,14 @@ const HOOK_FACTOR: f64 = 4.0;
 /// much as a turn of 1 rad.
 const ALPHA_WEIGHT: f64 = 1.0;
 
-/// Bounds of α in the least-squares fit of a piece: beyond them the logarithmic curvature
-/// graph is too steep for the data to tell alphas apart.
-pub const ALPHA_BOUNDS: (f64, f64) = (-5.0, 5.0);
-
 /// α of the LAC segment in `tri` closest to `pts` in the least-squares sense (point-to-curve
-/// distances), and the largest distance of all `pts`: a scan over [`ALPHA_BOUNDS`] then
+/// distances), and the largest distance of all `pts`: a scan over [`ALPHA_RANGE`] then
 /// golden-section refinement to 1e-4, on at most 64 of the points (evenly spread; the
 /// largest distance is measured on all). `None` when no α of the range gives a segment.
 fn fit_alpha(tri: [Point; 3], all: &[Point], cap: f64) -> Option<(f64, f64)> {
     let sub = spread(all, 64);
     let pts = &sub[..];
-    let (lo, hi) = ALPHA_BOUNDS;
+    let (lo, hi) = ALPHA_RANGE;
     let steps = 20;
     let grid: Vec<(f64, f64)> = (0..=steps)
         .filter_map(|k| {
@@ -2039,7 +2036,7 @@ fn fit_slot_alpha(
     let mut cost = |x: &[f64]| -> f64 {
         let (a, b) = make(x);
         triangle(pa, a, pb, b)
-            .and_then(|t| lac_cost(x[0].clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1), t, &sub, cap))
+            .and_then(|t| lac_cost(x[0].clamp(ALPHA_RANGE.0, ALPHA_RANGE.1), t, &sub, cap))
             .map_or(f64::INFINITY, |c| c.0)
     };
     let n = 1 + usize::from(free_a) + usize::from(free_b);
@@ -2061,7 +2058,7 @@ fn fit_slot_alpha(
         return Some(max);
     }
     let (a, b) = make(&m.x);
-    let alpha = m.x[0].clamp(ALPHA_BOUNDS.0, ALPHA_BOUNDS.1);
+    let alpha = m.x[0].clamp(ALPHA_RANGE.0, ALPHA_RANGE.1);
     let tri = triangle(pa, a, pb, b)?;
     let (_, max) = lac_cost(alpha, tri, &pts, cap)?;
     s.alpha = Some(alpha);
