@@ -9,7 +9,9 @@
 //!    `h = 2 g' f - 3 g f'`, `f = |x'|²`), isolated exactly on each Bézier span's Bernstein
 //!    form; simplified as in S4 (one curvature maximum between two inflections, pieces
 //!    turning more than [`SketchOptions::max_turn`] split) and without inflection pairs
-//!    across a flat stretch (noise);
+//!    across a flat stretch (noise). Known limit: a maximum that sits on a knot (dκ/ds
+//!    changes sign from one span to the next, as on symmetric data) is not found, so such
+//!    a peak is not cut (issue 35; counting them changed the noisy Prius lines' pieces);
 //! 3. neighbouring pieces merge while one LAC segment still fits their input points;
 //! 4. per piece, α by least squares against its input points (point-to-curve distances) in
 //!    the triangle of its end points and tangents, the tangent at the curve's ends fitted
@@ -1214,9 +1216,9 @@ pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
     if !(opts.max_turn > 0.1 && opts.max_turn < 3.0) {
         return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
     }
-    // The B-spline follows the data as closely as its noise allows (tangents and curvature
-    // graphs of noise-free input come out accurate), and never looser than half the
-    // tolerance.
+    // Precise input: the B-spline follows the data as closely as its noise allows
+    // (tangents and curvature graphs come out accurate), never looser than half the
+    // tolerance; noisy input: the smoothest spline within FAIR_SHARE of it.
     let size = bbox_diagonal(points);
     let sigma = noise_level(points);
     // Precise data (noise below 1e-6 of the size) get a tight fit, whose tangents and
