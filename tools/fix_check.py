@@ -14,7 +14,8 @@ For UFOs that ufo-extractor makes from TeX Gyre fonts (OpenType/CFF: cubic outli
   code with the fix's float formulas for end curvatures): no segment has more curvature
   extrema after, no smooth join between cubics has a larger curvature jump or angle after;
   the share of those joins under a 1 % jump is printed before and after.
-- `fix --json`'s counts agree with that check: 0 joins worse, 0 cubics with more extrema.
+- `fix --json`'s counts agree with that check: 0 joins worse, 0 cubics with more extrema;
+  its join labels agree with its jumps (`Harmonized` exactly when under 1 %).
 - The hooked cubics (an extremum within 5 % of an end) fall at least by half, counted in all
   glyphs and counted once per distinct input cubic; with `--move-points`, at least 80 % of
   the G1 joins between two curves end under a 1 % curvature jump (handles only: printed,
@@ -178,6 +179,18 @@ def compare_checks(before, after, name, slack=0.0):
     return joins[0], under, bumps
 
 
+def labels_agree(report, name):
+    """Each join's outcome in `fix --json` says what was delivered: `Harmonized` exactly
+    when the jump after is under 1 % (among the joins the repair moves)."""
+    for c in report["contours"]:
+        for j in c["joins"]:
+            after = j["jump"][1]
+            if j["outcome"] == "Harmonized" and not (after is not None and after < 0.01):
+                fail(f"{name} {c['glyph']} contour {c['contour']}: Harmonized with a jump of {after}")
+            if j["outcome"] in ("Limited", "Partly", "Reverted") and after is not None and after < 0.01:
+                fail(f"{name} {c['glyph']} contour {c['contour']}: {j['outcome']} with a jump of {after} (under 1 %)")
+
+
 fonts = sorted(glob.glob("/usr/share/texmf/fonts/opentype/public/tex-gyre/texgyre*-regular.otf"))[:2]
 if not fonts:
     fail("no TeX Gyre fonts (apt install fonts-texgyre)")
@@ -194,7 +207,9 @@ for f in fonts:
                              capture_output=True, text=True)
         if out.returncode != 0:
             fail(f"fix {name} {mode}: {out.stderr.strip()}")
-        claims = json.loads(out.stdout)["counts"]
+        report = json.loads(out.stdout)
+        claims = report["counts"]
+        labels_agree(report, f"{name} {mode}")
         moved = same_structure(ufoLib2.Font.open(src), ufoLib2.Font.open(dst), name, bool(mode))
         joins, (u0, u1), bumps = compare_checks(before, check_json(dst), name)
         if (claims["bumps_before"], claims["bumps_after"]) != tuple(bumps):
