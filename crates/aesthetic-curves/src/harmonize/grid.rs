@@ -72,31 +72,22 @@ pub(super) fn place(
     let states: Vec<Vec<Vec<Point>>> = (0..n)
         .map(|i| states_of(contour, i, &target[i], opts))
         .collect();
-    let first = place_among(contour, states, opts);
+    let first = place_among(contour, states.clone(), opts);
     let touch = short_of_g2(contour, &first, opts.g2_jump);
     if opts.grid <= 0.0 || !touch.iter().any(|t| *t) {
         return first;
     }
-    let states: Vec<Vec<Vec<Point>>> = (0..n)
-        .map(|i| {
-            let mut s = states_of(contour, i, &target[i], opts);
-            if touch[i] {
-                for q in line_states(contour, i, opts) {
-                    if !s.contains(&q) {
-                        s.push(q);
-                    }
-                }
+    let mut states = states;
+    for (s, i) in states.iter_mut().zip(0..).filter(|(_, i)| touch[*i]) {
+        for q in line_states(contour, i, opts) {
+            if !s.contains(&q) {
+                s.push(q);
             }
-            s
-        })
-        .collect();
+        }
+    }
     let second = place_among(contour, states, opts);
     let shortfall = |pts: &[Vec<Point>]| {
-        let st = super::states(pts, contour.closed);
-        let jumps = (super::joins(n, contour.closed))
-            .filter(|&(j, ..)| contour.smooth[j])
-            .map(|(j, ..)| st[j].0);
-        super::Shortfall::of_jumps(jumps, opts.g2_jump)
+        super::Shortfall::at_joins(pts, contour.closed, contour.smooth, opts.g2_jump)
     };
     if shortfall(&second) < shortfall(&first) {
         second

@@ -647,13 +647,20 @@ fn harmonize_within(
 /// How far a result is from G2 at its kept joins: how many are not under the threshold,
 /// then the sum of their jumps (ordered so: fewer first).
 #[derive(Clone, Copy, PartialEq, PartialOrd)]
-struct Shortfall(usize, f64);
+pub(super) struct Shortfall(usize, f64);
 
 impl Shortfall {
     fn of(h: &Harmonized, kept: &[bool], g2: f64) -> Shortfall {
         let jumps = (h.joins.iter())
             .filter(|j| kept[j.after_segment])
             .map(|j| j.jump.1);
+        Shortfall::of_jumps(jumps, g2)
+    }
+
+    /// Of the contour `pts` at the joins `which` marks (one flag per join).
+    pub(super) fn at_joins(pts: &[Vec<Point>], closed: bool, which: &[bool], g2: f64) -> Shortfall {
+        let jumps = (joins(pts.len(), closed).filter(|&(j, ..)| which[j]))
+            .map(|(_, a, b)| join_state(&pts[a], &pts[b]).0);
         Shortfall::of_jumps(jumps, g2)
     }
 
@@ -750,7 +757,7 @@ impl Stage<'_> {
             (guard, extrema_before),
             &mut outcome,
         );
-        mark_given_back(&contour, (&target, &pts), opts.g2_jump, &mut outcome);
+        label_delivered(&contour, (&target, &pts), opts.g2_jump, &mut outcome);
         let after = states(&pts, closed);
         let joins = joins(n, closed)
             .map(|(j, ..)| JoinReport {
@@ -793,12 +800,7 @@ fn jointly(
     limits: (&[(f64, f64)], &[Option<Profile>]),
 ) {
     let swept = h.len.clone();
-    let shortfall = |h: &Handles| {
-        let pts = h.contour(segments);
-        let jumps = (joins(pts.len(), closed).filter(|&(j, ..)| moving[j]))
-            .map(|(_, a, b)| join_state(&pts[a], &pts[b]).0);
-        Shortfall::of_jumps(jumps, g2)
-    };
+    let shortfall = |h: &Handles| Shortfall::at_joins(&h.contour(segments), closed, moving, g2);
     let before = shortfall(h);
     let mut hold = vec![false; segments.len()];
     for _ in 0..JOINT_ROUNDS {
@@ -832,7 +834,7 @@ fn jointly(
 /// handles went back but its cubics' far handles made it G2); else one the sweep moved
 /// whose two handles are back at their input places is `Reverted`, and a `Harmonized` one
 /// is `Partly`.
-fn mark_given_back(
+fn label_delivered(
     contour: &grid::Contour,
     (target, pts): (&[Vec<Point>], &[Vec<Point>]),
     g2_jump: f64,
