@@ -195,6 +195,55 @@ pub fn golden_section(
     }
 }
 
+/// The final bracket of [`golden_bracket`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GoldenBracket {
+    /// Its lower end.
+    pub lo: f64,
+    /// Its upper end.
+    pub hi: f64,
+    /// Evaluations after the first two interior points.
+    pub iterations: usize,
+    /// The bracket shrank below `x_tol` (false: `max_iterations` ran out first).
+    pub converged: bool,
+}
+
+/// Golden-section search for a minimum of `f` on [lo, hi] until the bracket is narrower
+/// than `x_tol` or after `max_iterations` evaluations past the first two interior points;
+/// a tie keeps the lower part (so a region where `f` is infinite on both interior points
+/// is left towards `lo`). Returns the final bracket (its midpoint is the estimate).
+pub fn golden_bracket(
+    f: &mut dyn FnMut(f64) -> f64,
+    lo: f64,
+    hi: f64,
+    x_tol: f64,
+    max_iterations: usize,
+) -> GoldenBracket {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (lo, hi);
+    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fd) = (f(c), f(d));
+    let mut iterations = 0;
+    while iterations < max_iterations && b - a >= x_tol {
+        iterations += 1;
+        if fc <= fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    GoldenBracket {
+        lo: a,
+        hi: b,
+        iterations,
+        converged: b - a < x_tol,
+    }
+}
+
 /// Brent's minimisation of `f` on [lo, hi] to `tol` (golden sections with parabolic
 /// steps; Brent 1973, "Algorithms for minimization without derivatives", ch. 5). Returns
 /// the minimiser and its value: a local minimum, the global one for a unimodal `f`.
@@ -729,6 +778,21 @@ pub fn along_boundary(
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn golden_bracket_closes_on_the_minimum_and_says_when_it_ran_out() {
+        let mut f = |x: f64| (x - 0.3).powi(2) + 1.0;
+        let g = super::golden_bracket(&mut f, -1.0, 2.0, 1e-8, 100);
+        assert!(g.converged && g.hi - g.lo < 1e-8, "{g:?}");
+        // A quadratic is flat to f64 within about sqrt(ε) of its minimum.
+        assert!((0.5 * (g.lo + g.hi) - 0.3).abs() < 1e-7, "{g:?}");
+        let short = super::golden_bracket(&mut f, -1.0, 2.0, 1e-8, 5);
+        assert!(!short.converged && short.iterations == 5, "{short:?}");
+        // Infinite on both interior points: the lower part is kept.
+        let mut wall = |x: f64| if x > -0.5 { f64::INFINITY } else { x * x };
+        let w = super::golden_bracket(&mut wall, -1.0, 2.0, 1e-6, 100);
+        assert!(w.hi <= -0.4, "{w:?}");
+    }
+
     use super::*;
     use std::f64::consts::SQRT_2;
 

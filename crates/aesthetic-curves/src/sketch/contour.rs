@@ -30,7 +30,9 @@
 //! Known limit: a straight stretch inside a curved run is fitted with the run's pieces, not
 //! as a line piece with G2 joins.
 
-use super::{bbox_diagonal, check_points, default_tolerance, fit_sketch, Sketch, SketchOptions};
+use super::input::{bbox_diagonal, check_points};
+use super::types::{Sketch, SketchOptions};
+use super::{default_tolerance, fit_sketch};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 

@@ -1,0 +1,224 @@
+use super::constants::HOOK_FACTOR;
+use super::slot::{rotate, slot_ends, triangle, Cut, EndPoints, Slot};
+
+use super::track::Track;
+use crate::bspline;
+use crate::lac::{LacSegment, ALPHA_RANGE};
+use crate::solve::golden_bracket;
+use kurbo::Point;
+
+/// Distance from `q` to a curve sampled at an odd number of points: each pair of
+/// neighbouring chords is read as the parabola through its three points (chord plus the
+/// bulge of its middle sample), which removes the chord's sagitta from the distance; the
+/// nearest of all of them (no assumption that the points advance along the curve).
+pub(super) fn curve_distance(samples: &[Point], q: Point) -> f64 {
+    let mut best = f64::INFINITY;
+    let mut k = 0;
+    while k + 2 < samples.len() {
+        let (p0, p1, p2) = (samples[k], samples[k + 1], samples[k + 2]);
+        let d = p2 - p0;
+        let l2 = d.hypot2();
+        let t = if l2 > 0.0 {
+            ((q - p0).dot(d) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let bulge = p1 - p0.midpoint(p2);
+        let c = p0 + d * t + bulge * (4.0 * t * (1.0 - t));
+        best = best.min((c - q).hypot2());
+        k += 2;
+    }
+    best.sqrt()
+}
+
+/// Sum of squared and largest distance of `pts` to the LAC segment of shape `alpha` in
+/// `tri`; `None` where the segment does not exist.
+pub(super) fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point], cap: f64) -> Option<(f64, f64)> {
+    let seg = LacSegment::new(alpha, tri).ok()?;
+    let (k0, k1) = seg.end_curvatures().ok()?;
+    if k0.abs().max(k1.abs()) > cap {
+        return None;
+    }
+    let poly = seg.sample(129).ok()?.points;
+    let (mut sum, mut max) = (0.0, 0.0f64);
+    // The nearest sample by descent from the previous point's (either way: points may step
+    // back), then the parabolic arcs around it.
+    let mut j = 0usize;
+    for q in pts {
+        while j + 1 < poly.len() && (poly[j + 1] - *q).hypot2() <= (poly[j] - *q).hypot2() {
+            j += 1;
+        }
+        while j > 0 && (poly[j - 1] - *q).hypot2() < (poly[j] - *q).hypot2() {
+            j -= 1;
+        }
+        // Arcs start at even samples: the ones holding j and its neighbours.
+        let lo = (j.saturating_sub(2)) & !1;
+        let hi = (j + 4).min(poly.len());
+        let d = curve_distance(&poly[lo..hi], *q);
+        sum += d * d;
+        max = max.max(d);
+    }
+    Some((sum, max))
+}
+
+/// α of the LAC segment in `tri` closest to `pts` in the least-squares sense (point-to-curve
+/// distances), and the largest distance of all `pts`: a scan over [`ALPHA_RANGE`] then
+/// golden-section refinement to 1e-4, on at most 64 of the points (evenly spread; the
+/// largest distance is measured on all). `None` when no α of the range gives a segment.
+pub(super) fn fit_alpha(tri: [Point; 3], all: &[Point], cap: f64) -> Option<(f64, f64)> {
+    let sub = spread(all, 64);
+    let pts = &sub[..];
+    let (lo, hi) = ALPHA_RANGE;
+    let steps = 20;
+    let grid: Vec<(f64, f64)> = (0..=steps)
+        .filter_map(|k| {
+            let a = lo + (hi - lo) * k as f64 / steps as f64;
+            lac_cost(a, tri, pts, cap).map(|c| (a, c.0))
+        })
+        .collect();
+    let &(a0, _) = grid.iter().min_by(|x, y| x.1.total_cmp(&y.1))?;
+    let h = (hi - lo) / steps as f64;
+    let f = |a: f64| lac_cost(a, tri, pts, cap).map_or(f64::INFINITY, |c| c.0);
+    let (a, b) = ((a0 - h).max(lo), (a0 + h).min(hi));
+    let bracket = golden_bracket(&mut |x| f(x), a, b, 1e-4, 40);
+    let (a, b) = (bracket.lo, bracket.hi);
+    // The best of the refined point and the grid's (the refinement never loses it).
+    let cand = [(0.5 * (a + b)), a0];
+    let best = cand
+        .iter()
+        .copied()
+        .filter(|&x| f(x).is_finite())
+        .min_by(|x, y| f(*x).total_cmp(&f(*y)))?;
+    lac_cost(best, tri, all, cap).map(|c| (best, c.1))
+}
+
+/// At most `n` of `pts`, evenly spread (every k-th), for the searches; results are measured
+/// on all of them.
+pub(super) fn spread(pts: &[Point], n: usize) -> Vec<Point> {
+    pts.iter()
+        .step_by(pts.len().div_ceil(n).max(1))
+        .copied()
+        .collect()
+}
+
+/// The input points whose foot parameters lie in [ua, ub].
+pub(super) fn points_in(fit: &bspline::BSplineFit, ua: f64, ub: f64) -> Vec<Point> {
+    fit.points
+        .iter()
+        .zip(&fit.params)
+        .filter(|(_, u)| **u >= ua && **u <= ub)
+        .map(|(q, _)| *q)
+        .collect()
+}
+
+/// The LAC piece of slot `s` (not an inflection piece) fitted to its input points: α by
+/// least squares in the triangle of its end points and the track's tangents; with
+/// `free_ends`, the tangent at an end of the whole curve is fitted too (Nelder–Mead over α
+/// and the tangent angles, from the α of the fixed triangle). Returns the largest distance,
+/// or `None` when the slot has no triangle or no segment.
+pub(super) fn fit_slot_alpha(
+    track: &Track,
+    fit: &bspline::BSplineFit,
+    s: &mut Slot,
+    ends: EndPoints,
+    free_ends: bool,
+) -> Option<f64> {
+    if s.cut_a == Cut::Inflection || s.cut_b == Cut::Inflection {
+        return None;
+    }
+    let (pa, pb) = slot_ends(track, s, ends);
+    let (da, db) = (track.direction(s.ua), track.direction(s.ub));
+    let tri = triangle(pa, da, pb, db)?;
+    let pts = points_in(fit, s.ua, s.ub);
+    if pts.len() < 3 {
+        return None;
+    }
+    s.fitted = true;
+    // No hooks: the segment's end curvatures stay within HOOK_FACTOR of the fair spline's
+    // largest over the piece (near the edge of its existence region a segment's end
+    // curvature grows without bound while its shape, and the distances, barely change).
+    let cap = HOOK_FACTOR
+        * (0..=32)
+            .map(|k| track.abs_kappa(s.ua + (s.ub - s.ua) * k as f64 / 32.0))
+            .fold(0.0, f64::max);
+    let (alpha, max) = fit_alpha(tri, &pts, cap)?;
+    s.alpha = Some(alpha);
+    let (free_a, free_b) = (
+        free_ends && s.cut_a == Cut::End,
+        free_ends && s.cut_b == Cut::End,
+    );
+    if !(free_a || free_b) {
+        return Some(max);
+    }
+    let sub = spread(&pts, 64);
+    // Unknowns: α, then the turn of each free end tangent (only those).
+    let ib = if free_a { 2 } else { 1 };
+    let make = |x: &[f64]| {
+        let a = if free_a { rotate(da, x[1]) } else { da };
+        let b = if free_b { rotate(db, x[ib]) } else { db };
+        (a, b)
+    };
+    let mut cost = |x: &[f64]| -> f64 {
+        let (a, b) = make(x);
+        triangle(pa, a, pb, b)
+            .and_then(|t| lac_cost(x[0].clamp(ALPHA_RANGE.0, ALPHA_RANGE.1), t, &sub, cap))
+            .map_or(f64::INFINITY, |c| c.0)
+    };
+    let n = 1 + usize::from(free_a) + usize::from(free_b);
+    let start = [alpha, 0.0, 0.0];
+    let step = [0.25, 0.01, 0.01];
+    let scale = cost(&start[..n]);
+    let m = crate::solve::nelder_mead(
+        &mut cost,
+        &start[..n],
+        &step[..n],
+        crate::solve::Options {
+            f_tol: 1e-8 * scale,
+            x_tol: 1e-4,
+            max_evaluations: 150,
+            ..Default::default()
+        },
+    );
+    if m.value.partial_cmp(&scale) != Some(std::cmp::Ordering::Less) {
+        return Some(max);
+    }
+    let (a, b) = make(&m.x);
+    let alpha = m.x[0].clamp(ALPHA_RANGE.0, ALPHA_RANGE.1);
+    let tri = triangle(pa, a, pb, b)?;
+    let (_, max) = lac_cost(alpha, tri, &pts, cap)?;
+    s.alpha = Some(alpha);
+    s.dir_a = free_a.then_some(a);
+    s.dir_b = free_b.then_some(b);
+    Some(max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn curve_distance_removes_the_sagitta() {
+        // Unit circle sampled coarsely: points on it are at distance ~0, the centre at 1.
+        let samples: Vec<Point> = (0..=8)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::FRAC_PI_2 / 8.0;
+                Point::new(a.cos(), a.sin())
+            })
+            .collect();
+        let on = Point::new(0.3f64.cos(), 0.3f64.sin());
+        let chord_only = polyline_like(&samples, on);
+        assert!(curve_distance(&samples, on) < 0.05 * chord_only);
+        assert!((curve_distance(&samples, Point::ZERO) - 1.0).abs() < 1e-3);
+    }
+
+    /// Distance to the chords alone, for comparison.
+    fn polyline_like(poly: &[Point], q: Point) -> f64 {
+        poly.windows(2)
+            .map(|w| {
+                let d = w[1] - w[0];
+                let t = ((q - w[0]).dot(d) / d.hypot2()).clamp(0.0, 1.0);
+                (w[0] + d * t - q).hypot()
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}

@@ -1,0 +1,218 @@
+//! Stage 6: each piece's rational cubic ([`crate::approx`]), G2 to its LAC at both ends and
+//! proven curvature-monotone by the exact test, with a memo of the pieces fitted so far and
+//! warm starts for inflection-end pieces of a nearby shape.
+
+use super::pieces::Built;
+use super::slot::Slot;
+
+use super::types::{PieceCurve, PieceKind, SketchPiece};
+use crate::approx::{
+    fit_inflection_cubic_from, fit_rational_cubic, ApproxOptions, RationalCubicFit,
+};
+use crate::bezier::RationalBezier;
+use crate::error::{Error, Result};
+use crate::lac::{LacInflectionSegment, ALPHA_RANGE};
+use kurbo::Point;
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+/// What the cubic stage hands back.
+pub(super) enum Cubics {
+    /// Every piece with its cubic, in curve order.
+    Pieces(Vec<SketchPiece>),
+    /// Piece `i`'s LAC segment has no curvature-monotone cubic (it turns too far for its
+    /// curvature range): it is to be split and the round repeated.
+    Split(usize),
+}
+
+/// The cubics of the rounds so far: fits by exact segment, and the optima of the
+/// inflection-end fits by shape (α, θ_d), the warm starts of later rounds, whose pieces
+/// differ only a little.
+#[derive(Default)]
+pub(super) struct CubicCache {
+    memo: HashMap<[u64; 8], RationalCubicFit>,
+    inflection_starts: Vec<InflectionStart>,
+}
+
+/// A cubic fit and, for an inflection-end piece of a new shape, its optimum.
+type Fitted = (RationalCubicFit, Option<InflectionStart>);
+
+impl CubicCache {
+    /// The cubics of `built` (pieces of `slots`): fitted in parallel (each fit is pure work
+    /// on its own piece; the memo and the warm starts are read there and updated here in
+    /// curve order). A LAC piece without a monotone cubic asks for a split while
+    /// `max_pieces` allows one; an inflection piece without one gets the G2 cubic of its
+    /// family's centre, reported as not monotone.
+    pub(super) fn pieces(
+        &mut self,
+        slots: &[Slot],
+        built: Vec<Built>,
+        approx: &ApproxOptions,
+        max_pieces: usize,
+    ) -> Result<Cubics> {
+        let fits: Vec<Result<Fitted>> = built.par_iter().map(|b| self.fit(b, approx)).collect();
+        let mut pieces = Vec::with_capacity(slots.len());
+        for ((s, b), fitted) in slots.iter().zip(built).zip(fits) {
+            let (control, rat) = match (&b.curve, fitted) {
+                (PieceCurve::Lac(seg), Ok((f, _))) => {
+                    self.memo.insert(lac_key(seg), f.clone());
+                    (seg.control, f)
+                }
+                (PieceCurve::Lac(_), Err(Error::NoSegment(_))) if slots.len() < max_pieces => {
+                    return Ok(Cubics::Split(pieces.len()));
+                }
+                (
+                    PieceCurve::Inflection {
+                        segment,
+                        inflection_at_start,
+                    },
+                    fitted,
+                ) => {
+                    let f = match fitted {
+                        Ok((f, start)) => {
+                            if let Some(st) = start.filter(|st| st.1 .0.is_finite()) {
+                                self.inflection_starts.push(st);
+                            }
+                            self.memo.insert(inflection_key(segment), f.clone());
+                            f
+                        }
+                        Err(Error::NoSegment(_)) => inflection_fallback(segment)?,
+                        Err(e) => return Err(e),
+                    };
+                    in_curve_order(segment.control, f, *inflection_at_start)
+                }
+                (PieceCurve::Lac(_), Err(e)) => return Err(e),
+            };
+            pieces.push(piece(s, b, control, rat));
+        }
+        Ok(Cubics::Pieces(pieces))
+    }
+
+    /// One piece's cubic: from the memo, or fitted (an inflection-end piece warm-started
+    /// from the optimum of the nearest shape fitted so far; the same shape has the same
+    /// optimum).
+    fn fit(&self, b: &Built, approx: &ApproxOptions) -> Result<Fitted> {
+        match &b.curve {
+            PieceCurve::Lac(seg) => match self.memo.get(&lac_key(seg)) {
+                Some(f) => Ok((f.clone(), None)),
+                None => fit_rational_cubic(seg, approx).map(|f| (f, None)),
+            },
+            PieceCurve::Inflection { segment, .. } => {
+                if let Some(f) = self.memo.get(&inflection_key(segment)) {
+                    return Ok((f.clone(), None));
+                }
+                let shape = (segment.alpha, segment.theta_d);
+                let same = self.inflection_starts.iter().any(|(k, _)| {
+                    k.0.to_bits() == shape.0.to_bits() && k.1.to_bits() == shape.1.to_bits()
+                });
+                fit_inflection_cubic_from(segment, approx, self.warm_start(shape), !same)
+                    .map(|(f, x)| (f, (!same).then_some((shape, x))))
+            }
+        }
+    }
+
+    /// The optimum of the nearest shape within 0.25 in α and 10 % in θ_d.
+    fn warm_start(&self, shape: (f64, f64)) -> Option<(f64, f64)> {
+        let d = |k: (f64, f64)| (k.0 - shape.0).abs() + (k.1 - shape.1).abs();
+        self.inflection_starts
+            .iter()
+            .filter(|(k, _)| {
+                (k.0 - shape.0).abs() <= 0.25 && (k.1 - shape.1).abs() <= 0.1 * shape.1
+            })
+            .min_by(|a, b| d(a.0).total_cmp(&d(b.0)))
+            .map(|e| e.1)
+    }
+}
+
+fn lac_key(seg: &crate::lac::LacSegment) -> [u64; 8] {
+    memo_key(0, seg.standard.alpha().to_bits(), &seg.control)
+}
+
+fn inflection_key(seg: &LacInflectionSegment) -> [u64; 8] {
+    memo_key(1, seg.alpha.to_bits(), &seg.control)
+}
+
+/// An inflection-end segment's control triangle and cubic in curve order (the segment's
+/// own order starts at the inflection).
+fn in_curve_order(
+    c: [Point; 3],
+    mut f: RationalCubicFit,
+    inflection_at_start: bool,
+) -> ([Point; 3], RationalCubicFit) {
+    if inflection_at_start {
+        (c, f)
+    } else {
+        f.curve = reverse(&f.curve);
+        ([c[2], c[1], c[0]], f)
+    }
+}
+
+/// The delivered piece of a slot.
+fn piece(s: &Slot, b: Built, control: [Point; 3], rat: RationalCubicFit) -> SketchPiece {
+    let kind = match b.curve {
+        PieceCurve::Lac(_) => PieceKind::Lac,
+        PieceCurve::Inflection { .. } => PieceKind::LacInflection,
+    };
+    SketchPiece {
+        kind,
+        alpha: b.alpha,
+        alpha_estimate: if kind == PieceKind::Lac {
+            s.alpha
+        } else {
+            None
+        },
+        control,
+        curve: b.curve,
+        end_curvatures: b.kappa,
+        rational: rat.curve,
+        rational_error: rat.max_error,
+        monotone: rat.monotone,
+        alpha_at_bound: b.alpha <= ALPHA_RANGE.0 + 1e-9 || b.alpha >= ALPHA_RANGE.1 - 1e-9,
+        u_range: (s.ua, s.ub),
+    }
+}
+
+/// An inflection-end piece's shape (α, θ_d) and the optimum (f0, ln w0) of its cubic.
+type InflectionStart = ((f64, f64), (f64, f64));
+
+/// The memo key of a piece: its kind, alpha and control points, bit for bit.
+fn memo_key(kind: u64, alpha: u64, c: &[Point; 3]) -> [u64; 8] {
+    [
+        kind,
+        alpha,
+        c[0].x.to_bits(),
+        c[0].y.to_bits(),
+        c[1].x.to_bits(),
+        c[1].y.to_bits(),
+        c[2].x.to_bits(),
+        c[2].y.to_bits(),
+    ]
+}
+
+/// The inflection-family cubic at (f0, w0) = (0.5, 1), measured like a fit.
+fn inflection_fallback(seg: &LacInflectionSegment) -> Result<crate::approx::RationalCubicFit> {
+    use crate::monotone::CurvatureMonotone;
+    let curve = crate::approx::inflection_cubic(seg, 0.5, 1.0)
+        .ok_or_else(|| Error::NoConvergence("no G2 cubic for an inflection piece".into()))?;
+    let monotone = curve.is_curvature_monotone().unwrap_or(false);
+    Ok(crate::approx::RationalCubicFit {
+        curve,
+        f0: 0.5,
+        f1: 1.0,
+        rms: f64::NAN,
+        max_error: f64::NAN,
+        monotone,
+        evaluations: 1,
+        // A fixed cubic, not an optimum.
+        converged: false,
+    })
+}
+
+/// The same curve traversed the other way.
+fn reverse(c: &RationalBezier) -> RationalBezier {
+    let mut p = c.points().to_vec();
+    let mut w = c.weights().to_vec();
+    p.reverse();
+    w.reverse();
+    RationalBezier::new(p, w).expect("reversal keeps a valid curve")
+}

@@ -1,0 +1,205 @@
+use super::constants::{FAIR_SHARE, PRECISE_NOISE};
+use super::slot::EndPoints;
+use super::track::Track;
+use super::types::SketchOptions;
+use crate::bspline::{self, BSplineFit, FitOptions};
+use crate::error::{Error, Result};
+use kurbo::Point;
+
+/// The points of a stroke checked: finite, their extent within f64, and (two or more) not
+/// all one point; their bounding box's diagonal (0 for fewer than two).
+pub(super) fn check_points(points: &[Point]) -> Result<f64> {
+    if points.iter().any(|q| !q.is_finite()) {
+        return Err(Error::invalid("points", "must be finite"));
+    }
+    if points.len() < 2 {
+        return Ok(0.0);
+    }
+    let diagonal = bbox_diagonal(points);
+    if !diagonal.is_finite() {
+        return Err(Error::invalid(
+            "points",
+            "the coordinates are too large: their extent overflows f64",
+        ));
+    }
+    if diagonal == 0.0 {
+        return Err(Error::Degenerate(format!(
+            "all {} points coincide: no curve runs through them",
+            points.len()
+        )));
+    }
+    Ok(diagonal)
+}
+
+/// Diagonal of the points' bounding box.
+pub(super) fn bbox_diagonal(points: &[Point]) -> f64 {
+    let (mut lo, mut hi) = (
+        Point::new(f64::MAX, f64::MAX),
+        Point::new(f64::MIN, f64::MIN),
+    );
+    for q in points {
+        lo = Point::new(lo.x.min(q.x), lo.y.min(q.y));
+        hi = Point::new(hi.x.max(q.x), hi.y.max(q.y));
+    }
+    (hi - lo).hypot()
+}
+
+/// Robust estimate of the standard deviation of the noise per coordinate: residuals at
+/// each point of a local least-squares cubic in chord length over its 15 neighbours (the
+/// spacing may be irregular), median absolute value over 0.6745, corrected for the fit's
+/// own share of the noise (the centre's leverage, about 0.4 for 15 points and a cubic).
+pub(super) fn noise_level(points: &[Point]) -> f64 {
+    let n = points.len();
+    let half = 7;
+    if n < 2 * half + 1 {
+        return 0.0;
+    }
+    let mut s = vec![0.0; n];
+    for i in 1..n {
+        s[i] = s[i - 1] + (points[i] - points[i - 1]).hypot();
+    }
+    let mut res = Vec::with_capacity(2 * n);
+    for k in half..n - half {
+        let w = (s[k + half] - s[k - half]).max(f64::MIN_POSITIVE);
+        let mut m = nalgebra::Matrix4::<f64>::zeros();
+        let mut bx = nalgebra::Vector4::<f64>::zeros();
+        let mut by = nalgebra::Vector4::<f64>::zeros();
+        for j in k - half..=k + half {
+            let t = (s[j] - s[k]) / w;
+            let v = nalgebra::Vector4::new(1.0, t, t * t, t * t * t);
+            m += v * v.transpose();
+            bx += v * points[j].x;
+            by += v * points[j].y;
+        }
+        if let Some(ch) = m.cholesky() {
+            let (cx, cy) = (ch.solve(&bx), ch.solve(&by));
+            res.push((points[k].x - cx[0]).abs());
+            res.push((points[k].y - cy[0]).abs());
+        }
+    }
+    if res.is_empty() {
+        return 0.0;
+    }
+    let mid = res.len() / 2;
+    let (_, m, _) = res.select_nth_unstable_by(mid, f64::total_cmp);
+    *m / 0.6745 / (1.0f64 - 0.4).sqrt()
+}
+
+/// What every round of the fit reads, built once from the input: the options checked, the
+/// fair B-spline and its track, the track the events are read from, the curve's ends.
+pub(super) struct Context<'a> {
+    pub(super) opts: &'a SketchOptions,
+    /// The fair B-spline (its points and parameters are the input's, de-duplicated).
+    pub(super) fit: BSplineFit,
+    /// `fit` as Bézier spans.
+    pub(super) track: Track,
+    /// A smoother spline's track for the inflections and curvature maxima of precise input
+    /// whose tolerance allows one (`None`: `track` serves).
+    shape: Option<Track>,
+    /// The curve runs from the first input point to the last.
+    pub(super) ends: EndPoints,
+}
+
+impl<'a> Context<'a> {
+    /// Stage 1: the input checked, its noise estimated, the fair spline fitted, and a
+    /// straight input refused (no LAC turns along it).
+    pub(super) fn new(points: &[Point], opts: &'a SketchOptions) -> Result<Self> {
+        // The points first: a tolerance derived from unusable points is not the cause.
+        check_points(points)?;
+        Error::check_positive("tolerance", opts.tolerance)?;
+        if !(opts.max_turn > 0.1 && opts.max_turn < 3.0) {
+            return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
+        }
+        let (fit, fit_tol) = fair_spline(points, opts.tolerance)?;
+        let track = Track::new(&fit.spline)?;
+        check_turning(&track, opts.min_turn)?;
+        let shape = shape_track(points, opts.tolerance, fit_tol)?;
+        let ends = (fit.points[0], *fit.points.last().unwrap());
+        Ok(Context {
+            opts,
+            fit,
+            track,
+            shape,
+            ends,
+        })
+    }
+
+    /// The track whose events cut the pieces.
+    pub(super) fn shape(&self) -> &Track {
+        self.shape.as_ref().unwrap_or(&self.track)
+    }
+}
+
+/// The fair spline of the points and the tolerance it was fitted to. Precise data (noise
+/// below [`PRECISE_NOISE`] of the size) get the tight least-squares fit, whose tangents
+/// and curvature graphs are accurate, never looser than half the tolerance; noisy data
+/// (measured lines, pen strokes) the smoothest spline within [`FAIR_SHARE`] of the
+/// tolerance, which carries no hooks or wiggles the tolerance does not demand. Outliers the
+/// noise estimate ignores can keep the tight fit from converging: then half the tolerance.
+fn fair_spline(points: &[Point], tolerance: f64) -> Result<(BSplineFit, f64)> {
+    let size = bbox_diagonal(points);
+    let sigma = noise_level(points);
+    let noisy = 4.0 * sigma > PRECISE_NOISE * size;
+    let fit_tol = if noisy {
+        FAIR_SHARE * tolerance
+    } else {
+        (4.0 * sigma).max(1e-5 * size).min(0.5 * tolerance)
+    };
+    let tight = |tolerance: f64| {
+        let opts = FitOptions {
+            tolerance,
+            max_segments: 200,
+        };
+        bspline::fit(points, opts)
+    };
+    let fit = if noisy {
+        bspline::smoothing_fit(points, fit_tol)
+    } else {
+        tight(fit_tol)
+    };
+    match fit {
+        Err(Error::NoConvergence(_)) if fit_tol < 0.5 * tolerance => {
+            Ok((tight(0.5 * tolerance)?, 0.5 * tolerance))
+        }
+        other => Ok((other?, fit_tol)),
+    }
+}
+
+/// A straight input refused: its absolute turning (summed over 256 steps) below
+/// `min_turn`.
+fn check_turning(track: &Track, min_turn: f64) -> Result<()> {
+    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    let nb = 256;
+    let turns: f64 = (0..nb)
+        .map(|k| {
+            let a = u0 + (u1 - u0) * k as f64 / nb as f64;
+            let b = u0 + (u1 - u0) * (k + 1) as f64 / nb as f64;
+            track.angle_between(a, b).abs()
+        })
+        .sum();
+    if turns < min_turn {
+        return Err(Error::Degenerate(format!(
+            "the points lie on a straight line (total turning {:.3e} rad, total {:.3e}): \
+             no log-aesthetic curve turns along them",
+            turns,
+            track.angle_between(u0, u1)
+        )));
+    }
+    Ok(())
+}
+
+/// The track of a smoother spline (a quarter of the tolerance) when that is more than twice
+/// as loose as the fair spline (precise input: a fair spline at [`FAIR_SHARE`] or half of
+/// the tolerance never is): wiggles of the tight fit's curvature are not features. Both
+/// are parametrised by chord length (corrected), so a parameter carries over.
+fn shape_track(points: &[Point], tolerance: f64, fit_tol: f64) -> Result<Option<Track>> {
+    let shape_tol = 0.25 * tolerance;
+    if shape_tol <= 2.0 * fit_tol {
+        return Ok(None);
+    }
+    let opts = FitOptions {
+        tolerance: shape_tol,
+        max_segments: 200,
+    };
+    Ok(Some(Track::new(&bspline::fit(points, opts)?.spline)?))
+}

@@ -1,0 +1,155 @@
+use super::slot::{rotate, triangle, Cut, Slot};
+use super::types::PieceCurve;
+use crate::error::{Error, Result};
+use crate::lac::{LacInflectionSegment, LacSegment};
+use crate::solve::bisect_by;
+use kurbo::{Point, Vec2};
+
+/// A built piece.
+#[derive(Clone, Debug)]
+pub(super) struct Built {
+    pub(super) curve: PieceCurve,
+    pub(super) alpha: f64,
+    /// Signed curvature at the start and at the end (curve order).
+    pub(super) kappa: (f64, f64),
+}
+
+pub(super) fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2) -> Result<Built> {
+    let tri = triangle(pa, da, pb, db).ok_or_else(|| {
+        Error::Degenerate("the end tangents of a piece do not form a triangle".into())
+    })?;
+    let infl_a = slot.cut_a == Cut::Inflection;
+    let infl_b = slot.cut_b == Cut::Inflection;
+    if infl_a != infl_b {
+        let ctrl = if infl_a {
+            tri
+        } else {
+            [tri[2], tri[1], tri[0]]
+        };
+        if let Ok(segment) = LacInflectionSegment::new(ctrl) {
+            let k = segment.end_curvature();
+            let alpha = segment.alpha;
+            // In curve order; a reversed segment's signed curvature changes sign.
+            let ends = if infl_a { (0.0, k) } else { (-k, 0.0) };
+            return Ok(Built {
+                curve: PieceCurve::Inflection {
+                    segment,
+                    inflection_at_start: infl_a,
+                },
+                alpha,
+                kappa: ends,
+            });
+        }
+    }
+    let target = slot.alpha.unwrap_or(1.0);
+    let seg = match LacSegment::new(target, tri) {
+        Ok(s) => s,
+        Err(Error::NoSegment(_)) => nearest_admissible(target, tri)?,
+        Err(e) => return Err(e),
+    };
+    let ends = seg.end_curvatures()?;
+    let alpha = seg.standard.alpha();
+    Ok(Built {
+        curve: PieceCurve::Lac(seg),
+        alpha,
+        kappa: ends,
+    })
+}
+
+/// The pieces for joint tangents `dirs` (one unit vector per joint, ends included).
+pub(super) fn build_all(slots: &[Slot], pts: &[Point], dirs: &[Vec2]) -> Result<Vec<Built>> {
+    slots
+        .iter()
+        .enumerate()
+        .map(|(i, s)| build_piece(s, pts[i], dirs[i], pts[i + 1], dirs[i + 1]))
+        .collect()
+}
+
+/// At each inflection joint, turn the tangent (least first, within ±0.5 rad) until both
+/// adjacent inflection-end pieces exist: the B-spline's tangent there can leave one
+/// triangle with the inflection end's base angle above half its turning.
+/// Returns the slots that cannot be inflection pieces at any such tangent.
+pub(super) fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) -> Vec<usize> {
+    let mut failed = Vec::new();
+    let both = |j: usize, d: Vec2, before: Vec2, after: Vec2| {
+        let l = build_piece(&slots[j - 1], pts[j - 1], before, pts[j], d);
+        let r = build_piece(&slots[j], pts[j], d, pts[j + 1], after);
+        matches!(
+            (l, r),
+            (
+                Ok(Built {
+                    curve: PieceCurve::Inflection { .. },
+                    ..
+                }),
+                Ok(Built {
+                    curve: PieceCurve::Inflection { .. },
+                    ..
+                })
+            )
+        )
+    };
+    for j in 1..slots.len() {
+        if !(slots[j - 1].cut_b == Cut::Inflection && slots[j].cut_a == Cut::Inflection) {
+            continue;
+        }
+        let (before, here, after) = (dirs[j - 1], dirs[j], dirs[j + 1]);
+        if both(j, here, before, after) {
+            continue;
+        }
+        let found = (1..=200).find_map(|k| {
+            let a = 0.0025 * k as f64;
+            [a, -a]
+                .into_iter()
+                .map(|x| rotate(here, x))
+                .find(|d| both(j, *d, before, after))
+        });
+        if let Some(d) = found {
+            dirs[j] = d;
+        } else {
+            let is_infl = |r: Result<Built>| {
+                matches!(
+                    r,
+                    Ok(Built {
+                        curve: PieceCurve::Inflection { .. },
+                        ..
+                    })
+                )
+            };
+            if !is_infl(build_piece(&slots[j - 1], pts[j - 1], before, pts[j], here)) {
+                failed.push(j - 1);
+            }
+            if !is_infl(build_piece(&slots[j], pts[j], here, pts[j + 1], after)) {
+                failed.push(j);
+            }
+        }
+    }
+    failed.dedup();
+    failed
+}
+
+/// The segment in `tri` at the admissible α nearest to `target` towards 0.5 (0 <= α <= 1
+/// always admits a triangle): bisection on the existence test (no Λ solve), then the solve
+/// just inside the boundary, where it can still refuse (the curve overflows f64 right at
+/// it); failing that, bisection on the solve itself.
+fn nearest_admissible(target: f64, tri: [Point; 3]) -> Result<LacSegment> {
+    let towards_half = |test: &dyn Fn(f64) -> bool| {
+        let mean = |a: f64, b: f64| 0.5 * (a + b);
+        bisect_by(
+            |a| test(a).then_some(()),
+            0.5,
+            target,
+            mean,
+            |_, _| false,
+            40,
+        )
+        .inside
+    };
+    let good = towards_half(&|a| LacSegment::exists(a, tri).unwrap_or(false));
+    let inside = [0.0, 1e-9, 1e-6, 1e-3]
+        .iter()
+        .find_map(|f| LacSegment::new(good + (0.5 - good) * f, tri).ok());
+    match inside {
+        Some(s) => Ok(s),
+        None => LacSegment::new(towards_half(&|a| LacSegment::new(a, tri).is_ok()), tri),
+    }
+}

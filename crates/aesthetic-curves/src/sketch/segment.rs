@@ -1,0 +1,365 @@
+use super::alpha::{curve_distance, fit_slot_alpha, points_in};
+use super::constants::MERGE_SHARE;
+use super::input::Context;
+use super::slot::{slot, slot_ends, triangle, Cut, EndPoints, Slot};
+
+use super::track::{u_at_turn, Track};
+use super::types::SketchOptions;
+use crate::bspline;
+use crate::error::{Error, Result};
+use crate::lac::LacInflectionSegment;
+
+/// Step 2: the cuts of the B-spline.
+pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Result<Vec<Slot>> {
+    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    let (mut infl, mut maxima) = shape.events();
+    if !std::ptr::eq(track, shape) {
+        // Move each event to the tight spline's own event nearby (its location is more
+        // accurate), when there is one: the nearest inflection, the largest maximum.
+        let (ti, tm) = track.events();
+        let w = 0.05 * (u1 - u0);
+        for u in infl.iter_mut() {
+            if let Some(v) = ti
+                .iter()
+                .copied()
+                .filter(|v| (v - *u).abs() < w)
+                .min_by(|a, b| (a - *u).abs().total_cmp(&(b - *u).abs()))
+            {
+                *u = v;
+            }
+        }
+        for u in maxima.iter_mut() {
+            if let Some(v) = tm
+                .iter()
+                .copied()
+                .filter(|v| (v - *u).abs() < w)
+                .max_by(|a, b| track.abs_kappa(*a).total_cmp(&track.abs_kappa(*b)))
+            {
+                *u = v;
+            }
+        }
+    }
+    let turn = |a: f64, b: f64| track.angle_between(a, b).abs();
+    // Drop inflections too close to an end, then inflection pairs with little turning between.
+    loop {
+        let before = infl.len();
+        infl.retain(|&u| turn(u0, u) >= opts.min_turn && turn(u, u1) >= opts.min_turn);
+        let mut i = 0;
+        while i + 1 < infl.len() {
+            if turn(infl[i], infl[i + 1]) < opts.min_turn {
+                infl.drain(i..i + 2);
+            } else {
+                i += 1;
+            }
+        }
+        if infl.len() == before {
+            break;
+        }
+    }
+    // An inflection pair (or an inflection and an end) with hardly any curvature between
+    // them is a flat stretch crossed by noise, not an S: drop it (below a tenth of the
+    // curve's largest |κ|).
+    let kappa_max_on = |a: f64, b: f64| {
+        (0..=16)
+            .map(|k| track.abs_kappa(a + (b - a) * k as f64 / 16.0))
+            .fold(0.0, f64::max)
+    };
+    let k_all = kappa_max_on(u0, u1);
+    loop {
+        let mut bounds = vec![u0];
+        bounds.extend(&infl);
+        bounds.push(u1);
+        // The flattest stretch next to an inflection, if it is flat enough.
+        let flat = (0..bounds.len() - 1)
+            .map(|i| (i, kappa_max_on(bounds[i], bounds[i + 1])))
+            .filter(|(_, k)| *k < 0.1 * k_all)
+            .min_by(|x, y| x.1.total_cmp(&y.1));
+        let Some((i, _)) = flat else { break };
+        // Stretch i lies between bounds i and i + 1; inflections are bounds 1..=len.
+        let (first, last) = (i == 0, i + 1 == bounds.len() - 1);
+        match (first, last) {
+            (true, true) => break,
+            (true, false) => {
+                infl.remove(0);
+            }
+            (false, true) => {
+                infl.pop();
+            }
+            (false, false) => {
+                infl.drain(i - 1..=i);
+            }
+        }
+    }
+    // Boundaries: ends and inflections; one |κ| maximum per interval.
+    let mut bounds: Vec<(f64, Cut)> = vec![(u0, Cut::End)];
+    bounds.extend(infl.iter().map(|&u| (u, Cut::Inflection)));
+    bounds.push((u1, Cut::End));
+    let mut cuts: Vec<(f64, Cut)> = vec![bounds[0]];
+    for w in bounds.windows(2) {
+        let ((a, ca), (b, cb)) = (w[0], w[1]);
+        let inside: Vec<f64> = maxima
+            .iter()
+            .copied()
+            .filter(|&u| {
+                u > a
+                    && u < b
+                    && turn(a, u) >= 0.5 * opts.min_turn
+                    && turn(u, b) >= 0.5 * opts.min_turn
+            })
+            .collect();
+        let best = inside
+            .iter()
+            .copied()
+            .max_by(|x, y| track.abs_kappa(*x).total_cmp(&track.abs_kappa(*y)));
+        let pick = match best {
+            Some(u) => {
+                // Only a true interior maximum: above both ends of its interval.
+                let k = track.abs_kappa(u);
+                let need = ca == Cut::Inflection && cb == Cut::Inflection;
+                if need || (k > track.abs_kappa(a) && k > track.abs_kappa(b)) {
+                    Some(u)
+                } else {
+                    None
+                }
+            }
+            None if ca == Cut::Inflection && cb == Cut::Inflection => {
+                // Between two inflections there is a maximum; the root finder missed it
+                // (flat): take the half-turning point.
+                Some(u_at_turn(track, a, b, 0.5 * turn(a, b)))
+            }
+            None => None,
+        };
+        if let Some(u) = pick {
+            cuts.push((u, Cut::Other));
+        }
+        cuts.push((b, cb));
+    }
+    // Split pieces turning more than max_turn.
+    let mut slots = Vec::new();
+    for w in cuts.windows(2) {
+        let ((a, ca), (b, cb)) = (w[0], w[1]);
+        let t = turn(a, b);
+        let parts = ((t / opts.max_turn).ceil() as usize).max(1);
+        let mut prev = (a, ca);
+        for k in 1..parts {
+            let u = u_at_turn(track, a, b, t * k as f64 / parts as f64);
+            slots.push(slot(track, prev, (u, Cut::Other)));
+            prev = (u, Cut::Other);
+        }
+        slots.push(slot(track, prev, (b, cb)));
+    }
+    Ok(slots)
+}
+
+/// The segment of a piece with end points and tangent angles given.
+/// Split where the curve misses the points most (kept off the piece's ends); a piece with an
+/// inflection end at its mid-turn, so the inflection piece left keeps a proper triangle.
+pub(super) fn split_worst(
+    track: &Track,
+    slots: &mut Vec<Slot>,
+    piece: usize,
+    u: f64,
+) -> Result<()> {
+    let s = &slots[piece];
+    if s.cut_a == Cut::Inflection || s.cut_b == Cut::Inflection {
+        split_at_mid_turn(track, slots, piece)
+    } else {
+        let u = u.clamp(s.ua + 0.25 * (s.ub - s.ua), s.ub - 0.25 * (s.ub - s.ua));
+        split_at(track, slots, piece, u)
+    }
+}
+
+/// Split `slots[i]` at its largest |κ| (sampled) when that lies inside it: an inflection
+/// piece whose curvature peaks near the inflection (a maximum the simplification dropped)
+/// becomes a short inflection piece and a monotone rest. Returns whether it split.
+pub(super) fn split_at_peak(track: &Track, slots: &mut Vec<Slot>, i: usize) -> bool {
+    let s = slots[i].clone();
+    let n = 64;
+    let us: Vec<f64> = (1..n)
+        .map(|k| s.ua + (s.ub - s.ua) * k as f64 / n as f64)
+        .collect();
+    let k = (0..us.len())
+        .max_by(|&a, &b| track.abs_kappa(us[a]).total_cmp(&track.abs_kappa(us[b])))
+        .unwrap();
+    let u = us[k];
+    let inner =
+        track.abs_kappa(u) > track.abs_kappa(s.ua) && track.abs_kappa(u) > track.abs_kappa(s.ub);
+    if !(inner && k > 0 && k + 1 < us.len()) {
+        return false;
+    }
+    let left = slot(track, (s.ua, s.cut_a), (u, Cut::Other));
+    let right = slot(track, (u, Cut::Other), (s.ub, s.cut_b));
+    slots.splice(i..=i, [left, right]);
+    true
+}
+
+/// Split every piece whose end tangents do not form a control triangle (an S shape: an
+/// inflection dropped as noise, or too flat to be found) at its smallest |κ|, an inflection
+/// when κ changes sign there.
+pub(super) fn split_s_shapes(track: &Track, slots: &mut Vec<Slot>) -> Result<()> {
+    let mut i = 0;
+    let mut guard = 0;
+    while i < slots.len() {
+        let s = &slots[i];
+        let ok = triangle(
+            track.point(s.ua),
+            track.direction(s.ua),
+            track.point(s.ub),
+            track.direction(s.ub),
+        )
+        .is_some();
+        if ok {
+            i += 1;
+            continue;
+        }
+        guard += 1;
+        if guard > 200 || (s.ub - s.ua) < 1e-9 {
+            return Err(Error::Degenerate(
+                "a piece of the curve has end tangents that form no triangle".into(),
+            ));
+        }
+        let n = 64;
+        let us: Vec<f64> = (1..n)
+            .map(|k| s.ua + (s.ub - s.ua) * k as f64 / n as f64)
+            .collect();
+        let ks: Vec<f64> = us.iter().map(|&u| track.derivs(u).kappa()).collect();
+        let k = (0..us.len())
+            .min_by(|&a, &b| ks[a].abs().total_cmp(&ks[b].abs()))
+            .unwrap();
+        let changes =
+            (k > 0 && ks[k - 1] * ks[k] <= 0.0) || (k + 1 < ks.len() && ks[k] * ks[k + 1] <= 0.0);
+        let cut = if changes { Cut::Inflection } else { Cut::Other };
+        let s = s.clone();
+        let left = slot(track, (s.ua, s.cut_a), (us[k], cut));
+        let right = slot(track, (us[k], cut), (s.ub, s.cut_b));
+        slots.splice(i..=i, [left, right]);
+    }
+    Ok(())
+}
+
+/// Split `slots[i]` at parameter `u`, then any S-shaped results.
+pub(super) fn split_at(track: &Track, slots: &mut Vec<Slot>, i: usize, u: f64) -> Result<()> {
+    let s = slots[i].clone();
+    let left = slot(track, (s.ua, s.cut_a), (u, Cut::Other));
+    let right = slot(track, (u, Cut::Other), (s.ub, s.cut_b));
+    slots.splice(i..=i, [left, right]);
+    split_s_shapes(track, slots)
+}
+
+/// Split `slots[i]` where it has turned half its turning, then any S-shaped results.
+pub(super) fn split_at_mid_turn(track: &Track, slots: &mut Vec<Slot>, i: usize) -> Result<()> {
+    let (ua, ub) = (slots[i].ua, slots[i].ub);
+    let mid = u_at_turn(track, ua, ub, 0.5 * track.angle_between(ua, ub).abs());
+    split_at(track, slots, i, mid)
+}
+
+/// Merge neighbouring pieces (across curvature-extremum cuts, never across inflections or
+/// the curve's ends) while one LAC segment, α fitted by least squares, stays within
+/// `limit` of the input points and turns less than `max_turn`: as few pieces as the
+/// tolerance allows. Each remaining LAC slot gets its least-squares α.
+pub(super) fn merge_slots(
+    track: &Track,
+    fit: &bspline::BSplineFit,
+    slots: &mut Vec<Slot>,
+    ends: EndPoints,
+    limit: f64,
+    max_turn: f64,
+) {
+    for s in slots.iter_mut() {
+        fit_slot_alpha(track, fit, s, ends, false);
+    }
+    // The merged slot of each neighbouring pair and its deviation (None: no merge),
+    // recomputed only next to a merge.
+    let pair = |a: &Slot, b: &Slot| -> Option<(Slot, f64)> {
+        if a.cut_b != Cut::Other || track.angle_between(a.ua, b.ub).abs() > max_turn {
+            return None;
+        }
+        let mut m = Slot {
+            ua: a.ua,
+            ub: b.ub,
+            cut_a: a.cut_a,
+            cut_b: b.cut_b,
+            alpha: None,
+            fitted: false,
+            dir_a: None,
+            dir_b: None,
+        };
+        // A merge with an inflection at one end is an inflection-end segment: its α comes
+        // from its triangle; it merges when that segment fits the points.
+        let infl_a = a.cut_a == Cut::Inflection;
+        let infl_b = b.cut_b == Cut::Inflection;
+        if infl_a || infl_b {
+            if infl_a && infl_b {
+                return None;
+            }
+            m.fitted = true;
+            let (pa, pb) = slot_ends(track, &m, ends);
+            let tri = triangle(pa, track.direction(m.ua), pb, track.direction(m.ub))?;
+            let ctrl = if infl_a {
+                tri
+            } else {
+                [tri[2], tri[1], tri[0]]
+            };
+            let seg = LacInflectionSegment::new(ctrl).ok()?;
+            let poly = seg.sample(129).ok()?.points;
+            let d = points_in(fit, m.ua, m.ub)
+                .iter()
+                .map(|q| curve_distance(&poly, *q))
+                .fold(0.0, f64::max);
+            return (d <= limit).then_some((m, d));
+        }
+        // A merge that reaches an end of the curve fits the tangent there too, when the
+        // spline's tangent alone comes close.
+        let d = fit_slot_alpha(track, fit, &mut m, ends, false)?;
+        let touches_end = m.cut_a == Cut::End || m.cut_b == Cut::End;
+        let d = if d > limit && d < 3.0 * limit && touches_end {
+            fit_slot_alpha(track, fit, &mut m, ends, true)?
+        } else {
+            d
+        };
+        (d <= limit).then_some((m, d))
+    };
+    let mut pairs: Vec<Option<(Slot, f64)>> =
+        slots.windows(2).map(|w| pair(&w[0], &w[1])).collect();
+    loop {
+        // The merge that leaves the smallest deviation first.
+        let best = pairs
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| p.as_ref().map(|(_, d)| (i, *d)))
+            .min_by(|x, y| x.1.total_cmp(&y.1));
+        let Some((i, _)) = best else { break };
+        let (m, _) = pairs[i].take().expect("chosen pair");
+        slots.splice(i..=i + 1, [m]);
+        pairs.remove(i);
+        if i > 0 {
+            pairs[i - 1] = pair(&slots[i - 1], &slots[i]);
+        }
+        if i < pairs.len() {
+            pairs[i] = pair(&slots[i], &slots[i + 1]);
+        }
+    }
+}
+
+/// Stages 2 and 3: the pieces cut at the shape track's events, S shapes split, neighbours
+/// merged while one LAC segment fits their points within [`MERGE_SHARE`] of the tolerance.
+/// The pieces at the curve's ends fit their outer tangent with α (in the rounds).
+pub(super) fn initial_slots(cx: &Context) -> Result<Vec<Slot>> {
+    let opts = cx.opts;
+    let mut slots = segment(&cx.track, cx.shape(), opts)?;
+    split_s_shapes(&cx.track, &mut slots)?;
+    let merge_tol = MERGE_SHARE * opts.tolerance;
+    merge_slots(
+        &cx.track,
+        &cx.fit,
+        &mut slots,
+        cx.ends,
+        merge_tol,
+        opts.max_turn,
+    );
+    slots[0].fitted = false;
+    if let Some(s) = slots.last_mut() {
+        s.fitted = false;
+    }
+    Ok(slots)
+}

@@ -1,0 +1,216 @@
+//! The sketch's public types: its options, its pieces and its result.
+
+use crate::approx::ApproxOptions;
+use crate::bezier::{PlanarCurve, RationalBezier};
+use crate::bspline::BSpline;
+use crate::lac::{LacInflectionSegment, LacSegment};
+use kurbo::Point;
+
+/// Options of [`fit_sketch`](super::fit_sketch).
+#[derive(Clone, Debug)]
+pub struct SketchOptions {
+    /// Largest allowed distance from an input point to the result (input units, > 0).
+    pub tolerance: f64,
+    /// Most pieces before giving up on the tolerance.
+    pub max_pieces: usize,
+    /// Pieces turning more than this (radians) are split.
+    pub max_turn: f64,
+    /// Inflection pairs with less turning between them are noise (radians).
+    pub min_turn: f64,
+    /// Fairing target: largest curvature jump over the largest curvature.
+    pub g2_tolerance: f64,
+    /// Iteration limit of the fairing.
+    pub max_fairing_iterations: usize,
+    /// Options of the rational cubic per piece.
+    pub approx: ApproxOptions,
+    /// The points form a closed loop (the last is the first): the curve ends where it
+    /// starts with the same tangent, and the seam is faired G2 like every joint.
+    pub closed: bool,
+}
+
+impl SketchOptions {
+    /// Defaults with the given tolerance.
+    pub fn with_tolerance(tolerance: f64) -> Self {
+        SketchOptions {
+            tolerance,
+            max_pieces: 64,
+            max_turn: std::f64::consts::FRAC_PI_2,
+            min_turn: 0.25f64.to_radians(),
+            g2_tolerance: 1e-10,
+            max_fairing_iterations: 60,
+            approx: ApproxOptions::default(),
+            closed: false,
+        }
+    }
+}
+
+/// Kind of a piece.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PieceKind {
+    /// A LAC segment in its control triangle (docs/math.md §3.1).
+    Lac,
+    /// A segment with an inflection (zero curvature) at one end (docs/math.md §3.2).
+    LacInflection,
+}
+
+impl PieceKind {
+    /// `"lac"` or `"lac_inflection"` (the protocol's names).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PieceKind::Lac => "lac",
+            PieceKind::LacInflection => "lac_inflection",
+        }
+    }
+}
+
+/// The curve of a piece.
+#[derive(Clone, Debug)]
+pub enum PieceCurve {
+    /// A LAC segment; its `control[0]` is the piece's start.
+    Lac(LacSegment),
+    /// An inflection-end segment; its `control[0]` (the inflection) is the piece's start when
+    /// `inflection_at_start`, else its end.
+    Inflection {
+        /// The segment.
+        segment: LacInflectionSegment,
+        /// Whether the inflection is at the piece's start.
+        inflection_at_start: bool,
+    },
+}
+
+/// One piece of the result, in curve order.
+#[derive(Clone, Debug)]
+pub struct SketchPiece {
+    /// Which family.
+    pub kind: PieceKind,
+    /// Shape parameter of the segment.
+    pub alpha: f64,
+    /// α estimated from the piece's curvature graph (before any adaptation); `None` for
+    /// inflection pieces and pieces of (nearly) constant curvature.
+    pub alpha_estimate: Option<f64>,
+    /// Control triangle in curve order: start, tangent intersection, end.
+    pub control: [Point; 3],
+    /// The segment itself.
+    pub curve: PieceCurve,
+    /// Signed curvature at the start and at the end.
+    pub end_curvatures: (f64, f64),
+    /// The rational cubic, in curve order.
+    pub rational: RationalBezier,
+    /// Largest distance of the rational cubic from the segment over its arc length.
+    pub rational_error: f64,
+    /// Curvature monotonicity of the rational cubic, proven by the exact test.
+    pub monotone: bool,
+    /// α sits on a bound of its least-squares fit ([`ALPHA_RANGE`](crate::lac::ALPHA_RANGE)): the data do not pin
+    /// it down (a shallow piece) or want a steeper curvature graph than allowed; for an
+    /// inflection piece, whose α its control triangle fixes, α on or beyond the range (a
+    /// known limit: such a piece is still returned).
+    pub alpha_at_bound: bool,
+    /// Parameter range on the intermediate B-spline.
+    pub u_range: (f64, f64),
+}
+
+/// What the G2 fairing did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FairingReport {
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Largest relative curvature jump before.
+    pub initial_jump: f64,
+    /// Largest relative curvature jump after.
+    pub final_jump: f64,
+    /// Reached [`SketchOptions::g2_tolerance`].
+    pub converged: bool,
+}
+
+/// The result of [`fit_sketch`](super::fit_sketch).
+#[derive(Clone, Debug)]
+pub struct Sketch {
+    /// The intermediate least-squares B-spline.
+    pub bspline: BSpline,
+    /// Its largest distance from the input points.
+    pub bspline_deviation: f64,
+    /// The pieces in order.
+    pub pieces: Vec<SketchPiece>,
+    /// Largest distance from an input point to the rational result.
+    pub max_deviation: f64,
+    /// Root mean square of those distances.
+    pub rms_deviation: f64,
+    /// Largest |κ_left - κ_right| at a joint of the rational cubics over their largest |κ|.
+    pub max_curvature_jump: f64,
+    /// `max_curvature_jump` below 1e-6.
+    pub g2: bool,
+    /// The fairing's report (of the last round).
+    pub fairing: FairingReport,
+    /// Every rational piece proven curvature-monotone.
+    pub all_monotone: bool,
+    /// Inflections of the result (sign changes of its curvature).
+    pub inflections: usize,
+    /// Interior curvature extrema of the result (the pieces are monotone, so these sit at
+    /// joints where the curvature turns back).
+    pub curvature_extrema: usize,
+}
+
+/// Inflections and interior curvature extrema of a curve made of curvature-monotone pieces
+/// with signed end curvatures `ends` (curve order): the curvature between two ends is
+/// monotone, so the sign changes and turns of the sequence of end values are all of them.
+pub fn count_events(ends: &[(f64, f64)]) -> (usize, usize) {
+    let mut ks: Vec<f64> = Vec::with_capacity(ends.len() + 1);
+    for (i, e) in ends.iter().enumerate() {
+        if i == 0 {
+            ks.push(e.0);
+        }
+        ks.push(e.1);
+    }
+    let scale = ks.iter().fold(0.0f64, |m, k| m.max(k.abs()));
+    let tiny = 1e-9 * scale;
+    let signs: Vec<f64> = ks
+        .iter()
+        .filter(|k| k.abs() > tiny)
+        .map(|k| k.signum())
+        .collect();
+    let inflections = signs.windows(2).filter(|w| w[0] != w[1]).count();
+    let steps: Vec<f64> = ks
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|d| d.abs() > tiny)
+        .map(|d| d.signum())
+        .collect();
+    let extrema = steps.windows(2).filter(|w| w[0] != w[1]).count();
+    (inflections, extrema)
+}
+
+impl Sketch {
+    /// The joints in order: the start of every piece and the end of the last.
+    pub fn joints(&self) -> Vec<Point> {
+        self.pieces
+            .iter()
+            .map(|p| p.control[0])
+            .chain(self.pieces.last().map(|p| p.control[2]))
+            .collect()
+    }
+
+    /// A point of the rational result at `t` in [0, pieces] (piece index + local parameter).
+    pub fn eval(&self, t: f64) -> Point {
+        let n = self.pieces.len();
+        let t = t.clamp(0.0, n as f64);
+        let i = (t.floor() as usize).min(n - 1);
+        self.pieces[i].rational.eval(t - i as f64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn events_of_monotone_pieces() {
+        // One bump: up then down, one sign: one extremum, no inflection.
+        assert_eq!(count_events(&[(0.1, 0.3), (0.3, 0.2)]), (0, 1));
+        // An S through an inflection joint (zero at the joint), monotone across it.
+        assert_eq!(count_events(&[(0.2, 0.0), (0.0, -0.3)]), (1, 0));
+        // A piece crossing zero inside, then turning back.
+        assert_eq!(count_events(&[(0.2, -0.1), (-0.1, 0.05)]), (2, 1));
+        // Constant curvature: nothing.
+        assert_eq!(count_events(&[(0.5, 0.5), (0.5, 0.5)]), (0, 0));
+    }
+}
