@@ -216,3 +216,81 @@ fn reverse(c: &RationalBezier) -> RationalBezier {
     w.reverse();
     RationalBezier::new(p, w).expect("reversal keeps a valid curve")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bezier::PlanarCurve;
+    use crate::sketch::pieces::build_piece;
+    use crate::sketch::slot::Cut;
+    use kurbo::Vec2;
+
+    fn slot(cut_a: Cut, cut_b: Cut) -> Slot {
+        Slot {
+            ua: 0.0,
+            ub: 1.0,
+            cut_a,
+            cut_b,
+            alpha: Some(1.0),
+            fitted: true,
+            dir_a: None,
+            dir_b: None,
+        }
+    }
+
+    fn only(c: Cubics) -> SketchPiece {
+        match c {
+            Cubics::Pieces(mut p) if p.len() == 1 => p.remove(0),
+            _ => panic!("one piece expected"),
+        }
+    }
+
+    #[test]
+    fn a_piece_fitted_before_comes_back_from_the_memo_unchanged() {
+        let s = slot(Cut::End, Cut::End);
+        let (pa, pb) = (Point::new(0.0, 0.0), Point::new(10.0, 0.0));
+        let (da, db) = (Vec2::from_angle(0.5), Vec2::from_angle(-0.3));
+        let built = build_piece(&s, pa, da, pb, db).unwrap();
+        let approx = ApproxOptions::default();
+        let mut cache = CubicCache::default();
+        let first = only(
+            cache
+                .pieces(std::slice::from_ref(&s), vec![built.clone()], &approx, 64)
+                .unwrap(),
+        );
+        assert_eq!(cache.memo.len(), 1);
+        let again = only(cache.pieces(&[s], vec![built], &approx, 64).unwrap());
+        assert_eq!(cache.memo.len(), 1);
+        assert_eq!(first.rational, again.rational);
+        assert_eq!(first.kind, PieceKind::Lac);
+        assert!(first.monotone);
+        assert!((first.rational.eval(0.0) - pa).hypot() < 1e-12);
+        assert!((first.rational.eval(1.0) - pb).hypot() < 1e-12);
+    }
+
+    #[test]
+    fn an_inflection_at_the_end_is_delivered_in_curve_order() {
+        // The segment of [(0,0), (5,0), (7,3)] with its inflection at (0,0), run backwards.
+        let s = slot(Cut::Other, Cut::Inflection);
+        let (pa, pb) = (Point::new(7.0, 3.0), Point::new(0.0, 0.0));
+        let da = -Vec2::new(2.0, 3.0) / Vec2::new(2.0, 3.0).hypot();
+        let db = Vec2::new(-1.0, 0.0);
+        let built = build_piece(&s, pa, da, pb, db).unwrap();
+        let mut cache = CubicCache::default();
+        let p = only(
+            cache
+                .pieces(&[s], vec![built], &ApproxOptions::default(), 64)
+                .unwrap(),
+        );
+        assert_eq!(p.kind, PieceKind::LacInflection);
+        assert_eq!(p.control[0], pa);
+        assert_eq!(p.control[2], pb);
+        assert!((p.rational.eval(0.0) - pa).hypot() < 1e-12);
+        let k0 = p.rational.kappa_start().abs();
+        assert!(
+            p.rational.kappa_end().abs() < 1e-9 * k0,
+            "{}",
+            p.rational.kappa_end()
+        );
+    }
+}

@@ -203,3 +203,66 @@ fn shape_track(points: &[Point], tolerance: f64, fit_tol: f64) -> Result<Option<
     };
     Ok(Some(Track::new(&bspline::fit(points, opts)?.spline)?))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An arc of radius `r` sampled at `n` points.
+    fn arc(n: usize, r: f64) -> Vec<Point> {
+        (0..n)
+            .map(|i| {
+                let a = 0.1 + 1.2 * i as f64 / (n - 1) as f64;
+                Point::new(r * a.cos(), r * a.sin())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn straight_input_and_bad_options_are_refused_by_name() {
+        let line: Vec<Point> = (0..40)
+            .map(|i| Point::new(i as f64, 2.0 * i as f64))
+            .collect();
+        let opts = SketchOptions::with_tolerance(0.1);
+        assert!(matches!(
+            Context::new(&line, &opts),
+            Err(Error::Degenerate(_))
+        ));
+        let bad = SketchOptions {
+            max_turn: 5.0,
+            ..SketchOptions::with_tolerance(0.1)
+        };
+        let err = Context::new(&arc(40, 100.0), &bad).err().expect("refused");
+        assert!(
+            matches!(&err, Error::InvalidInput { field, .. } if field.as_str() == "max_turn"),
+            "{err:?}"
+        );
+        let none = SketchOptions::with_tolerance(0.0);
+        assert!(Context::new(&arc(40, 100.0), &none).is_err());
+    }
+
+    #[test]
+    fn precise_input_gets_the_tight_spline_and_noisy_input_the_fair_one() {
+        let opts = SketchOptions::with_tolerance(1.0);
+        // Dense exact samples (at 60 points the local cubics' residual on an exact arc
+        // passes the noise test: a known limit, issue 35).
+        let clean = arc(300, 100.0);
+        let cx = Context::new(&clean, &opts).unwrap();
+        // Tight: within 1e-5 of the size (the noise is nil), far below the tolerance; the
+        // events come from a looser spline of their own.
+        assert!(cx.fit.max_deviation < 2e-3, "{}", cx.fit.max_deviation);
+        assert!(!std::ptr::eq(cx.shape(), &cx.track));
+        assert_eq!(cx.ends, (clean[0], clean[299]));
+        // ±0.3 zigzag: the smoothest spline within FAIR_SHARE of the tolerance, which does
+        // not follow the zigzag; its own track gives the events.
+        let noisy: Vec<Point> = clean
+            .iter()
+            .enumerate()
+            .map(|(i, q)| Point::new(q.x + if i % 2 == 0 { 0.3 } else { -0.3 }, q.y))
+            .collect();
+        let cx = Context::new(&noisy, &opts).unwrap();
+        let d = cx.fit.max_deviation;
+        assert!(d <= FAIR_SHARE * opts.tolerance + 1e-9 && d > 0.1, "{d}");
+        assert!(std::ptr::eq(cx.shape(), &cx.track));
+    }
+}

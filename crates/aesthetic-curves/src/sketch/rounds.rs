@@ -260,3 +260,35 @@ fn deliver(
         fairing,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sketch::segment::initial_slots;
+    use crate::sketch::types::SketchOptions;
+
+    #[test]
+    fn a_closed_curve_has_one_point_and_one_tangent_at_its_seam() {
+        let n = 120;
+        let pts: Vec<Point> = (0..=n)
+            .map(|i| {
+                let a = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+                Point::new(100.0 * a.cos(), 60.0 * a.sin())
+            })
+            .collect();
+        let opts = SketchOptions {
+            closed: true,
+            ..SketchOptions::with_tolerance(0.2)
+        };
+        let cx = Context::new(&pts, &opts).unwrap();
+        let slots = initial_slots(&cx).unwrap();
+        let (p, d) = joints(&cx, &slots);
+        assert_eq!(p.len(), slots.len() + 1);
+        assert_eq!(p[0], pts[0]);
+        assert_eq!(*p.last().unwrap(), pts[n]);
+        assert_eq!(d[0], *d.last().unwrap());
+        assert!((d[0].hypot() - 1.0).abs() < 1e-12);
+        // The seam's tangent is the ellipse's there (vertical), to the spline's accuracy.
+        assert!(d[0].x.abs() < 1e-3, "{:?}", d[0]);
+    }
+}

@@ -363,3 +363,39 @@ pub(super) fn initial_slots(cx: &Context) -> Result<Vec<Slot>> {
     }
     Ok(slots)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use kurbo::Point;
+
+    #[test]
+    fn an_s_is_cut_at_its_inflection_into_slots_that_cover_the_spline() {
+        let pts: Vec<Point> = (0..120)
+            .map(|i| {
+                let t = i as f64 / 119.0;
+                Point::new(300.0 * t, 60.0 * (2.0 * std::f64::consts::PI * t).sin())
+            })
+            .collect();
+        let opts = SketchOptions::with_tolerance(0.5);
+        let cx = Context::new(&pts, &opts).unwrap();
+        let slots = initial_slots(&cx).unwrap();
+        let b = &cx.track.breaks;
+        assert_eq!(slots[0].ua, b[0]);
+        assert_eq!(slots.last().unwrap().ub, *b.last().unwrap());
+        assert_eq!(slots[0].cut_a, Cut::End);
+        assert_eq!(slots.last().unwrap().cut_b, Cut::End);
+        assert!(!slots[0].fitted && !slots.last().unwrap().fitted);
+        for w in slots.windows(2) {
+            assert_eq!(w[0].ub, w[1].ua, "slots meet");
+            assert_eq!(w[0].cut_b, w[1].cut_a, "one cut between two slots");
+        }
+        let inflections: Vec<f64> = slots
+            .windows(2)
+            .filter(|w| w[0].cut_b == Cut::Inflection)
+            .map(|w| cx.track.point(w[0].ub).x)
+            .collect();
+        assert_eq!(inflections.len(), 1, "{inflections:?}");
+        assert!((inflections[0] - 150.0).abs() < 3.0, "{inflections:?}");
+    }
+}
