@@ -778,23 +778,23 @@ pub fn along_boundary(
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+    use std::f64::consts::SQRT_2;
+
     #[test]
     fn golden_bracket_closes_on_the_minimum_and_says_when_it_ran_out() {
         let mut f = |x: f64| (x - 0.3).powi(2) + 1.0;
-        let g = super::golden_bracket(&mut f, -1.0, 2.0, 1e-8, 100);
+        let g = golden_bracket(&mut f, -1.0, 2.0, 1e-8, 100);
         assert!(g.converged && g.hi - g.lo < 1e-8, "{g:?}");
         // A quadratic is flat to f64 within about sqrt(ε) of its minimum.
         assert!((0.5 * (g.lo + g.hi) - 0.3).abs() < 1e-7, "{g:?}");
-        let short = super::golden_bracket(&mut f, -1.0, 2.0, 1e-8, 5);
+        let short = golden_bracket(&mut f, -1.0, 2.0, 1e-8, 5);
         assert!(!short.converged && short.iterations == 5, "{short:?}");
         // Infinite on both interior points: the lower part is kept.
         let mut wall = |x: f64| if x > -0.5 { f64::INFINITY } else { x * x };
-        let w = super::golden_bracket(&mut wall, -1.0, 2.0, 1e-6, 100);
+        let w = golden_bracket(&mut wall, -1.0, 2.0, 1e-6, 100);
         assert!(w.hi <= -0.4, "{w:?}");
     }
-
-    use super::*;
-    use std::f64::consts::SQRT_2;
 
     #[test]
     fn golden_section_shrinks_onto_the_minimum() {
