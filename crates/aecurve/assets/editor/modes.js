@@ -158,6 +158,9 @@ export const MODES = {
       const req = { op: 'sketch.contour', points: s, draw: DRAW.sketch };
       if (st.tolerance > 0) req.tolerance = st.tolerance;
       const r = await api(req);
+      // The tolerance box shows the default it used while none is set.
+      const box = globalThis.document?.getElementById('sketch-tolerance');
+      if (box) box.placeholder = st.tolerance > 0 ? 'auto' : `auto: ${fmt(r.tolerance, 3)}`;
       const curves = r.runs.filter((u) => u.kind === 'curve');
       const segments = curves.flatMap((u) => u.segments);
       // Joints: where pieces meet inside a curve run (the corners are drawn apart).
@@ -178,7 +181,7 @@ export const MODES = {
             : r.seam.angle_degrees < 1e-6 && r.seam.curvature_jump < 1e-6 ? 'yes, G2 at the seam'
               : `yes, seam ${fmt(r.seam.angle_degrees, 1)}°, jump ${fmt(r.seam.curvature_jump, 2)}`],
           ['max_deviation', 'max deviation', r.max_deviation],
-          ['tolerance', st.tolerance > 0 ? 'tolerance (set)' : 'tolerance (auto: size and noise)', r.tolerance],
+          ['tolerance', st.tolerance > 0 ? 'tolerance (set)' : 'tolerance (auto: 3 × the noise)', r.tolerance],
           ['g2', 'G2 inside the runs', g2 ? 'yes' : 'no'],
           ['max_curvature_jump', 'largest curvature jump', jump],
           ['alphas', 'alphas', segments.map((g) => fmt(g.alpha, 2)).join(' ') || '—'],

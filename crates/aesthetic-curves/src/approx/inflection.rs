@@ -201,9 +201,16 @@ pub(crate) fn fit_inflection_cubic_from(
     let tr = Samples::gauss(opts.refine_samples.max(4));
     let n = opts.grid.clamp(3, 1000);
     let make = |x: (f64, f64)| inflection_cubic(seg, x.0, x.1.exp());
+    // Proven by the floating-point filter: a candidate only exact arithmetic could decide
+    // lies on the monotone set's boundary to within rounding, and counts as outside it
+    // (the boundary walk's bisection met hundreds of them, at a millisecond each).
     let monotone = |x: (f64, f64)| {
         make(x)
-            .and_then(|c| c.is_curvature_monotone().ok())
+            .and_then(|c| {
+                crate::monotone::filtered_verdict(c.points(), Some(c.weights()))
+                    .ok()
+                    .flatten()
+            })
             .unwrap_or(false)
     };
     let mut evals = 0;
@@ -274,7 +281,11 @@ pub(crate) fn fit_inflection_cubic_from(
         let converged = r.converged;
         // The compass stalls where the optimum lies on the monotone boundary and the
         // boundary runs between its directions: walk along it.
-        if h > 0.0 {
+        // A start already half as far off again as the best one so far is not walked:
+        // the walks measured gained under 10 %, and one walk can cost thousands of
+        // verdicts (a wedge of the monotone set).
+        let behind = best.is_some_and(|b| cost > 1.5 * b.0);
+        if h > 0.0 && !behind {
             let c = |y: (f64, f64)| table.cost(make(y), &tr);
             if let Some((y, cy, e)) = crate::solve::along_boundary(&c, &feasible, x, (1.0, 6.0), 12)
             {

@@ -7,7 +7,6 @@ use super::ApproximationError;
 use crate::bezier::RationalBezier;
 use crate::error::Result;
 use crate::lac::LacSegment;
-use crate::monotone::CurvatureMonotone;
 use kurbo::{Point, Vec2};
 
 /// The homogeneous control points (w x, w y, w) of a rational cubic.
@@ -523,10 +522,16 @@ impl<'a> Problem<'a> {
         }
     }
 
+    /// Whether the cubic at `(f0, f1)` is proven curvature-monotone by the certified
+    /// floating-point filter. A candidate only exact arithmetic could decide lies on the
+    /// monotone set's boundary to within rounding and counts as outside it: the searches
+    /// test thousands of candidates, and exact Sturm sequences on a near-boundary one cost
+    /// up to seconds (a pen stroke's piece took minutes at its default tolerance). A `true`
+    /// is a proof: the filter only answers when its rounding bound decides every sign.
     pub(super) fn is_monotone(&self, f0: f64, f1: f64) -> bool {
         self.cubic(f0, f1)
-            .and_then(|(b, w)| RationalBezier::new(b.to_vec(), w.to_vec()).ok())
-            .and_then(|c| c.is_curvature_monotone().ok())
+            .and_then(|(b, w)| crate::monotone::filtered_verdict(&b, Some(&w)).ok())
+            .flatten()
             .unwrap_or(false)
     }
 }

@@ -85,9 +85,18 @@ impl IntPoly {
         if self.is_zero() {
             return self.clone();
         }
+        // Smallest coefficients first, and each one reduced modulo the gcd so far before
+        // the binary gcd (whose steps remove a bit or so each: on a small and a large
+        // number it would take as many steps as the large one has bits).
+        let mut by_size: Vec<&BigInt> = self.c.iter().filter(|v| !v.is_zero()).collect();
+        by_size.sort_by_key(|v| v.bits());
         let mut g = BigInt::zero();
-        for v in &self.c {
-            g = g.gcd(v);
+        for v in by_size {
+            g = if g.is_zero() {
+                v.abs()
+            } else {
+                g.gcd(&(v % &g))
+            };
             if g.is_one() {
                 return self.clone();
             }

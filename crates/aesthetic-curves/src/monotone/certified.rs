@@ -299,8 +299,9 @@ fn exact(inp: &Input) -> Lifted<BigInt> {
     lift(inp, diff, w.as_deref())
 }
 
-/// `Err(Degenerate)` when z vanishes inside (0, 1): a cusp or a curve that turns back.
-fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
+/// Whether the floating-point filter proves z nonzero on [0, 1]: its control vectors
+/// known well within the margin, and no zero of the hodograph within it.
+fn regular_by_filter(b: &Lifted<Bounded>) -> bool {
     let m = b.zx.len() - 1;
     let h: Vec<kurbo::Vec2> = (0..=m)
         .map(|i| {
@@ -313,13 +314,18 @@ fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
         .map(|i| (b.zx[i].e + b.zy[i].e) / binom(m, i) as f64)
         .fold(0.0, f64::max);
     let margin = super::DEGENERATE_SPEED_TOL * scale.sqrt();
-    if scale.is_finite()
+    scale.is_finite()
         && scale > 0.0
         && err * 1e3 < margin
         && super::hodograph_vanishes(&h, margin).is_none()
-    {
+}
+
+/// `Err(Degenerate)` when z vanishes inside (0, 1): a cusp or a curve that turns back.
+fn check_regular(inp: &Input, b: &Lifted<Bounded>) -> Result<()> {
+    if regular_by_filter(b) {
         return Ok(());
     }
+    let m = b.zx.len() - 1;
     // Exactly: a common root of z's components in (0, 1) (z's ends are not zero).
     over_budget(
         predicted_cost(inp, 3 * m) > crate::exact::signs::EXACT_BUDGET,
@@ -507,6 +513,20 @@ pub(super) fn verdict(inp: &Input) -> Result<bool> {
     let b = bounded(inp);
     let (s, _) = signs(inp, &b, Want::Signs)?;
     Ok(!(s.positive && s.negative))
+}
+
+/// The verdict of the floating-point filter alone: `Some` only where its bounds prove it,
+/// `None` where only exact arithmetic could decide (never a guess).
+pub(super) fn filtered_verdict(inp: &Input) -> Result<Option<bool>> {
+    let b = bounded(inp);
+    // Regularity the filter cannot prove is not decided either: the exact gcd of z's
+    // components would cost what the filter is there to save.
+    if !regular_by_filter(&b) {
+        return Ok(None);
+    }
+    let k = k_tilde(inp, &b);
+    let s = crate::exact::signs::certified_signs(&k, Vec::new, Want::Signs);
+    Ok((!s.over_budget).then_some(!(s.positive && s.negative)))
 }
 
 /// The certified verdict with the extrema located and the end curvatures.

@@ -1045,6 +1045,21 @@ fn verdict(points: &[Point], weights: Option<&[f64]>) -> Result<bool> {
     certified::verdict(&inp)
 }
 
+/// The verdict where floating point proves it, `None` where only exact arithmetic could
+/// decide: for searches that probe many candidates near the boundary of the monotone set
+/// and may treat an undecided one as outside it (what they accept is still proven).
+pub(crate) fn filtered_verdict(points: &[Point], weights: Option<&[f64]>) -> Result<Option<bool>> {
+    let inp = certified::Input::new(points, weights)?;
+    if !inp.retracted() {
+        match fast(points, inp.weights()) {
+            Some(Fast::Monotone(_)) => return Ok(Some(true)),
+            Some(Fast::NotMonotone) => return Ok(Some(false)),
+            None => {}
+        }
+    }
+    certified::filtered_verdict(&inp)
+}
+
 fn fast(points: &[Point], weights: Option<&[f64]>) -> Option<Fast> {
     match weights {
         None => poly_fast(points),

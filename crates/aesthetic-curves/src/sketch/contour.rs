@@ -14,14 +14,20 @@
 //!    as long the turn is nearly as large (θ_w/3 ≥ [`SHORT_SHARE`] θ_w), over windows twice
 //!    as long hardly larger (θ_2w < [`CONCENTRATION`] θ_w); on an arc of radius R,
 //!    θ_w ≈ w / R at every scale. `w` is [`WINDOW_TOLERANCES`] tolerances (at most a sixth
-//!    of the stroke). The largest turns are kept first, none within `w` of another, each
-//!    then put where it splits the stroke into the two straightest stretches around it;
+//!    of the stroke) and at least [`WINDOW_NOISE`] times the noise. The largest turns are
+//!    kept first, none within `w` of another, each then put where it splits the stroke
+//!    into the two straightest stretches around it;
 //! 3. **runs**: the points from one corner to the next (both included, so the runs meet at
 //!    the corner exactly); a closed contour with corners starts at its first corner, one
 //!    without is one run from its first point around to it again;
-//! 4. **each run**: a line where every point lies within the tolerance of the chord (a
-//!    straight stroke is the limit of every LAC: zero curvature), else the G2 sketch of
-//!    [`super::fit_sketch`].
+//! 4. **straight runs** (`line_ends`): a run whose points lie within the tolerance of
+//!    their least-squares line is a line (a straight stroke is the limit of every LAC:
+//!    zero curvature); two straight runs meet where their lines cross, not at the noisy
+//!    sample between them, and an open stroke's straight end is its last point's foot on
+//!    the line;
+//! 5. **each run**: that line where every point lies within the tolerance of it, else a
+//!    line along the chord where they lie within the tolerance of that, else the G2 sketch
+//!    of [`super::fit_sketch`].
 //!
 //! A closed contour without corners is one run whose seam is faired like every joint of the
 //! sketch ([`SketchOptions::closed`]: one tangent at both ends, the curvature jump across the
@@ -30,14 +36,19 @@
 //! Known limit: a straight stretch inside a curved run is fitted with the run's pieces, not
 //! as a line piece with G2 joins.
 
-use super::input::{bbox_diagonal, check_points};
+use super::input::{bbox_diagonal, check_points, noise_level};
 use super::types::{Sketch, SketchOptions};
 use super::{default_tolerance, fit_sketch};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 
-/// Window length of the corner test, in tolerances.
+/// Window length of the corner test, in tolerances...
 pub const WINDOW_TOLERANCES: f64 = 6.0;
+
+/// ... and at least this many times the estimated noise ([`super::estimated_noise`]), so
+/// that a tight tolerance does not shrink the windows to a few points, whose directions
+/// turn with the jitter (the default tolerance is 3 times the noise).
+pub const WINDOW_NOISE: f64 = 30.0;
 
 /// A corner's turn over windows of `2w` is less than this times its turn over `w` (on a
 /// smooth arc it is about twice).
@@ -135,9 +146,10 @@ impl Run {
 /// A corner of the contour: where one run ends and the next begins.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Corner {
-    /// The input point it sits on.
+    /// The input point where the stroke is split there.
     pub index: usize,
-    /// Its place.
+    /// Its place, where the runs meet: between two straight runs where their lines cross
+    /// (the noisy sample is within 3 tolerances of it), else the input point.
     pub point: Point,
     /// How far the stroke turns there (radians, the window test's θ_w).
     pub angle: f64,
@@ -209,11 +221,13 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     let runs = runs_of(stroke, closed, &corners);
     // A closed contour without corners is one run whose seam is faired G2.
     let one_loop = closed && corners.is_empty();
+    let lines = line_ends(&runs, closed && !one_loop, tolerance);
     let fitted: Vec<Run> = runs
         .iter()
+        .zip(&lines)
         .enumerate()
-        .map(|(k, r)| {
-            fit_run(r, tolerance, one_loop).map_err(|e| match e {
+        .map(|(k, (r, line))| {
+            fit_run(r, *line, tolerance, one_loop).map_err(|e| match e {
                 Error::NoSegment(m) => Error::NoSegment(format!("run {k}: {m}")),
                 Error::NoConvergence(m) => Error::NoConvergence(format!("run {k}: {m}")),
                 other => other,
@@ -232,16 +246,18 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     if closed && !corners.is_empty() {
         corners.rotate_left(1);
     }
+    let corners = corners
+        .iter()
+        .zip(&fitted)
+        .map(|(&(index, angle), run)| Corner {
+            index,
+            point: run.ends().1,
+            angle,
+        })
+        .collect();
     Ok(SketchContour {
         runs: fitted,
-        corners: corners
-            .iter()
-            .map(|&(index, angle)| Corner {
-                index,
-                point: stroke[index],
-                angle,
-            })
-            .collect(),
+        corners,
         closed,
         seam,
         tolerance,
@@ -293,7 +309,9 @@ pub fn corners(
         return Vec::new();
     }
     let arc = ArcLength::of(points, closed);
-    let w = (WINDOW_TOLERANCES * tolerance).min(arc.total / 6.0);
+    let w = (WINDOW_TOLERANCES * tolerance)
+        .max(WINDOW_NOISE * noise_level(points))
+        .min(arc.total / 6.0);
     let mut found: Vec<(usize, f64)> = (0..n)
         .filter_map(|i| {
             // Whole windows: a turn nearer an open stroke's end than w is its end's own
@@ -512,9 +530,89 @@ fn runs_of(points: &[Point], closed: bool, corners: &[(usize, f64)]) -> Vec<Vec<
         .collect()
 }
 
-/// One run fitted: a line where every point lies within the tolerance of its chord, else
-/// the G2 sketch (`closed`: a loop, G2 across its seam).
-fn fit_run(points: &[Point], tolerance: f64, closed: bool) -> Result<Run> {
+/// Where each straight run's line starts and ends (None for a run that is not straight:
+/// its points farther than the tolerance from their least-squares line). A corner between
+/// two straight runs is where their lines meet (a designer's corner, not the noisy sample
+/// nearest it), if that is within 3 tolerances of the sample; an open stroke's end, and a
+/// corner next to a curved run, is the sample's foot on the line.
+fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(Point, Point)>> {
+    let fits: Vec<Option<(Point, Vec2)>> = runs
+        .iter()
+        .map(|r| {
+            let idx: Vec<usize> = (0..r.len()).collect();
+            let (c, d) = (centroid(r), direction(r, &idx)?);
+            let off = r
+                .iter()
+                .map(|q| (*q - c).cross(d).abs())
+                .fold(0.0, f64::max);
+            (r.len() >= 2 && off <= tolerance).then_some((c, d))
+        })
+        .collect();
+    let n = runs.len();
+    let foot = |(c, d): (Point, Vec2), q: Point| c + d * (q - c).dot(d);
+    // The place of the corner after run k (between it and the next), seen from run k.
+    let meet = |k: usize, line: (Point, Vec2), sample: Point| -> Point {
+        let next = if k + 1 < n {
+            Some(k + 1)
+        } else {
+            closed.then_some(0)
+        };
+        match next.and_then(|j| fits[j]) {
+            Some(other) => intersection(line, other)
+                .filter(|x| (*x - sample).hypot() <= 3.0 * tolerance)
+                .unwrap_or(sample),
+            None => foot(line, sample),
+        }
+    };
+    (0..n)
+        .map(|k| {
+            let line = fits[k]?;
+            let r = &runs[k];
+            let prev = if k > 0 {
+                Some(k - 1)
+            } else {
+                closed.then(|| n - 1)
+            };
+            let start = match prev {
+                Some(j) if fits[j].is_some() => meet(j, fits[j]?, r[0]),
+                _ => foot(line, r[0]),
+            };
+            Some((start, meet(k, line, r[r.len() - 1])))
+        })
+        .collect()
+}
+
+/// The centroid of the points.
+fn centroid(points: &[Point]) -> Point {
+    let m = points.len().max(1) as f64;
+    (points.iter().fold(Vec2::ZERO, |a, q| a + q.to_vec2()) / m).to_point()
+}
+
+/// Where the lines through `a.0` along `a.1` and through `b.0` along `b.1` meet; None for
+/// (nearly) parallel ones.
+fn intersection(a: (Point, Vec2), b: (Point, Vec2)) -> Option<Point> {
+    let den = a.1.cross(b.1);
+    if den.abs() < 1e-9 {
+        return None;
+    }
+    Some(a.0 + a.1 * ((b.0 - a.0).cross(b.1) / den))
+}
+
+/// One run fitted: a line where every point lies within the tolerance of its line's ends
+/// ([`line_ends`]) or of its chord, else the G2 sketch (`closed`: a loop, G2 across its
+/// seam).
+fn fit_run(
+    points: &[Point],
+    line: Option<(Point, Point)>,
+    tolerance: f64,
+    closed: bool,
+) -> Result<Run> {
+    if let Some((start, end)) = line.filter(|_| !closed) {
+        let l = Run::Line { start, end };
+        if deviation(points, &l) <= tolerance {
+            return Ok(l);
+        }
+    }
     let (start, end) = (points[0], points[points.len() - 1]);
     let line = Run::Line { start, end };
     if !closed && (points.len() < 4 || chord_deviation(points) <= tolerance) {

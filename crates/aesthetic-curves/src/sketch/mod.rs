@@ -2,7 +2,7 @@
 //!
 //! The pipeline of [`fit_sketch`]:
 //! 1. a fair spline: for noisy input (measured lines, pen strokes) the smoothest cubic
-//!    B-spline within 3/4 of the tolerance ([`crate::bspline::smoothing_fit`]), so the
+//!    B-spline within 3/4 of the tolerance (85 % for a tolerance within 4σ of the noise) ([`crate::bspline::smoothing_fit`]), so the
 //!    pieces inherit no noise and no end hook; for precise input the tight least-squares
 //!    B-spline ([`crate::bspline::fit`]), whose tangents and curvature are accurate;
 //! 2. its inflections (sign changes of `g = x'y'' - y'x''`) and curvature extrema (of
@@ -67,20 +67,47 @@ pub use types::{
     count_events, FairingReport, PieceCurve, PieceKind, Sketch, SketchOptions, SketchPiece,
 };
 
-use constants::{DEFAULT_NOISE_FACTOR, DEFAULT_SIZE_SHARE};
-use input::{bbox_diagonal, noise_level, Context};
+use constants::{DEFAULT_NOISE_FACTOR, NOISE_FACTOR_POINTS, NOISY_SIZE_SHARE, PRECISE_SIZE_SHARE};
+use input::{bbox_diagonal, noise_level, Context, Noise};
 use rounds::{Round, Rounds};
 use segment::initial_slots;
 
 use crate::error::Result;
 use kurbo::Point;
 
-/// The default tolerance of a sketch (the protocol's `sketch.fit` default): 0.5 % of the
-/// diagonal of the points' bounding box, but never below 6 times the noise estimated from
-/// the points themselves (per coordinate, from local cubic fits), so that a fair curve can
-/// meet it: a hand's jitter of a few pixels is not a shape to follow.
+/// The default tolerance of a sketch (the protocol's `sketch.fit` default). For noisy
+/// input (a pen's stroke, a measured line) 3 times the noise estimated from the points
+/// ([`estimated_noise`]): about twice a hand's jitter (±1.5 px gives about 3 px), so the
+/// curve stays on the drawn shape and a fair curve still meets it; more beyond 1,000
+/// points (`noise_factor`); never below 0.02 % of the diagonal of the points' bounding
+/// box. For points sampled from a curve (noise below 1e-6 of that diagonal at the finer of
+/// two scales, or residuals that shrink with the window as a curve's own do) 0.5 % of the
+/// diagonal.
 pub fn default_tolerance(points: &[Point]) -> f64 {
-    (DEFAULT_SIZE_SHARE * bbox_diagonal(points)).max(DEFAULT_NOISE_FACTOR * noise_level(points))
+    let size = bbox_diagonal(points);
+    let noise = Noise::of(points);
+    if noise.sampled(size) {
+        PRECISE_SIZE_SHARE * size
+    } else {
+        (noise_factor(points.len()) * noise.sigma).max(NOISY_SIZE_SHARE * size)
+    }
+}
+
+/// [`DEFAULT_NOISE_FACTOR`] for up to [`NOISE_FACTOR_POINTS`] points; beyond, growing as
+/// the expected largest of `n` Gaussian deviations does (as `√(2 ln n)`): the more points,
+/// the further the noise's extremes, which the curve must still meet (200,000 points get
+/// 4σ).
+fn noise_factor(n: usize) -> f64 {
+    let grow = (n as f64).ln() / (NOISE_FACTOR_POINTS as f64).ln();
+    DEFAULT_NOISE_FACTOR * grow.max(1.0).sqrt()
+}
+
+/// The noise of a stroke as estimated from its points: the standard deviation across the
+/// stroke of the residuals of local least-squares cubics over 15 neighbours (robust: the
+/// root mean square of the smallest 90 %), corrected for each fit's own share. 0 for fewer
+/// than 15 points.
+pub fn estimated_noise(points: &[Point]) -> f64 {
+    noise_level(points)
 }
 
 /// Fit a G2 curve of LAC pieces (as rational cubics) to an ordered point sequence (see the
