@@ -446,3 +446,23 @@ fn a_rounded_rectangle_is_fitted_within_the_tolerance() {
     assert!(c.closed && c.corners.is_empty(), "{:?}", c.corners);
     assert_within_tolerance("rounded rectangle", &c);
 }
+
+/// A clean sine sampled densely, at the default tolerance (0.5 % of its size, as large as
+/// its amplitude): straight runs next to curved ones share their corner points, so the
+/// contour joins into one curve (a line's end moved to its foot left a gap there).
+#[test]
+fn straight_runs_next_to_curved_ones_share_their_corners() {
+    let pts: Vec<Point> = (0..4000)
+        .map(|i| Point::new(i as f64 * 0.01, (i as f64 * 0.01).sin()))
+        .collect();
+    let c = fit(&pts);
+    let runs = c.runs.len();
+    for w in c.runs.windows(2) {
+        let (a, b) = (w[0].ends().1, w[1].ends().0);
+        assert!(
+            (a - b).hypot() < 1e-9,
+            "runs of {runs} meet: {a:?} vs {b:?}"
+        );
+    }
+    c.as_curve().expect("one curve");
+}

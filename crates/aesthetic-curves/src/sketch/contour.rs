@@ -533,8 +533,9 @@ fn runs_of(points: &[Point], closed: bool, corners: &[(usize, f64)]) -> Vec<Vec<
 /// Where each straight run's line starts and ends (None for a run that is not straight:
 /// its points farther than the tolerance from their least-squares line). A corner between
 /// two straight runs is where their lines meet (a designer's corner, not the noisy sample
-/// nearest it), if that is within 3 tolerances of the sample; an open stroke's end, and a
-/// corner next to a curved run, is the sample's foot on the line.
+/// nearest it), if that is within 3 tolerances of the sample; an open stroke's end is the
+/// sample's foot on the line; a corner next to a curved run is the sample itself, where
+/// that run starts or ends.
 fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(Point, Point)>> {
     let fits: Vec<Option<(Point, Vec2)>> = runs
         .iter()
@@ -557,10 +558,11 @@ fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(P
         } else {
             closed.then_some(0)
         };
-        match next.and_then(|j| fits[j]) {
-            Some(other) => intersection(line, other)
+        match next.map(|j| fits[j]) {
+            Some(Some(other)) => intersection(line, other)
                 .filter(|x| (*x - sample).hypot() <= 3.0 * tolerance)
                 .unwrap_or(sample),
+            Some(None) => sample,
             None => foot(line, sample),
         }
     };
@@ -573,9 +575,10 @@ fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(P
             } else {
                 closed.then(|| n - 1)
             };
-            let start = match prev {
-                Some(j) if fits[j].is_some() => meet(j, fits[j]?, r[0]),
-                _ => foot(line, r[0]),
+            let start = match prev.map(|j| (j, fits[j])) {
+                Some((j, Some(other))) => meet(j, other, r[0]),
+                Some((_, None)) => r[0],
+                None => foot(line, r[0]),
             };
             Some((start, meet(k, line, r[r.len() - 1])))
         })
