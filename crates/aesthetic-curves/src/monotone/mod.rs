@@ -1035,14 +1035,22 @@ fn hodograph_vanishes_in<const C: usize>(
 /// The verdict: fast paths first (regular curves), then the certified test.
 fn verdict(points: &[Point], weights: Option<&[f64]>) -> Result<bool> {
     let inp = certified::Input::new(points, weights)?;
-    if !inp.retracted() {
-        match fast(points, inp.weights()) {
-            Some(Fast::Monotone(_)) => return Ok(true),
-            Some(Fast::NotMonotone) => return Ok(false),
-            None => {}
-        }
+    match fast_verdict(points, &inp) {
+        Some(v) => Ok(v),
+        None => certified::verdict(&inp),
     }
-    certified::verdict(&inp)
+}
+
+/// The fast paths' verdict, for curves whose handles are not retracted; None where they
+/// cannot tell.
+fn fast_verdict(points: &[Point], inp: &certified::Input) -> Option<bool> {
+    if inp.retracted() {
+        return None;
+    }
+    match fast(points, inp.weights())? {
+        Fast::Monotone(_) => Some(true),
+        Fast::NotMonotone => Some(false),
+    }
 }
 
 /// The verdict where floating point proves it, `None` where only exact arithmetic could
@@ -1050,14 +1058,10 @@ fn verdict(points: &[Point], weights: Option<&[f64]>) -> Result<bool> {
 /// and may treat an undecided one as outside it (what they accept is still proven).
 pub(crate) fn filtered_verdict(points: &[Point], weights: Option<&[f64]>) -> Result<Option<bool>> {
     let inp = certified::Input::new(points, weights)?;
-    if !inp.retracted() {
-        match fast(points, inp.weights()) {
-            Some(Fast::Monotone(_)) => return Ok(Some(true)),
-            Some(Fast::NotMonotone) => return Ok(Some(false)),
-            None => {}
-        }
+    match fast_verdict(points, &inp) {
+        Some(v) => Ok(Some(v)),
+        None => certified::filtered_verdict(&inp),
     }
-    certified::filtered_verdict(&inp)
 }
 
 fn fast(points: &[Point], weights: Option<&[f64]>) -> Option<Fast> {

@@ -2,9 +2,10 @@
 //!
 //! The pipeline of [`fit_sketch`]:
 //! 1. a fair spline: for noisy input (measured lines, pen strokes) the smoothest cubic
-//!    B-spline within 3/4 of the tolerance (85 % for a tolerance within 4σ of the noise) ([`crate::bspline::smoothing_fit`]), so the
-//!    pieces inherit no noise and no end hook; for precise input the tight least-squares
-//!    B-spline ([`crate::bspline::fit`]), whose tangents and curvature are accurate;
+//!    B-spline within 3/4 of the tolerance (85 % for a tolerance within 4σ of the noise;
+//!    [`crate::bspline::smoothing_fit`]), so the pieces inherit no noise and no end hook;
+//!    for precise input the tight least-squares B-spline ([`crate::bspline::fit`]), whose
+//!    tangents and curvature are accurate;
 //! 2. its inflections (sign changes of `g = x'y'' - y'x''`) and curvature extrema (of
 //!    `h = 2 g' f - 3 g f'`, `f = |x'|²`), isolated exactly on each Bézier span's Bernstein
 //!    form; simplified as in S4 (one curvature maximum between two inflections, pieces
