@@ -64,7 +64,13 @@ fn esc(s: &str) -> String {
 }
 
 fn fmt_tick(v: f64) -> String {
-    if v == 0.0 {
+    fmt_tick_in(v, 0.0)
+}
+
+/// [`fmt_tick`] on an axis that spans `span`: a tick within a billionth of the span of 0 is
+/// the 0 that rounding in the tick placement missed (not "-3.3889e-18").
+fn fmt_tick_in(v: f64, span: f64) -> String {
+    if v == 0.0 || v.abs() <= 1e-9 * span.abs() {
         "0".into()
     } else if v.abs() >= 1e4 || v.abs() < 1e-2 {
         // Enough digits to tell neighbouring ticks apart (3.5e-4 next to 4e-4), no more.
@@ -283,14 +289,14 @@ fn draw_chart(
             if log_y {
                 fmt_tick(10f64.powf(*v))
             } else {
-                fmt_tick(*v)
+                fmt_tick_in(*v, y1 - y0)
             }
         };
         chart
             .configure_mesh()
             .x_labels(x_ticks)
             .y_labels(y_ticks)
-            .x_label_formatter(&|v| fmt_tick(*v))
+            .x_label_formatter(&|v| fmt_tick_in(*v, x1 - x0))
             .y_label_formatter(&y_fmt)
             .x_desc(xlabel)
             .y_desc(ylabel)
@@ -1103,6 +1109,10 @@ mod tests {
         assert_eq!(fmt_tick(3.5e-4), "3.5e-4");
         assert_eq!(fmt_tick(12000.0), "1.2e4");
         assert_eq!(fmt_sig(1.23456), "1.235");
+        // The zero tick of an axis from -0.04 to 0.03, placed with a rounding error.
+        assert_eq!(fmt_tick_in(-3.3889e-18, 0.07), "0");
+        assert_eq!(fmt_tick_in(-0.02, 0.07), "-0.02");
+        assert_eq!(fmt_tick_in(3.5e-4, 1e-3), "3.5e-4");
     }
 
     #[test]

@@ -28,6 +28,13 @@ impl Jitter {
             .map(|q| p(q.x + self.next(amp), q.y + self.next(amp)))
             .collect()
     }
+
+    /// A Gaussian deviate of standard deviation `sigma` (Box–Muller).
+    fn gaussian(&mut self, sigma: f64) -> f64 {
+        let u = (self.next(0.5) + 0.5).max(1e-300);
+        let v = self.next(0.5) + 0.5;
+        sigma * (-2.0 * u.ln()).sqrt() * (2.0 * PI * v).cos()
+    }
 }
 
 /// Points every `step` along the polyline through `corners` (as a pen samples a stroke).
@@ -150,6 +157,178 @@ fn the_default_tolerance_is_about_twice_the_jitter() {
             "{name}: precise {precise} of {size}"
         );
     }
+}
+
+/// Gaussian noise has no bound: among a few hundred points some lie 3σ off, where a
+/// tolerance of 3σ would leave no fair curve (the fair spline follows those points, and the
+/// fit returns many pieces with false inflections). The default tolerance stays above the
+/// noise's largest deviation from the true curve, measured here from the curve itself, and
+/// the fit finds the true curve's inflections, G2 (a sine is no LAC: at σ 0.25 the S takes
+/// 13 pieces, at σ 1.5 five); so does the README's example stroke (240
+/// points with a noise of σ 0.034, whose default fell to 20 pieces with 6 inflections at 3σ).
+#[test]
+fn the_default_tolerance_clears_gaussian_extremes() {
+    use aesthetic_curves::sketch::{default_tolerance, fit_sketch, SketchOptions};
+    let arc = |t: f64| {
+        let a = PI * (0.1 + 0.8 * t);
+        p(800.0 * a.cos(), 800.0 * a.sin())
+    };
+    let s_curve = |t: f64| p(250.0 + 150.0 * (2.0 * PI * t).sin(), 400.0 * t);
+    for (name, curve, n, inflections) in [
+        ("arc", &arc as &dyn Fn(f64) -> Point, 500, 0),
+        ("S", &s_curve, 240, 1),
+    ] {
+        let dense: Vec<Point> = (0..=20_000).map(|i| curve(i as f64 / 20_000.0)).collect();
+        for (seed, sigma) in [(41, 0.25), (42, 0.75), (43, 1.5)] {
+            let mut jitter = Jitter(seed);
+            let clean: Vec<Point> = (0..n).map(|i| curve(i as f64 / (n - 1) as f64)).collect();
+            let pts: Vec<Point> = clean
+                .iter()
+                .map(|q| p(q.x + jitter.gaussian(sigma), q.y + jitter.gaussian(sigma)))
+                .collect();
+            let off = pts
+                .iter()
+                .map(|q| {
+                    dense
+                        .iter()
+                        .map(|d| (*d - *q).hypot())
+                        .fold(f64::MAX, f64::min)
+                })
+                .fold(0.0, f64::max);
+            let tol = default_tolerance(&pts);
+            assert!(
+                tol > 1.1 * off && tol < 6.0 * sigma,
+                "{name}, σ {sigma}: tolerance {tol}, noise up to {off}"
+            );
+            let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
+            println!(
+                "{name}, σ {sigma}: tolerance {tol:.3} ({:.2}σ, {:.2} times the noise's largest \
+                 deviation), {} pieces, {} inflections",
+                tol / sigma,
+                tol / off,
+                sk.pieces.len(),
+                sk.inflections
+            );
+            assert_eq!(sk.inflections, inflections, "{name}, σ {sigma}");
+            assert!(
+                sk.g2 && sk.pieces.len() <= 16,
+                "{name}, σ {sigma}: {} pieces, jump {:e}, fairing {:?}",
+                sk.pieces.len(),
+                sk.max_curvature_jump,
+                sk.fairing
+            );
+        }
+    }
+    let stroke: Vec<Point> = include_str!("../../../examples/sketch-stroke.csv")
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let (x, y) = l.split_once(',').unwrap();
+            p(x.trim().parse().unwrap(), y.trim().parse().unwrap())
+        })
+        .collect();
+    let sk = fit_sketch(
+        &stroke,
+        &SketchOptions::with_tolerance(default_tolerance(&stroke)),
+    )
+    .unwrap();
+    assert_eq!((sk.inflections, sk.curvature_extrema), (2, 1));
+    assert!(sk.g2 && sk.pieces.len() <= 7, "{} pieces", sk.pieces.len());
+}
+
+/// The default tolerance over 240 strokes: an arc, an S, a spiral and a wave, each with
+/// uniform jitter (a hand) and Gaussian noise of three sizes, ten seeds each. Against the
+/// true curve (an oracle outside the fit: the points' largest distance to 20,001 samples of
+/// it), the tolerance clears the noise's largest deviation on every stroke, and stays within
+/// 2.4 amplitudes of a hand's jitter wherever the jitter, not the local cubics' own error on
+/// a tight crest, is what the estimate sees (the wave at ±0.3 px: 3.0). A result is unfair
+/// when its inflections are not the curve's or it is not G2: 15 of the 240 (the wave, whose
+/// quarter sines no LAC piece follows, and two arcs), against 108 with the default of 3σ
+/// and the fit that delivered non-G2 results. Slow in debug: run with `--release`.
+#[test]
+#[ignore]
+fn the_default_tolerance_over_240_strokes() {
+    use aesthetic_curves::sketch::{default_tolerance, fit_sketch, SketchOptions};
+    type Shape = (&'static str, usize, usize, Box<dyn Fn(f64) -> Point>);
+    let shapes: Vec<Shape> = vec![
+        (
+            "arc",
+            300,
+            0,
+            Box::new(|t| {
+                let a = PI * (0.1 + 0.8 * t);
+                p(400.0 * a.cos(), 400.0 * a.sin())
+            }),
+        ),
+        (
+            "S",
+            200,
+            1,
+            Box::new(|t| p(250.0 + 150.0 * (2.0 * PI * t).sin(), 400.0 * t)),
+        ),
+        (
+            "spiral",
+            200,
+            0,
+            Box::new(|t| {
+                let a = 3.5 * PI * t;
+                let r = 40.0 + 160.0 * t;
+                p(r * a.cos(), r * a.sin())
+            }),
+        ),
+        (
+            "wave",
+            160,
+            2,
+            Box::new(|t| p(400.0 * t, 120.0 * (3.0 * PI * t).sin())),
+        ),
+    ];
+    let mut unfair = 0;
+    for (name, n, inflections, curve) in &shapes {
+        let dense: Vec<Point> = (0..=20_000).map(|i| curve(i as f64 / 20_000.0)).collect();
+        for gaussian in [false, true] {
+            for amp in [0.3, 1.0, 2.5] {
+                for seed in 0..10u64 {
+                    let mut j = Jitter(1000 + seed);
+                    let mut noise = |a: f64| if gaussian { j.gaussian(a) } else { j.next(a) };
+                    let pts: Vec<Point> = (0..*n)
+                        .map(|i| {
+                            let q = curve(i as f64 / (*n - 1) as f64);
+                            p(q.x + noise(amp), q.y + noise(amp))
+                        })
+                        .collect();
+                    let off = pts
+                        .iter()
+                        .map(|q| {
+                            dense
+                                .iter()
+                                .map(|d| (*d - *q).hypot())
+                                .fold(f64::MAX, f64::min)
+                        })
+                        .fold(0.0, f64::max);
+                    let tol = default_tolerance(&pts);
+                    let case = format!("{name}, gaussian {gaussian}, {amp}, seed {seed}");
+                    assert!(
+                        tol > 1.05 * off,
+                        "{case}: tolerance {tol}, noise up to {off}"
+                    );
+                    if !gaussian {
+                        let most = if *name == "wave" && amp < 1.0 {
+                            3.0
+                        } else {
+                            2.4
+                        };
+                        assert!(tol <= most * amp, "{case}: tolerance {tol}");
+                    }
+                    match fit_sketch(&pts, &SketchOptions::with_tolerance(tol)) {
+                        Ok(sk) if sk.g2 && sk.inflections == *inflections => {}
+                        _ => unfair += 1,
+                    }
+                }
+            }
+        }
+    }
+    assert!(unfair <= 20, "{unfair} of 240 strokes unfair");
 }
 
 #[test]

@@ -19,6 +19,17 @@ pub(super) const PRECISE_SIZE_SHARE: f64 = 0.005;
 /// twice its amplitude; for Gaussian noise, its 99.7 % band...
 pub(super) const DEFAULT_NOISE_FACTOR: f64 = 3.0;
 
+/// ... and at least this many times the noise's largest deviation ([`EXTREME_CUT`]), so
+/// that the fair spline, within [`NEAR_NOISE_SHARE`] of the tolerance, keeps 15 % of room
+/// above every point's noise and need not follow it (a tolerance of 1.06 times the largest
+/// deviation left a stroke's smoothest spline with 2 false inflections, 0.9 times with 16).
+pub(super) const EXTREME_FACTOR: f64 = 1.35;
+
+/// Residuals above this many times σ are not noise (the noise's largest deviation among 10⁶
+/// Gaussian points is about 5σ; a hand's jitter stays under 3σ) but a local cubic that
+/// misses a sharp bend or a corner.
+pub(super) const EXTREME_CUT: f64 = 4.5;
+
 /// Strokes of more points get a larger factor than [`DEFAULT_NOISE_FACTOR`] (their noise's
 /// extremes lie further out).
 pub(super) const NOISE_FACTOR_POINTS: usize = 1000;
@@ -58,3 +69,7 @@ pub(super) const HOOK_FACTOR: f64 = 4.0;
 /// step, which minimises Σ Δangle² + Σ Δα²/ALPHA_WEIGHT: with 1, a change of α by 1 costs as
 /// much as a turn of 1 rad.
 pub(super) const ALPHA_WEIGHT: f64 = 1.0;
+
+/// Rounds that split a piece at the joint the fairing left with a curvature jump, before a
+/// result that is not G2 is delivered as it is (and says so).
+pub(super) const MAX_JUMP_SPLITS: usize = 4;

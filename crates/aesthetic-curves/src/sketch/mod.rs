@@ -33,7 +33,8 @@
 //!    so G2 at every joint, with curvature monotonicity proven by the exact test;
 //! 7. the input points' true nearest-point distance to the delivered cubics is measured;
 //!    while it exceeds the tolerance, the piece holding the worst point is split there and
-//!    steps 4-7 repeat.
+//!    steps 4-7 repeat; while the fairing leaves a curvature jump (at most
+//!    `MAX_JUMP_SPLITS` times), the piece that turns more at the largest jump is split.
 //!
 //! The result reports its inflections and curvature extrema ([`count_events`]).
 //!
@@ -68,7 +69,9 @@ pub use types::{
     count_events, FairingReport, PieceCurve, PieceKind, Sketch, SketchOptions, SketchPiece,
 };
 
-use constants::{DEFAULT_NOISE_FACTOR, NOISE_FACTOR_POINTS, NOISY_SIZE_SHARE, PRECISE_SIZE_SHARE};
+use constants::{
+    DEFAULT_NOISE_FACTOR, EXTREME_FACTOR, NOISE_FACTOR_POINTS, NOISY_SIZE_SHARE, PRECISE_SIZE_SHARE,
+};
 use input::{bbox_diagonal, noise_level, Context, Noise};
 use rounds::{Round, Rounds};
 use segment::initial_slots;
@@ -80,8 +83,9 @@ use kurbo::Point;
 /// input (a pen's stroke, a measured line) 3 times the noise estimated from the points
 /// ([`estimated_noise`]): about twice a hand's jitter (±1.5 px gives about 3 px), so the
 /// curve stays on the drawn shape and a fair curve still meets it; more beyond 1,000
-/// points (`noise_factor`); never below 0.02 % of the diagonal of the points' bounding
-/// box. For points sampled from a curve (noise below 1e-6 of that diagonal at the finer of
+/// points (`noise_factor`); at least 1.35 times the noise's largest deviation, so that the
+/// fair spline need not follow noise without a bound (Gaussian-like: a few of a few hundred
+/// points lie 3σ off); never below 0.02 % of the diagonal of the points' bounding box. For points sampled from a curve (noise below 1e-6 of that diagonal at the finer of
 /// two scales, or residuals that shrink with the window as a curve's own do) 0.5 % of the
 /// diagonal.
 pub fn default_tolerance(points: &[Point]) -> f64 {
@@ -90,7 +94,9 @@ pub fn default_tolerance(points: &[Point]) -> f64 {
     if noise.sampled(size) {
         PRECISE_SIZE_SHARE * size
     } else {
-        (noise_factor(points.len()) * noise.sigma).max(NOISY_SIZE_SHARE * size)
+        (noise_factor(points.len()) * noise.sigma)
+            .max(EXTREME_FACTOR * noise.extreme)
+            .max(NOISY_SIZE_SHARE * size)
     }
 }
 

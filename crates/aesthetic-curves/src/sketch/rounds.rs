@@ -3,7 +3,7 @@
 //! round starts, a round that meets it delivers the [`Sketch`].
 
 use super::alpha::fit_slot_alpha;
-use super::constants::BATCH_AFTER;
+use super::constants::{BATCH_AFTER, MAX_JUMP_SPLITS};
 use super::cubics::{CubicCache, Cubics};
 use super::deviation::{measure, polyline_deviation, Deviation};
 use super::fairing::fair;
@@ -32,6 +32,8 @@ pub(super) struct Rounds {
     peak_splits: usize,
     /// Splits made because the curve missed the points.
     miss_splits: usize,
+    /// Splits made because the fairing left a curvature jump.
+    jump_splits: usize,
     /// The cubics fitted so far.
     cubics: CubicCache,
 }
@@ -71,6 +73,16 @@ impl Rounds {
         let dev = measure(&pieces, &cx.fit);
         if dev.worst > opts.tolerance && slots.len() < opts.max_pieces {
             self.split_misses(cx, slots, &dev)?;
+            return Ok(Round::Again);
+        }
+        if !fairing.converged
+            && dev.worst <= opts.tolerance
+            && slots.len() < opts.max_pieces
+            && self.jump_splits < MAX_JUMP_SPLITS
+        {
+            self.jump_splits += 1;
+            let i = worst_jump_piece(&cx.track, slots, &pieces);
+            split_at_mid_turn(&cx.track, slots, i)?;
             return Ok(Round::Again);
         }
         if dev.worst > opts.tolerance {
@@ -132,6 +144,21 @@ impl Rounds {
             self.miss_splits += 1;
         }
         Ok(())
+    }
+}
+
+/// Of the two pieces at the joint with the largest curvature jump, the one that turns
+/// more: splitting it gives the fairing a tangent and a curvature of its own there.
+fn worst_jump_piece(track: &super::track::Track, slots: &[Slot], pieces: &[SketchPiece]) -> usize {
+    let jump = |j: usize| (pieces[j - 1].end_curvatures.1 - pieces[j].end_curvatures.0).abs();
+    let Some(j) = (1..pieces.len()).max_by(|&a, &b| jump(a).total_cmp(&jump(b))) else {
+        return 0;
+    };
+    let turn = |i: usize| track.angle_between(slots[i].ua, slots[i].ub).abs();
+    if turn(j - 1) >= turn(j) {
+        j - 1
+    } else {
+        j
     }
 }
 
