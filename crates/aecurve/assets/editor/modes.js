@@ -181,7 +181,7 @@ export const MODES = {
             : r.seam.angle_degrees < 1e-6 && r.seam.curvature_jump < 1e-6 ? 'yes, G2 at the seam'
               : `yes, seam ${fmt(r.seam.angle_degrees, 1)}°, jump ${fmt(r.seam.curvature_jump, 2)}`],
           ['max_deviation', 'max deviation', r.max_deviation],
-          ['tolerance', st.tolerance > 0 ? 'tolerance (set)' : 'tolerance (auto: 3 × the noise)', r.tolerance],
+          ['tolerance', st.tolerance > 0 ? 'tolerance (set)' : 'tolerance (auto: from the noise)', r.tolerance],
           ['g2', 'G2 inside the runs', g2 ? 'yes' : 'no'],
           ['max_curvature_jump', 'largest curvature jump', jump],
           ['alphas', 'alphas', segments.map((g) => fmt(g.alpha, 2)).join(' ') || '—'],
