@@ -159,6 +159,34 @@ fn the_default_tolerance_is_about_twice_the_jitter() {
     }
 }
 
+/// `n` points of `curve` (over [0, 1]) with `noise(amp)` added to each coordinate.
+fn sampled(
+    curve: &dyn Fn(f64) -> Point,
+    n: usize,
+    mut noise: impl FnMut(f64) -> f64,
+    amp: f64,
+) -> Vec<Point> {
+    (0..n)
+        .map(|i| {
+            let q = curve(i as f64 / (n - 1) as f64);
+            p(q.x + noise(amp), q.y + noise(amp))
+        })
+        .collect()
+}
+
+/// The largest distance from a point of `pts` to its nearest of `dense` (samples of the
+/// true curve): how far the noise reaches.
+fn farthest(pts: &[Point], dense: &[Point]) -> f64 {
+    pts.iter()
+        .map(|q| {
+            dense
+                .iter()
+                .map(|d| (*d - *q).hypot())
+                .fold(f64::MAX, f64::min)
+        })
+        .fold(0.0, f64::max)
+}
+
 /// Gaussian noise has no bound: among a few hundred points some lie 3σ off, where a
 /// tolerance of 3σ would leave no fair curve (the fair spline follows those points, and the
 /// fit returns many pieces with false inflections). The default tolerance stays above the
@@ -181,20 +209,8 @@ fn the_default_tolerance_clears_gaussian_extremes() {
         let dense: Vec<Point> = (0..=20_000).map(|i| curve(i as f64 / 20_000.0)).collect();
         for (seed, sigma) in [(41, 0.25), (42, 0.75), (43, 1.5)] {
             let mut jitter = Jitter(seed);
-            let clean: Vec<Point> = (0..n).map(|i| curve(i as f64 / (n - 1) as f64)).collect();
-            let pts: Vec<Point> = clean
-                .iter()
-                .map(|q| p(q.x + jitter.gaussian(sigma), q.y + jitter.gaussian(sigma)))
-                .collect();
-            let off = pts
-                .iter()
-                .map(|q| {
-                    dense
-                        .iter()
-                        .map(|d| (*d - *q).hypot())
-                        .fold(f64::MAX, f64::min)
-                })
-                .fold(0.0, f64::max);
+            let pts = sampled(curve, n, |a| jitter.gaussian(a), sigma);
+            let off = farthest(&pts, &dense);
             let tol = default_tolerance(&pts);
             assert!(
                 tol > 1.1 * off && tol < 6.0 * sigma,
@@ -290,22 +306,9 @@ fn the_default_tolerance_over_240_strokes() {
             for amp in [0.3, 1.0, 2.5] {
                 for seed in 0..10u64 {
                     let mut j = Jitter(1000 + seed);
-                    let mut noise = |a: f64| if gaussian { j.gaussian(a) } else { j.next(a) };
-                    let pts: Vec<Point> = (0..*n)
-                        .map(|i| {
-                            let q = curve(i as f64 / (*n - 1) as f64);
-                            p(q.x + noise(amp), q.y + noise(amp))
-                        })
-                        .collect();
-                    let off = pts
-                        .iter()
-                        .map(|q| {
-                            dense
-                                .iter()
-                                .map(|d| (*d - *q).hypot())
-                                .fold(f64::MAX, f64::min)
-                        })
-                        .fold(0.0, f64::max);
+                    let noise = |a: f64| if gaussian { j.gaussian(a) } else { j.next(a) };
+                    let pts = sampled(curve, *n, noise, amp);
+                    let off = farthest(&pts, &dense);
                     let tol = default_tolerance(&pts);
                     let case = format!("{name}, gaussian {gaussian}, {amp}, seed {seed}");
                     assert!(
