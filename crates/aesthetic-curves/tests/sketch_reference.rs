@@ -430,8 +430,8 @@ fn jittery_strokes_at_the_default_tolerance() {
 /// tight tolerances) that took 28 to 39 s, then failed outright once the fair smoothing
 /// spline came in: both fit, within their tolerance, in well under a second (release build;
 /// `cargo bench --bench sketch -- probe`); the bound here leaves room for the test profile
-/// and a busy machine. The fairing's report agrees with the delivered curve: the 181-point
-/// stroke is not G2 (an ordinary piece next to an inflection end), and says so.
+/// and a busy machine. The fairing's report agrees with the delivered curve (the 181-point
+/// stroke was not G2 until a round that leaves a jump splits a piece there: it is now).
 #[test]
 fn probe_strokes_fit_in_well_under_a_second() {
     for (name, text) in [
