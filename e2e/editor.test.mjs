@@ -275,7 +275,7 @@ await step('sketch: jittery hand strokes (S, arc, spiral, wave) at the default t
   }
 });
 
-await step('sketch: an L, a straight stroke and a closed loop drawn by hand come back as contours', async () => {
+await step('sketch: an L, a straight stroke, a closed loop and a rounded rectangle drawn by hand come back as contours', async () => {
   // Fixed-seed jitter of ±1.5 px in page coordinates; world shapes in the visible box.
   const rnd = jitterFrom(20261202);
   const along = (corners, n) => {
@@ -292,10 +292,29 @@ await step('sketch: an L, a straight stroke and a closed loop drawn by hand come
     const a = 2 * Math.PI * i / 144; // a little past the start, as a hand overshoots
     circle.push([7 + 2.5 * Math.cos(a), 4.2 + 2.5 * Math.sin(a)]);
   }
+  // A rounded rectangle in one stroke, sampled about every 0.04 world units (2-3 px).
+  const rounded = [];
+  const [rx0, ry0, rx1, ry1, rr] = [3, 2, 11, 6.5, 0.9];
+  const centres = [[rx1 - rr, ry0 + rr], [rx1 - rr, ry1 - rr], [rx0 + rr, ry1 - rr], [rx0 + rr, ry0 + rr]];
+  centres.forEach(([cx, cy], k) => {
+    const a0 = -Math.PI / 2 + k * Math.PI / 2;
+    for (let i = 0; i <= 36; i++) {
+      const a = a0 + Math.PI / 2 * i / 36;
+      rounded.push([cx + rr * Math.cos(a), cy + rr * Math.sin(a)]);
+    }
+    const [nx, ny] = centres[(k + 1) % 4];
+    const [ex, ey] = [cx + rr * Math.cos(a0 + Math.PI / 2), cy + rr * Math.sin(a0 + Math.PI / 2)];
+    const [sx, sy] = [nx + rr * Math.cos(a0 + Math.PI / 2), ny + rr * Math.sin(a0 + Math.PI / 2)];
+    const m = Math.ceil(Math.hypot(sx - ex, sy - ey) / 0.04);
+    for (let i = 1; i < m; i++) rounded.push([ex + (sx - ex) * i / m, ey + (sy - ey) * i / m]);
+  });
+  rounded.push(rounded[0]);
   const strokes = [
     ['L', along([[3, 6.5], [3, 2], [11, 2]], 90), { runs: '2 (2)', corners: 1, closed: /^no/ }],
     ['straight', along([[2.5, 2.5], [11.5, 6]], 160), { runs: '1 (1)', corners: 0, closed: /^no/ }],
     ['closed loop', circle, { runs: '1 (0)', corners: 0, closed: /^yes, G2 at the seam/ }],
+    // Four straight sides as lines, four fair corners joining them G2 (smooth joins).
+    ['rounded rectangle', rounded, { runs: '8 (4)', corners: 0, closed: /^yes/ }],
   ];
   for (const [name, world, want] of strokes) {
     await drawStroke(world, rnd);
@@ -307,6 +326,10 @@ await step('sketch: an L, a straight stroke and a closed loop drawn by hand come
     assert.ok((await num('max_deviation')) <= (await num('tolerance')), `${name}: tolerance`);
     assert.match(await text('verdict'), /every piece: curvature monotone/);
     if (name === 'closed loop') assert.equal(await text('n-g2'), 'yes', 'G2 inside the loop');
+    if (name === 'rounded rectangle') {
+      assert.equal(await num('smooth_joins'), 8, 'eight smooth joins');
+      assert.equal(await text('n-g2'), 'yes', 'G2 at every join');
+    }
     await shot(`06-sketch-contour-${name.replace(' ', '-')}`);
   }
   // The tolerance control: a looser tolerance set by hand is the one used, and met (the

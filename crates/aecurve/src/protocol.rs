@@ -822,11 +822,17 @@ pub fn contour_json(c: &aesthetic_curves::sketch::contour::SketchContour) -> Val
     let corners: Vec<Value> = c
         .corners
         .iter()
-        .map(|k| json!({"index": k.index, "point": xy(k.point), "angle_degrees": k.angle.to_degrees()}))
+        .map(|k| json!({"index": k.index, "point": xy(k.point), "angle_degrees": k.angle.to_degrees(), "run": k.run}))
+        .collect();
+    let smooth: Vec<Value> = c
+        .smooth_joins
+        .iter()
+        .map(|j| json!({"run": j.run, "point": xy(j.point), "angle_degrees": j.angle.to_degrees(), "curvature_jump": j.curvature_jump}))
         .collect();
     let mut out = json!({
         "runs": runs,
         "corners": corners,
+        "smooth_joins": smooth,
         "closed": c.closed,
         "pieces": c.pieces(),
         "tolerance": c.tolerance,

@@ -1250,14 +1250,19 @@ struct SketchContour {
     run_pieces: Vec<usize>,
     /// Each curve run's α per piece (a line: empty).
     alphas: Vec<Vec<f64>>,
-    /// The corners in order, as (x, y, turn in degrees, index of the input point);
-    /// `corners[k]` between run k and run k + 1 (closed: the last between the last and
-    /// the first).
+    /// The corners in order, as (x, y, turn in degrees, index of the input point).
     corners: Vec<(f64, f64, f64, usize)>,
+    /// The run each corner follows (the next run starts there; closed: the last may follow
+    /// the last run).
+    corner_runs: Vec<usize>,
+    /// The smooth joins in order, where a straight stretch inside a curved part of the
+    /// stroke meets a curve (G2: the curve leaves the line along it with zero curvature),
+    /// as (x, y, angle in degrees, relative curvature jump, the run it follows).
+    smooth_joins: Vec<(f64, f64, f64, f64, usize)>,
     /// Closed.
     closed: bool,
-    /// A closed contour without corners: (angle in degrees, relative curvature jump) where
-    /// its one run ends at its start.
+    /// A closed contour that is one curve (no corners, no straight stretch): (angle in
+    /// degrees, relative curvature jump) where its one run ends at its start.
     seam: Option<(f64, f64)>,
     /// The tolerance used.
     tolerance: f64,
@@ -1329,6 +1334,15 @@ fn fit_contour(
             .corners
             .iter()
             .map(|k| (k.point.x, k.point.y, k.angle.to_degrees(), k.index))
+            .collect(),
+        corner_runs: c.corners.iter().map(|k| k.run).collect(),
+        smooth_joins: c
+            .smooth_joins
+            .iter()
+            .map(|j| {
+                let (x, y) = (j.point.x, j.point.y);
+                (x, y, j.angle.to_degrees(), j.curvature_jump, j.run)
+            })
             .collect(),
         closed: c.closed,
         seam: c.seam.map(|s| (s.angle.to_degrees(), s.curvature_jump)),

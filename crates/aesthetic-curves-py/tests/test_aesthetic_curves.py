@@ -526,6 +526,28 @@ def test_the_type_stubs_match_the_module():
     assert r.returncode == 0, r.stdout + r.stderr
 
 
+def test_fit_contour_gives_a_rounded_rectangle_its_straight_sides():
+    rng = np.random.default_rng(36)
+    pts = []
+    for k, (cx, cy) in enumerate([(410, 90), (410, 310), (90, 310), (90, 90)]):
+        a = -math.pi / 2 + k * math.pi / 2 + np.linspace(0, math.pi / 2, 21)
+        pts.append(np.column_stack([cx + 40 * np.cos(a), cy + 40 * np.sin(a)]))
+    ring = np.vstack(pts + [pts[0][:1]])
+    dense = [ring[0]]
+    for a, b in zip(ring, ring[1:]):
+        n = max(1, math.ceil(math.hypot(*(b - a)) / 2))
+        dense.extend(a + (b - a) * (i / n) for i in range(1, n + 1))
+    stroke = np.array(dense) + rng.uniform(-1.5, 1.5, (len(dense), 2))
+    c = ac.fit_contour(stroke)
+    assert c.closed and c.corners == [] and c.seam is None
+    assert c.runs == ["line", "curve"] * 4, c.runs
+    assert len(c.smooth_joins) == 8 and [j[4] for j in c.smooth_joins] == list(range(8))
+    assert all(abs(j[2]) < 1e-6 and j[3] < 1e-9 for j in c.smooth_joins), c.smooth_joins
+    assert c.g2 and c.all_monotone and c.max_deviation <= c.tolerance
+    want = batch({"op": "sketch.contour", "points": stroke.tolist()})[0]
+    assert [j["run"] for j in want["smooth_joins"]] == list(range(8))
+
+
 def test_fit_contour_finds_the_corner_of_an_l_and_closes_a_square():
     rng = np.random.default_rng(35)
     leg = np.linspace(0, 1, 150)[:, None]
@@ -539,6 +561,7 @@ def test_fit_contour_finds_the_corner_of_an_l_and_closes_a_square():
     # The same answer as the protocol's sketch.contour.
     want = batch({"op": "sketch.contour", "points": l_pts.tolist()})[0]
     assert [k["index"] for k in want["corners"]] == [index]
+    assert [k["run"] for k in want["corners"]] == c.corner_runs == [0]
     assert want["tolerance"] == c.tolerance and want["max_deviation"] == c.max_deviation
     # A square drawn in one stroke, from the middle of a side back to it.
     corners = [(250, 50), (450, 50), (450, 450), (50, 450), (50, 50), (250, 50)]
@@ -546,6 +569,7 @@ def test_fit_contour_finds_the_corner_of_an_l_and_closes_a_square():
     sq = sq + rng.uniform(-1.5, 1.5, sq.shape)
     c = ac.fit_contour(sq)
     assert c.closed and len(c.corners) == 4 and c.runs == ["line"] * 4 and c.seam is None
+    assert c.corner_runs == [0, 1, 2, 3] and c.smooth_joins == []
     # The whole contour as one NURBS, starting and ending at the first corner.
     lo, hi = c.nurbs.domain()
     assert np.allclose(c.nurbs.eval(lo), c.nurbs.eval(hi), atol=1e-9)

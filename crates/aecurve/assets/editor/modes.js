@@ -163,8 +163,10 @@ export const MODES = {
       if (box) box.placeholder = st.tolerance > 0 ? 'auto' : `auto: ${fmt(r.tolerance, 3)}`;
       const curves = r.runs.filter((u) => u.kind === 'curve');
       const segments = curves.flatMap((u) => u.segments);
-      // Joints: where pieces meet inside a curve run (the corners are drawn apart).
-      const joints = curves.flatMap((u) => u.segments.slice(1).map((g) => g.control[0]));
+      // Joints: where pieces meet inside a curve run, and the smooth (G2) joins of a
+      // straight run with a curve (the corners are drawn apart).
+      const joints = curves.flatMap((u) => u.segments.slice(1).map((g) => g.control[0]))
+        .concat((r.smooth_joins || []).map((j) => j.point));
       const corners = r.corners.map((k) => k.point);
       const g2 = curves.every((u) => u.g2);
       const monotone = curves.every((u) => u.all_monotone);
@@ -177,12 +179,13 @@ export const MODES = {
           ['pieces', 'pieces', r.pieces],
           ['runs', 'runs (lines)', `${r.runs.length} (${lines})`],
           ['corners', 'corners', r.corners.length],
+          ['smooth_joins', 'smooth joins (line to curve, G2)', (r.smooth_joins || []).length],
           ['closed', 'closed', !r.closed ? 'no' : !r.seam ? 'yes'
             : r.seam.angle_degrees < 1e-6 && r.seam.curvature_jump < 1e-6 ? 'yes, G2 at the seam'
               : `yes, seam ${fmt(r.seam.angle_degrees, 1)}°, jump ${fmt(r.seam.curvature_jump, 2)}`],
           ['max_deviation', 'max deviation', r.max_deviation],
           ['tolerance', st.tolerance > 0 ? 'tolerance (set)' : 'tolerance (auto: from the noise)', r.tolerance],
-          ['g2', 'G2 inside the runs', g2 ? 'yes' : 'no'],
+          ['g2', 'G2 inside the runs and at smooth joins', g2 && (r.smooth_joins || []).every((j) => j.curvature_jump < 1e-9) ? 'yes' : 'no'],
           ['max_curvature_jump', 'largest curvature jump', jump],
           ['alphas', 'alphas', segments.map((g) => fmt(g.alpha, 2)).join(' ') || '—'],
         ],

@@ -268,6 +268,8 @@ class SketchContour(_Exportable):
     run_pieces: list[int]
     alphas: list[list[float]]
     corners: list[tuple[float, float, float, int]]
+    corner_runs: list[int]
+    smooth_joins: list[tuple[float, float, float, float, int]]
     closed: bool
     seam: Optional[tuple[float, float]]
     tolerance: float

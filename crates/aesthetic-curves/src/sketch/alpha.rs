@@ -123,7 +123,7 @@ pub(super) fn fit_slot_alpha(
     ends: EndPoints,
     free_ends: bool,
 ) -> Option<f64> {
-    if s.cut_a == Cut::Inflection || s.cut_b == Cut::Inflection {
+    if s.cut_a.zero() || s.cut_b.zero() {
         return None;
     }
     let (pa, pb) = slot_ends(track, s, ends);

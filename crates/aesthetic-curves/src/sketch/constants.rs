@@ -73,3 +73,7 @@ pub(super) const ALPHA_WEIGHT: f64 = 1.0;
 /// Rounds that split a piece at the joint the fairing left with a curvature jump, before a
 /// result that is not G2 is delivered as it is (and says so).
 pub(super) const MAX_JUMP_SPLITS: usize = 4;
+
+/// An inflection of the fair spline closer to a line's end than this share of the curve's
+/// turning is noise about the zero curvature there ([`super::SketchOptions::line_ends`]).
+pub(super) const LINE_END_SHARE: f64 = 0.2;

@@ -37,6 +37,7 @@
 //! as a line piece with G2 joins.
 
 use super::input::{bbox_diagonal, check_points, noise_level};
+use super::straight;
 use super::types::{Sketch, SketchOptions};
 use super::{default_tolerance, fit_sketch};
 use crate::error::{Error, Result};
@@ -131,6 +132,18 @@ impl Run {
         }
     }
 
+    /// Its largest |curvature| (0 for a line).
+    fn largest_curvature(&self) -> f64 {
+        match self {
+            Run::Line { .. } => 0.0,
+            Run::Curve(s) => s
+                .pieces
+                .iter()
+                .map(|p| p.end_curvatures.0.abs().max(p.end_curvatures.1.abs()))
+                .fold(0.0, f64::max),
+        }
+    }
+
     /// Signed curvatures at its start and end.
     fn end_curvatures(&self) -> (f64, f64) {
         match self {
@@ -153,6 +166,22 @@ pub struct Corner {
     pub point: Point,
     /// How far the stroke turns there (radians, the window test's θ_w).
     pub angle: f64,
+    /// The run it follows (`runs[run]` ends there, the next run starts there).
+    pub run: usize,
+}
+
+/// A smooth join between a straight run and a curved one inside a stroke (no corner): the
+/// curve leaves the line along it with zero curvature, so the join is G2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SmoothJoin {
+    /// The run it follows (closed: the last run's join with the first is the last one).
+    pub run: usize,
+    /// Where the runs meet.
+    pub point: Point,
+    /// The angle between their tangents there (radians; rounding).
+    pub angle: f64,
+    /// The curvature jump there over the larger of the two runs' largest curvatures.
+    pub curvature_jump: f64,
 }
 
 /// The seam of a closed contour without corners: where the one run ends at its start.
@@ -169,12 +198,15 @@ pub struct Seam {
 pub struct SketchContour {
     /// The runs in order (for a closed contour the last ends where the first starts).
     pub runs: Vec<Run>,
-    /// The corners in order: `corners[k]` between `runs[k]` and `runs[k + 1]` (closed:
-    /// the last between the last run and the first).
+    /// The corners in order, each after its run ([`Corner::run`]; closed: the last may
+    /// follow the last run and come before the first).
     pub corners: Vec<Corner>,
+    /// The smooth joins in order: where a straight stretch inside a curved part of the
+    /// stroke meets the curves next to it ([`SmoothJoin::run`]).
+    pub smooth_joins: Vec<SmoothJoin>,
     /// Closed.
     pub closed: bool,
-    /// The seam of a closed contour without corners.
+    /// The seam of a closed contour that is one curve (no corners, no straight stretch).
     pub seam: Option<Seam>,
     /// The tolerance used.
     pub tolerance: f64,
@@ -219,51 +251,233 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     let stroke = &points[..kept];
     let corners = corners(stroke, closed, tolerance, opts.corner_angle);
     let runs = runs_of(stroke, closed, &corners);
-    // A closed contour without corners is one run whose seam is faired G2.
+    // A closed contour without corners is one run whose seam is faired G2, unless it has
+    // straight stretches: then it starts with the first and every join is smooth.
     let one_loop = closed && corners.is_empty();
     let lines = line_ends(&runs, closed && !one_loop, tolerance);
-    let fitted: Vec<Run> = runs
-        .iter()
-        .zip(&lines)
-        .enumerate()
-        .map(|(k, (r, line))| {
-            fit_run(r, *line, tolerance, one_loop).map_err(|e| match e {
-                Error::NoSegment(m) => Error::NoSegment(format!("run {k}: {m}")),
-                Error::NoConvergence(m) => Error::NoConvergence(format!("run {k}: {m}")),
-                other => other,
-            })
-        })
-        .collect::<Result<_>>()?;
-    let max_deviation = runs
-        .iter()
-        .zip(&fitted)
-        .map(|(r, f)| deviation(r, f))
-        .fold(0.0, f64::max);
-    let seam = one_loop.then(|| seam(&fitted[0]));
-    // corners[k] between runs[k] and runs[k + 1]: a closed contour's runs start at its
-    // first corner, so that one comes last.
-    let mut corners = corners;
-    if closed && !corners.is_empty() {
-        corners.rotate_left(1);
+    let sigma = noise_level(stroke);
+    let mut out = Assembly::default();
+    for (k, (r, line)) in runs.iter().zip(&lines).enumerate() {
+        let parts = fit_parts(r, *line, tolerance, one_loop, sigma).map_err(|e| match e {
+            Error::NoSegment(m) => Error::NoSegment(format!("run {k}: {m}")),
+            Error::NoConvergence(m) => Error::NoConvergence(format!("run {k}: {m}")),
+            other => other,
+        })?;
+        out.push_run(parts);
     }
-    let corners = corners
+    let looped = one_loop && out.runs.len() == 1;
+    let seam = looped.then(|| seam(&out.runs[0]));
+    if one_loop && !looped {
+        // The last part ends where the first starts, along it.
+        out.smooth_after(out.runs.len() - 1);
+    }
+    // Each corner follows the last part of its run: a closed contour's runs start at its
+    // first corner, so that one follows the last run.
+    let mut corner_list = corners;
+    if closed && !corner_list.is_empty() {
+        corner_list.rotate_left(1);
+    }
+    let corners = corner_list
         .iter()
-        .zip(&fitted)
-        .map(|(&(index, angle), run)| Corner {
+        .zip(&out.run_ends)
+        .map(|(&(index, angle), &run)| Corner {
             index,
-            point: run.ends().1,
+            point: out.runs[run].ends().1,
             angle,
+            run,
         })
         .collect();
     Ok(SketchContour {
-        runs: fitted,
+        runs: out.runs,
         corners,
+        smooth_joins: out.smooth,
         closed,
         seam,
         tolerance,
-        max_deviation,
+        max_deviation: out.deviation,
         trimmed: points.len() - kept,
     })
+}
+
+/// The contour's runs as they are fitted: the parts of each run, the smooth joins between
+/// parts, the index of each run's last part, the largest deviation.
+#[derive(Default)]
+struct Assembly {
+    runs: Vec<Run>,
+    smooth: Vec<SmoothJoin>,
+    run_ends: Vec<usize>,
+    deviation: f64,
+}
+
+impl Assembly {
+    /// The parts of one run (with their deviations), smooth joins between them.
+    fn push_run(&mut self, parts: Vec<(Run, f64)>) {
+        let first = self.runs.len();
+        for (i, (run, dev)) in parts.into_iter().enumerate() {
+            self.deviation = self.deviation.max(dev);
+            self.runs.push(run);
+            if i > 0 {
+                self.smooth_after(first + i - 1);
+            }
+        }
+        self.run_ends.push(self.runs.len() - 1);
+    }
+
+    /// A smooth join after run `k` (the next run, or the first after the last).
+    fn smooth_after(&mut self, k: usize) {
+        let next = (k + 1) % self.runs.len();
+        let (a, b) = (&self.runs[k], &self.runs[next]);
+        let (ta, tb) = (a.tangents().1, b.tangents().0);
+        let (ka, kb) = (a.end_curvatures().1, b.end_curvatures().0);
+        let scale = [a, b]
+            .iter()
+            .map(|r| r.largest_curvature())
+            .fold(0.0, f64::max);
+        self.smooth.push(SmoothJoin {
+            run: k,
+            point: a.ends().1,
+            angle: ta.cross(tb).atan2(ta.dot(tb)).abs(),
+            curvature_jump: if scale > 0.0 {
+                (ka - kb).abs() / scale
+            } else {
+                0.0
+            },
+        });
+    }
+}
+
+/// One run fitted as its parts: split at its straight stretches ([`super::straight`]) into
+/// lines and curves that join them G2, when it has any and every curve between them fits;
+/// else as one ([`fit_run`]). Each part with its largest distance from its points. Where
+/// a line stops before its curve is tried at [`SETBACKS`] radii of that curve in turn: the
+/// first whose curves are fair (G2, monotone, one curvature extremum at most each) is kept,
+/// else the fairest that fits.
+fn fit_parts(
+    run: &[Point],
+    line: Option<(Point, Point)>,
+    tolerance: f64,
+    one_loop: bool,
+    sigma: f64,
+) -> Result<Vec<(Run, f64)>> {
+    let whole = || -> Result<Vec<(Run, f64)>> {
+        let fitted = fit_run(run, line, tolerance, one_loop)?;
+        let dev = deviation(run, &fitted);
+        Ok(vec![(fitted, dev)])
+    };
+    if line.is_some() || run.len() < straight::MIN_POINTS {
+        return whole();
+    }
+    // A loop starts at its sharpest point (inside a curve, so no straight stretch is cut
+    // where it starts).
+    let from_sharpest;
+    let points = if one_loop {
+        let Some(sharpest) = straight::sharpest(run, tolerance) else {
+            return whole();
+        };
+        from_sharpest = turn_loop(run, sharpest);
+        &from_sharpest[..]
+    } else {
+        run
+    };
+    let mut best: Option<(usize, Vec<(Run, f64)>)> = None;
+    for setback in SETBACKS {
+        let Some(parts) = split_run(points, tolerance, sigma, one_loop, setback) else {
+            return whole();
+        };
+        let Ok(fitted) = parts
+            .into_iter()
+            .map(|part| fit_part(part, tolerance))
+            .collect::<Result<Vec<(Run, f64)>>>()
+        else {
+            continue;
+        };
+        let unfair = unfairness(&fitted);
+        if unfair == 0 {
+            return Ok(fitted);
+        }
+        if best.as_ref().is_none_or(|b| unfair < b.0) {
+            best = Some((unfair, fitted));
+        }
+    }
+    // No setback gives curves that fit between the lines: the run as one, as before.
+    best.map_or_else(whole, |b| Ok(b.1))
+}
+
+/// Where a line ends before its curve, in radii of that curve: tried in this order.
+const SETBACKS: [f64; 3] = [0.15, 0.0, 0.3];
+
+/// The parts of a run (a loop: starting at its first straight stretch) with lines ending
+/// `setback` radii before their curves; `None` where it has no straight stretch.
+fn split_run(
+    points: &[Point],
+    tolerance: f64,
+    sigma: f64,
+    one_loop: bool,
+    setback: f64,
+) -> Option<Vec<straight::Part>> {
+    let found = straight::stretches(points, tolerance, sigma, one_loop, setback);
+    let a0 = found.first()?.a;
+    if !one_loop {
+        return Some(straight::parts(points, &found, false));
+    }
+    let turned = turn_loop(points, a0);
+    let shifted: Vec<straight::Stretch> = found
+        .into_iter()
+        .map(|s| straight::Stretch {
+            a: s.a - a0,
+            b: s.b - a0,
+            ..s
+        })
+        .collect();
+    Some(straight::parts(&turned, &shifted, true))
+}
+
+/// How far fitted parts are from fair: per curve, its curvature extrema beyond one, and ten
+/// for one that is not G2 or not proven monotone.
+fn unfairness(parts: &[(Run, f64)]) -> usize {
+    parts
+        .iter()
+        .map(|(run, _)| match run {
+            Run::Line { .. } => 0,
+            Run::Curve(s) => {
+                let broken = !(s.g2 && s.all_monotone);
+                s.curvature_extrema.saturating_sub(1) + 10 * usize::from(broken)
+            }
+        })
+        .sum()
+}
+
+/// A closed loop (its last point its first) started at its point `k` instead.
+fn turn_loop(run: &[Point], k: usize) -> Vec<Point> {
+    let n = run.len() - 1;
+    let mut out = run[k..n].to_vec();
+    out.extend_from_slice(&run[..=k]);
+    out
+}
+
+/// A part fitted: a line as it is, a curve by the sketch with its line ends.
+fn fit_part(part: straight::Part, tolerance: f64) -> Result<(Run, f64)> {
+    match part {
+        straight::Part::Line { start, end, points } => {
+            let line = Run::Line { start, end };
+            let dev = deviation(&points, &line);
+            Ok((line, dev))
+        }
+        straight::Part::Curve { points, line_ends } => {
+            if points.len() < 4 {
+                return Err(Error::Degenerate(
+                    "a curve between lines needs points".into(),
+                ));
+            }
+            let opts = SketchOptions {
+                line_ends,
+                ..SketchOptions::with_tolerance(tolerance)
+            };
+            let s = fit_sketch(&points, &opts)?;
+            let dev = s.max_deviation;
+            Ok((Run::Curve(Box::new(s)), dev))
+        }
+    }
 }
 
 /// Whether the stroke is closed (`given`, else: it ends within 3 tolerances or 5 % of its

@@ -205,6 +205,9 @@ pub(super) struct Context<'a> {
     shape: Option<Track>,
     /// The curve runs from the first input point to the last.
     pub(super) ends: EndPoints,
+    /// The unit directions of the lines its ends join, if any (the fair spline's tangent
+    /// there, noisy, is not used for those ends' pieces).
+    pub(super) line_ends: [Option<kurbo::Vec2>; 2],
 }
 
 impl<'a> Context<'a> {
@@ -217,6 +220,7 @@ impl<'a> Context<'a> {
         if !(opts.max_turn > 0.1 && opts.max_turn < 3.0) {
             return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
         }
+        let end_dirs = line_ends(opts)?;
         let (fit, fit_tol) = fair_spline(points, opts.tolerance)?;
         let track = Track::new(&fit.spline)?;
         check_turning(&track, opts.min_turn)?;
@@ -228,6 +232,7 @@ impl<'a> Context<'a> {
             track,
             shape,
             ends,
+            line_ends: end_dirs,
         })
     }
 
@@ -235,6 +240,29 @@ impl<'a> Context<'a> {
     pub(super) fn shape(&self) -> &Track {
         self.shape.as_ref().unwrap_or(&self.track)
     }
+}
+
+/// The options' line ends checked (open curves only, finite and non-zero directions) and
+/// made unit vectors.
+fn line_ends(opts: &SketchOptions) -> Result<[Option<kurbo::Vec2>; 2]> {
+    let given = opts.line_ends;
+    if opts.closed && given.iter().any(Option::is_some) {
+        return Err(Error::invalid(
+            "line_ends",
+            "a closed curve has no ends to join lines",
+        ));
+    }
+    let unit = |d: Option<kurbo::Vec2>| -> Result<Option<kurbo::Vec2>> {
+        match d {
+            None => Ok(None),
+            Some(d) if d.is_finite() && d.hypot() > 0.0 => Ok(Some(d / d.hypot())),
+            Some(_) => Err(Error::invalid(
+                "line_ends",
+                "a line's direction must be finite and non-zero",
+            )),
+        }
+    };
+    Ok([unit(given[0])?, unit(given[1])?])
 }
 
 /// The fair spline of the points and the tolerance it was fitted to. Precise data (noise

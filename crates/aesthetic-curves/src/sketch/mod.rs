@@ -62,6 +62,7 @@ mod pieces;
 mod rounds;
 mod segment;
 mod slot;
+mod straight;
 mod track;
 mod types;
 

@@ -18,8 +18,8 @@ pub(super) fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2)
     let tri = triangle(pa, da, pb, db).ok_or_else(|| {
         Error::Degenerate("the end tangents of a piece do not form a triangle".into())
     })?;
-    let infl_a = slot.cut_a == Cut::Inflection;
-    let infl_b = slot.cut_b == Cut::Inflection;
+    let infl_a = slot.cut_a.zero();
+    let infl_b = slot.cut_b.zero();
     if infl_a != infl_b {
         let ctrl = if infl_a {
             tri
@@ -40,6 +40,12 @@ pub(super) fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2)
                 kappa: ends,
             });
         }
+    }
+    // A piece at a line's end has zero curvature there or does not exist.
+    if slot.cut_a == Cut::Line || slot.cut_b == Cut::Line {
+        return Err(Error::NoSegment(
+            "no inflection-end segment leaves the line along it to this joint".into(),
+        ));
     }
     let target = slot.alpha.unwrap_or(1.0);
     let seg = match LacSegment::new(target, tri) {
@@ -123,7 +129,59 @@ pub(super) fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2
             }
         }
     }
+    failed.extend(settle_line_ends(slots, pts, dirs));
+    failed.sort_unstable();
     failed.dedup();
+    failed
+}
+
+/// Each end piece at a line's end ([`Cut::Line`]) made an inflection-end piece by turning
+/// the tangent at its other joint (least first, within ±0.5 rad) while the piece beyond that
+/// joint still builds. Returns the end pieces that cannot be.
+fn settle_line_ends(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) -> Vec<usize> {
+    let m = slots.len();
+    let mut failed = Vec::new();
+    for (i, j, at_line) in [
+        (0, 1, slots[0].cut_a == Cut::Line),
+        (m - 1, m - 1, slots[m - 1].cut_b == Cut::Line),
+    ] {
+        if !at_line || j == 0 || j == m {
+            // A single piece between two lines has no free joint (the segmentation cuts it).
+            if at_line && m == 1 {
+                failed.push(i);
+            }
+            continue;
+        }
+        let works = |d: Vec2| {
+            let mut trial = dirs.to_vec();
+            trial[j] = d;
+            let own = build_piece(&slots[i], pts[i], trial[i], pts[i + 1], trial[i + 1]);
+            let k = if i == 0 { 1 } else { m - 2 };
+            let other = build_piece(&slots[k], pts[k], trial[k], pts[k + 1], trial[k + 1]);
+            matches!(
+                own,
+                Ok(Built {
+                    curve: PieceCurve::Inflection { .. },
+                    ..
+                })
+            ) && other.is_ok()
+        };
+        let here = dirs[j];
+        if works(here) {
+            continue;
+        }
+        let found = (1..=200).find_map(|k| {
+            let a = 0.0025 * k as f64;
+            [a, -a]
+                .into_iter()
+                .map(|x| rotate(here, x))
+                .find(|d| works(*d))
+        });
+        match found {
+            Some(d) => dirs[j] = d,
+            None => failed.push(i),
+        }
+    }
     failed
 }
 

@@ -10,7 +10,7 @@ use super::fairing::fair;
 use super::input::Context;
 use super::pieces::{settle_inflections, Built};
 use super::segment::{split_at_mid_turn, split_at_peak, split_s_shapes, split_worst};
-use super::slot::{triangle, Slot};
+use super::slot::{triangle, Cut, Slot};
 use super::types::{count_events, FairingReport, PieceCurve, Sketch, SketchPiece};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
@@ -115,7 +115,15 @@ impl Rounds {
         // Later indices first, so earlier ones stay valid.
         let mut any = false;
         for &i in failed.iter().rev() {
-            any |= split_at_peak(&cx.track, slots, i);
+            let at_line = slots[i].cut_a == Cut::Line || slots[i].cut_b == Cut::Line;
+            if split_at_peak(&cx.track, slots, i) {
+                any = true;
+            } else if at_line {
+                // No peak to cut at: at half its turning, so the piece at the line turns
+                // half as much.
+                split_at_mid_turn(&cx.track, slots, i)?;
+                any = true;
+            }
         }
         if any {
             self.peak_splits += 1;
@@ -195,6 +203,13 @@ fn joints(cx: &Context, slots: &[Slot]) -> (Vec<Point>, Vec<Vec2>) {
     if let Some(d) = last.dir_b {
         *dirs.last_mut().unwrap() = d;
     }
+    // An end that joins a line leaves it along it.
+    if let Some(d) = cx.line_ends[0] {
+        dirs[0] = d;
+    }
+    if let Some(d) = cx.line_ends[1] {
+        *dirs.last_mut().unwrap() = d;
+    }
     if cx.opts.closed {
         let m = dirs.len() - 1;
         let both = dirs[0] + dirs[m];
@@ -215,13 +230,15 @@ fn keep_end_triangles(cx: &Context, slots: &[Slot], pts: &mut [Point], dirs: &mu
     let has = |pts: &[Point], dirs: &[Vec2], i: usize| {
         triangle(pts[i], dirs[i], pts[i + 1], dirs[i + 1]).is_some()
     };
-    if !has(pts, dirs, 0) {
+    // An end that joins a line keeps its point and tangent.
+    let [at_line_a, at_line_b] = cx.opts.line_ends.map(|d| d.is_some());
+    if !at_line_a && !has(pts, dirs, 0) {
         dirs[0] = cx.track.direction(slots[0].ua);
         if !has(pts, dirs, 0) {
             pts[0] = cx.track.point(slots[0].ua);
         }
     }
-    if !has(pts, dirs, m - 1) {
+    if !at_line_b && !has(pts, dirs, m - 1) {
         dirs[m] = cx.track.direction(slots[m - 1].ub);
         if !has(pts, dirs, m - 1) {
             pts[m] = cx.track.point(slots[m - 1].ub);

@@ -1,5 +1,5 @@
 use super::alpha::{curve_distance, fit_slot_alpha, points_in};
-use super::constants::MERGE_SHARE;
+use super::constants::{LINE_END_SHARE, MERGE_SHARE};
 use super::input::Context;
 use super::slot::{slot, slot_ends, triangle, Cut, EndPoints, Slot};
 
@@ -56,6 +56,15 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
             break;
         }
     }
+    // Next to a line's end the curvature starts from zero: a sign change there is the
+    // noise around that zero, not an S, unless the curve has turned a good part of its way.
+    let total = turn(u0, u1);
+    if opts.line_ends[0].is_some() {
+        infl.retain(|&u| turn(u0, u) >= LINE_END_SHARE * total);
+    }
+    if opts.line_ends[1].is_some() {
+        infl.retain(|&u| turn(u, u1) >= LINE_END_SHARE * total);
+    }
     // An inflection pair (or an inflection and an end) with hardly any curvature between
     // them is a flat stretch crossed by noise, not an S: drop it (below a tenth of the
     // curve's largest |κ|).
@@ -91,9 +100,17 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
         }
     }
     // Boundaries: ends and inflections; one |κ| maximum per interval.
-    let mut bounds: Vec<(f64, Cut)> = vec![(u0, Cut::End)];
+    // An end that joins a line has zero curvature: an inflection end.
+    let end_cut = |given: Option<kurbo::Vec2>| {
+        if given.is_some() {
+            Cut::Line
+        } else {
+            Cut::End
+        }
+    };
+    let mut bounds: Vec<(f64, Cut)> = vec![(u0, end_cut(opts.line_ends[0]))];
     bounds.extend(infl.iter().map(|&u| (u, Cut::Inflection)));
-    bounds.push((u1, Cut::End));
+    bounds.push((u1, end_cut(opts.line_ends[1])));
     let mut cuts: Vec<(f64, Cut)> = vec![bounds[0]];
     for w in bounds.windows(2) {
         let ((a, ca), (b, cb)) = (w[0], w[1]);
@@ -101,10 +118,16 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
             .iter()
             .copied()
             .filter(|&u| {
-                u > a
-                    && u < b
-                    && turn(a, u) >= 0.5 * opts.min_turn
-                    && turn(u, b) >= 0.5 * opts.min_turn
+                // Away from a line's end as the inflections are (the spline's wiggle about
+                // the zero curvature there is no peak).
+                let room = |c: Cut| {
+                    if c == Cut::Line {
+                        LINE_END_SHARE * total
+                    } else {
+                        0.5 * opts.min_turn
+                    }
+                };
+                u > a && u < b && turn(a, u) >= room(ca) && turn(u, b) >= room(cb)
             })
             .collect();
         let best = inside
@@ -115,14 +138,14 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
             Some(u) => {
                 // Only a true interior maximum: above both ends of its interval.
                 let k = track.abs_kappa(u);
-                let need = ca == Cut::Inflection && cb == Cut::Inflection;
+                let need = ca.zero() && cb.zero();
                 if need || (k > track.abs_kappa(a) && k > track.abs_kappa(b)) {
                     Some(u)
                 } else {
                     None
                 }
             }
-            None if ca == Cut::Inflection && cb == Cut::Inflection => {
+            None if ca.zero() && cb.zero() => {
                 // Between two inflections there is a maximum; the root finder missed it
                 // (flat): take the half-turning point.
                 Some(u_at_turn(track, a, b, 0.5 * turn(a, b)))
@@ -161,7 +184,7 @@ pub(super) fn split_worst(
     u: f64,
 ) -> Result<()> {
     let s = &slots[piece];
-    if s.cut_a == Cut::Inflection || s.cut_b == Cut::Inflection {
+    if s.cut_a.zero() || s.cut_b.zero() {
         split_at_mid_turn(track, slots, piece)
     } else {
         let u = u.clamp(s.ua + 0.25 * (s.ub - s.ua), s.ub - 0.25 * (s.ub - s.ua));
@@ -201,13 +224,18 @@ pub(super) fn split_s_shapes(track: &Track, slots: &mut Vec<Slot>) -> Result<()>
     let mut guard = 0;
     while i < slots.len() {
         let s = &slots[i];
-        let ok = triangle(
-            track.point(s.ua),
-            track.direction(s.ua),
-            track.point(s.ub),
-            track.direction(s.ub),
-        )
-        .is_some();
+        // A piece at a line's end takes the line's direction, which the fair spline near
+        // there need not share (noise); whether its piece exists is settled with its other
+        // joint's tangent (`settle_inflections`).
+        let at_line = s.cut_a == Cut::Line || s.cut_b == Cut::Line;
+        let ok = at_line
+            || triangle(
+                track.point(s.ua),
+                track.direction(s.ua),
+                track.point(s.ub),
+                track.direction(s.ub),
+            )
+            .is_some();
         if ok {
             i += 1;
             continue;
@@ -286,8 +314,8 @@ pub(super) fn merge_slots(
         };
         // A merge with an inflection at one end is an inflection-end segment: its α comes
         // from its triangle; it merges when that segment fits the points.
-        let infl_a = a.cut_a == Cut::Inflection;
-        let infl_b = b.cut_b == Cut::Inflection;
+        let infl_a = a.cut_a.zero();
+        let infl_b = b.cut_b.zero();
         if infl_a || infl_b {
             if infl_a && infl_b {
                 return None;

@@ -10,7 +10,17 @@ use kurbo::{Point, Vec2};
 pub(super) enum Cut {
     End,
     Inflection,
+    /// An end of the curve that joins a line ([`super::SketchOptions::line_ends`]): zero
+    /// curvature like an inflection, and the piece there must be an inflection-end one.
+    Line,
     Other,
+}
+
+impl Cut {
+    /// Zero curvature there: an inflection or a line's end.
+    pub(super) fn zero(self) -> bool {
+        matches!(self, Cut::Inflection | Cut::Line)
+    }
 }
 
 /// A piece's place on the B-spline, with its end tangents (unit vectors).
@@ -73,12 +83,12 @@ pub(super) type EndPoints = (Point, Point);
 
 /// Where slot `s` starts and ends: on the track, or at the curve's end points.
 pub(super) fn slot_ends(track: &Track, s: &Slot, ends: EndPoints) -> (Point, Point) {
-    let a = if s.cut_a == Cut::End {
+    let a = if s.cut_a == Cut::End || s.ua <= track.breaks[0] {
         ends.0
     } else {
         track.point(s.ua)
     };
-    let b = if s.cut_b == Cut::End {
+    let b = if s.cut_b == Cut::End || s.ub >= track.breaks[track.breaks.len() - 1] {
         ends.1
     } else {
         track.point(s.ub)

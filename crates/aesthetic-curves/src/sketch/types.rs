@@ -4,7 +4,7 @@ use crate::approx::ApproxOptions;
 use crate::bezier::{PlanarCurve, RationalBezier};
 use crate::bspline::BSpline;
 use crate::lac::{LacInflectionSegment, LacSegment};
-use kurbo::Point;
+use kurbo::{Point, Vec2};
 
 /// Options of [`fit_sketch`](super::fit_sketch).
 #[derive(Clone, Debug)]
@@ -26,6 +26,11 @@ pub struct SketchOptions {
     /// The points form a closed loop (the last is the first): the curve ends where it
     /// starts with the same tangent, and the seam is faired G2 like every joint.
     pub closed: bool,
+    /// Ends that join a straight line G2, `[start, end]`: the curve leaves its first point
+    /// (reaches its last) along this direction, in curve order, with zero curvature there,
+    /// so a line along it continues the curve with no break and no curvature jump. The end
+    /// piece is then an inflection-end segment. `None`: a free end. Open curves only.
+    pub line_ends: [Option<Vec2>; 2],
 }
 
 impl SketchOptions {
@@ -40,6 +45,7 @@ impl SketchOptions {
             max_fairing_iterations: 60,
             approx: ApproxOptions::default(),
             closed: false,
+            line_ends: [None, None],
         }
     }
 }
