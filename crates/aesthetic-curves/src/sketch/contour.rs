@@ -26,15 +26,19 @@
 //!    sample between them, and an open stroke's straight end is its last point's foot on
 //!    the line;
 //! 5. **each run**: that line where every point lies within the tolerance of it, else a
-//!    line along the chord where they lie within the tolerance of that, else the G2 sketch
-//!    of [`super::fit_sketch`].
+//!    line along the chord where they lie within the tolerance of that, else its straight
+//!    stretches (`super::straight`: between bends in the same direction) as lines and the
+//!    curves between them as G2 sketches of [`super::fit_sketch`] that leave the lines along
+//!    them with zero curvature ([`SketchOptions::line_ends`]; the joins are
+//!    [`SmoothJoin`]s), else the run as one G2 sketch.
 //!
 //! A closed contour without corners is one run whose seam is faired like every joint of the
 //! sketch ([`SketchOptions::closed`]: one tangent at both ends, the curvature jump across the
 //! seam among the fairing's equations); [`Seam`] reports what is left there.
 //!
-//! Known limit: a straight stretch inside a curved run is fitted with the run's pieces, not
-//! as a line piece with G2 joins.
+//! Known limit: a straight stretch between bends in opposite directions (the middle of a Z
+//! with rounded turns) or next to an open end is fitted with the run's pieces, not as a
+//! line: the flank of an S or a wave looks the same.
 
 use super::input::{bbox_diagonal, check_points, noise_level};
 use super::straight;
