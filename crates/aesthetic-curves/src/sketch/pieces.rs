@@ -102,13 +102,7 @@ pub(super) fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2
         if both(j, here, before, after) {
             continue;
         }
-        let found = (1..=200).find_map(|k| {
-            let a = 0.0025 * k as f64;
-            [a, -a]
-                .into_iter()
-                .map(|x| rotate(here, x))
-                .find(|d| both(j, *d, before, after))
-        });
+        let found = turned_until(here, |d| both(j, d, before, after));
         if let Some(d) = found {
             dirs[j] = d;
         } else {
@@ -133,6 +127,18 @@ pub(super) fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2
     failed.sort_unstable();
     failed.dedup();
     failed
+}
+
+/// The tangent `here` turned by the least angle (steps of 0.0025 rad, either way, up to
+/// 0.5 rad) at which `works` holds.
+fn turned_until(here: Vec2, works: impl Fn(Vec2) -> bool) -> Option<Vec2> {
+    (1..=200).find_map(|k| {
+        let a = 0.0025 * k as f64;
+        [a, -a]
+            .into_iter()
+            .map(|x| rotate(here, x))
+            .find(|d| works(*d))
+    })
 }
 
 /// Each end piece at a line's end ([`Cut::Line`]) made an inflection-end piece by turning
@@ -170,13 +176,7 @@ fn settle_line_ends(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) -> Vec<usi
         if works(here) {
             continue;
         }
-        let found = (1..=200).find_map(|k| {
-            let a = 0.0025 * k as f64;
-            [a, -a]
-                .into_iter()
-                .map(|x| rotate(here, x))
-                .find(|d| works(*d))
-        });
+        let found = turned_until(here, works);
         match found {
             Some(d) => dirs[j] = d,
             None => failed.push(i),

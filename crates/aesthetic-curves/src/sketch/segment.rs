@@ -56,15 +56,8 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
             break;
         }
     }
-    // Next to a line's end the curvature starts from zero: a sign change there is the
-    // noise around that zero, not an S, unless the curve has turned a good part of its way.
     let total = turn(u0, u1);
-    if opts.line_ends[0].is_some() {
-        infl.retain(|&u| turn(u0, u) >= LINE_END_SHARE * total);
-    }
-    if opts.line_ends[1].is_some() {
-        infl.retain(|&u| turn(u, u1) >= LINE_END_SHARE * total);
-    }
+    drop_near_line_ends(&mut infl, &turn, (u0, u1), opts);
     // An inflection pair (or an inflection and an end) with hardly any curvature between
     // them is a flat stretch crossed by noise, not an S: drop it (below a tenth of the
     // curve's largest |κ|).
@@ -172,6 +165,23 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
         slots.push(slot(track, prev, (b, cb)));
     }
     Ok(slots)
+}
+
+/// Next to a line's end the curvature starts from zero: a sign change there is the noise
+/// around that zero, not an S, unless the curve has turned [`LINE_END_SHARE`] of its way.
+fn drop_near_line_ends(
+    infl: &mut Vec<f64>,
+    turn: &dyn Fn(f64, f64) -> f64,
+    (u0, u1): (f64, f64),
+    opts: &SketchOptions,
+) {
+    let total = turn(u0, u1);
+    if opts.line_ends[0].is_some() {
+        infl.retain(|&u| turn(u0, u) >= LINE_END_SHARE * total);
+    }
+    if opts.line_ends[1].is_some() {
+        infl.retain(|&u| turn(u, u1) >= LINE_END_SHARE * total);
+    }
 }
 
 /// The segment of a piece with end points and tangent angles given.
