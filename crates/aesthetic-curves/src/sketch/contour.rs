@@ -383,9 +383,12 @@ fn fit_parts(
     } else {
         run
     };
+    let Some(test) = straight::Test::of(points, tolerance, sigma, one_loop) else {
+        return whole();
+    };
     let mut best: Option<(usize, Vec<(Run, f64)>)> = None;
     for setback in SETBACKS {
-        let Some(parts) = split_run(points, tolerance, sigma, one_loop, setback) else {
+        let Some(parts) = split_run(&test, setback) else {
             return whole();
         };
         let Ok(fitted) = parts
@@ -412,14 +415,9 @@ const SETBACKS: [f64; 3] = [0.15, 0.0, 0.3];
 
 /// The parts of a run (a loop: starting at its first straight stretch) with lines ending
 /// `setback` radii before their curves; `None` where it has no straight stretch.
-fn split_run(
-    points: &[Point],
-    tolerance: f64,
-    sigma: f64,
-    one_loop: bool,
-    setback: f64,
-) -> Option<Vec<straight::Part>> {
-    let found = straight::stretches(points, tolerance, sigma, one_loop, setback);
+fn split_run(test: &straight::Test, setback: f64) -> Option<Vec<straight::Part>> {
+    let (points, one_loop) = (test.points, test.closed_loop);
+    let found = test.stretches(setback);
     let a0 = found.first()?.a;
     if !one_loop {
         return Some(straight::parts(points, &found, false));
@@ -563,10 +561,7 @@ struct ArcLength {
 
 impl ArcLength {
     fn of(points: &[Point], closed: bool) -> ArcLength {
-        let mut s = vec![0.0; points.len()];
-        for i in 1..points.len() {
-            s[i] = s[i - 1] + (points[i] - points[i - 1]).hypot();
-        }
+        let s = straight::arc_lengths(points);
         let last = *s.last().unwrap_or(&0.0);
         let total = if closed {
             last + (points[0] - points[points.len() - 1]).hypot()
@@ -683,24 +678,15 @@ impl ArcLength {
     }
 }
 
-/// The scatter of the points `idx` about their centroid: (sxx, sxy, syy).
-fn scatter(points: &[Point], idx: &[usize]) -> (f64, f64, f64) {
-    let m = idx.len() as f64;
-    let c = idx.iter().fold(Vec2::ZERO, |a, &i| a + points[i].to_vec2()) / m;
-    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
-    for &i in idx {
-        let d = points[i].to_vec2() - c;
-        sxx += d.x * d.x;
-        sxy += d.x * d.y;
-        syy += d.y * d.y;
-    }
-    (sxx, sxy, syy)
+/// The points `idx` of `points`, one by one.
+fn picked<'a>(points: &'a [Point], idx: &'a [usize]) -> impl Iterator<Item = Point> + Clone + 'a {
+    idx.iter().map(|&i| points[i])
 }
 
 /// The sum of the squared distances of the points `idx` from their least-squares line (the
 /// scatter's smaller eigenvalue).
 fn line_residual(points: &[Point], idx: &[usize]) -> f64 {
-    let (sxx, sxy, syy) = scatter(points, idx);
+    let (_, sxx, sxy, syy) = straight::scatter(picked(points, idx));
     let half = 0.5 * (sxx + syy);
     let root = (0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy).sqrt();
     (half - root).max(0.0)
@@ -709,15 +695,7 @@ fn line_residual(points: &[Point], idx: &[usize]) -> f64 {
 /// The least-squares direction of the points `idx` (the principal axis of their scatter),
 /// pointing from the first towards the last.
 fn direction(points: &[Point], idx: &[usize]) -> Option<Vec2> {
-    let (sxx, sxy, syy) = scatter(points, idx);
-    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
-    let axis = Vec2::new(angle.cos(), angle.sin());
-    let travel = points[idx[idx.len() - 1]] - points[idx[0]];
-    let dot = axis.dot(travel);
-    if dot == 0.0 || !dot.is_finite() {
-        return None;
-    }
-    Some(if dot > 0.0 { axis } else { -axis })
+    straight::line_through(picked(points, idx)).map(|(_, d)| d)
 }
 
 /// The runs' points: from corner to corner, both included (closed with corners: from the
@@ -758,8 +736,7 @@ fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(P
     let fits: Vec<Option<(Point, Vec2)>> = runs
         .iter()
         .map(|r| {
-            let idx: Vec<usize> = (0..r.len()).collect();
-            let (c, d) = (centroid(r), direction(r, &idx)?);
+            let (c, d) = straight::line_of(r)?;
             let off = r
                 .iter()
                 .map(|q| (*q - c).cross(d).abs())
@@ -801,12 +778,6 @@ fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(P
             Some((start, meet(k, line, r[r.len() - 1])))
         })
         .collect()
-}
-
-/// The centroid of the points.
-fn centroid(points: &[Point]) -> Point {
-    let m = points.len().max(1) as f64;
-    (points.iter().fold(Vec2::ZERO, |a, q| a + q.to_vec2()) / m).to_point()
 }
 
 /// Where the lines through `a.0` along `a.1` and through `b.0` along `b.1` meet; None for

@@ -42,7 +42,7 @@ pub(super) fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2)
         }
     }
     // A piece at a line's end has zero curvature there or does not exist.
-    if slot.cut_a == Cut::Line || slot.cut_b == Cut::Line {
+    if slot.at_line() {
         return Err(Error::NoSegment(
             "no inflection-end segment leaves the line along it to this joint".into(),
         ));

@@ -10,7 +10,7 @@ use super::fairing::fair;
 use super::input::Context;
 use super::pieces::{settle_inflections, Built};
 use super::segment::{split_at_mid_turn, split_at_peak, split_s_shapes, split_worst};
-use super::slot::{triangle, Cut, Slot};
+use super::slot::{triangle, Slot};
 use super::types::{count_events, FairingReport, PieceCurve, Sketch, SketchPiece};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
@@ -115,7 +115,7 @@ impl Rounds {
         // Later indices first, so earlier ones stay valid.
         let mut any = false;
         for &i in failed.iter().rev() {
-            let at_line = slots[i].cut_a == Cut::Line || slots[i].cut_b == Cut::Line;
+            let at_line = slots[i].at_line();
             if split_at_peak(&cx.track, slots, i) {
                 any = true;
             } else if at_line {

@@ -57,7 +57,7 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
         }
     }
     let total = turn(u0, u1);
-    drop_near_line_ends(&mut infl, &turn, (u0, u1), opts);
+    drop_near_line_ends(&mut infl, &turn, (u0, u1, total), opts);
     // An inflection pair (or an inflection and an end) with hardly any curvature between
     // them is a flat stretch crossed by noise, not an S: drop it (below a tenth of the
     // curve's largest |κ|).
@@ -172,10 +172,9 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
 fn drop_near_line_ends(
     infl: &mut Vec<f64>,
     turn: &dyn Fn(f64, f64) -> f64,
-    (u0, u1): (f64, f64),
+    (u0, u1, total): (f64, f64, f64),
     opts: &SketchOptions,
 ) {
-    let total = turn(u0, u1);
     if opts.line_ends[0].is_some() {
         infl.retain(|&u| turn(u0, u) >= LINE_END_SHARE * total);
     }
@@ -237,8 +236,7 @@ pub(super) fn split_s_shapes(track: &Track, slots: &mut Vec<Slot>) -> Result<()>
         // A piece at a line's end takes the line's direction, which the fair spline near
         // there need not share (noise); whether its piece exists is settled with its other
         // joint's tangent (`settle_inflections`).
-        let at_line = s.cut_a == Cut::Line || s.cut_b == Cut::Line;
-        let ok = at_line
+        let ok = s.at_line()
             || triangle(
                 track.point(s.ua),
                 track.direction(s.ua),

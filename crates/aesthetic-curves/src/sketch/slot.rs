@@ -96,6 +96,13 @@ pub(super) fn slot_ends(track: &Track, s: &Slot, ends: EndPoints) -> (Point, Poi
     (a, b)
 }
 
+impl Slot {
+    /// One of its ends joins a line ([`Cut::Line`]).
+    pub(super) fn at_line(&self) -> bool {
+        self.cut_a == Cut::Line || self.cut_b == Cut::Line
+    }
+}
+
 /// The control triangle of a piece from its end points and unit end tangents; `None` when
 /// the tangent lines do not meet ahead of the start and behind the end.
 pub(super) fn triangle(pa: Point, da: Vec2, pb: Point, db: Vec2) -> Option<[Point; 3]> {

@@ -10,18 +10,21 @@
 //!    line to the cubic (in the line's frame) stays below [`BEND_CHI2`] σ² (a χ² of two
 //!    degrees of freedom: a bow or an S hidden in the noise would show there);
 //! 2. it is at least [`MIN_LENGTH_TOLERANCES`] tolerances and [`MIN_POINTS`] points long;
-//! 3. it is straight *against its neighbours*: the largest curvature a noise-level bow could
-//!    hide in it (`8 s / L²`, `s` the sagitta the test of 1 would just miss) is at most
-//!    [`NEIGHBOUR_RATIO`] times below the mean curvature of the stroke just beyond one of its
-//!    ends. On a large arc the longest window that passes 1 is as long as the noise allows,
-//!    so the arc's own curvature is the hidden one and the stretch is no line; next to a
-//!    rounded corner the neighbour turns tens of times faster.
+//! 3. it is straight *against its neighbours*: the curves on both sides bend the same way,
+//!    and the fair spline (the sketch's, within [`FAIR_SHARE`] of the tolerance) is flat in
+//!    its middle, its largest |κ| from 20 % to 80 % of the stretch at most [`FLAT_SHARE`]
+//!    of its largest |κ| within half the stretch's length beyond each end. On a large arc
+//!    the spline's curvature is the same inside and beyond; between opposite bends (the
+//!    flank of an S or a wave, nearly straight as it may be) no stretch is a line.
 //!
 //! The stretches are found greedily from the start of the run: each as long as 1 allows
-//! (doubling, then bisection), at least [`MIN_GAP`] points apart so that the curve between
-//! two lines has points to be fitted to.
+//! (doubling, then bisection; a later start kept where it runs further), at least
+//! [`MIN_GAP`] points apart so that the curve between two lines has points to be fitted
+//! to, neighbours that are one merged, and each end that meets a curve moved back from it
+//! ([`Test::trimmed`]).
 
 use super::constants::FAIR_SHARE;
+use super::input::bbox_diagonal;
 use kurbo::{Point, Vec2};
 
 /// Upper bound of the drop in squared residuals from a line to a cubic, in units of σ²
@@ -125,63 +128,65 @@ pub(super) fn parts(run: &[Point], stretches: &[Stretch], closed_loop: bool) -> 
     out
 }
 
-/// The straight stretches of a run's points (see the module documentation); `sigma` is the
-/// stroke's noise (σ), `tolerance` the contour's.
-pub(super) fn stretches(
-    points: &[Point],
-    tolerance: f64,
-    sigma: f64,
-    closed_loop: bool,
-    setback: f64,
-) -> Vec<Stretch> {
-    let n = points.len();
-    let size = extent(points);
-    // Exact samples have no noise: a floor that only rounding can pass.
-    let sigma = sigma.max(1e-9 * size);
-    let arc = arc_lengths(points);
-    let Some(kappa) = fair_curvatures(points, tolerance) else {
-        return Vec::new();
-    };
-    let test = Test {
-        points,
-        tolerance,
-        sigma,
-        kappa,
-        closed_loop,
-        setback,
-    };
-    let mut out: Vec<Stretch> = Vec::new();
-    let mut i = 0;
-    while i + MIN_POINTS <= n {
-        let mut b = test.longest_from(i);
-        // A later start may run further (the first one is in a curve's tail): follow it
-        // while it does.
-        for _ in 0..8 {
-            if b + 1 - i < MIN_POINTS {
-                break;
-            }
-            let (s, e) = test.longest_near(i, b);
-            if (s, e) == (i, b) {
-                break;
-            }
-            (i, b) = (s, e);
-        }
-        let long_enough =
-            b + 1 - i >= MIN_POINTS && arc[b] - arc[i] >= MIN_LENGTH_TOLERANCES * tolerance;
-        if long_enough {
-            let found = test.stretch(i, b).and_then(|s| {
-                let kappas = test.against_neighbours(&s, &arc)?;
-                test.trimmed(s, kappas, &arc)
-            });
-            if let Some(s) = found {
-                out.push(s);
-                i = b + MIN_GAP;
-                continue;
-            }
-        }
-        i += 1;
+impl<'a> Test<'a> {
+    /// The test for a run's points (see the module documentation): `sigma` is the stroke's
+    /// noise (σ), `tolerance` the contour's; the fair spline is fitted here, once for every
+    /// setback tried. `None` where no fair spline is found.
+    pub(super) fn of(
+        points: &'a [Point],
+        tolerance: f64,
+        sigma: f64,
+        closed_loop: bool,
+    ) -> Option<Self> {
+        // Exact samples have no noise: a floor that only rounding can pass.
+        let sigma = sigma.max(1e-9 * bbox_diagonal(points));
+        Some(Test {
+            points,
+            tolerance,
+            sigma,
+            kappa: fair_curvatures(points, tolerance)?,
+            arc: arc_lengths(points),
+            closed_loop,
+        })
     }
-    keep_room_at_ends(&test, merge_collinear(&test, out), n)
+
+    /// The straight stretches, each line ending `setback` radii before its curve
+    /// ([`Test::trimmed`]).
+    pub(super) fn stretches(&self, setback: f64) -> Vec<Stretch> {
+        let (test, arc, n, tolerance) = (self, &self.arc, self.points.len(), self.tolerance);
+        let mut out: Vec<Stretch> = Vec::new();
+        let mut i = 0;
+        while i + MIN_POINTS <= n {
+            let mut b = test.longest_from(i);
+            // A later start may run further (the first one is in a curve's tail): follow it
+            // while it does.
+            for _ in 0..8 {
+                if b + 1 - i < MIN_POINTS {
+                    break;
+                }
+                let (s, e) = test.longest_near(i, b);
+                if (s, e) == (i, b) {
+                    break;
+                }
+                (i, b) = (s, e);
+            }
+            let long_enough =
+                b + 1 - i >= MIN_POINTS && arc[b] - arc[i] >= MIN_LENGTH_TOLERANCES * tolerance;
+            if long_enough {
+                let found = test.stretch(i, b).and_then(|s| {
+                    let kappas = test.against_neighbours(&s)?;
+                    test.trimmed(s, kappas, setback)
+                });
+                if let Some(s) = found {
+                    out.push(s);
+                    i = b + MIN_GAP;
+                    continue;
+                }
+            }
+            i += 1;
+        }
+        keep_room_at_ends(test, merge_collinear(test, out), n)
+    }
 }
 
 /// Neighbouring stretches that are one (the longest window stops where noise, not a bend,
@@ -227,17 +232,17 @@ fn keep_room_at_ends(test: &Test, mut out: Vec<Stretch>, n: usize) -> Vec<Stretc
     out
 }
 
-/// The straightness test of the module documentation, items 1 and 3.
-struct Test<'a> {
-    points: &'a [Point],
+/// The straightness test of the module documentation, items 1 and 3, on a run's points.
+pub(super) struct Test<'a> {
+    pub(super) points: &'a [Point],
     tolerance: f64,
     sigma: f64,
-    /// The fair spline's signed curvature at each point (item 3; empty for item 1 alone).
+    /// The fair spline's signed curvature at each point (item 3).
     kappa: Vec<f64>,
+    /// Cumulative arc length at each point.
+    arc: Vec<f64>,
     /// The points are a closed loop (the last is the first): neighbours go round.
-    closed_loop: bool,
-    /// How far a line ends before its curve, in radii of that curve ([`Test::trimmed`]).
-    setback: f64,
+    pub(super) closed_loop: bool,
 }
 
 impl Test<'_> {
@@ -309,8 +314,8 @@ impl Test<'_> {
     /// |κ| over the middle of the stretch (from 20 % to 80 % of its length) is at most
     /// [`FLAT_SHARE`] of the smaller of theirs. Returns those two largest |κ| (before,
     /// after); `None` where the stretch is not straight by this test.
-    fn against_neighbours(&self, s: &Stretch, arc: &[f64]) -> Option<[f64; 2]> {
-        let kappa = &self.kappa;
+    fn against_neighbours(&self, s: &Stretch) -> Option<[f64; 2]> {
+        let (kappa, arc) = (&self.kappa, &self.arc);
         let length = arc[s.b] - arc[s.a];
         let (from, to) = (arc[s.a] + 0.2 * length, arc[s.b] - 0.2 * length);
         let inside = (s.a..=s.b)
@@ -360,10 +365,11 @@ impl Test<'_> {
     /// curvature needs room to reach the curvature of a drawn arc (a line that ends where
     /// the arc begins leaves its inflection-end piece the base angles of a circle, at the
     /// edge of its existence region); `None` when too little is left.
-    fn trimmed(&self, s: Stretch, kappas: [f64; 2], arc: &[f64]) -> Option<Stretch> {
+    fn trimmed(&self, s: Stretch, kappas: [f64; 2], setback: f64) -> Option<Stretch> {
+        let arc = &self.arc;
         let reach = |k: f64| {
             if k > 0.0 {
-                1.5 * (4.0 * self.sigma / k).sqrt() + self.setback / k
+                1.5 * (4.0 * self.sigma / k).sqrt() + setback / k
             } else {
                 0.0
             }
@@ -435,22 +441,36 @@ fn bend(pts: &[Point], centre: Point, dir: Vec2) -> Option<f64> {
 /// The least-squares line of the points: their centroid and the principal axis of their
 /// scatter, pointing from the first point towards the last.
 pub(super) fn line_of(pts: &[Point]) -> Option<(Point, Vec2)> {
-    let m = pts.len() as f64;
-    let c = (pts.iter().fold(Vec2::ZERO, |a, q| a + q.to_vec2()) / m).to_point();
-    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
-    for q in pts {
-        let d = *q - c;
-        sxx += d.x * d.x;
-        sxy += d.x * d.y;
-        syy += d.y * d.y;
-    }
+    line_through(pts.iter().copied())
+}
+
+/// [`line_of`] for points given one by one (a window of a stroke by its indices).
+pub(super) fn line_through(pts: impl Iterator<Item = Point> + Clone) -> Option<(Point, Vec2)> {
+    let (c, sxx, sxy, syy) = scatter(pts.clone());
     let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
     let axis = Vec2::new(angle.cos(), angle.sin());
-    let dot = axis.dot(pts[pts.len() - 1] - pts[0]);
+    let (first, last) = (pts.clone().next()?, pts.last()?);
+    let dot = axis.dot(last - first);
     if dot == 0.0 || !dot.is_finite() {
         return None;
     }
     Some((c, if dot > 0.0 { axis } else { -axis }))
+}
+
+/// The centroid of the points and their scatter about it: (centroid, sxx, sxy, syy).
+pub(super) fn scatter(pts: impl Iterator<Item = Point> + Clone) -> (Point, f64, f64, f64) {
+    let (sum, m) = pts
+        .clone()
+        .fold((Vec2::ZERO, 0.0), |(a, m), q| (a + q.to_vec2(), m + 1.0));
+    let c = (sum / m).to_point();
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for q in pts {
+        let d = q - c;
+        sxx += d.x * d.x;
+        sxy += d.x * d.y;
+        syy += d.y * d.y;
+    }
+    (c, sxx, sxy, syy)
 }
 
 /// The point of a loop (its last point its first) where the fair spline's |κ| is largest;
@@ -479,17 +499,12 @@ fn fair_curvatures(points: &[Point], tolerance: f64) -> Option<Vec<f64>> {
 }
 
 /// Cumulative arc length along the points.
-fn arc_lengths(points: &[Point]) -> Vec<f64> {
+pub(super) fn arc_lengths(points: &[Point]) -> Vec<f64> {
     let mut s = vec![0.0; points.len()];
     for i in 1..points.len() {
         s[i] = s[i - 1] + (points[i] - points[i - 1]).hypot();
     }
     s
-}
-
-/// The diagonal of the points' bounding box.
-fn extent(points: &[Point]) -> f64 {
-    super::input::bbox_diagonal(points)
 }
 
 #[cfg(test)]
@@ -520,7 +535,7 @@ mod tests {
     #[test]
     fn the_sides_of_a_stadium_are_straight_and_an_arc_is_not() {
         let pts = stadium();
-        let found = stretches(&pts, 0.5, 0.0, true, 0.15);
+        let found = Test::of(&pts, 0.5, 0.0, true).unwrap().stretches(0.15);
         assert_eq!(found.len(), 2, "{found:?}");
         // The top side runs from x = 200 to 0 (y = 40), the bottom one back; each stops
         // short of its semicircles.
@@ -541,6 +556,9 @@ mod tests {
                 Point::new(2000.0 * a.cos(), 2000.0 * a.sin())
             })
             .collect();
-        assert!(stretches(&arc, 1.0, 0.0, false, 0.15).is_empty());
+        assert!(Test::of(&arc, 1.0, 0.0, false)
+            .unwrap()
+            .stretches(0.15)
+            .is_empty());
     }
 }
