@@ -135,6 +135,7 @@ pub mod exact;
 pub mod harmonize;
 pub mod lac;
 pub mod lac_fit;
+pub mod lac_spline;
 pub mod lcg;
 pub mod monotone;
 pub mod nurbs;

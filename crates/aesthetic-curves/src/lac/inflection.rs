@@ -98,6 +98,22 @@ impl LacInflectionSegment {
         Self::base_angle_r(alpha / (alpha - 1.0), theta_d)
     }
 
+    /// The end point of the standard inflection-end segment of shape `alpha` (< 0) at unit
+    /// scale, turning `theta` in [0, 3.5] counter-clockwise from +x at its inflection end
+    /// (the origin): its angle is the base angle at the inflection end, its length the chord
+    /// per unit of scale. With [`Self::standard_end_kappa`], what a solver that places an
+    /// inflection between two given tangents needs without building the segment.
+    pub(crate) fn standard_chord(alpha: f64, theta: f64) -> Result<Vec2> {
+        let r = alpha / (alpha - 1.0);
+        Ok(inflection_integral(r, 0.0, theta)? * r)
+    }
+
+    /// The curvature at the far end of that standard segment (unit scale): `θ^(1-r) / r`.
+    pub(crate) fn standard_end_kappa(alpha: f64, theta: f64) -> f64 {
+        let r = alpha / (alpha - 1.0);
+        theta.powf(1.0 - r) / r
+    }
+
     /// Whether an inflection-end segment exists in the triangle `control` (`control[0]` =
     /// inflection end): the base angle there must lie in (0, θ_d/2). No integral; agrees
     /// with [`LacInflectionSegment::new`] succeeding. Degenerate triangles are errors.

@@ -1,0 +1,212 @@
+//! A G2 log-aesthetic spline through points (docs/math.md §7): the curve passes through
+//! every point exactly, is G2 at every smooth point, and each span between two points is
+//! made of log-aesthetic pieces of the requested α whose curvature is monotone (an S-shaped
+//! span gets an inflection inside: two inflection-end halves). Corners and the open ends
+//! are free: the span next to one leaves it as a circular arc, so points on a circle give
+//! the circle. Every piece comes with its rational cubic (G2 to the piece at both ends,
+//! curvature proven monotone by the exact test), so the spline exports like the sketch.
+//!
+//! With α = -1 the pieces are clothoid arcs: the spline of Euler spirals that Spiro
+//! draws, solved here with an exact inflection inside every S-span.
+//!
+//! ## Rooms
+//!
+//! - `span`: one span from its tangents (a line, one segment, or an inflection pair);
+//! - `system`: the G2 equations in the tangent angles and their Newton solve;
+//! - `pieces`: the solved spans as segments in input coordinates and their cubics;
+//! - here: the options, the result and the driver.
+
+mod pieces;
+mod span;
+mod system;
+
+use crate::approx::ApproxOptions;
+use crate::bezier::RationalBezier;
+use crate::error::{Error, Result};
+use crate::lac::MAX_ABS_ALPHA;
+use crate::solve::SystemStop;
+use kurbo::Point;
+
+pub use pieces::{SplinePiece, SplinePieceKind};
+
+/// The largest relative curvature jump a result may have (the issue's G2: 1e-10 of the
+/// largest curvature); the solve aims at [`LacSplineOptions::g2_tolerance`].
+pub const ACCEPTED_JUMP: f64 = 1e-10;
+
+/// Options of [`lac_spline`].
+#[derive(Clone, Debug)]
+pub struct LacSplineOptions {
+    /// α of every span (used where `span_alphas` is `None`).
+    pub alpha: f64,
+    /// α per span (one per span, in order), overriding `alpha`.
+    pub span_alphas: Option<Vec<f64>>,
+    /// The last point joins the first (a closed curve; the points do not repeat the first).
+    pub closed: bool,
+    /// Indices of the points that are corners (no tangent or curvature condition there).
+    pub corners: Vec<usize>,
+    /// Largest curvature jump at a smooth point over the largest curvature, the solve's
+    /// target.
+    pub g2_tolerance: f64,
+    /// Newton steps at most.
+    pub max_iterations: usize,
+    /// Options of the rational cubic per piece.
+    pub approx: ApproxOptions,
+}
+
+impl Default for LacSplineOptions {
+    fn default() -> Self {
+        LacSplineOptions {
+            alpha: -1.0,
+            span_alphas: None,
+            closed: false,
+            corners: Vec::new(),
+            g2_tolerance: 1e-12,
+            max_iterations: 60,
+            approx: ApproxOptions::default(),
+        }
+    }
+}
+
+/// The result of [`lac_spline`].
+#[derive(Clone, Debug)]
+pub struct LacSpline {
+    /// The pieces in curve order (a span gives one or more).
+    pub pieces: Vec<SplinePiece>,
+    /// The tangent direction (unit vector) at each point; at a corner, the outgoing one (the
+    /// incoming is the previous piece's end tangent); at an open end, the curve's.
+    pub tangents: Vec<kurbo::Vec2>,
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// The G2 target was met.
+    pub converged: bool,
+    /// Largest |κ in - κ out| at a smooth point over the largest |κ| of the segments.
+    pub max_curvature_jump: f64,
+    /// Every piece's rational cubic proven curvature-monotone.
+    pub all_monotone: bool,
+    /// Largest distance of a rational cubic from its segment.
+    pub max_rational_error: f64,
+    /// Inflections (sign changes of the curvature along the curve).
+    pub inflections: usize,
+    /// Curvature extrema at the points and joins (the pieces are monotone).
+    pub curvature_extrema: usize,
+    /// The curve is closed.
+    pub closed: bool,
+}
+
+impl LacSpline {
+    /// The rational cubics in curve order.
+    pub fn rationals(&self) -> crate::Pieces<RationalBezier> {
+        crate::Pieces(self.pieces.iter().map(|p| p.rational.clone()).collect())
+    }
+}
+
+/// The G2 log-aesthetic spline through `points` (module documentation). Errors: fewer
+/// than 2 points (3 closed), repeated consecutive points, a bad α or corner index
+/// ([`Error::InvalidInput`]); a span no log-aesthetic curve can take
+/// ([`Error::NoSegment`]); the solve not reaching G2 ([`Error::NoConvergence`], naming the
+/// jump it reached).
+pub fn lac_spline(points: &[Point], opts: &LacSplineOptions) -> Result<LacSpline> {
+    let problem = problem_of(points, opts)?;
+    let sol = system::solve(&problem, opts.g2_tolerance, opts.max_iterations)?;
+    // Accepted at the target, or where Newton stopped within 1e-10 (rounding).
+    if sol.stop != SystemStop::Converged && (sol.jump.is_nan() || sol.jump > ACCEPTED_JUMP) {
+        return Err(Error::NoConvergence(format!(
+            "the G2 solve stopped ({:?}) after {} steps with a curvature jump of {:.3e} of \
+             the largest curvature",
+            sol.stop, sol.iterations, sol.jump
+        )));
+    }
+    let built = pieces::build(&problem, &sol.theta, &opts.approx)?;
+    Ok(pieces::result(built, &problem, &sol, opts.closed))
+}
+
+/// Validate the input and lay out the unknowns.
+fn problem_of<'a>(points: &'a [Point], opts: &LacSplineOptions) -> Result<system::Problem<'a>> {
+    let n = points.len();
+    let least = if opts.closed { 3 } else { 2 };
+    if n < least {
+        return Err(Error::invalid(
+            "points",
+            format!(
+                "need at least {least} points for an {} curve",
+                kind(opts.closed)
+            ),
+        ));
+    }
+    if let Some(i) = points.iter().position(|p| !p.is_finite()) {
+        return Err(Error::invalid("points", format!("point {i} is not finite")));
+    }
+    let spans = if opts.closed { n } else { n - 1 };
+    let ends: Vec<(usize, usize)> = (0..spans).map(|k| (k, (k + 1) % n)).collect();
+    let size = points
+        .iter()
+        .map(|p| (*p - points[0]).hypot())
+        .fold(0.0f64, f64::max);
+    if let Some(k) = ends
+        .iter()
+        .position(|&(i, j)| (points[j] - points[i]).hypot() <= 1e-12 * size)
+    {
+        return Err(Error::Degenerate(format!(
+            "points {} and {} coincide: a span needs two distinct points",
+            ends[k].0, ends[k].1
+        )));
+    }
+    let alphas = span_alphas(opts, spans)?;
+    let mut free = vec![false; n];
+    for &c in &opts.corners {
+        *free.get_mut(c).ok_or_else(|| {
+            Error::invalid(
+                "corners",
+                format!("corner index {c} is not a point (0..{n})"),
+            )
+        })? = true;
+    }
+    if !opts.closed {
+        free[0] = true;
+        free[n - 1] = true;
+    }
+    let smooth: Vec<usize> = (0..n).filter(|&i| !free[i]).collect();
+    let mut unknown = vec![None; n];
+    for (u, &p) in smooth.iter().enumerate() {
+        unknown[p] = Some(u);
+    }
+    Ok(system::Problem {
+        points,
+        alphas,
+        ends,
+        unknown,
+        smooth,
+    })
+}
+
+fn kind(closed: bool) -> &'static str {
+    if closed {
+        "closed"
+    } else {
+        "open"
+    }
+}
+
+/// α of each span, checked.
+fn span_alphas(opts: &LacSplineOptions, spans: usize) -> Result<Vec<f64>> {
+    let alphas = match &opts.span_alphas {
+        Some(a) if a.len() != spans => {
+            return Err(Error::invalid(
+                "alphas",
+                format!("need one alpha per span ({spans}), got {}", a.len()),
+            ))
+        }
+        Some(a) => a.clone(),
+        None => vec![opts.alpha; spans],
+    };
+    if let Some(a) = alphas
+        .iter()
+        .find(|a| !(a.is_finite() && a.abs() <= MAX_ABS_ALPHA))
+    {
+        return Err(Error::invalid(
+            "alpha",
+            format!("{a} is not a finite number within ±{MAX_ABS_ALPHA}"),
+        ));
+    }
+    Ok(alphas)
+}

@@ -1,0 +1,509 @@
+//! The solved spans as segments in input coordinates, each with its rational cubic. A
+//! segment without a curvature-monotone cubic (it turns too far for one) is split in two
+//! halves of its turning, the same curve, until each half has one.
+
+use super::span::{triangle, Shape};
+use super::system::{Problem, Solution};
+use super::LacSpline;
+use crate::approx::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions, RationalCubicFit};
+use crate::bezier::RationalBezier;
+use crate::error::{Error, Result};
+use crate::lac::{LacInflectionSegment, LacSegment};
+use kurbo::{Point, Vec2};
+
+/// Splits of one segment at most (a piece turns 1/32 of its segment at the least).
+const MAX_SPLITS: usize = 5;
+
+/// Kind of a piece of the spline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SplinePieceKind {
+    /// A straight line (zero curvature).
+    Line,
+    /// A LAC segment in its control triangle.
+    Lac,
+    /// A segment with an inflection (zero curvature) at one end.
+    LacInflection,
+}
+
+impl SplinePieceKind {
+    /// `"line"`, `"lac"` or `"lac_inflection"` (the protocol's names, as the sketch's).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            SplinePieceKind::Line => "line",
+            SplinePieceKind::Lac => "lac",
+            SplinePieceKind::LacInflection => "lac_inflection",
+        }
+    }
+}
+
+/// One piece of the spline, in curve order.
+#[derive(Clone, Debug)]
+pub struct SplinePiece {
+    /// Which family.
+    pub kind: SplinePieceKind,
+    /// The span (from point `span` to the next) it belongs to.
+    pub span: usize,
+    /// Its α (`None` for a line).
+    pub alpha: Option<f64>,
+    /// Control triangle in curve order: start, tangent intersection, end (a line's middle
+    /// point is its midpoint).
+    pub control: [Point; 3],
+    /// Signed curvature at the start and at the end.
+    pub end_curvatures: (f64, f64),
+    /// The rational cubic, in curve order.
+    pub rational: RationalBezier,
+    /// Largest distance of the rational cubic from the segment.
+    pub rational_error: f64,
+    /// The rational cubic's curvature is monotone, proven by the exact test (a line's is
+    /// constant).
+    pub monotone: bool,
+}
+
+/// A segment and whether its own order (`control[0]` first) is the curve's.
+enum Part {
+    Lac(LacSegment, bool),
+    Inflection(LacInflectionSegment, bool),
+}
+
+/// Every span's pieces at the solved tangents, in curve order (the spans fitted in
+/// parallel: each is pure work on its own data).
+pub(super) fn build(
+    problem: &Problem,
+    theta: &[f64],
+    approx: &ApproxOptions,
+) -> Result<Vec<SplinePiece>> {
+    use rayon::prelude::*;
+    let spans: Vec<Result<Vec<SplinePiece>>> = (0..problem.ends.len())
+        .into_par_iter()
+        .map(|k| span_pieces(problem, theta, k, approx))
+        .collect();
+    let mut out = Vec::new();
+    for s in spans {
+        out.extend(s?);
+    }
+    Ok(out)
+}
+
+/// The pieces of span `k`, in curve order.
+fn span_pieces(
+    problem: &Problem,
+    theta: &[f64],
+    k: usize,
+    approx: &ApproxOptions,
+) -> Result<Vec<SplinePiece>> {
+    let solved = problem.span(k, theta)?;
+    let (i, j) = problem.ends[k];
+    let frame = Frame {
+        a: problem.points[i],
+        b: problem.points[j],
+    };
+    let (da, db) = problem.deviations(k, theta);
+    match solved.shape {
+        Shape::Line => Ok(vec![line(k, frame.a, frame.b)]),
+        Shape::Arc { turn } => arcs(&frame, da, turn)
+            .into_iter()
+            .map(|tri| arc_piece(k, problem.alphas[k], tri, approx))
+            .collect(),
+        Shape::Lac { alpha } => {
+            let seg = segment_in(alpha, frame.triangle(triangle(da, db)))?;
+            fit(k, Part::Lac(seg, true), approx, 0)
+        }
+        Shape::Pair {
+            psi, inflection, ..
+        } => {
+            let m = frame.point(inflection);
+            let dm = frame.direction(psi);
+            let (ta, tb) = (frame.direction(da), frame.direction(db));
+            let first = inflection_segment(m, dm, frame.a, ta)?;
+            let second = inflection_segment(m, dm, frame.b, tb)?;
+            let mut out = fit(k, Part::Inflection(first, false), approx, 0)?;
+            out.extend(fit(k, Part::Inflection(second, true), approx, 0)?);
+            Ok(out)
+        }
+    }
+}
+
+/// The map from a span's chord frame (start 0, end 1) to the input.
+struct Frame {
+    a: Point,
+    b: Point,
+}
+
+impl Frame {
+    fn point(&self, z: Vec2) -> Point {
+        let c = self.b - self.a;
+        self.a + Vec2::new(c.x * z.x - c.y * z.y, c.x * z.y + c.y * z.x)
+    }
+    fn triangle(&self, t: [Point; 3]) -> [Point; 3] {
+        [self.a, self.point(t[1].to_vec2()), self.b]
+    }
+    /// The unit vector at angle `x` from the chord.
+    fn direction(&self, x: f64) -> Vec2 {
+        let c = self.b - self.a;
+        let g = c.y.atan2(c.x);
+        Vec2::from_angle(g + x)
+    }
+}
+
+/// The inflection-end segment from the inflection `m` (tangent `dm`) to the end `p`
+/// (tangent `dp`): the triangle from where the two tangent lines meet.
+fn inflection_segment(m: Point, dm: Vec2, p: Point, dp: Vec2) -> Result<LacInflectionSegment> {
+    let den = dm.cross(dp);
+    let apex = m + dm * ((p - m).cross(dp) / den);
+    if !apex.is_finite() {
+        return Err(Error::Degenerate(
+            "an inflection half's tangents are parallel".into(),
+        ));
+    }
+    LacInflectionSegment::new([m, apex, p])
+}
+
+fn line(span: usize, a: Point, b: Point) -> SplinePiece {
+    let at = |t: f64| a + (b - a) * t;
+    SplinePiece {
+        kind: SplinePieceKind::Line,
+        span,
+        alpha: None,
+        control: [a, at(0.5), b],
+        end_curvatures: (0.0, 0.0),
+        rational: RationalBezier::new(vec![a, at(1.0 / 3.0), at(2.0 / 3.0), b], vec![1.0; 4])
+            .expect("a line's cubic is valid"),
+        rational_error: 0.0,
+        monotone: true,
+    }
+}
+
+/// A circular arc leaving the chord at `da` and turning `turn`, as the isosceles triangles
+/// of equal arcs of at most a quarter turn each.
+fn arcs(frame: &Frame, da: f64, turn: f64) -> Vec<[Point; 3]> {
+    let parts = (turn.abs() / std::f64::consts::FRAC_PI_2).ceil().max(1.0) as usize;
+    let step = turn / parts as f64;
+    // On the arc, the point at turning τ from the start: the chord from the start is at
+    // angle da + τ/2 with length sin(τ/2)/sin(turn/2) (chord 1).
+    let at = |tau: f64| -> Vec2 {
+        Vec2::from_angle(da + 0.5 * tau) * ((0.5 * tau).sin() / (0.5 * turn).sin())
+    };
+    (0..parts)
+        .map(|i| {
+            let (t0, t1) = (step * i as f64, step * (i + 1) as f64);
+            let p0 = if i == 0 { frame.a } else { frame.point(at(t0)) };
+            let p2 = if i + 1 == parts {
+                frame.b
+            } else {
+                frame.point(at(t1))
+            };
+            let tangent = frame.direction(da + t0);
+            let half = (p2 - p0).hypot() / (2.0 * (0.5 * step).cos());
+            [p0, p0 + tangent * half, p2]
+        })
+        .collect()
+}
+
+/// The piece of an arc in the isosceles triangle `t`: the cubic of the log-aesthetic
+/// segment next to it that the exact test proves monotone ([`tilted`]), or, where none
+/// is, the exact arc's cubic reported as not proven.
+fn arc_piece(
+    span: usize,
+    alpha: f64,
+    t: [Point; 3],
+    approx: &ApproxOptions,
+) -> Result<SplinePiece> {
+    if let Some((seg, f)) = tilted(alpha, t, approx) {
+        return piece(span, &Part::Lac(seg, true), f);
+    }
+    let (theta_d, _) = LacSegment::triangle_angles(t)?;
+    let c = (0.5 * theta_d).cos();
+    let f = 2.0 * c / (1.0 + 2.0 * c);
+    let w = (2.0 * c + 1.0) / 3.0;
+    let curve = RationalBezier::new(
+        vec![
+            t[0],
+            t[0] + (t[1] - t[0]) * f,
+            t[2] + (t[1] - t[2]) * f,
+            t[2],
+        ],
+        vec![1.0, w, w, 1.0],
+    )?;
+    let side = (t[1] - t[0]).cross(t[2] - t[1]).signum();
+    let k = side * 2.0 * (0.5 * theta_d).sin() / (t[2] - t[0]).hypot();
+    Ok(SplinePiece {
+        kind: SplinePieceKind::Lac,
+        span,
+        alpha: Some(alpha),
+        control: t,
+        end_curvatures: (k, k),
+        rational: curve,
+        rational_error: 0.0,
+        monotone: false,
+    })
+}
+
+/// The segment of shape `alpha` in the triangle `t`; where rounding puts the triangle's
+/// measured base angles just below the circle's (the span solved it as a circle, or within
+/// 1e-8 of its turning of one), the segment with the start tangent turned from the chord by
+/// 1e-14 of its base angle (then by tens): the circle to that accuracy.
+fn segment_in(alpha: f64, t: [Point; 3]) -> Result<LacSegment> {
+    match LacSegment::new(alpha, t) {
+        Err(Error::NoSegment(m)) => {
+            let (theta_d, phi) = LacSegment::triangle_angles(t)?;
+            if phi - 0.5 * theta_d > 1e-8 * theta_d {
+                return Err(Error::NoSegment(m));
+            }
+            let chord = t[2] - t[0];
+            let e0 = wrap((t[1] - t[0]).angle() - chord.angle());
+            (0..6)
+                .find_map(|k| {
+                    let d = 1e-14 * 10f64.powi(k);
+                    let apex =
+                        turned_apex(t[0], chord.angle() + e0 * (1.0 + d), t[2], t[1] - t[2])?;
+                    LacSegment::new(alpha, [t[0], apex, t[2]]).ok()
+                })
+                .ok_or(Error::NoSegment(m))
+        }
+        other => other,
+    }
+}
+
+/// The pieces of one segment in curve order: its cubic, or (when it has no monotone one)
+/// the pieces of its two halves.
+fn fit(span: usize, part: Part, approx: &ApproxOptions, depth: usize) -> Result<Vec<SplinePiece>> {
+    let fitted = fit_cubic(&part, approx);
+    let tilt = |seg: &LacSegment, fwd: bool| {
+        tilted(seg.alpha(), seg.control(), approx).map(|(t, f)| (Part::Lac(t, fwd), f))
+    };
+    match (fitted, &part) {
+        (Ok(f), _) if f.monotone => Ok(vec![piece(span, &part, f)?]),
+        (Ok(f), Part::Lac(seg, fwd)) => match tilt(seg, *fwd) {
+            Some((p, f)) => Ok(vec![piece(span, &p, f)?]),
+            None => Ok(vec![piece(span, &part, f)?]),
+        },
+        (Ok(f), _) => Ok(vec![piece(span, &part, f)?]),
+        (Err(Error::NoSegment(m)), _) => {
+            if let Part::Lac(seg, fwd) = &part {
+                if let Some((p, f)) = tilt(seg, *fwd) {
+                    return Ok(vec![piece(span, &p, f)?]);
+                }
+            }
+            if depth >= MAX_SPLITS {
+                return Err(Error::NoSegment(m));
+            }
+            let (first, second) = halves(&part)?;
+            let mut out = fit(span, first, approx, depth + 1)?;
+            out.extend(fit(span, second, approx, depth + 1)?);
+            Ok(out)
+        }
+        (Err(e), _) => Err(e),
+    }
+}
+
+/// Tilts tried, in powers of ten from the smallest.
+const TILTS: i32 = 5;
+
+/// A segment whose cubic the exact test cannot prove monotone because its curvature varies
+/// by less than the rounding of its control points: a circular arc (the f64 arc is an
+/// ellipse's by a relative 1e-16, with a curvature extremum in the middle, docs/math.md
+/// §2), or a nearly circular or nearly straight piece far from the origin. Its high-
+/// curvature end's tangent turned away from the chord by δ of its base angle makes a
+/// log-aesthetic segment whose curvature varies by about δ more from end to end, which the
+/// exact test proves monotone once δ is well above the coordinates' rounding: δ from
+/// max(1e-13, 10 ε |x|max / chord) up by tens, the first whose cubic is monotone. The
+/// ends stay exact; that end's tangent turns by δ φ and the end curvatures move by about
+/// δ, which the spline's measure of its cubics reports.
+fn tilted(
+    alpha: f64,
+    c: [Point; 3],
+    approx: &ApproxOptions,
+) -> Option<(LacSegment, RationalCubicFit)> {
+    let chord = c[2] - c[0];
+    let reach = c
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let first = (1e-13f64).max(10.0 * f64::EPSILON * reach / chord.hypot());
+    // The end with the larger base angle.
+    let (e0, e2) = (
+        wrap((c[1] - c[0]).angle() - chord.angle()),
+        wrap(chord.angle() - (c[2] - c[1]).angle()),
+    );
+    (0..TILTS).find_map(|k| {
+        let d = first * 10f64.powi(k);
+        let apex = if e0.abs() >= e2.abs() {
+            turned_apex(c[0], chord.angle() + e0 * (1.0 + d), c[2], c[1] - c[2])
+        } else {
+            turned_apex(c[2], (-chord).angle() - e2 * (1.0 + d), c[0], c[1] - c[0])
+        }?;
+        let tilted = LacSegment::new(alpha, [c[0], apex, c[2]]).ok()?;
+        let f = fit_cubic(&Part::Lac(tilted.clone(), true), approx).ok()?;
+        f.monotone.then_some((tilted, f))
+    })
+}
+
+/// Where the line from `p` at angle `angle` meets the line through `q` along `e`.
+fn turned_apex(p: Point, angle: f64, q: Point, e: Vec2) -> Option<Point> {
+    let dir = Vec2::from_angle(angle);
+    let x = p + dir * ((q - p).cross(e) / dir.cross(e));
+    x.is_finite().then_some(x)
+}
+
+/// `x` wrapped into (-π, π].
+fn wrap(x: f64) -> f64 {
+    super::system::wrap(x)
+}
+
+/// A segment's cubic, fitted with its start moved to the origin and moved back: a piece
+/// far from the origin has the same shape with less rounding in its control points, and
+/// the search for a monotone cubic of a short piece, which meets the rounding in every
+/// candidate's verdict there, is some 25 times faster. The moved-back cubic is proven
+/// monotone again by the exact test; where it is not, the fit in place.
+fn fit_cubic(part: &Part, approx: &ApproxOptions) -> Result<RationalCubicFit> {
+    let in_place = || match part {
+        Part::Lac(seg, _) => fit_rational_cubic(seg, approx),
+        Part::Inflection(seg, _) => fit_inflection_cubic(seg, approx),
+    };
+    let c = match part {
+        Part::Lac(seg, _) => seg.control(),
+        Part::Inflection(seg, _) => seg.control(),
+    };
+    let o = c[0].to_vec2();
+    if o == Vec2::ZERO {
+        return in_place();
+    }
+    let local = c.map(|p| p - o);
+    let fitted = match part {
+        Part::Lac(seg, _) => {
+            LacSegment::new(seg.alpha(), local).and_then(|s| fit_rational_cubic(&s, approx))
+        }
+        Part::Inflection(..) => {
+            LacInflectionSegment::new(local).and_then(|s| fit_inflection_cubic(&s, approx))
+        }
+    };
+    let back = fitted.ok().and_then(|f| {
+        use crate::monotone::CurvatureMonotone;
+        let mut pts: Vec<Point> = f.curve.points().iter().map(|p| *p + o).collect();
+        pts[0] = c[0];
+        pts[3] = c[2];
+        let curve = RationalBezier::new(pts, f.curve.weights().to_vec()).ok()?;
+        let monotone = curve.is_curvature_monotone().ok()?;
+        (monotone || !f.monotone).then_some(RationalCubicFit {
+            curve,
+            monotone,
+            ..f
+        })
+    });
+    match back {
+        Some(f) => Ok(f),
+        None => in_place(),
+    }
+}
+
+/// The two halves of a segment by turning, in curve order.
+fn halves(part: &Part) -> Result<(Part, Part)> {
+    Ok(match part {
+        Part::Lac(seg, fwd) => {
+            let h = 0.5 * seg.theta_d();
+            let (x, y) = (seg.sub_segment(0.0, h)?, seg.sub_segment(h, seg.theta_d())?);
+            if *fwd {
+                (Part::Lac(x, true), Part::Lac(y, true))
+            } else {
+                (Part::Lac(y, false), Part::Lac(x, false))
+            }
+        }
+        Part::Inflection(seg, fwd) => {
+            let (head, tail) = seg.split(0.5 * seg.theta_d())?;
+            if *fwd {
+                (Part::Inflection(head, true), Part::Lac(tail, true))
+            } else {
+                (Part::Lac(tail, false), Part::Inflection(head, false))
+            }
+        }
+    })
+}
+
+/// A fitted segment as a piece in curve order.
+fn piece(span: usize, part: &Part, f: RationalCubicFit) -> Result<SplinePiece> {
+    let (kind, alpha, control, kappa, forward) = match part {
+        Part::Lac(seg, fwd) => (
+            SplinePieceKind::Lac,
+            seg.alpha(),
+            seg.control(),
+            seg.end_curvatures()?,
+            *fwd,
+        ),
+        Part::Inflection(seg, fwd) => (
+            SplinePieceKind::LacInflection,
+            seg.alpha(),
+            seg.control(),
+            (0.0, seg.end_curvature()),
+            *fwd,
+        ),
+    };
+    let (control, kappa, rational) = if forward {
+        (control, kappa, f.curve)
+    } else {
+        (
+            [control[2], control[1], control[0]],
+            (-kappa.1, -kappa.0),
+            reversed(&f.curve),
+        )
+    };
+    Ok(SplinePiece {
+        kind,
+        span,
+        alpha: Some(alpha),
+        control,
+        end_curvatures: kappa,
+        rational,
+        rational_error: f.max_error,
+        monotone: f.monotone,
+    })
+}
+
+/// The same curve traversed the other way.
+fn reversed(c: &RationalBezier) -> RationalBezier {
+    let mut p = c.points().to_vec();
+    let mut w = c.weights().to_vec();
+    p.reverse();
+    w.reverse();
+    RationalBezier::new(p, w).expect("reversal keeps a valid curve")
+}
+
+/// The spline from its pieces and the solve's report.
+pub(super) fn result(
+    pieces: Vec<SplinePiece>,
+    problem: &Problem,
+    sol: &Solution,
+    closed: bool,
+) -> LacSpline {
+    let n = problem.points.len();
+    let mut tangents = vec![Vec2::ZERO; n];
+    for p in &pieces {
+        let (i, _) = problem.ends[p.span];
+        if tangents[i] == Vec2::ZERO {
+            tangents[i] = start_tangent(p);
+        }
+    }
+    if !closed {
+        if let Some(last) = pieces.last() {
+            let c = last.rational.points();
+            tangents[n - 1] = (c[3] - c[2]).normalize();
+        }
+    }
+    let ends: Vec<(f64, f64)> = pieces.iter().map(|p| p.end_curvatures).collect();
+    let (inflections, curvature_extrema) = crate::sketch::count_events(&ends);
+    LacSpline {
+        all_monotone: pieces.iter().all(|p| p.monotone),
+        max_rational_error: pieces.iter().fold(0.0, |m, p| m.max(p.rational_error)),
+        tangents,
+        iterations: sol.iterations,
+        converged: sol.jump <= super::ACCEPTED_JUMP,
+        max_curvature_jump: sol.jump,
+        inflections,
+        curvature_extrema,
+        closed,
+        pieces,
+    }
+}
+
+fn start_tangent(p: &SplinePiece) -> Vec2 {
+    let c = p.rational.points();
+    (c[1] - c[0]).normalize()
+}

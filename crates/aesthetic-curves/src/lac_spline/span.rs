@@ -1,0 +1,351 @@
+//! One span of the spline: the log-aesthetic curve between two points with given tangent
+//! directions (G1 Hermite data), and its end curvatures. Worked in the chord frame: the
+//! start at 0, the end at 1, so only the tangents' deviations from the chord matter.
+//!
+//! - Both deviations (nearly) zero: a line.
+//! - Deviations of opposite signs and equal size: a circular arc (every α has it), of any
+//!   turning below a full turn.
+//! - Deviations of opposite signs (the span bends one way) in the existence region of α:
+//!   one [`LacSegment`] in the triangle the tangents make.
+//! - Otherwise (an S, or for α < 0 a bend too lopsided for one segment): two
+//!   inflection-end halves of the same curve mirrored about their common inflection point
+//!   (same α, same scale), the inflection's tangent found by a one-variable root. At the edge
+//!   of the existence region the short half vanishes and the pair is the one segment, so the
+//!   end curvatures are continuous across the edge (α < 0).
+//! - α >= 0 has no inflection-end segment (its curvature reaches zero only at infinite
+//!   length): an S-shaped span's halves are clothoid-like (α = -1), and for α > 1 a bend
+//!   outside the existence region takes the α nearest the requested one that has a segment.
+
+use crate::error::{Error, Result};
+use crate::lac::{LacInflectionSegment, LacSegment};
+use crate::solve::roots::illinois;
+use kurbo::Vec2;
+use std::f64::consts::PI;
+
+/// Deviations below this (radians, summed) make a span a line.
+const LINE_TURN: f64 = 2e-9;
+
+/// Samples of the inflection tangent's range per family when looking for roots.
+const PAIR_SAMPLES: usize = 32;
+
+/// The shape α of an S-span's halves for a requested α.
+pub(super) fn pair_alpha(alpha: f64) -> f64 {
+    if alpha < 0.0 {
+        alpha
+    } else {
+        -1.0
+    }
+}
+
+/// The span's curve in the chord frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Shape {
+    /// A straight line.
+    Line,
+    /// A circular arc turning by `turn` (signed, counter-clockwise positive, |turn| < 2π).
+    Arc { turn: f64 },
+    /// One segment of shape `alpha` (the requested one, or the nearest that exists).
+    Lac { alpha: f64 },
+    /// Two inflection-end halves of shape `alpha` and scale `scale` (chord lengths) meeting
+    /// at the inflection with tangent angle `psi`; `side` is +1 when the second half turns
+    /// counter-clockwise.
+    Pair {
+        alpha: f64,
+        psi: f64,
+        side: f64,
+        scale: f64,
+        inflection: Vec2,
+    },
+}
+
+/// A solved span: its shape and its signed curvatures at the start and the end, in units
+/// of one over the chord length.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Solved {
+    pub(super) shape: Shape,
+    pub(super) kappa: (f64, f64),
+}
+
+/// The span whose tangents leave the chord by `a` at the start and `b` at the end (radians,
+/// counter-clockwise positive), for the requested `alpha`.
+pub(super) fn solve(alpha: f64, a: f64, b: f64) -> Result<Solved> {
+    if !(a.abs() < PI && b.abs() < PI) {
+        return Err(Error::NoSegment(format!(
+            "a span's tangent turns {:.1} deg from its chord: no fair curve between them",
+            a.abs().max(b.abs()).to_degrees()
+        )));
+    }
+    if a.abs() + b.abs() <= LINE_TURN {
+        return Ok(Solved {
+            shape: Shape::Line,
+            kappa: (0.0, 0.0),
+        });
+    }
+    if a * b < 0.0 && (a + b).abs() <= 1e-12 * (a.abs() + b.abs()) {
+        // A circular arc (every α): its curvature 2 sin(b) over the chord, whatever its
+        // turning 2|b| (up to a full turn; the pieces split it).
+        let k = 2.0 * b.sin();
+        return Ok(Solved {
+            shape: Shape::Arc { turn: 2.0 * b },
+            kappa: (k, k),
+        });
+    }
+    if a * b < 0.0 && a.abs() + b.abs() < PI {
+        if let Some(s) = one_segment(alpha, a, b)? {
+            return Ok(s);
+        }
+    }
+    pair(pair_alpha(alpha), a, b)
+}
+
+/// The control triangle of the chord frame for deviations `a`, `b` of opposite signs.
+pub(super) fn triangle(a: f64, b: f64) -> [kurbo::Point; 3] {
+    // Apex where the start tangent (angle a) meets the end tangent (angle b) through 1.
+    let (ta, tb) = (Vec2::from_angle(a), Vec2::from_angle(b));
+    let s = (Vec2::new(1.0, 0.0)).cross(tb) / ta.cross(tb);
+    [
+        kurbo::Point::ZERO,
+        (ta * s).to_point(),
+        kurbo::Point::new(1.0, 0.0),
+    ]
+}
+
+/// One segment for a bend, or `None` when α < 0 and the bend lies outside the existence
+/// region (the pair continues it).
+fn one_segment(alpha: f64, a: f64, b: f64) -> Result<Option<Solved>> {
+    let theta_d = a.abs() + b.abs();
+    let phi = a.abs().max(b.abs());
+    let alpha = if LacSegment::exists_for_angles(alpha, theta_d, phi)? {
+        alpha
+    } else if alpha < 0.0 {
+        return Ok(None);
+    } else {
+        nearest_existing(alpha, theta_d, phi)?
+    };
+    // Within rounding of an edge of the region, the triangle's measured base angles can
+    // fall just outside [θ_d/2, θ_lim): near the circle, a triangle a little more lopsided
+    // (by 1e-14 of an angle) has a segment; near θ_lim (α < 0), the pair continues it.
+    let seg = match LacSegment::new(alpha, triangle(a, b)) {
+        Err(Error::NoSegment(m)) if (a.abs() - b.abs()).abs() <= 1e-8 * theta_d => {
+            // The larger deviation made larger by 1e-14 (then by tens): a segment of a tiny
+            // Λ, the circle to that accuracy.
+            (0..6)
+                .find_map(|k| {
+                    let e = 1.0 + 1e-14 * 10f64.powi(k);
+                    let t = if a.abs() >= b.abs() {
+                        triangle(a * e, b)
+                    } else {
+                        triangle(a, b * e)
+                    };
+                    LacSegment::new(alpha, t).ok()
+                })
+                .ok_or(Error::NoSegment(m))?
+        }
+        Err(Error::NoSegment(_)) if alpha < 0.0 => return Ok(None),
+        other => other?,
+    };
+    Ok(Some(Solved {
+        shape: Shape::Lac { alpha },
+        kappa: seg.end_curvatures()?,
+    }))
+}
+
+/// For α > 1 outside its region: the largest α' in [1, α) whose segment exists (α = 1,
+/// the logarithmic spiral, exists in every triangle), to 1e-12.
+fn nearest_existing(alpha: f64, theta_d: f64, phi: f64) -> Result<f64> {
+    let (mut ok, mut bad) = (1.0f64, alpha);
+    while bad - ok > 1e-12 * alpha.abs().max(1.0) {
+        let mid = 0.5 * (ok + bad);
+        if LacSegment::exists_for_angles(mid, theta_d, phi)? {
+            ok = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    Ok(ok)
+}
+
+/// The chord of both halves per unit scale for inflection tangent `psi`, family `side`:
+/// `W(t1) + W(t2)` (mirrored for side -1), with `t1 = side (a - ψ)`, `t2 = side (b - ψ)`.
+struct PairGeometry {
+    alpha: f64,
+    a: f64,
+    b: f64,
+    side: f64,
+}
+
+impl PairGeometry {
+    fn turns(&self, psi: f64) -> (f64, f64) {
+        (self.side * (self.a - psi), self.side * (self.b - psi))
+    }
+
+    fn chords(&self, psi: f64) -> Result<(Vec2, Vec2)> {
+        let (t1, t2) = self.turns(psi);
+        let w = |t: f64| -> Result<Vec2> {
+            let c = LacInflectionSegment::standard_chord(self.alpha, t.max(0.0))?;
+            Ok(Vec2::new(c.x, self.side * c.y))
+        };
+        Ok((w(t1)?, w(t2)?))
+    }
+
+    /// The angle of the pair's chord from the x axis, less zero: a root puts B at 1.
+    fn mismatch(&self, psi: f64) -> Result<f64> {
+        let (w1, w2) = self.chords(psi)?;
+        let v = w1 + w2;
+        Ok(psi + v.y.atan2(v.x))
+    }
+
+    /// The range of ψ where both halves turn by (0, π]: below both deviations for side +1,
+    /// above both for side -1.
+    fn range(&self) -> Option<(f64, f64)> {
+        let (lo, hi) = (self.a.min(self.b), self.a.max(self.b));
+        if hi - lo >= PI {
+            return None;
+        }
+        Some(if self.side > 0.0 {
+            (hi - PI, lo)
+        } else {
+            (hi, lo + PI)
+        })
+    }
+
+    /// Roots of the mismatch over the range: sign changes of `PAIR_SAMPLES + 1` samples,
+    /// ends included, each refined by Illinois' method.
+    fn roots(&self) -> Result<Vec<f64>> {
+        let Some((lo, hi)) = self.range() else {
+            return Ok(Vec::new());
+        };
+        let xs: Vec<f64> = (0..=PAIR_SAMPLES)
+            .map(|k| lo + (hi - lo) * k as f64 / PAIR_SAMPLES as f64)
+            .collect();
+        let fs: Vec<f64> = xs
+            .iter()
+            .map(|&x| self.mismatch(x))
+            .collect::<Result<_>>()?;
+        let mut roots = Vec::new();
+        for k in 0..PAIR_SAMPLES {
+            let (f0, f1) = (fs[k], fs[k + 1]);
+            if f0 == 0.0 {
+                roots.push(xs[k]);
+            } else if f0 * f1 < 0.0 {
+                let r = illinois(
+                    |x| self.mismatch(x),
+                    (xs[k], f0),
+                    (xs[k + 1], f1),
+                    1e-15,
+                    200,
+                )?;
+                roots.push(r);
+            }
+        }
+        Ok(roots)
+    }
+
+    /// The solved pair at root `psi`: both halves must turn (a half of zero turning is the
+    /// one segment at the region's edge, which `solve` builds instead).
+    fn solved(&self, psi: f64) -> Result<Option<Solved>> {
+        let (t1, t2) = self.turns(psi);
+        if !(t1 > 0.0 && t2 > 0.0 && t1 < PI && t2 < PI) {
+            return Ok(None);
+        }
+        let (w1, w2) = self.chords(psi)?;
+        let scale = 1.0 / (w1 + w2).hypot();
+        let k = |t: f64| LacInflectionSegment::standard_end_kappa(self.alpha, t) / scale;
+        let inflection = Vec2::from_angle(psi);
+        let m = kurbo::Vec2::new(
+            inflection.x * w1.x - inflection.y * w1.y,
+            inflection.x * w1.y + inflection.y * w1.x,
+        ) * scale;
+        Ok(Some(Solved {
+            shape: Shape::Pair {
+                alpha: self.alpha,
+                psi,
+                side: self.side,
+                scale,
+                inflection: m,
+            },
+            kappa: (-self.side * k(t1), self.side * k(t2)),
+        }))
+    }
+}
+
+/// The S-span (or the continuation of a lopsided bend): of the roots of both families, the
+/// pair that turns least in all.
+fn pair(alpha: f64, a: f64, b: f64) -> Result<Solved> {
+    let mut best: Option<(f64, Solved)> = None;
+    for side in [1.0, -1.0] {
+        let g = PairGeometry { alpha, a, b, side };
+        for psi in g.roots()? {
+            if let Some(s) = g.solved(psi)? {
+                let (t1, t2) = g.turns(psi);
+                if best.as_ref().is_none_or(|(t, _)| t1 + t2 < *t) {
+                    best = Some((t1 + t2, s));
+                }
+            }
+        }
+    }
+    best.map(|b| b.1).ok_or_else(|| {
+        Error::NoSegment(format!(
+            "no log-aesthetic curve of alpha {alpha} between tangents {:.3} and {:.3} deg \
+             from the chord",
+            a.to_degrees(),
+            b.to_degrees()
+        ))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_symmetric_bend_is_a_circle_and_a_straight_span_a_line() {
+        // Deviations -φ and φ: an arc of radius 1/(2 sin φ) through 0 and 1.
+        for alpha in [-2.0, -1.0, 0.0, 1.0, 2.0] {
+            let s = solve(alpha, -0.4, 0.4).unwrap();
+            let k = 2.0 * 0.4f64.sin();
+            assert!((s.kappa.0 - k).abs() < 1e-12 && (s.kappa.1 - k).abs() < 1e-12);
+            // The same from the segment of a triangle a rounding away from isosceles.
+            let s = solve(alpha, -0.4 * (1.0 + 1e-11), 0.4).unwrap();
+            assert!((s.kappa.0 - k).abs() < 1e-9 && (s.kappa.1 - k).abs() < 1e-9);
+        }
+        assert_eq!(solve(-1.0, 0.0, 0.0).unwrap().shape, Shape::Line);
+    }
+
+    #[test]
+    fn an_s_span_is_a_point_symmetric_pair_when_its_deviations_are_equal() {
+        // a = b: the S is symmetric about the chord's midpoint; the inflection sits there.
+        let s = solve(-1.0, 0.3, 0.3).unwrap();
+        let Shape::Pair { inflection, .. } = s.shape else {
+            panic!("{s:?}")
+        };
+        assert!(
+            (inflection - Vec2::new(0.5, 0.0)).hypot() < 1e-12,
+            "{inflection:?}"
+        );
+        assert!((s.kappa.0 + s.kappa.1).abs() < 1e-12 && s.kappa.0 < 0.0);
+    }
+
+    #[test]
+    fn the_pair_continues_the_segment_across_the_edge_of_the_region() {
+        // α = -1: along a = -ε (one segment) to a = +ε (a pair), b fixed, the end
+        // curvatures move continuously through the region's edge.
+        let b = 0.6;
+        let mut last: Option<(f64, f64)> = None;
+        let mut kinds = Vec::new();
+        for k in 0..=400 {
+            let a = -0.3 + 0.6 * k as f64 / 400.0;
+            let s = solve(-1.0, a, b).unwrap();
+            kinds.push(matches!(s.shape, Shape::Lac { .. }));
+            if let Some(l) = last {
+                assert!(
+                    (s.kappa.0 - l.0).abs() < 0.05 && (s.kappa.1 - l.1).abs() < 0.05,
+                    "a = {a}: {:?} after {l:?}",
+                    s.kappa
+                );
+            }
+            last = Some(s.kappa);
+        }
+        assert!(kinds.first() == Some(&true) && kinds.last() == Some(&false));
+    }
+}

@@ -1,0 +1,233 @@
+//! The G2 problem: unknown tangent angles at the smooth points, one equation per smooth
+//! point (the curvature coming in equals the curvature going out), solved by
+//! [`crate::solve::damped_newton`] with a Jacobian of central differences span by span
+//! (each span depends on the angles at its two ends only, so a column costs two spans).
+//!
+//! A free end (an open curve's first or last point, a corner) has no unknown: its span
+//! leaves it as a circular arc (the deviation mirrored from the other end), and a span
+//! with two free ends is a line.
+
+use super::span::{self, Solved};
+use crate::error::{Error, Result};
+use crate::solve::{damped_newton, DampedNewton, SystemStop};
+use kurbo::Point;
+use nalgebra::{DMatrix, DVector};
+use std::f64::consts::PI;
+
+/// Step of the central differences, radians.
+const STEP: f64 = 1e-7;
+
+/// The spline's data as the solver sees it.
+pub(super) struct Problem<'a> {
+    pub(super) points: &'a [Point],
+    /// α per span.
+    pub(super) alphas: Vec<f64>,
+    /// Span `k` runs from point `ends[k].0` to point `ends[k].1`.
+    pub(super) ends: Vec<(usize, usize)>,
+    /// The unknown's index at each point, `None` at a free end.
+    pub(super) unknown: Vec<Option<usize>>,
+    /// The points of the unknowns, in order.
+    pub(super) smooth: Vec<usize>,
+}
+
+/// `x` wrapped into (-π, π].
+pub(super) fn wrap(x: f64) -> f64 {
+    let y = x.rem_euclid(2.0 * PI);
+    if y > PI {
+        y - 2.0 * PI
+    } else {
+        y
+    }
+}
+
+impl Problem<'_> {
+    fn chord_angle(&self, k: usize) -> f64 {
+        let (i, j) = self.ends[k];
+        let c = self.points[j] - self.points[i];
+        c.y.atan2(c.x)
+    }
+
+    fn chord_length(&self, k: usize) -> f64 {
+        let (i, j) = self.ends[k];
+        (self.points[j] - self.points[i]).hypot()
+    }
+
+    /// The deviations (a, b) of span `k` from its chord at tangent angles `theta`.
+    pub(super) fn deviations(&self, k: usize, theta: &[f64]) -> (f64, f64) {
+        let (i, j) = self.ends[k];
+        let g = self.chord_angle(k);
+        let at = |p: usize| self.unknown[p].map(|u| wrap(theta[u] - g));
+        match (at(i), at(j)) {
+            (Some(a), Some(b)) => (a, b),
+            (Some(a), None) => (a, -a),
+            (None, Some(b)) => (-b, b),
+            (None, None) => (0.0, 0.0),
+        }
+    }
+
+    /// Span `k` solved at tangent angles `theta`, its curvatures in input units.
+    pub(super) fn span(&self, k: usize, theta: &[f64]) -> Result<Solved> {
+        let (a, b) = self.deviations(k, theta);
+        let mut s = span::solve(self.alphas[k], a, b)?;
+        let l = self.chord_length(k);
+        s.kappa = (s.kappa.0 / l, s.kappa.1 / l);
+        Ok(s)
+    }
+
+    /// The spans' end curvatures at `theta`.
+    fn kappas(&self, theta: &[f64]) -> Result<Vec<(f64, f64)>> {
+        (0..self.ends.len())
+            .map(|k| self.span(k, theta).map(|s| s.kappa))
+            .collect()
+    }
+
+    /// The span ending at point `p` and the one starting there (both exist at a smooth
+    /// point).
+    fn around(&self, p: usize) -> (usize, usize) {
+        let into = self.ends.iter().position(|e| e.1 == p);
+        let out = self.ends.iter().position(|e| e.0 == p);
+        (
+            into.expect("a smooth point ends a span"),
+            out.expect("a smooth point starts a span"),
+        )
+    }
+
+    /// The length that makes a curvature jump at point `p` dimensionless: the mean of the
+    /// chords on either side.
+    fn length_at(&self, p: usize) -> f64 {
+        let (i, o) = self.around(p);
+        0.5 * (self.chord_length(i) + self.chord_length(o))
+    }
+
+    /// The residuals: at each smooth point, (κ in - κ out) times its length.
+    fn residuals(&self, kappas: &[(f64, f64)]) -> Vec<f64> {
+        self.smooth
+            .iter()
+            .map(|&p| {
+                let (i, o) = self.around(p);
+                (kappas[i].1 - kappas[o].0) * self.length_at(p)
+            })
+            .collect()
+    }
+
+    /// Residuals at `theta`, or `None` where a span cannot be built.
+    fn state(&self, theta: &[f64]) -> Option<Vec<f64>> {
+        self.kappas(theta).ok().map(|k| self.residuals(&k))
+    }
+
+    /// The Jacobian: column `u` from the two spans at the unknown's point, each moved by
+    /// ± [`STEP`].
+    fn jacobian(&self, theta: &[f64]) -> Option<DMatrix<f64>> {
+        let m = self.smooth.len();
+        let mut jac = DMatrix::zeros(m, m);
+        for (u, &p) in self.smooth.iter().enumerate() {
+            let (i, o) = self.around(p);
+            let mut plus = theta.to_vec();
+            let mut minus = theta.to_vec();
+            plus[u] += STEP;
+            minus[u] -= STEP;
+            for k in [i, o] {
+                let (kp, km) = (self.span(k, &plus).ok()?, self.span(k, &minus).ok()?);
+                let d0 = (kp.kappa.0 - km.kappa.0) / (2.0 * STEP);
+                let d1 = (kp.kappa.1 - km.kappa.1) / (2.0 * STEP);
+                let (a, b) = self.ends[k];
+                // κ at the span's end enters the residual at b (as κ in), its start at a
+                // (as minus κ out).
+                if let Some(r) = self.unknown[b] {
+                    jac[(r, u)] += d1 * self.length_at(b);
+                }
+                if let Some(r) = self.unknown[a] {
+                    jac[(r, u)] -= d0 * self.length_at(a);
+                }
+            }
+        }
+        Some(jac)
+    }
+
+    /// The starting tangents: at each smooth point, the tangent of the circle through it and
+    /// its two neighbours (the chord-tangent angle equals the inscribed angle).
+    pub(super) fn guess(&self) -> Vec<f64> {
+        self.smooth
+            .iter()
+            .map(|&p| {
+                let (i, o) = self.around(p);
+                let (prev, next) = (self.ends[i].0, self.ends[o].1);
+                let ang = |a: Point, b: Point| (b - a).y.atan2((b - a).x);
+                let (gi, go) = (
+                    ang(self.points[prev], self.points[p]),
+                    ang(self.points[p], self.points[next]),
+                );
+                gi + wrap(go - gi) - wrap(ang(self.points[prev], self.points[next]) - gi)
+            })
+            .collect()
+    }
+}
+
+/// How the solve ended.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Solution {
+    pub(super) theta: Vec<f64>,
+    pub(super) iterations: usize,
+    pub(super) stop: SystemStop,
+    /// Largest |κ in - κ out| over the largest |κ| at any span end.
+    pub(super) jump: f64,
+}
+
+/// Solve the G2 equations from the circle guess to `tol` (largest jump over the largest
+/// curvature).
+pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Result<Solution> {
+    let theta0 = problem.guess();
+    let r0 = problem.state(&theta0).ok_or_else(|| {
+        Error::NoSegment(
+            "no log-aesthetic span between the starting tangents (a span turns too far: \
+             add a point)"
+                .into(),
+        )
+    })?;
+    let jump_of = |theta: &[f64]| -> f64 {
+        let Ok(k) = problem.kappas(theta) else {
+            return f64::INFINITY;
+        };
+        let big = k
+            .iter()
+            .fold(0.0f64, |m, e| m.max(e.0.abs()).max(e.1.abs()));
+        let worst = problem.smooth.iter().fold(0.0f64, |m, &p| {
+            let (i, o) = problem.around(p);
+            m.max((k[i].1 - k[o].0).abs())
+        });
+        if big > 0.0 {
+            worst / big
+        } else {
+            0.0
+        }
+    };
+    let run = damped_newton(
+        theta0,
+        r0,
+        |theta, r| {
+            let jac = problem.jacobian(theta)?;
+            let step = jac.lu().solve(&(-DVector::from_column_slice(r)))?;
+            step.iter()
+                .all(|x| x.is_finite())
+                .then(|| (step.as_slice().to_vec(), 1.0))
+        },
+        |theta, step, len| {
+            // A Newton step may not turn a tangent by more than a quarter turn.
+            let big = step.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let len = len * (1.0f64).min(0.5 * PI / big.max(1e-300));
+            let t: Vec<f64> = theta.iter().zip(step).map(|(t, s)| t + len * s).collect();
+            problem.state(&t).map(|r| (t, r))
+        },
+        |theta, _| jump_of(theta) <= tol,
+        &DampedNewton {
+            max_iterations,
+            halvings: 30,
+        },
+    )?;
+    Ok(Solution {
+        jump: jump_of(&run.state),
+        theta: run.state,
+        iterations: run.iterations,
+        stop: run.stop,
+    })
+}
