@@ -120,15 +120,27 @@ pub(crate) enum Cmd {
         #[arg(long, default_value_t = 100, value_parser = count::<2, 2000>)]
         map_cells: usize,
     },
-    /// The pseudo-elastic spline (S2) through points from a file (CSV rows "x,y" or a JSON
-    /// array of pairs): tangents, length, area, energy; -o writes the curve with its comb.
+    /// A spline through points from a file (CSV rows "x,y" or a JSON array of pairs): by
+    /// default the G2 log-aesthetic spline (`--kind lac`: LAC pieces of one alpha, G2 at
+    /// every smooth point, corners where asked), or S2's pseudo-elastic spline
+    /// (`--kind pseudo-elastic`: G1, from its tables); -o writes the curve with its comb.
     Spline {
         /// The points file.
         input: PathBuf,
         /// Closed curve through all points.
         #[arg(long)]
         closed: bool,
-        /// Segment values from the shipped tables (fast) or by direct minimisation.
+        /// Which spline: the G2 log-aesthetic one or S2's pseudo-elastic (G1) one.
+        #[arg(long, default_value = "lac", value_parser = ["lac", "pseudo-elastic"])]
+        kind: String,
+        /// Alpha of the log-aesthetic spline's pieces (-1: clothoids; within ±1000).
+        #[arg(long, default_value_t = -1.0, allow_hyphen_values = true)]
+        alpha: f64,
+        /// Corner points of the log-aesthetic spline, by index ("0,4").
+        #[arg(long, value_delimiter = ',')]
+        corners: Vec<usize>,
+        /// Pseudo-elastic segment values from the shipped tables (fast) or by direct
+        /// minimisation.
         #[arg(long, default_value = "table", value_parser = ["table", "exact"])]
         mode: String,
         #[command(flatten)]

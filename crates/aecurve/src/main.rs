@@ -17,7 +17,7 @@ use commands::lac::lac;
 use commands::lcg::{lcg, LcgSource};
 use commands::monotone::monotone;
 use commands::sketch::{sketch, sketch_contour};
-use commands::spline::spline;
+use commands::spline::{lac_spline, spline};
 
 fn main() {
     // A closed stdout (`aecurve ... | head`) ends the program quietly, as for other Unix
@@ -235,9 +235,24 @@ fn run() -> Result<()> {
         Cmd::Spline {
             input,
             closed,
+            kind,
+            alpha,
+            corners,
             mode,
             out,
-        } => spline(&input, closed, &mode, &out)?,
+        } => {
+            if kind == "lac" {
+                let opts = aesthetic_curves::lac_spline::LacSplineOptions {
+                    alpha,
+                    closed,
+                    corners,
+                    ..Default::default()
+                };
+                lac_spline(&input, &opts, &out)?
+            } else {
+                spline(&input, closed, &mode, &out)?
+            }
+        }
         Cmd::Sketch {
             input,
             tolerance,

@@ -50,6 +50,7 @@ pub const OPS: &[&str] = &[
     "lcg.estimate",
     "lac.rational_approx",
     "spline.pseudo_elastic",
+    "spline.lac",
     "lac.fit",
     "sketch.fit",
     "sketch.contour",
@@ -126,6 +127,7 @@ fn dispatch(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
         "lcg.estimate" => lcg_estimate(obj),
         "lac.rational_approx" => lac_rational_approx(obj),
         "spline.pseudo_elastic" => spline_pseudo_elastic(obj),
+        "spline.lac" => spline_lac(obj),
         "lac.fit" => lac_fit(obj),
         "sketch.fit" => sketch_fit(obj),
         "sketch.contour" => sketch_contour(obj),
@@ -1350,6 +1352,111 @@ fn spline_pseudo_elastic(obj: &Map<String, Value>) -> Result<Value, ProtoError> 
         out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
     }
     Ok(out)
+}
+
+/// Largest number of points `spline.lac` accepts: its Newton steps solve a dense system
+/// in the smooth points (500 points: some 40 ms a step) and fit one or two cubics per span
+/// (about half a millisecond each).
+pub const MAX_LAC_SPLINE_POINTS: usize = 500;
+
+/// The options of `spline.lac` (also `aecurve spline --kind lac`) from a request: `closed`,
+/// `corners` (point indices), `alpha` (one number, default -1) or `alphas` (one per span).
+pub fn lac_spline_options(
+    obj: &Map<String, Value>,
+) -> Result<aesthetic_curves::lac_spline::LacSplineOptions, ProtoError> {
+    let closed = bool_param(obj, "closed", false)?;
+    let corners = match obj.get("corners") {
+        None | Some(Value::Null) => Vec::new(),
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|v| {
+                v.as_u64().map(|x| x as usize).ok_or_else(|| {
+                    ProtoError::invalid("corners", "must be an array of point indices")
+                })
+            })
+            .collect::<Result<_, _>>()?,
+        Some(_) => {
+            return Err(ProtoError::invalid(
+                "corners",
+                "must be an array of point indices",
+            ))
+        }
+    };
+    let alpha = optional_number(obj, "alpha")?.unwrap_or(-1.0);
+    let span_alphas = match obj.get("alphas") {
+        None | Some(Value::Null) => None,
+        Some(Value::Array(a)) => Some(
+            a.iter()
+                .enumerate()
+                .map(|(i, v)| finite_number(v, &format!("alphas[{i}]")))
+                .collect::<Result<Vec<_>, _>>()?,
+        ),
+        Some(_) => return Err(ProtoError::invalid("alphas", "must be an array of numbers")),
+    };
+    Ok(aesthetic_curves::lac_spline::LacSplineOptions {
+        alpha,
+        span_alphas,
+        closed,
+        corners,
+        ..Default::default()
+    })
+}
+
+fn spline_lac(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
+    let opts = lac_spline_options(obj)?;
+    let least = if opts.closed { 3 } else { 2 };
+    let points = points_param(obj, "points", least, MAX_LAC_SPLINE_POINTS)?;
+    let draw = draw_param(obj)?;
+    let s = aesthetic_curves::lac_spline::lac_spline(&points, &opts)?;
+    let mut out = lac_spline_json(&s);
+    if let Some(n) = draw {
+        out["drawing"] = pieces_drawing(&s.rationals(), n)?;
+    }
+    Ok(out)
+}
+
+/// The result of `spline.lac` (also `aecurve spline --kind lac --json`): the pieces as
+/// `sketch.fit` gives its segments (kind, alpha, control, end curvatures, rational cubic,
+/// monotone verdict), with the span each belongs to.
+pub fn lac_spline_json(s: &aesthetic_curves::lac_spline::LacSpline) -> Value {
+    let pts = |ps: &[aesthetic_curves::Point]| ps.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
+    let segments: Vec<Value> = s
+        .pieces
+        .iter()
+        .map(|p| {
+            let mut o = json!({
+                "kind": p.kind.as_str(),
+                "span": p.span,
+                "control": pts(&p.control),
+                "end_curvatures": [p.end_curvatures.0, p.end_curvatures.1],
+                "rational": {
+                    "control_points": pts(p.rational.points()),
+                    "weights": p.rational.weights(),
+                },
+                "monotone": p.monotone,
+                "rational_error": p.rational_error,
+            });
+            if let Some(a) = p.alpha {
+                o["alpha"] = json!(a);
+            }
+            o
+        })
+        .collect();
+    json!({
+        "segments": segments,
+        "tangents": s.tangents.iter().map(|t| [t.x, t.y]).collect::<Vec<_>>(),
+        "closed": s.closed,
+        "iterations": s.iterations,
+        "converged": s.converged,
+        "g2": s.converged && s.max_cubic_jump <= 1e-8,
+        "max_curvature_jump": s.max_curvature_jump,
+        "max_cubic_jump": s.max_cubic_jump,
+        "max_cubic_angle": s.max_cubic_angle,
+        "all_monotone": s.all_monotone,
+        "max_rational_error": s.max_rational_error,
+        "inflections": s.inflections,
+        "curvature_extrema": s.curvature_extrema,
+    })
 }
 
 /// The result object of `spline.pseudo_elastic`.

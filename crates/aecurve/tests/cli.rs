@@ -18,6 +18,25 @@ fn json_output(cmd: &mut Command) -> serde_json::Value {
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
+/// The first answer of `aecurve batch` to one request line.
+fn batch_one(request: &str) -> serde_json::Value {
+    let mut child = aecurve()
+        .arg("batch")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(format!("{request}\n").as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    serde_json::from_str(text.lines().next().unwrap()).unwrap()
+}
+
 #[test]
 fn batch_answers_every_line_in_order() {
     let mut child = aecurve()
@@ -371,7 +390,7 @@ fn spline_command_and_op() {
     let step = dir.join("s.step");
     let v = json_output(
         aecurve()
-            .arg("spline")
+            .args(["spline", "--kind", "pseudo-elastic"])
             .arg(&input)
             .arg("--json")
             .arg("-o")
@@ -390,7 +409,7 @@ fn spline_command_and_op() {
     // --curvature-plot: curvature against arc length as a picture.
     let kplot = dir.join("k.svg");
     let out = aecurve()
-        .arg("spline")
+        .args(["spline", "--kind", "pseudo-elastic"])
         .arg(&input)
         .arg("--curvature-plot")
         .arg(&kplot)
@@ -402,7 +421,7 @@ fn spline_command_and_op() {
     // The exact mode gives the same curve to the table's accuracy.
     let e = json_output(
         aecurve()
-            .arg("spline")
+            .args(["spline", "--kind", "pseudo-elastic"])
             .arg(&input)
             .args(["--json", "--mode", "exact"]),
     );
@@ -418,12 +437,17 @@ fn spline_command_and_op() {
         .collect();
     std::fs::write(&input, many).unwrap();
     let t0 = std::time::Instant::now();
-    let v = json_output(aecurve().arg("spline").arg(&input).arg("--json"));
+    let v = json_output(
+        aecurve()
+            .args(["spline", "--kind", "pseudo-elastic"])
+            .arg(&input)
+            .arg("--json"),
+    );
     assert_eq!(v["segments"].as_array().unwrap().len(), 999);
     assert!(t0.elapsed().as_secs_f64() < 10.0);
     // Too many points for the exact mode: refused with a clear message.
     let out = aecurve()
-        .arg("spline")
+        .args(["spline", "--kind", "pseudo-elastic"])
         .arg(&input)
         .args(["--mode", "exact"])
         .output()
@@ -432,9 +456,52 @@ fn spline_command_and_op() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("exact mode"));
     // Repeated points: degenerate.
     std::fs::write(&input, "0,0\n0,0\n1,0\n").unwrap();
-    let out = aecurve().arg("spline").arg(&input).output().unwrap();
+    let out = aecurve()
+        .args(["spline", "--kind", "pseudo-elastic"])
+        .arg(&input)
+        .output()
+        .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("degenerate"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn lac_spline_command_and_op() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-lac-spline-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = dir.join("p.csv");
+    std::fs::write(&input, "x,y\n0,0\n2,1.5\n4,1\n6,3\n8,2.5\n10,4\n").unwrap();
+    let dxf = dir.join("s.dxf");
+    let v = json_output(
+        aecurve()
+            .arg("spline")
+            .arg(&input)
+            .args(["--json", "--alpha", "-1", "-o"])
+            .arg(&dxf),
+    );
+    assert!(std::fs::read_to_string(&dxf).unwrap().contains("SPLINE"));
+    let segs = v["segments"].as_array().unwrap();
+    // Each piece starts where the last ended; the spans cover the five gaps.
+    assert_eq!(segs.last().unwrap()["span"], 4);
+    assert!(v["all_monotone"].as_bool().unwrap() && v["g2"].as_bool().unwrap());
+    assert!(v["max_cubic_jump"].as_f64().unwrap() < 1e-10);
+    // The protocol gives the same answer.
+    let pts = "[[0,0],[2,1.5],[4,1],[6,3],[8,2.5],[10,4]]";
+    let req = format!(r#"{{"id":1,"op":"spline.lac","points":{pts},"alpha":-1,"draw":20}}"#);
+    let a = batch_one(&req);
+    assert_eq!(a["result"]["segments"], v["segments"]);
+    assert!(a["result"]["drawing"]["nurbs"].is_object());
+    // Corners and a closed curve; a bad corner index named.
+    let req =
+        format!(r#"{{"id":2,"op":"spline.lac","points":{pts},"closed":true,"corners":[0,5]}}"#);
+    let a = batch_one(&req);
+    assert_eq!(a["ok"], true, "{a}");
+    let req = r#"{"id":3,"op":"spline.lac","points":[[0,0],[1,1],[2,0]],"corners":[7]}"#;
+    let a = batch_one(req);
+    assert_eq!(a["error"]["kind"], "invalid_input");
+    assert!(a["error"]["message"].as_str().unwrap().contains("corner"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -834,7 +901,7 @@ fn write_errors_and_limits_get_messages() {
         "/../../examples/spline-points.csv"
     );
     if std::path::Path::new("/dev/full").exists() {
-        let runs: [&[&str]; 5] = [
+        let runs: [&[&str]; 6] = [
             &["lac", "--alpha", "0.5", "--control", "0,0 4,0 6,3"],
             &[
                 "lac",
@@ -846,6 +913,7 @@ fn write_errors_and_limits_get_messages() {
             ],
             &["sketch", stroke],
             &["spline", spline, "--json"],
+            &["spline", spline, "--kind", "pseudo-elastic", "--json"],
             &[
                 "approx",
                 "--alpha",

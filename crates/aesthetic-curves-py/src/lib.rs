@@ -1147,6 +1147,104 @@ fn pseudo_elastic(
     Ok(PseudoSpline { inner })
 }
 
+/// The G2 log-aesthetic spline through points: LAC pieces of one α, G2 at every smooth
+/// point, each delivered as a rational cubic proven curvature-monotone.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+struct LacSpline {
+    /// The delivered curve, one NURBS of the pieces' rational cubics.
+    nurbs: Nurbs,
+    /// Each piece's rational cubic, in order.
+    pieces: Vec<RationalBezier>,
+    /// Each piece's kind: "line", "lac" or "lac_inflection".
+    kinds: Vec<&'static str>,
+    /// Each piece's span (the index of the point it starts from).
+    spans: Vec<usize>,
+    /// Each piece's α (None for a line).
+    alphas: Vec<Option<f64>>,
+    /// The unit tangent at each point (at a corner, the outgoing one).
+    tangents: Vec<(f64, f64)>,
+    /// Largest relative curvature jump at a smooth point, of the LAC pieces.
+    max_curvature_jump: f64,
+    /// The same on the delivered cubics.
+    max_cubic_jump: f64,
+    /// Every piece's rational cubic is proven curvature-monotone.
+    all_monotone: bool,
+    /// The G2 solve reached its target.
+    converged: bool,
+    /// Newton steps.
+    iterations: usize,
+    /// Closed.
+    closed: bool,
+}
+
+/// The G2 log-aesthetic spline through `points`: `alpha` for every span (-1: clothoids) or
+/// `alphas` one per span; `closed`; `corners` the indices of corner points.
+#[pyfunction]
+#[pyo3(signature = (points, alpha=-1.0, closed=false, corners=Vec::new(), alphas=None))]
+fn lac_spline(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    alpha: f64,
+    closed: bool,
+    corners: Vec<usize>,
+    alphas: Option<Vec<f64>>,
+) -> PyResult<LacSpline> {
+    let p = points_arg("points", points)?;
+    let opts = ac::lac_spline::LacSplineOptions {
+        alpha,
+        span_alphas: alphas,
+        closed,
+        corners,
+        ..Default::default()
+    };
+    let s = py
+        .detach(move || ac::lac_spline::lac_spline(&p, &opts))
+        .map_err(err)?;
+    let curve = s.rationals();
+    Ok(LacSpline {
+        nurbs: Nurbs {
+            inner: curve.to_nurbs(0.0).map_err(err)?,
+        },
+        pieces: curve
+            .0
+            .into_iter()
+            .map(|inner| RationalBezier { inner })
+            .collect(),
+        kinds: s.pieces.iter().map(|p| p.kind.as_str()).collect(),
+        spans: s.pieces.iter().map(|p| p.span).collect(),
+        alphas: s.pieces.iter().map(|p| p.alpha).collect(),
+        tangents: s.tangents.iter().map(|t| (t.x, t.y)).collect(),
+        max_curvature_jump: s.max_curvature_jump,
+        max_cubic_jump: s.max_cubic_jump,
+        all_monotone: s.all_monotone,
+        converged: s.converged,
+        iterations: s.iterations,
+        closed: s.closed,
+    })
+}
+
+impl LacSpline {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(self.nurbs.inner.clone())
+    }
+}
+
+pymethods_with_exports!(LacSpline {
+    /// The parameter interval of `at`: (0, n) for n pieces (piece i on [i, i + 1]).
+    fn domain(&self) -> (f64, f64) {
+        (0.0, self.pieces.len() as f64)
+    }
+    /// Point, first and second derivatives, curvature and dκ/ds at `u` (a float or an
+    /// array; piece `floor(u)` at its own t = u - floor(u); clamped into the domain).
+    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+        let pieces = ac::Pieces(self.pieces.iter().map(|p| p.inner.clone()).collect());
+        curve_at(py, &pieces, u)
+    }
+    fn __len__(&self) -> usize {
+        self.pieces.len()
+    }
+});
+
 /// One LAC segment fitted to a point sequence.
 #[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
 struct LacFit {
@@ -1451,11 +1549,13 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<LacSegment>()?;
     m.add_class::<LacInflectionSegment>()?;
     m.add_class::<PseudoSpline>()?;
+    m.add_class::<LacSpline>()?;
     m.add_class::<LacFit>()?;
     m.add_class::<Sketch>()?;
     m.add_class::<SketchContour>()?;
     m.add_function(wrap_pyfunction!(are_curvature_monotone, m)?)?;
     m.add_function(wrap_pyfunction!(pseudo_elastic, m)?)?;
+    m.add_function(wrap_pyfunction!(lac_spline, m)?)?;
     m.add_function(wrap_pyfunction!(fit_lac, m)?)?;
     m.add_function(wrap_pyfunction!(fit_sketch, m)?)?;
     m.add_function(wrap_pyfunction!(fit_contour, m)?)?;

@@ -383,6 +383,31 @@ def test_pseudo_elastic_circle_and_its_pieces():
         ac.pseudo_elastic(pts, mode="fast")
 
 
+def test_lac_spline_equals_the_protocol_and_is_g2():
+    pts = [(0, 0), (2, 1.5), (4, 1), (6, 3), (8, 2.5), (10, 4)]
+    want = batch({"op": "spline.lac", "points": pts, "alpha": -1})[0]
+    sp = ac.lac_spline(pts, alpha=-1.0)
+    assert len(sp) == len(want["segments"]) and sp.kinds == [g["kind"] for g in want["segments"]]
+    for piece, g in zip(sp.pieces, want["segments"]):
+        assert np.array_equal(piece.points, np.array(g["rational"]["control_points"]))
+    assert sp.all_monotone and sp.converged and sp.max_cubic_jump < 1e-10
+    # Through every point, G2 at each: curvature from the pieces' own ends.
+    starts = {s: i for i, s in reversed(list(enumerate(sp.spans)))}
+    for k, p in enumerate(pts[:-1]):
+        assert np.allclose(sp.pieces[starts[k]].eval(0.0), p, atol=1e-12)
+    for a, b in zip(sp.pieces, sp.pieces[1:]):
+        ka, kb = float(a.at(1.0).kappa[0]), float(b.at(0.0).kappa[0])
+        assert abs(ka - kb) <= 1e-9 * max(1.0, abs(ka))
+    # A closed contour with two corners, exported.
+    box = [(0, 0), (5, -2), (10, 0), (7, 3), (3, 3.5)]
+    c = ac.lac_spline(box, closed=True, corners=[0, 2])
+    assert c.closed and c.all_monotone and "SPLINE" in c.to_dxf().decode()
+    with pytest.raises(ac.InvalidInputError, match="corner"):
+        ac.lac_spline(box, corners=[9])
+    with pytest.raises(ac.DegenerateError):
+        ac.lac_spline([(0, 0), (1, 1), (1, 1)])
+
+
 # ----- Fits ---------------------------------------------------------------------------
 
 

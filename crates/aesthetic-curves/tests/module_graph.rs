@@ -130,6 +130,7 @@ const LAYERS: [(&str, &[&str]); 6] = [
             "pseudo_segment",
             "pseudo_table",
             "pseudo_spline",
+            "lac_spline",
             "lac_fit",
             "sketch",
             "harmonize",

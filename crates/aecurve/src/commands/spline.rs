@@ -1,4 +1,5 @@
-//! `aecurve spline`: the pseudo-elastic spline through points (S2).
+//! `aecurve spline`: the G2 log-aesthetic spline through points (`--kind lac`) and S2's
+//! pseudo-elastic spline (`--kind pseudo-elastic`, G1).
 
 use crate::cli::CurveOutput;
 use aecurve::plot;
@@ -70,4 +71,91 @@ pub(crate) fn spline(
         )?;
     }
     Ok(())
+}
+
+/// `aecurve spline --kind lac`: the G2 log-aesthetic spline through the points of a file.
+pub(crate) fn lac_spline(
+    input: &std::path::Path,
+    opts: &aesthetic_curves::lac_spline::LacSplineOptions,
+    out: &CurveOutput,
+) -> Result<()> {
+    let pts = aecurve::read_points_file(input)?;
+    let max = aecurve::protocol::MAX_LAC_SPLINE_POINTS;
+    anyhow::ensure!(
+        pts.len() <= max,
+        "at most {max} points for the log-aesthetic spline, got {}",
+        pts.len()
+    );
+    let s = aesthetic_curves::lac_spline::lac_spline(&pts, opts)?;
+    if out.json {
+        println!("{}", aecurve::protocol::lac_spline_json(&s));
+    } else {
+        print_lac_spline(&s, pts.len(), opts);
+    }
+    if out.paths().next().is_some() {
+        let curve = s.rationals();
+        let samples = plot::curve_samples(&curve, 41)?;
+        let caption = format!(
+            "log-aesthetic spline, alpha {}: {} pieces, G2 to {:.1e}",
+            opts.alpha,
+            s.pieces.len(),
+            s.max_cubic_jump
+        );
+        let mut polygon = pts.clone();
+        if opts.closed {
+            polygon.push(pts[0]);
+        }
+        let nurbs = curve.to_nurbs(0.0)?;
+        out.write(
+            "lac_spline",
+            &mut || Ok(nurbs.clone()),
+            &samples,
+            &caption,
+            &mut || Ok(plot::comb_svg(&samples, &polygon, &[], &caption)),
+        )?;
+    }
+    Ok(())
+}
+
+fn print_lac_spline(
+    s: &aesthetic_curves::lac_spline::LacSpline,
+    n: usize,
+    opts: &aesthetic_curves::lac_spline::LacSplineOptions,
+) {
+    println!(
+        "log-aesthetic spline through {n} points ({}), alpha {}{}",
+        if opts.closed { "closed" } else { "open" },
+        opts.alpha,
+        if opts.corners.is_empty() {
+            String::new()
+        } else {
+            format!(", corners at {:?}", opts.corners)
+        }
+    );
+    println!(
+        "  pieces        {} ({} lines, {} inflection halves)",
+        s.pieces.len(),
+        s.pieces
+            .iter()
+            .filter(|p| p.kind.as_str() == "line")
+            .count(),
+        s.pieces
+            .iter()
+            .filter(|p| p.kind.as_str() == "lac_inflection")
+            .count()
+    );
+    println!(
+        "  G2            curvature jump {:.2e} of the largest (segments), {:.2e} (cubics), \
+         in {} Newton steps",
+        s.max_curvature_jump, s.max_cubic_jump, s.iterations
+    );
+    println!(
+        "  monotone      {} (every cubic by the exact test); largest cubic error {:.2e}",
+        if s.all_monotone { "proven" } else { "NOT all" },
+        s.max_rational_error
+    );
+    println!(
+        "  events        {} inflections, {} curvature extrema",
+        s.inflections, s.curvature_extrema
+    );
 }

@@ -15,6 +15,7 @@ from ._native import (
     EndCurvature,
     InvalidInputError,
     LacFit,
+    LacSpline,
     LacInflectionSegment,
     LacSegment,
     MonotoneReport,
@@ -35,6 +36,7 @@ from ._native import (
     fit_sketch,
     harmonize,
     index_contour,
+    lac_spline,
     pseudo_elastic,
 )
 
@@ -47,6 +49,7 @@ __all__ = [
     "EndCurvature",
     "InvalidInputError",
     "LacFit",
+    "LacSpline",
     "LacInflectionSegment",
     "LacSegment",
     "MonotoneReport",
@@ -67,6 +70,7 @@ __all__ = [
     "fit_sketch",
     "harmonize",
     "index_contour",
+    "lac_spline",
     "plot_comb",
     "pseudo_elastic",
 ]

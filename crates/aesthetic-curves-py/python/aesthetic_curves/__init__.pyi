@@ -234,6 +234,33 @@ class PseudoSpline(_Exportable):
 def pseudo_elastic(points: _Points, closed: bool = False, mode: str = "table") -> PseudoSpline: ...
 
 @final
+class LacSpline(_Exportable):
+    nurbs: Nurbs
+    pieces: list[RationalBezier]
+    kinds: list[str]
+    spans: list[int]
+    alphas: list[Optional[float]]
+    tangents: list[tuple[float, float]]
+    max_curvature_jump: float
+    max_cubic_jump: float
+    all_monotone: bool
+    converged: bool
+    iterations: int
+    closed: bool
+    def domain(self) -> Tuple[float, float]: ...
+    def at(self, u: _Params) -> CurveAt:
+        """Piece ``floor(u)`` at its own t = u - floor(u) (clamped into (0, n))."""
+    def __len__(self) -> int: ...
+
+def lac_spline(
+    points: _Points,
+    alpha: float = -1.0,
+    closed: bool = False,
+    corners: list[int] = ...,
+    alphas: Optional[list[float]] = None,
+) -> LacSpline: ...
+
+@final
 class LacFit:
     segment: LacSegment
     alpha: float

@@ -81,6 +81,12 @@ pub struct LacSpline {
     pub converged: bool,
     /// Largest |κ in - κ out| at a smooth point over the largest |κ| of the segments.
     pub max_curvature_jump: f64,
+    /// The same measured on the delivered rational cubics, at every join of two pieces
+    /// but the corners (what a user's tool sees; an arc's cubic is tilted above rounding,
+    /// see [`SplinePiece::monotone`]).
+    pub max_cubic_jump: f64,
+    /// Largest angle (radians) between the cubics' tangents at those joins.
+    pub max_cubic_angle: f64,
     /// Every piece's rational cubic proven curvature-monotone.
     pub all_monotone: bool,
     /// Largest distance of a rational cubic from its segment.

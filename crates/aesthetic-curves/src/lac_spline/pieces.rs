@@ -489,7 +489,10 @@ pub(super) fn result(
     }
     let ends: Vec<(f64, f64)> = pieces.iter().map(|p| p.end_curvatures).collect();
     let (inflections, curvature_extrema) = crate::sketch::count_events(&ends);
+    let (max_cubic_jump, max_cubic_angle) = cubic_joins(&pieces, problem, closed);
     LacSpline {
+        max_cubic_jump,
+        max_cubic_angle,
         all_monotone: pieces.iter().all(|p| p.monotone),
         max_rational_error: pieces.iter().fold(0.0, |m, p| m.max(p.rational_error)),
         tangents,
@@ -501,6 +504,31 @@ pub(super) fn result(
         closed,
         pieces,
     }
+}
+
+/// The largest relative curvature jump and tangent angle at the cubics' smooth joins.
+fn cubic_joins(pieces: &[SplinePiece], problem: &Problem, closed: bool) -> (f64, f64) {
+    let n = pieces.len();
+    let big = pieces.iter().fold(0.0f64, |m, p| {
+        m.max(p.rational.kappa_start().abs())
+            .max(p.rational.kappa_end().abs())
+    });
+    let joins = if closed { n } else { n.saturating_sub(1) };
+    let (mut jump, mut angle) = (0.0f64, 0.0f64);
+    for j in 0..joins {
+        let (a, b) = (&pieces[j], &pieces[(j + 1) % n]);
+        let at_point = b.span != a.span || n == 1;
+        if at_point && problem.unknown[problem.ends[b.span].0].is_none() {
+            continue;
+        }
+        let ta = {
+            let c = a.rational.points();
+            (c[3] - c[2]).normalize()
+        };
+        angle = angle.max(ta.cross(start_tangent(b)).asin().abs());
+        jump = jump.max((a.rational.kappa_end() - b.rational.kappa_start()).abs());
+    }
+    (if big > 0.0 { jump / big } else { 0.0 }, angle)
 }
 
 fn start_tangent(p: &SplinePiece) -> Vec2 {

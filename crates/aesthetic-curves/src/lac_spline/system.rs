@@ -144,22 +144,50 @@ impl Problem<'_> {
         Some(jac)
     }
 
-    /// The starting tangents: at each smooth point, the tangent of the circle through it and
-    /// its two neighbours (the chord-tangent angle equals the inscribed angle).
-    pub(super) fn guess(&self) -> Vec<f64> {
-        self.smooth
+    /// The error of the first span that cannot be built at `theta`, naming its points.
+    fn first_failure(&self, theta: &[f64]) -> Error {
+        for k in 0..self.ends.len() {
+            if let Err(e) = self.span(k, theta) {
+                let (i, j) = self.ends[k];
+                return Error::NoSegment(format!(
+                    "the span from point {i} to point {j} cannot start: {} (a span turns by \
+                     less than 180 degrees: add a point between them, or make one a corner)",
+                    e.message()
+                ));
+            }
+        }
+        Error::NoConvergence("the starting tangents give no spline".into())
+    }
+
+    /// Starting tangents, the first whose spans can all be built is taken: at each smooth
+    /// point the tangent of the circle through it and its two neighbours (the chord-tangent
+    /// angle equals the inscribed angle), or the direction from its previous neighbour to
+    /// its next (where a circle's tangent makes a span turn too far: a long closing chord).
+    pub(super) fn guesses(&self) -> [Vec<f64>; 2] {
+        let ang = |a: Point, b: Point| (b - a).y.atan2((b - a).x);
+        let around = |p: usize| {
+            let (i, o) = self.around(p);
+            (self.ends[i].0, self.ends[o].1)
+        };
+        let circle = self
+            .smooth
             .iter()
             .map(|&p| {
-                let (i, o) = self.around(p);
-                let (prev, next) = (self.ends[i].0, self.ends[o].1);
-                let ang = |a: Point, b: Point| (b - a).y.atan2((b - a).x);
-                let (gi, go) = (
-                    ang(self.points[prev], self.points[p]),
-                    ang(self.points[p], self.points[next]),
-                );
+                let (prev, next) = around(p);
+                let gi = ang(self.points[prev], self.points[p]);
+                let go = ang(self.points[p], self.points[next]);
                 gi + wrap(go - gi) - wrap(ang(self.points[prev], self.points[next]) - gi)
             })
-            .collect()
+            .collect();
+        let bisector = self
+            .smooth
+            .iter()
+            .map(|&p| {
+                let (prev, next) = around(p);
+                ang(self.points[prev], self.points[next])
+            })
+            .collect();
+        [circle, bisector]
     }
 }
 
@@ -176,14 +204,11 @@ pub(super) struct Solution {
 /// Solve the G2 equations from the circle guess to `tol` (largest jump over the largest
 /// curvature).
 pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Result<Solution> {
-    let theta0 = problem.guess();
-    let r0 = problem.state(&theta0).ok_or_else(|| {
-        Error::NoSegment(
-            "no log-aesthetic span between the starting tangents (a span turns too far: \
-             add a point)"
-                .into(),
-        )
-    })?;
+    let (theta0, r0) = problem
+        .guesses()
+        .into_iter()
+        .find_map(|t| problem.state(&t).map(|r| (t, r)))
+        .ok_or_else(|| problem.first_failure(&problem.guesses()[0]))?;
     let jump_of = |theta: &[f64]| -> f64 {
         let Ok(k) = problem.kappas(theta) else {
             return f64::INFINITY;
