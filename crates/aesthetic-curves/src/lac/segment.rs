@@ -376,6 +376,33 @@ impl LacSegment {
         (l > 0.0 && l < lmax).then(|| (l, chord + d * (l - l_at), root.evaluations))
     }
 
+    /// The curvatures at the high- and the low-curvature end of the segment of shape
+    /// `alpha` turning `theta_d` with base angle `phi` at its high-curvature end, for a chord
+    /// of length 1, without building it (a spline's solve needs only these): the Λ solve,
+    /// the standard chord and two closed-form curvatures. Errors as [`LacSegment::new`]
+    /// (`NoSegment` outside the existence region).
+    pub(crate) fn unit_chord_curvatures(alpha: f64, theta_d: f64, phi: f64) -> Result<(f64, f64)> {
+        let (lambda, chord) = Self::solve_lambda_chord(alpha, theta_d, phi)?;
+        let standard = LacStandard::new(alpha, lambda)?;
+        let (t0, t1) = if alpha <= 1.0 {
+            (0.0, theta_d)
+        } else {
+            (-theta_d, 0.0)
+        };
+        let chord = match chord {
+            Some(c) => c,
+            None => standard.integral(t0, t1)?,
+        };
+        let len = chord.hypot();
+        let (k0, k1) = (standard.kappa(t0)? * len, standard.kappa(t1)? * len);
+        if !(k0.is_finite() && k1.is_finite()) {
+            return Err(Error::NoConvergence(
+                "the segment's end curvature overflows f64 (triangle too extreme)".into(),
+            ));
+        }
+        Ok((k0, k1))
+    }
+
     /// The turning angle θ_d and the larger base angle φ (the one at the high-curvature end)
     /// of a control triangle [start, tangent intersection, end]: a segment of shape α exists
     /// in it iff θ_d/2 <= φ < [`LacSegment::theta_lim`]`(α, θ_d)`. Errors for degenerate

@@ -126,6 +126,35 @@ pub fn lac_spline(points: &[Point], opts: &LacSplineOptions) -> Result<LacSpline
     Ok(pieces::result(built, &problem, &sol, opts.closed))
 }
 
+/// The G2 solve alone, without the pieces' cubics: the tangent angle at every point
+/// (radians; `None` at a free point: an open end or a corner), the Newton steps and the
+/// curvature jump reached. What libspiro's `run_spiro` computes for its clothoids; the
+/// benchmark against it (`benches/spiro_compare.rs`) times this and the whole spline.
+pub fn lac_spline_tangents(points: &[Point], opts: &LacSplineOptions) -> Result<SplineTangents> {
+    let problem = problem_of(points, opts)?;
+    let sol = system::solve(&problem, opts.g2_tolerance, opts.max_iterations)?;
+    Ok(SplineTangents {
+        angles: problem
+            .unknown
+            .iter()
+            .map(|u| u.map(|u| sol.theta[u]))
+            .collect(),
+        iterations: sol.iterations,
+        max_curvature_jump: sol.jump,
+    })
+}
+
+/// What [`lac_spline_tangents`] returns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SplineTangents {
+    /// The tangent angle at each point, `None` at a free point.
+    pub angles: Vec<Option<f64>>,
+    /// Newton steps.
+    pub iterations: usize,
+    /// Largest relative curvature jump at a smooth point.
+    pub max_curvature_jump: f64,
+}
+
 /// Validate the input and lay out the unknowns.
 fn problem_of<'a>(points: &'a [Point], opts: &LacSplineOptions) -> Result<system::Problem<'a>> {
     let n = points.len();

@@ -25,9 +25,6 @@ use std::f64::consts::PI;
 /// Deviations below this (radians, summed) make a span a line.
 const LINE_TURN: f64 = 2e-9;
 
-/// Samples of the inflection tangent's range per family when looking for roots.
-const PAIR_SAMPLES: usize = 32;
-
 /// The shape α of an S-span's halves for a requested α.
 pub(super) fn pair_alpha(alpha: f64) -> f64 {
     if alpha < 0.0 {
@@ -111,43 +108,43 @@ pub(super) fn triangle(a: f64, b: f64) -> [kurbo::Point; 3] {
 }
 
 /// One segment for a bend, or `None` when α < 0 and the bend lies outside the existence
-/// region (the pair continues it).
+/// region (the pair continues it). Only its end curvatures are computed here.
 fn one_segment(alpha: f64, a: f64, b: f64) -> Result<Option<Solved>> {
     let theta_d = a.abs() + b.abs();
     let phi = a.abs().max(b.abs());
-    let alpha = if LacSegment::exists_for_angles(alpha, theta_d, phi)? {
-        alpha
-    } else if alpha < 0.0 {
-        return Ok(None);
-    } else {
-        nearest_existing(alpha, theta_d, phi)?
+    let kappa = |alpha: f64| -> Result<(f64, f64)> {
+        // At the high-curvature end first; the sign of the turn (b > 0: counter-clockwise).
+        let (hi, lo) = LacSegment::unit_chord_curvatures(alpha, theta_d, phi)?;
+        let s = b.signum();
+        Ok(if a.abs() >= b.abs() {
+            (s * hi, s * lo)
+        } else {
+            (s * lo, s * hi)
+        })
     };
-    // Within rounding of an edge of the region, the triangle's measured base angles can
-    // fall just outside [θ_d/2, θ_lim): near the circle, a triangle a little more lopsided
-    // (by 1e-14 of an angle) has a segment; near θ_lim (α < 0), the pair continues it.
-    let seg = match LacSegment::new(alpha, triangle(a, b)) {
-        Err(Error::NoSegment(m)) if (a.abs() - b.abs()).abs() <= 1e-8 * theta_d => {
-            // The larger deviation made larger by 1e-14 (then by tens): a segment of a tiny
-            // Λ, the circle to that accuracy.
-            (0..6)
-                .find_map(|k| {
-                    let e = 1.0 + 1e-14 * 10f64.powi(k);
-                    let t = if a.abs() >= b.abs() {
-                        triangle(a * e, b)
-                    } else {
-                        triangle(a, b * e)
-                    };
-                    LacSegment::new(alpha, t).ok()
-                })
-                .ok_or(Error::NoSegment(m))?
+    match kappa(alpha) {
+        Ok(k) => Ok(Some(Solved {
+            shape: Shape::Lac { alpha },
+            kappa: k,
+        })),
+        // Within rounding of the circle (a rounding below θ_d/2): the circle.
+        Err(Error::NoSegment(_)) if phi - 0.5 * theta_d <= 1e-12 * theta_d => {
+            let k = 2.0 * (0.5 * theta_d).sin() * b.signum();
+            Ok(Some(Solved {
+                shape: Shape::Lac { alpha },
+                kappa: (k, k),
+            }))
         }
-        Err(Error::NoSegment(_)) if alpha < 0.0 => return Ok(None),
-        other => other?,
-    };
-    Ok(Some(Solved {
-        shape: Shape::Lac { alpha },
-        kappa: seg.end_curvatures()?,
-    }))
+        Err(Error::NoSegment(_)) if alpha < 0.0 => Ok(None),
+        Err(Error::NoSegment(_)) if alpha > 1.0 => {
+            let alpha = nearest_existing(alpha, theta_d, phi)?;
+            Ok(Some(Solved {
+                shape: Shape::Lac { alpha },
+                kappa: kappa(alpha)?,
+            }))
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// For α > 1 outside its region: the largest α' in [1, α) whose segment exists (α = 1,
@@ -209,36 +206,22 @@ impl PairGeometry {
         })
     }
 
-    /// Roots of the mismatch over the range: sign changes of `PAIR_SAMPLES + 1` samples,
-    /// ends included, each refined by Illinois' method.
-    fn roots(&self) -> Result<Vec<f64>> {
+    /// The root of the mismatch over the range, if any: the mismatch increases with ψ
+    /// (the chord's angle moves slower than ψ, the base angle of a half turning t staying
+    /// below t/2; checked at 401 points of 4000 random families by a unit test), so a sign
+    /// change between the range's ends brackets the one root, refined by Illinois' method.
+    fn root(&self) -> Result<Option<f64>> {
         let Some((lo, hi)) = self.range() else {
-            return Ok(Vec::new());
+            return Ok(None);
         };
-        let xs: Vec<f64> = (0..=PAIR_SAMPLES)
-            .map(|k| lo + (hi - lo) * k as f64 / PAIR_SAMPLES as f64)
-            .collect();
-        let fs: Vec<f64> = xs
-            .iter()
-            .map(|&x| self.mismatch(x))
-            .collect::<Result<_>>()?;
-        let mut roots = Vec::new();
-        for k in 0..PAIR_SAMPLES {
-            let (f0, f1) = (fs[k], fs[k + 1]);
-            if f0 == 0.0 {
-                roots.push(xs[k]);
-            } else if f0 * f1 < 0.0 {
-                let r = illinois(
-                    |x| self.mismatch(x),
-                    (xs[k], f0),
-                    (xs[k + 1], f1),
-                    1e-15,
-                    200,
-                )?;
-                roots.push(r);
-            }
+        let (f0, f1) = (self.mismatch(lo)?, self.mismatch(hi)?);
+        if f0 == 0.0 {
+            return Ok(Some(lo));
         }
-        Ok(roots)
+        if f0 * f1 >= 0.0 {
+            return Ok((f1 == 0.0).then_some(hi));
+        }
+        illinois(|x| self.mismatch(x), (lo, f0), (hi, f1), 1e-15, 200).map(Some)
     }
 
     /// The solved pair at root `psi`: both halves must turn (a half of zero turning is the
@@ -275,7 +258,7 @@ fn pair(alpha: f64, a: f64, b: f64) -> Result<Solved> {
     let mut best: Option<(f64, Solved)> = None;
     for side in [1.0, -1.0] {
         let g = PairGeometry { alpha, a, b, side };
-        for psi in g.roots()? {
+        if let Some(psi) = g.root()? {
             if let Some(s) = g.solved(psi)? {
                 let (t1, t2) = g.turns(psi);
                 if best.as_ref().is_none_or(|(t, _)| t1 + t2 < *t) {
@@ -347,5 +330,28 @@ mod tests {
             last = Some(s.kappa);
         }
         assert!(kinds.first() == Some(&true) && kinds.last() == Some(&false));
+    }
+
+    #[test]
+    fn the_mismatch_increases_with_the_inflection_tangent() {
+        // What `root` relies on: one root per family at most.
+        let mut rng = crate::samples::SplitMix64::new(1);
+        for _ in 0..2000 {
+            let alpha = rng.range(-5.0, -0.01);
+            let (a, b) = (rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
+            for side in [1.0, -1.0] {
+                let g = PairGeometry { alpha, a, b, side };
+                let Some((lo, hi)) = g.range() else { continue };
+                let mut last = f64::NEG_INFINITY;
+                for k in 0..=400 {
+                    let v = g.mismatch(lo + (hi - lo) * k as f64 / 400.0).unwrap();
+                    assert!(
+                        v >= last - 1e-12,
+                        "alpha {alpha}, a {a}, b {b}, side {side}"
+                    );
+                    last = v;
+                }
+            }
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! The G2 problem: unknown tangent angles at the smooth points, one equation per smooth
 //! point (the curvature coming in equals the curvature going out), solved by
-//! [`crate::solve::damped_newton`] with a Jacobian of central differences span by span
+//! [`crate::solve::damped_newton`] with a Jacobian of forward differences span by span
 //! (each span depends on the angles at its two ends only, so a column costs two spans).
 //!
 //! A free end (an open curve's first or last point, a corner) has no unknown: its span
@@ -14,7 +14,7 @@ use kurbo::Point;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
-/// Step of the central differences, radians.
+/// Step of the forward differences, radians.
 const STEP: f64 = 1e-7;
 
 /// The spline's data as the solver sees it.
@@ -82,14 +82,10 @@ impl Problem<'_> {
     }
 
     /// The span ending at point `p` and the one starting there (both exist at a smooth
-    /// point).
+    /// point: span k runs from point k to point k + 1, the last of a closed curve back to 0).
     fn around(&self, p: usize) -> (usize, usize) {
-        let into = self.ends.iter().position(|e| e.1 == p);
-        let out = self.ends.iter().position(|e| e.0 == p);
-        (
-            into.expect("a smooth point ends a span"),
-            out.expect("a smooth point starts a span"),
-        )
+        let spans = self.ends.len();
+        ((p + spans - 1) % spans, p)
     }
 
     /// The length that makes a curvature jump at point `p` dimensionless: the mean of the
@@ -110,26 +106,36 @@ impl Problem<'_> {
             .collect()
     }
 
-    /// Residuals at `theta`, or `None` where a span cannot be built.
-    fn state(&self, theta: &[f64]) -> Option<Vec<f64>> {
-        self.kappas(theta).ok().map(|k| self.residuals(&k))
+    /// The spans' end curvatures and the residuals at `theta`, or `None` where a span
+    /// cannot be built.
+    fn state(&self, theta: &[f64]) -> Option<(Vec<(f64, f64)>, Vec<f64>)> {
+        let k = self.kappas(theta).ok()?;
+        let r = self.residuals(&k);
+        Some((k, r))
     }
 
-    /// The Jacobian: column `u` from the two spans at the unknown's point, each moved by
-    /// ± [`STEP`].
-    fn jacobian(&self, theta: &[f64]) -> Option<DMatrix<f64>> {
+    /// The Jacobian at `theta` (end curvatures `kappas` there): column `u` from the two
+    /// spans at the unknown's point with its angle moved by [`STEP`] (forward differences:
+    /// the residuals themselves are exact, so Newton still converges, by a factor of about
+    /// 1e-7 a step once close; backward where a span cannot be built forward).
+    fn jacobian(&self, theta: &[f64], kappas: &[(f64, f64)]) -> Option<DMatrix<f64>> {
         let m = self.smooth.len();
         let mut jac = DMatrix::zeros(m, m);
+        let mut moved = theta.to_vec();
         for (u, &p) in self.smooth.iter().enumerate() {
             let (i, o) = self.around(p);
-            let mut plus = theta.to_vec();
-            let mut minus = theta.to_vec();
-            plus[u] += STEP;
-            minus[u] -= STEP;
-            for k in [i, o] {
-                let (kp, km) = (self.span(k, &plus).ok()?, self.span(k, &minus).ok()?);
-                let d0 = (kp.kappa.0 - km.kappa.0) / (2.0 * STEP);
-                let d1 = (kp.kappa.1 - km.kappa.1) / (2.0 * STEP);
+            for k in if i == o { vec![i] } else { vec![i, o] } {
+                moved[u] = theta[u] + STEP;
+                let (kp, h) = match self.span(k, &moved) {
+                    Ok(s) => (s.kappa, STEP),
+                    Err(_) => {
+                        moved[u] = theta[u] - STEP;
+                        (self.span(k, &moved).ok()?.kappa, -STEP)
+                    }
+                };
+                moved[u] = theta[u];
+                let d0 = (kp.0 - kappas[k].0) / h;
+                let d1 = (kp.1 - kappas[k].1) / h;
                 let (a, b) = self.ends[k];
                 // κ at the span's end enters the residual at b (as κ in), its start at a
                 // (as minus κ out).
@@ -142,6 +148,22 @@ impl Problem<'_> {
             }
         }
         Some(jac)
+    }
+
+    /// The largest |κ in - κ out| at a smooth point over the largest |κ| of the spans' ends.
+    fn jump(&self, kappas: &[(f64, f64)]) -> f64 {
+        let big = kappas
+            .iter()
+            .fold(0.0f64, |m, e| m.max(e.0.abs()).max(e.1.abs()));
+        let worst = self.smooth.iter().fold(0.0f64, |m, &p| {
+            let (i, o) = self.around(p);
+            m.max((kappas[i].1 - kappas[o].0).abs())
+        });
+        if big > 0.0 {
+            worst / big
+        } else {
+            0.0
+        }
     }
 
     /// The error of the first span that cannot be built at `theta`, naming its points.
@@ -204,54 +226,38 @@ pub(super) struct Solution {
 /// Solve the G2 equations from the circle guess to `tol` (largest jump over the largest
 /// curvature).
 pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Result<Solution> {
-    let (theta0, r0) = problem
+    let (theta0, (k0, r0)) = problem
         .guesses()
         .into_iter()
         .find_map(|t| problem.state(&t).map(|r| (t, r)))
         .ok_or_else(|| problem.first_failure(&problem.guesses()[0]))?;
-    let jump_of = |theta: &[f64]| -> f64 {
-        let Ok(k) = problem.kappas(theta) else {
-            return f64::INFINITY;
-        };
-        let big = k
-            .iter()
-            .fold(0.0f64, |m, e| m.max(e.0.abs()).max(e.1.abs()));
-        let worst = problem.smooth.iter().fold(0.0f64, |m, &p| {
-            let (i, o) = problem.around(p);
-            m.max((k[i].1 - k[o].0).abs())
-        });
-        if big > 0.0 {
-            worst / big
-        } else {
-            0.0
-        }
-    };
     let run = damped_newton(
-        theta0,
+        (theta0, k0),
         r0,
-        |theta, r| {
-            let jac = problem.jacobian(theta)?;
+        |(theta, kappas), r| {
+            let jac = problem.jacobian(theta, kappas)?;
             let step = jac.lu().solve(&(-DVector::from_column_slice(r)))?;
             step.iter()
                 .all(|x| x.is_finite())
                 .then(|| (step.as_slice().to_vec(), 1.0))
         },
-        |theta, step, len| {
+        |(theta, _), step, len| {
             // A Newton step may not turn a tangent by more than a quarter turn.
             let big = step.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             let len = len * (1.0f64).min(0.5 * PI / big.max(1e-300));
             let t: Vec<f64> = theta.iter().zip(step).map(|(t, s)| t + len * s).collect();
-            problem.state(&t).map(|r| (t, r))
+            problem.state(&t).map(|(k, r)| ((t, k), r))
         },
-        |theta, _| jump_of(theta) <= tol,
+        |(_, kappas), _| problem.jump(kappas) <= tol,
         &DampedNewton {
             max_iterations,
             halvings: 30,
         },
     )?;
+    let (theta, kappas) = run.state;
     Ok(Solution {
-        jump: jump_of(&run.state),
-        theta: run.state,
+        jump: problem.jump(&kappas),
+        theta,
         iterations: run.iterations,
         stop: run.stop,
     })

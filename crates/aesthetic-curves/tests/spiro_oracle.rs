@@ -1,0 +1,243 @@
+//! The log-aesthetic spline at α = -1 against libspiro (Raph Levien's Spiro, Debian package
+//! `libspiro-dev`), an independent solver of the same equations: Spiro's G2 points ('c')
+//! join clothoid segments (two parameters each: κ and dκ/ds) with continuous tangent and
+//! curvature, and its open ends ('{', '}') and corners ('v') take a circular arc for the
+//! span next to them (one parameter): exactly the spline of `lac_spline` with α = -1. The
+//! two must agree on the curvature at every point.
+//!
+//! `apt-get install libspiro-dev && cargo test --release -p aesthetic-curves --features
+//! spiro-bench --test spiro_oracle`
+
+use aesthetic_curves::lac_spline::{lac_spline, LacSplineOptions};
+use aesthetic_curves::samples::{wavy_points, SplitMix64};
+use aesthetic_curves::{Point, Vec2};
+use std::os::raw::{c_char, c_int};
+
+#[repr(C)]
+#[derive(Clone, Copy)]
+struct SpiroCp {
+    x: f64,
+    y: f64,
+    ty: c_char,
+}
+
+/// libspiro's `spiro_seg` (spiro.h).
+#[repr(C)]
+#[derive(Clone, Copy)]
+struct SpiroSeg {
+    x: f64,
+    y: f64,
+    ty: c_char,
+    bend_th: f64,
+    ks: [f64; 4],
+    seg_ch: f64,
+    seg_th: f64,
+    l: f64,
+}
+
+#[link(name = "spiro")]
+extern "C" {
+    fn run_spiro(src: *const SpiroCp, n: c_int) -> *mut SpiroSeg;
+    fn free_spiro(s: *mut SpiroSeg);
+}
+
+/// Spiro's segments through `pts` (`corner[i]`: a 'v' point), or None when it fails.
+fn spiro(pts: &[Point], closed: bool, corners: &[usize]) -> Option<Vec<SpiroSeg>> {
+    let n = pts.len();
+    let cps: Vec<SpiroCp> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| SpiroCp {
+            x: p.x,
+            y: p.y,
+            ty: if corners.contains(&i) {
+                b'v'
+            } else if closed {
+                b'c'
+            } else if i == 0 {
+                b'{'
+            } else if i == n - 1 {
+                b'}'
+            } else {
+                b'c'
+            } as c_char,
+        })
+        .collect();
+    // SAFETY: `cps` is a valid array of n control points for the call's duration; the
+    // returned array holds n segments (one per point) and is freed by libspiro's own call.
+    unsafe {
+        let s = run_spiro(cps.as_ptr(), n as c_int);
+        if s.is_null() {
+            return None;
+        }
+        let segs = std::slice::from_raw_parts(s, n).to_vec();
+        free_spiro(s);
+        Some(segs)
+    }
+}
+
+/// A Spiro segment's signed curvature at its start and end, input units: its curvature in
+/// the normalized arc length s in [-1/2, 1/2] is `ks0 + ks1 s + ks2 s²/2 + ks3 s³/6`, over
+/// the length `seg_ch / ch` (ch the chord of the unit-length curve, integrated here by a
+/// 64-point Gauss–Legendre rule on 16 panels).
+fn spiro_ends(seg: &SpiroSeg) -> (f64, f64) {
+    let k = seg.ks;
+    let theta =
+        |s: f64| k[0] * s + k[1] * s * s / 2.0 + k[2] * s.powi(3) / 6.0 + k[3] * s.powi(4) / 24.0;
+    // 4-point Gauss–Legendre on 16 panels.
+    let (x, w) = (
+        [
+            -0.861_136_311_594_052_6,
+            -0.339_981_043_584_856_3,
+            0.339_981_043_584_856_3,
+            0.861_136_311_594_052_6,
+        ],
+        [
+            0.347_854_845_137_453_9,
+            0.652_145_154_862_546_1,
+            0.652_145_154_862_546_1,
+            0.347_854_845_137_453_9,
+        ],
+    );
+    let mut c = Vec2::ZERO;
+    let panels = 16;
+    for p in 0..panels {
+        let (a, b) = (
+            -0.5 + p as f64 / panels as f64,
+            -0.5 + (p + 1) as f64 / panels as f64,
+        );
+        for i in 0..4 {
+            let s = 0.5 * (a + b) + 0.5 * (b - a) * x[i];
+            c += Vec2::from_angle(theta(s)) * (0.5 * (b - a) * w[i]);
+        }
+    }
+    let per_length = c.hypot() / seg.seg_ch;
+    let at = |s: f64| (k[0] + k[1] * s + k[2] * s * s / 2.0 + k[3] * s.powi(3) / 6.0) * per_length;
+    (at(-0.5), at(0.5))
+}
+
+/// The largest difference, over the largest curvature, between the two splines' curvature
+/// at the start and the end of every span.
+fn compare(pts: &[Point], closed: bool, corners: &[usize]) -> Option<f64> {
+    let segs = spiro(pts, closed, corners)?;
+    let opts = LacSplineOptions {
+        closed,
+        corners: corners.to_vec(),
+        ..Default::default()
+    };
+    let ours = lac_spline(pts, &opts).ok()?;
+    let spans = if closed { pts.len() } else { pts.len() - 1 };
+    let mut big = 0.0f64;
+    let mut worst = 0.0f64;
+    for k in 0..spans {
+        let first = ours.pieces.iter().find(|p| p.span == k).unwrap();
+        let last = ours.pieces.iter().rev().find(|p| p.span == k).unwrap();
+        let (a, b) = (first.end_curvatures.0, last.end_curvatures.1);
+        let (sa, sb) = spiro_ends(&segs[k]);
+        big = big.max(a.abs()).max(b.abs());
+        worst = worst.max((a - sa).abs()).max((b - sb).abs());
+    }
+    Some(worst / big.max(1e-300))
+}
+
+#[test]
+fn the_clothoid_spline_is_spiros() {
+    let p = Point::new;
+    let cases: Vec<(Vec<Point>, bool, Vec<usize>)> = vec![
+        (wavy_points(8, 3), false, vec![]),
+        (wavy_points(15, 7), false, vec![]),
+        (
+            vec![
+                p(0.0, 0.0),
+                p(2.0, 1.5),
+                p(4.0, 1.0),
+                p(6.0, 3.0),
+                p(8.0, 2.5),
+                p(10.0, 4.0),
+            ],
+            false,
+            vec![],
+        ),
+        (
+            vec![
+                p(0.0, 0.0),
+                p(4.0, -1.0),
+                p(8.0, 1.0),
+                p(7.0, 5.0),
+                p(3.0, 6.0),
+                p(-1.0, 3.0),
+            ],
+            true,
+            vec![],
+        ),
+        (
+            vec![
+                p(0.0, 0.0),
+                p(5.0, -2.0),
+                p(10.0, 0.0),
+                p(7.0, 3.0),
+                p(3.0, 3.5),
+            ],
+            true,
+            vec![0, 2],
+        ),
+    ];
+    for (pts, closed, corners) in cases {
+        let d = compare(&pts, closed, &corners).expect("both solve");
+        eprintln!("{} points, closed {closed}: {d:.2e}", pts.len());
+        assert!(
+            d < 1e-7,
+            "{pts:?}: curvatures differ by {d:e} of the largest"
+        );
+    }
+}
+
+/// On random point sets (4 to 9 points, chords 0.5 to 2, turns between chords up to
+/// ±`turn`): how many each solver fails on, and the largest difference where both solve.
+fn sweep(turn: f64, seed: u64) -> (usize, usize, usize, usize, f64) {
+    let mut rng = SplitMix64::new(seed);
+    let (mut both, mut spiro_failed, mut ours_failed, mut both_failed) = (0, 0, 0, 0);
+    let mut worst = 0.0f64;
+    for _ in 0..200 {
+        let n = 4 + (rng.next_u64() % 6) as usize;
+        let mut pts = vec![Point::new(0.0, 0.0)];
+        let mut dir = 0.0f64;
+        for _ in 1..n {
+            dir += rng.range(-turn, turn);
+            let last = *pts.last().unwrap();
+            pts.push(last + Vec2::from_angle(dir) * rng.range(0.5, 2.0));
+        }
+        let s = spiro(&pts, false, &[]).is_some();
+        let r = lac_spline(&pts, &LacSplineOptions::default());
+        if let Err(e) = &r {
+            eprintln!("lac_spline: {e}");
+        }
+        let o = r.is_ok();
+        match (s, o) {
+            (true, true) => {
+                worst = worst.max(compare(&pts, false, &[]).unwrap());
+                both += 1;
+            }
+            (false, true) => spiro_failed += 1,
+            (true, false) => ours_failed += 1,
+            (false, false) => both_failed += 1,
+        }
+    }
+    (both, spiro_failed, ours_failed, both_failed, worst)
+}
+
+#[test]
+fn random_point_sets_agree_with_spiro() {
+    for (turn, seed) in [(1.2, 5), (1.2, 6), (2.1, 5), (2.1, 6)] {
+        let (both, s, o, n, worst) = sweep(turn, seed);
+        eprintln!(
+            "turns to ±{:.0}°, seed {seed}: both solve {both} (largest difference {worst:.1e}), \
+             only lac_spline {s}, only libspiro {o}, neither {n}",
+            turn.to_degrees()
+        );
+        assert!(worst < 1e-6, "the two differ by {worst:e}");
+        if turn < 1.5 {
+            assert_eq!(o + n, 0, "lac_spline failed where turns are moderate");
+        }
+    }
+}
