@@ -14,6 +14,9 @@ use kurbo::Point;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
+/// The spans' signed curvatures at their start and end.
+type EndCurvatures = Vec<(f64, f64)>;
+
 /// Step of the forward differences, radians.
 const STEP: f64 = 1e-7;
 
@@ -108,7 +111,7 @@ impl Problem<'_> {
 
     /// The spans' end curvatures and the residuals at `theta`, or `None` where a span
     /// cannot be built.
-    fn state(&self, theta: &[f64]) -> Option<(Vec<(f64, f64)>, Vec<f64>)> {
+    fn state(&self, theta: &[f64]) -> Option<(EndCurvatures, Vec<f64>)> {
         let k = self.kappas(theta).ok()?;
         let r = self.residuals(&k);
         Some((k, r))
