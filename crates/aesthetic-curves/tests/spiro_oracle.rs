@@ -129,11 +129,11 @@ fn compare(pts: &[Point], closed: bool, corners: &[usize]) -> Option<f64> {
     let spans = if closed { pts.len() } else { pts.len() - 1 };
     let mut big = 0.0f64;
     let mut worst = 0.0f64;
-    for k in 0..spans {
+    for (k, seg) in segs.iter().enumerate().take(spans) {
         let first = ours.pieces.iter().find(|p| p.span == k).unwrap();
         let last = ours.pieces.iter().rev().find(|p| p.span == k).unwrap();
         let (a, b) = (first.end_curvatures.0, last.end_curvatures.1);
-        let (sa, sb) = spiro_ends(&segs[k]);
+        let (sa, sb) = spiro_ends(seg);
         big = big.max(a.abs()).max(b.abs());
         worst = worst.max((a - sa).abs()).max((b - sb).abs());
     }
