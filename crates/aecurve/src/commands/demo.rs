@@ -2,8 +2,12 @@
 //! as one HTML page with its pictures.
 
 use crate::gallery::{
-    approx::approx_gallery, inflection::inflection_gallery, lac_fit::lac_fit_gallery,
-    outline::outline_gallery, sketch::sketch_gallery, spline::spline_gallery,
+    approx::approx_gallery,
+    inflection::inflection_gallery,
+    lac_fit::lac_fit_gallery,
+    outline::outline_gallery,
+    sketch::sketch_gallery,
+    spline::{g1_g2_gallery, spline_gallery},
 };
 use aecurve::protocol::AnyBezier;
 use aecurve::{bench, plot};
@@ -167,6 +171,7 @@ pub(crate) fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     pb.inc(1);
     pb.set_message("pseudo-elastic splines");
     html += &spline_gallery(out, quick)?;
+    html += &g1_g2_gallery(out)?;
     pb.inc(1);
     pb.set_message("pen input to G2 aesthetic curves");
     html += &inflection_gallery(out)?;

@@ -230,3 +230,118 @@ pub(crate) fn spline_gallery(out: &std::path::Path, quick: bool) -> Result<Strin
     html += "</table>\n";
     Ok(html)
 }
+
+/// Curvature against arc length (chord sums) of comb samples.
+fn curvature_series(samples: &[plot::CombSample]) -> Vec<(f64, f64)> {
+    let mut s = 0.0;
+    let mut out = Vec::with_capacity(samples.len());
+    for (i, (p, _, k)) in samples.iter().enumerate() {
+        if i > 0 {
+            s += (*p - samples[i - 1].0).hypot();
+        }
+        if k.is_finite() {
+            out.push((s, *k));
+        }
+    }
+    out
+}
+
+/// S2's point sets through the pseudo-elastic spline (G1: its curvature steps at every
+/// point) and the G2 log-aesthetic spline (α = -1 and α = -0.4) side by side, each with
+/// its comb, and their curvature plots on one chart.
+pub(crate) fn g1_g2_gallery(out: &std::path::Path) -> Result<String> {
+    use aesthetic_curves::lac_spline::{lac_spline, LacSplineOptions};
+    use aesthetic_curves::pseudo_spline::{pseudo_elastic, Mode};
+    use aesthetic_curves::Point;
+    let mut html = String::from(
+        "<h2>G1 and G2 through the same points: the pseudo-elastic spline and the \
+         log-aesthetic spline</h2>\n<p>The pseudo-elastic spline (S2) is G1: its tangent is \
+         continuous, its curvature steps at every point. The log-aesthetic spline \
+         (<code>spline.lac</code>, docs/math.md §5.1) is G2 at every point, made of LAC pieces \
+         of one α (α = -1: clothoids, Spiro's curve), each one rational cubic proven \
+         curvature-monotone: α = -1 and α = -0.4 (its pieces' curvature grows faster near \
+         their inflections). Same points, side by side, then the three curvature plots on \
+         one chart. (α >= 0 has no inflection-end segment: an S-shaped span there takes \
+         clothoid halves, and where the spans are nearly straight the solve can stop short \
+         of G2: docs/math.md §5.1.)</p>\n",
+    );
+    let raised: Vec<Point> = (-4..=4)
+        .map(|i| Point::new(i as f64, if i == 0 { 2.0 } else { 0.0 }))
+        .collect();
+    let wave = vec![
+        Point::new(0.0, 0.0),
+        Point::new(2.0, 1.5),
+        Point::new(4.0, 1.0),
+        Point::new(6.0, 3.0),
+        Point::new(8.0, 2.5),
+        Point::new(10.0, 4.0),
+    ];
+    let sets = [
+        (
+            "S2 Table 1, Y = 2: nine points, the middle one raised",
+            raised,
+            "g1g2-raised",
+        ),
+        (
+            "S2's example points (examples/spline-points.csv)",
+            wave,
+            "g1g2-wave",
+        ),
+    ];
+    for (title, pts, stem) in sets {
+        html += &format!("<h3>{title}</h3>\n");
+        let pe = span_samples(&pseudo_elastic(&pts, false, Mode::Table)?.segments, 60)?;
+        let mut curves = vec![(
+            "pseudo-elastic (G1)".to_string(),
+            "pseudo-elastic (G1)".to_string(),
+            pe,
+        )];
+        for alpha in [-1.0, -0.4] {
+            let opts = LacSplineOptions {
+                alpha,
+                ..Default::default()
+            };
+            match lac_spline(&pts, &opts) {
+                Ok(s) => {
+                    let label = format!(
+                        "log-aesthetic, α = {alpha} (G2 to {:.0e}, {} pieces)",
+                        s.max_cubic_jump.max(1e-16),
+                        s.pieces.len()
+                    );
+                    let short = format!("log-aesthetic, α = {alpha}");
+                    curves.push((short, label, plot::curve_samples(&s.rationals(), 41)?));
+                }
+                Err(e) => html += &format!("<p>α = {alpha}: {e}</p>\n"),
+            }
+        }
+        let mut series = Vec::new();
+        for (i, (short, label, samples)) in curves.iter().enumerate() {
+            let file = format!("{stem}-{i}.svg");
+            std::fs::write(out.join(&file), plot::comb_svg(samples, &pts, &[], label))?;
+            html += &format!(
+                "<figure style=\"display:inline-block;width:32%;margin:0\"><img src=\"{file}\" \
+                 alt=\"{label}\" width=\"100%\"><figcaption>{label}</figcaption></figure>\n"
+            );
+            let mut s = plot::Series::nth(short.clone(), curvature_series(samples), i);
+            s.markers = false;
+            series.push(s);
+        }
+        let file = format!("{stem}-curvature.svg");
+        std::fs::write(
+            out.join(&file),
+            plot::fitted_chart(
+                &format!("curvature: {title}"),
+                "arc length",
+                "curvature",
+                &series,
+            ),
+        )?;
+        html += &format!(
+            "<figure><img src=\"{file}\" alt=\"curvature plots\" width=\"70%\"><figcaption>The \
+             curvature of the three curves against arc length: the pseudo-elastic spline's \
+             steps at the points, the log-aesthetic splines' continuous curvature (linear \
+             pieces for clothoids).</figcaption></figure>\n"
+        );
+    }
+    Ok(html)
+}
