@@ -112,7 +112,9 @@ const browser = await chromium.launch({
   executablePath: browserPath,
   args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
 });
-const page = await browser.newPage({ viewport: { width: 1300, height: 760 }, acceptDownloads: true });
+// The canvas gets what the layout leaves (about 930 x 580 here): the strokes below are drawn
+// at that scale (58 px a unit), as they were with the former fixed canvas.
+const page = await browser.newPage({ viewport: { width: 1300, height: 800 }, acceptDownloads: true });
 const pageErrors = [];
 page.on('pageerror', (e) => pageErrors.push(String(e)));
 
@@ -152,6 +154,10 @@ async function dragHandle(i, dx, dy) {
 await step('the page loads and draws a LAC segment with its numbers', async () => {
   await page.goto(url);
   await idle();
+  // The page opens in the drawing mode (the G2 spline); the LAC segment is one click away.
+  assert.equal(await page.evaluate(() => window.__editor.state.mode), 'g2');
+  await page.click('#mode-lac');
+  await idle();
   assert.ok((await num('arc_length')) > 0);
   assert.match(await text('verdict'), /monotone \(proven\)/);
   await page.waitForFunction(() => +(document.body.dataset.region || 0) > 100, null, { timeout: 15000 });
@@ -162,7 +168,9 @@ await step('dragging a control point changes the curve and the numbers', async (
   const before = await num('arc_length');
   const k0 = await num('curvature_end');
   const img0 = await canvasShot();
-  await dragHandle(2, 50, -60);
+  // Up and out: a lopsided triangle (a near-isosceles one is a near-circle, whose arc
+  // length hardly depends on alpha).
+  await dragHandle(2, 40, -110);
   const after = await num('arc_length');
   assert.notEqual(after, before);
   assert.notEqual(await num('curvature_end'), k0);
@@ -177,7 +185,7 @@ await step('the alpha slider changes alpha, and the curvature graph follows', as
   await page.focus('#alpha');
   for (let i = 0; i < 150; i++) await page.keyboard.press('ArrowRight');
   await idle();
-  assert.equal(await text('alpha-value'), '0.50');
+  assert.ok(Math.abs(parseFloat(await page.inputValue('#alpha-value')) - 0.5) < 1e-9);
   assert.ok(Math.abs((await num('alpha')) - 0.5) < 1e-9);
   // The slope of the curvature graph of the drawn samples is the segment's alpha.
   assert.ok(Math.abs((await num('lcg_alpha')) - 0.5) < 0.05, `LCG slope ${await num('lcg_alpha')}`);
@@ -545,6 +553,173 @@ await step('typical interactions take under 16 ms of server time', async () => {
     assert.ok(summary[op] !== undefined, `${op} was not used`);
     assert.ok(summary[op].typical < 16, `${op}: typical ${summary[op].typical} ms (n ${summary[op].n})`);
   }
+});
+
+await step('G2 spline: a closed contour with two corners, insert and delete, undo and redo, a reload keeps the session, 1366 x 768 shows every control, export', async () => {
+  await page.click('#mode-g2');
+  await idle();
+  await page.click('#clear');
+  await idle();
+  // Five points clicked on an empty canvas: each click adds one at the end.
+  const pts = [[3, 2], [11, 2], [12.5, 5.5], [7, 8.5], [1.5, 5.5]];
+  for (const q of pts) {
+    const [x, y] = await page.evaluate((w) => window.__editor.pageOf(w), q);
+    await page.mouse.click(x, y);
+    await idle();
+  }
+  assert.equal(await num('points'), 5);
+  await page.check('#closed');
+  await idle();
+  // Two corners: select a point and press C, and Alt+click another.
+  const [x0, y0] = await page.evaluate(() => window.__editor.screenOf(0));
+  await page.mouse.click(x0, y0);
+  await page.keyboard.press('c');
+  await idle();
+  const [x1, y1] = await page.evaluate(() => window.__editor.screenOf(1));
+  await page.keyboard.down('Alt');
+  await page.mouse.click(x1, y1);
+  await page.keyboard.up('Alt');
+  await idle();
+  assert.deepEqual(await page.evaluate(() => window.__editor.state.g2.corners), [0, 1]);
+  assert.equal(await num('corners'), 2);
+  assert.equal(await text('n-g2'), 'yes');
+  assert.match(await text('verdict'), /monotone \(proven\)/);
+  await shot('10-g2-closed-corners');
+  // Insert a point by clicking on the curve between points 2 and 3: the curve there is
+  // found from the drawing the server sent (a sample half way along that span).
+  assert.ok((await page.evaluate(() => window.__editor.spans().indexOf(2))) >= 0, 'no piece of span 2');
+  const where = await page.evaluate(() => {
+    // The middle sample of the first piece of span 2, in page coordinates.
+    const e = window.__editor;
+    const k = e.spans().indexOf(2);
+    return e.pieceMiddle(k);
+  });
+  await page.mouse.click(where[0], where[1]);
+  await idle();
+  assert.equal(await num('points'), 6);
+  assert.equal(await page.evaluate(() => window.__editor.state.g2.selected), 3);
+  // Corners keep their points.
+  assert.deepEqual(await page.evaluate(() => window.__editor.state.g2.corners), [0, 1]);
+  const inserted = await page.evaluate(() => window.__editor.state.g2.p[3]);
+  // Typed coordinates move the selected point.
+  await page.fill('#point-x', String(inserted[0] + 0.5));
+  await page.press('#point-x', 'Enter');
+  await idle();
+  const moved = await page.evaluate(() => window.__editor.state.g2.p[3]);
+  assert.ok(Math.abs(moved[0] - inserted[0] - 0.5) < 1e-9, `typed x: ${moved}`);
+  // Delete removes the selected point; undo brings it back, redo removes it again.
+  await page.evaluate(() => document.activeElement.blur());
+  await page.keyboard.press('Delete');
+  await idle();
+  assert.equal(await num('points'), 5);
+  await page.keyboard.press('Control+z');
+  await idle();
+  assert.equal(await num('points'), 6);
+  await page.keyboard.press('Control+Shift+z');
+  await idle();
+  assert.equal(await num('points'), 5);
+  await page.keyboard.press('Control+z');
+  await idle();
+  assert.equal(await num('points'), 6);
+  assert.equal(await text('n-g2'), 'yes');
+  await shot('11-g2-inserted');
+  // Each G2 answer (6 points, closed, two corners, every cubic proven) well inside a frame.
+  const g2ms = (await page.evaluate(() => window.__editor.serverMs()))['spline.lac'];
+  const median = g2ms.slice().sort((x, y) => x - y)[Math.floor(g2ms.length / 2)];
+  console.log(`     spline.lac: ${g2ms.length} requests, median ${median} ms, max ${Math.max(...g2ms)} ms`);
+  assert.ok(median < 16, `spline.lac median ${median} ms`);
+  const before = await page.evaluate(() => JSON.stringify(window.__editor.state.g2));
+  // A reload finds the session: the mode, the points, the corners, closed.
+  await page.reload();
+  await idle();
+  assert.equal(await page.evaluate(() => window.__editor.state.mode), 'g2');
+  const after = await page.evaluate(() => JSON.stringify(window.__editor.state.g2));
+  assert.equal(after, before);
+  assert.ok(await page.isChecked('#closed'));
+  assert.equal(await num('points'), 6);
+  // A laptop's window: every control of the mode and the exports on screen, none cut off.
+  await page.setViewportSize({ width: 1366, height: 768 });
+  await page.waitForTimeout(200);
+  await idle();
+  const off = await page.evaluate(() => {
+    const bad = [];
+    for (const el of document.querySelectorAll('#controls button, #controls input, #controls select, #modes button, #view, #kplot')) {
+      if (el.closest('.hidden') || el.type === 'file') continue;
+      const r = el.getBoundingClientRect();
+      if (r.width === 0 || r.left < 0 || r.top < 0 || r.right > innerWidth + 0.5 || r.bottom > innerHeight + 0.5) bad.push(el.id || el.textContent);
+    }
+    return bad;
+  });
+  assert.deepEqual(off, [], `controls outside 1366 x 768: ${off}`);
+  const canvas = await page.evaluate(() => [document.getElementById('view').width, document.getElementById('view').height]);
+  assert.ok(canvas[0] > 800 && canvas[1] > 350, `canvas ${canvas}`);
+  await shot('12-g2-1366x768');
+  // The curvature plot points at the curve: hovering it marks a sample.
+  const kr = await page.locator('#kplot').boundingBox();
+  await page.mouse.move(kr.x + kr.width / 2, kr.y + kr.height / 2);
+  await page.waitForFunction(() => document.body.dataset.hover !== undefined);
+  await shot('13-g2-hover');
+  // The contour exported: DXF and SVG, and the session as a file.
+  for (const f of ['dxf', 'svg']) {
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`#export-${f}`)]);
+    await dl.saveAs(`${out}g2-contour.${f}`);
+    assert.match(dl.suggestedFilename(), new RegExp(`g2\\.${f}$`));
+  }
+  const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#session-save')]);
+  const saved = `${out}g2-session.json`;
+  await dl.saveAs(saved);
+  const session = JSON.parse(readFileSync(saved, 'utf8'));
+  assert.equal(session.mode, 'g2');
+  assert.equal(session.states.g2.p.length, 6);
+  await page.setViewportSize({ width: 1300, height: 800 });
+});
+
+await step('LAC: a point dragged out of the existence region is held at its edge; Bézier: + point places points in view', async () => {
+  await page.click('#mode-lac');
+  await idle();
+  // alpha -1 typed; then the end point dragged back over the apex, to (6, 1.5) from
+  // (0, 0) and (8, 0): that triangle has no segment of alpha -1 (turning 143°, base angle
+  // 129° where at most 98° is possible).
+  await page.fill('#alpha-value', '-1');
+  await page.press('#alpha-value', 'Enter');
+  await idle();
+  await page.evaluate(() => {
+    window.__editor.state.lac.p[0] = [0, 0];
+    window.__editor.state.lac.p[1] = [8, 0];
+  });
+  const [x, y] = await page.evaluate(() => window.__editor.screenOf(2));
+  const [tx, ty] = await page.evaluate(() => window.__editor.pageOf([6, 1.5]));
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  for (let k = 1; k <= 20; k++) await page.mouse.move(x + (tx - x) * k / 20, y + (ty - y) * k / 20);
+  await page.mouse.up();
+  await idle();
+  assert.ok(+(await page.evaluate(() => document.body.dataset.held || 0)) > 0, 'never held');
+  const held = await page.evaluate(() => window.__editor.state.lac.p[2]);
+  assert.ok(Math.hypot(held[0] - 6, held[1] - 1.5) > 0.2, `not held: ${held}`);
+  assert.ok((await num('arc_length')) > 0, 'the curve was lost');
+  assert.match(await text('verdict'), /monotone/);
+  await shot('14-lac-held');
+  await page.click('#mode-bezier');
+  await idle();
+  const n0 = (await page.evaluate(() => window.__editor.state.bezier.p)).length;
+  for (let i = 0; i < 3; i++) {
+    await page.click('#add-point');
+    await idle();
+  }
+  // A click on the empty canvas adds a point where it is.
+  const [cx, cy] = await page.evaluate(() => window.__editor.pageOf([2, 7]));
+  await page.mouse.click(cx, cy);
+  await idle();
+  const last = await page.evaluate(() => window.__editor.state.bezier.p.at(-1));
+  assert.ok(Math.hypot(last[0] - 2, last[1] - 7) < 0.05, `clicked point at ${last}`);
+  assert.equal((await page.evaluate(() => window.__editor.state.bezier.p)).length, n0 + 4);
+  const v = await page.evaluate(() => window.__editor.view());
+  const p = await page.evaluate(() => window.__editor.state.bezier.p);
+  for (const q of p) assert.ok(q[0] > v.x0 && q[0] < v.x1 && q[1] > v.y0 && q[1] < v.y1, `point ${q} outside the view`);
+  assert.ok(Number.isFinite(await num('degree')));
+  assert.doesNotMatch(await text('verdict'), /degenerate/);
+  await shot('15-bezier-added');
 });
 
 await step('no script errors on the page', async () => {

@@ -7,7 +7,7 @@
 // or exported under another mode's name.
 
 import { api, post, timing } from './api.js';
-import { drawCurvature, drawLcg, drawStage } from './draw.js';
+import { combLength, curvatureIndexAt, drawCurvature, drawLcg, drawStage } from './draw.js';
 import { contourState, fontSource, loadOutline, MODES, outlineSegments } from './modes.js';
 import { $, fmt, setNumbers, setStatus, setVerdict } from './ui.js';
 import { Viewport } from './view.js';
@@ -16,11 +16,11 @@ const view = $('view');
 const ctx = view.getContext('2d');
 
 // ---------- state ----------
-const state = { mode: 'lac' };
+const state = { mode: 'g2' };
 for (const [m, def] of Object.entries(MODES)) state[m] = def.initial();
 const views = {}; // each mode's current view (zoom, pan)
 for (const [m, def] of Object.entries(MODES)) views[m] = Object.assign({}, def.box);
-const vp = new Viewport(view, views.lac);
+const vp = new Viewport(view, views.g2);
 let frame = null; // the answer on screen: {mode, shown, nurbs, ...}
 let region = null; // {grid, rows, key, mode}
 let updates = 0;
@@ -32,12 +32,30 @@ const handles = () => mode().handles(edited());
 // ---------- drawing ----------
 // A local picture of what is being edited, before its answer arrives (a stroke as drawn).
 let pending = null;
+// The comb's tooth length held while a drag goes on (so teeth compare), and the sample of
+// the curve under the pointer (on the stage or the curvature plot).
+let heldComb = null;
+let hover = null;
 function draw() {
   const shown = pending || (frame && frame.mode === state.mode ? frame.shown : { handles: handles() });
   const reg = region && region.mode === state.mode && $('region').checked ? region : null;
-  drawStage(vp, ctx, shown, reg, { comb: $('comb').checked });
-  drawCurvature($('kplot'), shown);
+  const gain = +$('comb-gain').value;
+  drawStage(vp, ctx, shown, reg, { comb: $('comb').checked, gain, fixedLength: drag && !drag.pan ? heldComb : null, hover });
+  drawCurvature($('kplot'), shown, hover);
 }
+
+// Canvases take the size the layout gives them (the window's), in CSS pixels.
+function fitCanvases() {
+  for (const c of [view, $('kplot')]) {
+    const w = Math.max(100, Math.round(c.clientWidth)), h = Math.max(60, Math.round(c.clientHeight));
+    if (c.width !== w || c.height !== h) {
+      c.width = w;
+      c.height = h;
+    }
+  }
+  draw();
+}
+new ResizeObserver(fitCanvases).observe(view);
 
 function show(f) {
   frame = f;
@@ -51,6 +69,8 @@ function show(f) {
 // ---------- the update loop ----------
 let busy = false;
 let dirty = false;
+const lastGood = {}; // each mode's state at its last answered update
+let released = false; // a point drag just ended: its last update may still be on the way
 let drag = null; // {index}, {stroke: true} or {pan: world point}
 function requestUpdate() {
   clearTimeout(regionTimer);
@@ -64,11 +84,21 @@ function requestUpdate() {
   MODES[m].update(edited(), { dragging: !!drag })
     .then((f) => {
       if (state.mode !== m) return; // the mode changed meanwhile: its own update follows
+      lastGood[m] = JSON.parse(JSON.stringify(state[m]));
       show(Object.assign({ mode: m }, f));
       setStatus(`server ${fmt(timing.last, 2)} ms (largest so far ${fmt(timing.max, 2)} ms)`);
     })
     .catch((e) => {
       if (state.mode !== m) return;
+      // A dragged LAC or inflection point leaving the existence region stays at its edge:
+      // the last position that had a segment.
+      if (((drag && drag.index != null) || released) && lastGood[m] && (m === 'lac' || m === 'inflection') && (e.kind === 'no_segment' || e.kind === 'degenerate')) {
+        state[m] = JSON.parse(JSON.stringify(lastGood[m]));
+        setStatus(`held at the edge of the existence region (${e.kind === 'degenerate' ? 'a flat triangle' : 'no segment beyond it'})`);
+        document.body.dataset.held = String(+(document.body.dataset.held || 0) + 1);
+        draw();
+        return;
+      }
       show({
         mode: m,
         shown: { handles: handles(), polygon: MODES[m].polygon ? handles() : null },
@@ -81,6 +111,8 @@ function requestUpdate() {
     })
     .finally(() => {
       busy = false;
+      if (!dirty) released = false;
+      saveSession();
       updates += 1;
       document.body.dataset.updates = String(updates);
       draw();
@@ -129,36 +161,162 @@ async function regionCompute() {
 }
 
 // ---------- interaction ----------
-// Undo: the edited mode's state before each edit (Ctrl+Z).
+// Undo and redo: the edited mode's state before each edit (Ctrl+Z), and what undo took back
+// (Ctrl+Shift+Z or Ctrl+Y); a new edit clears the redo list.
 const history = [];
+const redoList = [];
 function remember(m = state.mode) {
   history.push({ mode: m, data: JSON.parse(JSON.stringify(state[m])) });
   if (history.length > 200) history.shift();
+  redoList.length = 0;
 }
 function syncControls() {
   if (state.mode === 'lac') {
     $('alpha').value = state.lac.alpha;
-    $('alpha-value').textContent = state.lac.alpha.toFixed(2);
+    $('alpha-value').value = state.lac.alpha;
   }
-  if (state.mode === 'spline') $('closed').checked = state.spline.closed;
+  if (state.mode === 'spline' || state.mode === 'g2') $('closed').checked = state[state.mode].closed;
+  if (state.mode === 'g2') {
+    $('g2-alpha').value = state.g2.alpha;
+    $('g2-alpha-range').value = state.g2.alpha;
+    syncPoint();
+  }
   if (state.mode === 'outline') syncOutline();
 }
-function undo() {
-  for (let i = history.length - 1; i >= 0; i--) {
-    if (history[i].mode === state.mode) {
-      state[state.mode] = history.splice(i, 1)[0].data;
+function swap(from, to) {
+  for (let i = from.length - 1; i >= 0; i--) {
+    if (from[i].mode === state.mode) {
+      to.push({ mode: state.mode, data: JSON.parse(JSON.stringify(state[state.mode])) });
+      state[state.mode] = from.splice(i, 1)[0].data;
       syncControls();
       requestUpdate();
       return;
     }
   }
 }
+const undo = () => swap(history, redoList);
+const redo = () => swap(redoList, history);
+const typing = (ev) => ev.target instanceof HTMLInputElement || ev.target instanceof HTMLTextAreaElement;
 document.addEventListener('keydown', (ev) => {
-  if ((ev.ctrlKey || ev.metaKey) && ev.key === 'z') {
+  const mod = ev.ctrlKey || ev.metaKey;
+  if (mod && (ev.key === 'y' || (ev.key.toLowerCase() === 'z' && ev.shiftKey))) {
+    ev.preventDefault();
+    redo();
+    return;
+  }
+  if (mod && ev.key === 'z') {
     ev.preventDefault();
     undo();
+    return;
   }
-  if (ev.key === 'f' && !(ev.target instanceof HTMLInputElement)) fitView();
+  if (typing(ev)) return;
+  if (ev.key === 'f') fitView();
+  if (state.mode === 'g2' && (ev.key === 'Delete' || ev.key === 'Backspace')) {
+    ev.preventDefault();
+    removePoint();
+  }
+  if (state.mode === 'g2' && ev.key === 'c') toggleCorner(state.g2.selected);
+});
+
+// ---------- the G2 spline: points, corners, the selected point ----------
+function syncPoint() {
+  const st = state.g2;
+  const q = st.p[st.selected];
+  for (const id of ['point-x', 'point-y', 'point-corner']) $(id).disabled = !q;
+  $('point-x').value = q ? String(+q[0].toPrecision(10)) : '';
+  $('point-y').value = q ? String(+q[1].toPrecision(10)) : '';
+  $('point-corner').checked = !!q && st.corners.includes(st.selected);
+}
+function select(i) {
+  const st = edited();
+  if (!('selected' in st)) return;
+  st.selected = i;
+  if (frame && frame.mode === state.mode) frame.shown.selected = i;
+  if (state.mode === 'g2') syncPoint();
+  draw();
+}
+function toggleCorner(i) {
+  const st = state.g2;
+  if (!(i >= 0 && i < st.p.length)) return;
+  remember();
+  st.corners = st.corners.includes(i) ? st.corners.filter((k) => k !== i) : st.corners.concat([i]).sort((a, b) => a - b);
+  syncPoint();
+  requestUpdate();
+}
+// Insert a point at index i (corners after it move up by one).
+function insertPoint(i, w) {
+  const st = state.g2;
+  st.p.splice(i, 0, w);
+  st.corners = st.corners.map((k) => (k >= i ? k + 1 : k));
+  st.selected = i;
+}
+function removePoint() {
+  remember();
+  const st = edited();
+  if (state.mode === 'g2') {
+    const i = st.selected >= 0 && st.selected < st.p.length ? st.selected : st.p.length - 1;
+    if (i < 0) return;
+    st.p.splice(i, 1);
+    st.corners = st.corners.filter((k) => k !== i).map((k) => (k > i ? k - 1 : k));
+    st.selected = Math.min(i, st.p.length - 1);
+    syncPoint();
+  } else {
+    if (st.p.length > (mode().minPoints || 0)) st.p.pop();
+    if ('selected' in st) st.selected = Math.min(st.selected, st.p.length - 1);
+  }
+  requestUpdate();
+}
+// Which span of the G2 spline passes within 8 pixels of the pointer, and where.
+function spanUnder(ev) {
+  if (!frame || frame.mode !== 'g2' || !frame.shown.curve || !frame.shown.spans) return null;
+  const [x, y] = vp.eventPixel(ev);
+  const c = frame.shown.curve;
+  let best = -1, bd = 8;
+  c.forEach((p, i) => {
+    const [u, v] = vp.toScreen(p);
+    const d = Math.hypot(u - x, v - y);
+    if (d < bd) {
+      bd = d;
+      best = i;
+    }
+  });
+  if (best < 0) return null;
+  const per = frame.shown.pieces[0].length - 1;
+  const piece = Math.min(Math.floor(best / per), frame.shown.spans.length - 1);
+  return frame.shown.spans[piece];
+}
+// Shift while dragging a G2 point: the move snapped to horizontal or vertical from where the
+// drag began, or the segment from the previous point made horizontal or vertical, whichever
+// is nearer.
+function snapped(w, from, prev) {
+  const opts = [[w[0], from[1]], [from[0], w[1]]];
+  if (prev) opts.push([w[0], prev[1]], [prev[0], w[1]]);
+  return opts.reduce((a, b) => (Math.hypot(a[0] - w[0], a[1] - w[1]) <= Math.hypot(b[0] - w[0], b[1] - w[1]) ? a : b));
+}
+for (const id of ['point-x', 'point-y']) {
+  $(id).addEventListener('change', () => {
+    const st = state.g2;
+    const q = st.p[st.selected];
+    const v = parseFloat($(id).value);
+    if (!q || !Number.isFinite(v)) return;
+    remember();
+    q[id === 'point-x' ? 0 : 1] = v;
+    requestUpdate();
+  });
+}
+$('point-corner').addEventListener('change', () => toggleCorner(state.g2.selected));
+const setG2Alpha = (v) => {
+  if (!Number.isFinite(v)) return;
+  state.g2.alpha = Math.max(-5, Math.min(5, v));
+  $('g2-alpha').value = state.g2.alpha;
+  $('g2-alpha-range').value = state.g2.alpha;
+  requestUpdate();
+};
+$('g2-alpha-range').addEventListener('pointerdown', () => remember());
+$('g2-alpha-range').addEventListener('input', () => setG2Alpha(+$('g2-alpha-range').value));
+$('g2-alpha').addEventListener('change', () => {
+  remember();
+  setG2Alpha(parseFloat($('g2-alpha').value));
 });
 function nearestHandle(ev) {
   const [x, y] = vp.eventPixel(ev);
@@ -177,10 +335,13 @@ view.addEventListener('contextmenu', (ev) => ev.preventDefault());
 view.addEventListener('pointerdown', (ev) => {
   view.setPointerCapture(ev.pointerId);
   const m = mode();
-  if (ev.button === 2 || ev.button === 1 || ev.shiftKey) {
+  const i = m.draws ? -1 : nearestHandle(ev);
+  // Shift on a G2 point snaps its move; elsewhere Shift (or the right or middle button) pans.
+  if (ev.button === 2 || ev.button === 1 || (ev.shiftKey && !(state.mode === 'g2' && i >= 0))) {
     drag = { pan: vp.eventWorld(ev) };
     return;
   }
+  holdComb();
   if (m.draws) {
     remember();
     edited().stroke = [vp.eventWorld(ev)];
@@ -189,24 +350,41 @@ view.addEventListener('pointerdown', (ev) => {
     draw();
     return;
   }
-  const i = nearestHandle(ev);
   if (i >= 0) {
-    remember();
-    drag = { index: i };
-    if ('selected' in edited()) {
-      edited().selected = i;
-      if (frame && frame.mode === state.mode) frame.shown.selected = i;
-      draw();
+    if (state.mode === 'g2' && ev.altKey) {
+      select(i);
+      toggleCorner(i);
+      return;
     }
+    remember();
+    const p = edited().p;
+    drag = { index: i, from: p[i].slice(), prev: i > 0 ? p[i - 1].slice() : null };
+    if ('selected' in edited()) select(i);
     return;
   }
-  if (m.addsPoints) {
+  if (state.mode === 'g2') {
+    const span = spanUnder(ev);
+    remember();
+    if (span != null) insertPoint(span + 1, vp.eventWorld(ev));
+    else insertPoint(state.g2.p.length, vp.eventWorld(ev));
+    drag = { index: state.g2.selected, from: vp.eventWorld(ev), prev: null };
+    syncPoint();
+    requestUpdate();
+    return;
+  }
+  if (m.addsPoints && edited().p.length < (m.maxPoints || Infinity)) {
     remember();
     edited().p.push(vp.eventWorld(ev));
     drag = { index: edited().p.length - 1 };
+    if ('selected' in edited()) select(edited().p.length - 1);
     requestUpdate();
   }
 });
+// The comb's scale at the start of a drag, kept until it ends.
+function holdComb() {
+  const shown = frame && frame.mode === state.mode ? frame.shown : null;
+  heldComb = shown && shown.curve ? combLength(vp, shown, +$('comb-gain').value) : null;
+}
 view.addEventListener('pointermove', (ev) => {
   if (!drag) return;
   const w = vp.eventWorld(ev);
@@ -225,13 +403,45 @@ view.addEventListener('pointermove', (ev) => {
     }
     return;
   }
-  edited().p[drag.index] = w;
+  edited().p[drag.index] = ev.shiftKey && state.mode === 'g2' ? snapped(w, drag.from, drag.prev) : w;
+  if (state.mode === 'g2') syncPoint();
   requestUpdate();
+});
+// Hover: the place on the curve and on the curvature plot, linked.
+view.addEventListener('pointermove', (ev) => {
+  if (drag || !frame || frame.mode !== state.mode || !frame.shown.curve) return;
+  const [x, y] = vp.eventPixel(ev);
+  let best = null, bd = 12;
+  frame.shown.curve.forEach((p, i) => {
+    const [u, v] = vp.toScreen(p);
+    const d = Math.hypot(u - x, v - y);
+    if (d < bd) {
+      bd = d;
+      best = i;
+    }
+  });
+  if (best !== hover) {
+    hover = best;
+    draw();
+  }
+});
+$('kplot').addEventListener('pointermove', (ev) => {
+  if (!frame || frame.mode !== state.mode) return;
+  const r = $('kplot').getBoundingClientRect();
+  hover = curvatureIndexAt($('kplot'), frame.shown, (ev.clientX - r.left) * $('kplot').width / r.width);
+  document.body.dataset.hover = String(hover);
+  draw();
+});
+$('kplot').addEventListener('pointerleave', () => {
+  hover = null;
+  draw();
 });
 const endDrag = () => {
   if (!drag) return;
   const panned = drag.pan;
+  released = drag.index != null;
   drag = null;
+  heldComb = null;
   if (panned) regionUpdate();
   else requestUpdate();
 };
@@ -259,34 +469,61 @@ $('alpha').addEventListener('keydown', (ev) => {
 });
 $('alpha').addEventListener('input', () => {
   state.lac.alpha = +$('alpha').value;
-  $('alpha-value').textContent = state.lac.alpha.toFixed(2);
+  $('alpha-value').value = state.lac.alpha;
+  requestUpdate();
+});
+// Typed: any alpha the library builds (|alpha| up to 1e6), beyond the slider's -5..5.
+$('alpha-value').addEventListener('change', () => {
+  const v = parseFloat($('alpha-value').value);
+  if (!Number.isFinite(v) || Math.abs(v) > 1e6) {
+    setStatus('alpha must be a number within ±1e6', true);
+    return;
+  }
+  remember();
+  state.lac.alpha = v;
+  $('alpha').value = v;
   requestUpdate();
 });
 $('closed').addEventListener('change', () => {
   remember();
-  state.spline.closed = $('closed').checked;
+  edited().closed = $('closed').checked;
   requestUpdate();
 });
 $('comb').addEventListener('change', draw);
+$('comb-gain').addEventListener('input', () => {
+  saveSession();
+  draw();
+});
 $('region').addEventListener('change', () => {
   region = null;
   draw();
   regionUpdate();
 });
+// "+ point": one more point a step (0.15 of the view) on from the last along the last side,
+// or turned from it by 45° at a time until it lands inside the view and away from the
+// points already there. Clicking the canvas adds a point where it is clicked.
 $('add-point').addEventListener('click', () => {
-  remember();
   const p = edited().p;
-  const last = p[p.length - 1];
-  p.push([Math.min(vp.box.x1 - 1, last[0] + 1.5), last[1]]);
-  requestUpdate();
-});
-$('remove-point').addEventListener('click', () => {
+  if (p.length >= (mode().maxPoints || Infinity)) {
+    setStatus(`at most ${mode().maxPoints} points`, true);
+    return;
+  }
   remember();
-  const st = edited();
-  if (st.p.length > (mode().minPoints || 0)) st.p.pop();
-  if ('selected' in st) st.selected = Math.min(st.selected, st.p.length - 1);
+  const b = vp.box;
+  const size = Math.min(b.x1 - b.x0, b.y1 - b.y0);
+  const last = p[p.length - 1] || [(b.x0 + b.x1) / 2, (b.y0 + b.y1) / 2];
+  const prev = p[p.length - 2] || [last[0] - 1, last[1]];
+  const a0 = Math.atan2(last[1] - prev[1], last[0] - prev[0]);
+  const ok = (q) => q[0] > b.x0 + 0.08 * size && q[0] < b.x1 - 0.08 * size && q[1] > b.y0 + 0.08 * size && q[1] < b.y1 - 0.08 * size
+    && p.every((v) => Math.hypot(v[0] - q[0], v[1] - q[1]) > 0.05 * size);
+  const at = (a) => [last[0] + 0.15 * size * Math.cos(a), last[1] + 0.15 * size * Math.sin(a)];
+  const turns = [0, 1, -1, 2, -2, 3, -3, 4].map((k) => a0 + k * Math.PI / 4);
+  const q = turns.map(at).find(ok) || [(b.x0 + b.x1) / 2 + 0.05 * size * p.length, (b.y0 + b.y1) / 2];
+  p.push(q);
+  if ('selected' in edited()) edited().selected = p.length - 1;
   requestUpdate();
 });
+$('remove-point').addEventListener('click', removePoint);
 $('clear').addEventListener('click', () => {
   remember();
   const st = edited();
@@ -302,9 +539,10 @@ $('sketch-tolerance').addEventListener('change', () => {
   edited().tolerance = v > 0 ? v : null;
   requestUpdate();
 });
-const OPTIONAL = ['alpha-box', 'closed-box', 'region-box', 'add-point', 'remove-point', 'clear', 'outline-box', 'sketch-tolerance-box'];
+const OPTIONAL = ['alpha-box', 'g2-alpha-box', 'point-box', 'closed-box', 'region-box', 'add-point', 'remove-point', 'clear', 'outline-box', 'sketch-tolerance-box'];
 function setMode(m) {
   state.mode = m;
+  hover = null;
   vp.box = views[m];
   region = null;
   pending = null;
@@ -329,7 +567,17 @@ function syncOutline() {
       return o;
     }));
   };
-  opts($('outline-shape'), st.names, st.shape);
+  // The glyph list, filtered by the search box (a font has thousands of names).
+  const q = $('outline-search').value.trim().toLowerCase();
+  const sel = $('outline-shape');
+  const keep = st.names.map((t, i) => [t, i]).filter(([t, i]) => !q || i === st.shape || t.toLowerCase().includes(q)).slice(0, 500);
+  sel.replaceChildren(...keep.map(([t, i]) => {
+    const o = document.createElement('option');
+    o.value = String(i);
+    o.textContent = t;
+    o.selected = i === st.shape;
+    return o;
+  }));
   opts($('outline-contour'), Array.from({ length: st.contours }, (_, i) => String(i + 1)), st.contour);
 }
 async function outlineLoad(req, shape, contour, firstDrawn) {
@@ -468,6 +716,14 @@ $('outline-file').addEventListener('change', () => {
   const f = $('outline-file').files[0];
   if (f) outlineFile(f);
 });
+$('outline-search').addEventListener('input', () => {
+  const st = state.outline;
+  syncOutline();
+  // The first match is loaded as the search narrows to it.
+  const q = $('outline-search').value.trim().toLowerCase();
+  const first = st.names.findIndex((t) => t.toLowerCase().includes(q));
+  if (q && st.source && first >= 0 && !st.names[st.shape].toLowerCase().includes(q)) outlineLoad(st.source, first, 0);
+});
 $('outline-shape').addEventListener('change', () => {
   const st = state.outline;
   if (st.source) outlineLoad(st.source, +$('outline-shape').value, 0);
@@ -550,6 +806,56 @@ $('export-dxf').addEventListener('click', () => exportAs('dxf'));
 $('export-step').addEventListener('click', () => exportAs('step'));
 $('fit').addEventListener('click', fitView);
 $('undo').addEventListener('click', undo);
+$('redo').addEventListener('click', redo);
+
+// ---------- the session: kept across a reload, saved to and loaded from a file ----------
+// Every mode's points and options, the view of each, the current mode, the comb's gain and
+// the loaded outline (with its file, when the browser's storage holds it).
+const SESSION = 'aesthetic-curves-session';
+function sessionOf() {
+  return { version: 1, mode: state.mode, states: Object.fromEntries(Object.keys(MODES).map((m) => [m, state[m]])), views, gain: +$('comb-gain').value };
+}
+function saveSession() {
+  try {
+    localStorage.setItem(SESSION, JSON.stringify(sessionOf()));
+  } catch {
+    // Over the storage quota (a large font): keep everything but the outline's file.
+    try {
+      const s = sessionOf();
+      s.states.outline = Object.assign({}, s.states.outline, { source: null });
+      localStorage.setItem(SESSION, JSON.stringify(s));
+    } catch {
+      // no storage: nothing kept
+    }
+  }
+}
+// Apply a saved session (from storage or a file); false when it is not one.
+function applySession(s) {
+  if (!s || s.version !== 1 || !s.states || !MODES[s.mode]) return false;
+  for (const m of Object.keys(MODES)) {
+    if (s.states[m] && typeof s.states[m] === 'object') state[m] = Object.assign(MODES[m].initial(), s.states[m]);
+  }
+  for (const m of Object.keys(MODES)) if (s.views && s.views[m]) views[m] = Object.assign({}, MODES[m].box, s.views[m]);
+  if (Number.isFinite(s.gain)) $('comb-gain').value = s.gain;
+  frame = null;
+  setMode(s.mode);
+  return true;
+}
+$('session-save').addEventListener('click', () => {
+  download(JSON.stringify(sessionOf(), null, 1), 'aesthetic-curves-session.json', 'application/json');
+});
+$('session-file').addEventListener('change', async () => {
+  const f = $('session-file').files[0];
+  if (!f) return;
+  let s = null;
+  try {
+    s = JSON.parse(await f.text());
+  } catch {
+    s = null;
+  }
+  if (!applySession(s)) setStatus(`${f.name}: not a session file of this editor`, true);
+  else setStatus(`session loaded from ${f.name}`);
+});
 
 // ---------- hooks for the end-to-end tests ----------
 window.__editor = {
@@ -565,6 +871,20 @@ window.__editor = {
   pageOf: (p) => vp.pageOf(p),
   // Which mode the answer on screen belongs to.
   frameMode: () => (frame ? frame.mode : null),
+  // The G2 spline's answer on screen: its pieces' spans, and the page coordinates of the
+  // middle sample of piece k.
+  spans: () => (frame && frame.shown.spans ? frame.shown.spans.slice() : null),
+  pieceMiddle: (k) => {
+    const pc = frame.shown.pieces[k];
+    return vp.pageOf(pc[Math.floor(pc.length / 2)]);
+  },
 };
 
-setMode('lac');
+let restored = false;
+try {
+  restored = applySession(JSON.parse(localStorage.getItem(SESSION) || 'null'));
+} catch {
+  restored = false;
+}
+if (!restored) setMode('g2');
+fitCanvases();

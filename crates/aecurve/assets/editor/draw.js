@@ -31,8 +31,19 @@ function regionImage(region) {
   return c;
 }
 
+// The comb's tooth length per unit of curvature: 0.18 of the view's smaller side for the
+// largest |κ| on screen, times 10^gain.
+export function combLength(vp, shown, gain) {
+  const b = vp.box;
+  const g = shown.ghost;
+  const kmax = Math.max(1e-12, ...shown.kappa.map(Math.abs), ...(g ? g.kappa.map(Math.abs) : []));
+  return 0.18 * Math.min(b.x1 - b.x0, b.y1 - b.y0) / kmax * Math.pow(10, gain || 0);
+}
+
 // shown: {curve, kappa, normals, overlay, overlayPolygon, pieces, marks, corners, polygon,
-// handles, selected, stroke}; region: {grid, rows} or null; opts: {comb}.
+// handles, selected, stroke}; region: {grid, rows} or null; opts: {comb, gain, fixedLength
+// (the tooth length to keep, while a drag goes on), hover (an index into the curve)}.
+// Returns the comb's tooth length used.
 export function drawStage(vp, ctx, shown, region, opts) {
   const view = vp.canvas;
   ctx.clearRect(0, 0, view.width, view.height);
@@ -43,7 +54,8 @@ export function drawStage(vp, ctx, shown, region, opts) {
     ctx.imageSmoothingEnabled = false;
     ctx.drawImage(regionImage(region), x0, y1, (g.x1 - g.x0) * s, (g.y1 - g.y0) * s);
   }
-  if (!shown) return;
+  if (!shown) return null;
+  let used = null;
   const line = (pts, style, width, dash) => {
     if (!pts || pts.length < 2) return;
     ctx.beginPath();
@@ -65,10 +77,9 @@ export function drawStage(vp, ctx, shown, region, opts) {
   // comb before an outline fix) is drawn first, in grey, on the same tooth scale.
   if (shown.curve && opts.comb) {
     const c = shown.curve;
-    const b = vp.box;
     const g = shown.ghost;
-    const kmax = Math.max(1e-12, ...shown.kappa.map(Math.abs), ...(g ? g.kappa.map(Math.abs) : []));
-    const len = 0.18 * Math.min(b.x1 - b.x0, b.y1 - b.y0) / kmax;
+    const len = opts.fixedLength || combLength(vp, shown, opts.gain);
+    used = len;
     if (g) {
       const gt = g.curve.map((p, i) => [p[0] - g.normals[i][0] * (g.kappa[i] || 0) * len, p[1] - g.normals[i][1] * (g.kappa[i] || 0) * len]);
       line(gt, '#9a9a9a', 1.2, [4, 3]);
@@ -116,16 +127,46 @@ export function drawStage(vp, ctx, shown, region, opts) {
     ctx.fillStyle = i === shown.selected ? '#e8a33d' : '#444';
     ctx.fill();
   });
+  // The place on the curve the curvature plot points at.
+  if (opts.hover != null && shown.curve && shown.curve[opts.hover]) {
+    const [x, y] = vp.toScreen(shown.curve[opts.hover]);
+    ctx.beginPath();
+    ctx.arc(x, y, 8, 0, 2 * Math.PI);
+    ctx.strokeStyle = '#e8a33d';
+    ctx.lineWidth = 3;
+    ctx.stroke();
+  }
+  return used;
 }
 
-// Curvature against arc length (chord sums of the samples); joints of pieces as grey lines.
-export function drawCurvature(canvas, shown) {
+// The arc length at each sample of a drawn curve (chord sums).
+export function arcLengths(c) {
+  const s = [0];
+  for (let i = 1; i < c.length; i++) s.push(s[i - 1] + Math.hypot(c[i][0] - c[i - 1][0], c[i][1] - c[i - 1][1]));
+  return s;
+}
+
+// The sample of the curvature plot under the pixel x of its canvas.
+export function curvatureIndexAt(canvas, shown, x) {
+  if (!shown || !shown.curve || shown.curve.length < 2) return null;
+  const s = arcLengths(shown.curve);
+  const total = s[s.length - 1] || 1;
+  const m = 22;
+  const at = (x - m) / (canvas.width - 2 * m) * total;
+  let best = 0;
+  s.forEach((v, i) => {
+    if (Math.abs(v - at) < Math.abs(s[best] - at)) best = i;
+  });
+  return best;
+}
+
+// Curvature against arc length (chord sums of the samples); joints of pieces as grey lines;
+// the sample `hover` (the place under the pointer on the stage) marked.
+export function drawCurvature(canvas, shown, hover) {
   const kctx = canvas.getContext('2d');
   kctx.clearRect(0, 0, canvas.width, canvas.height);
   if (!shown || !shown.curve || shown.curve.length < 2) return;
-  const c = shown.curve;
-  const s = [0];
-  for (let i = 1; i < c.length; i++) s.push(s[i - 1] + Math.hypot(c[i][0] - c[i - 1][0], c[i][1] - c[i - 1][1]));
+  const s = arcLengths(shown.curve);
   const k = shown.kappa;
   const total = s[s.length - 1] || 1;
   let lo = Math.min(0, ...k), hi = Math.max(0, ...k);
@@ -157,6 +198,12 @@ export function drawCurvature(canvas, shown) {
   k.forEach((v, i) => (i ? kctx.lineTo(px(s[i]), py(v)) : kctx.moveTo(px(s[i]), py(v))));
   kctx.stroke();
   kctx.lineWidth = 1;
+  if (hover != null && k[hover] != null) {
+    kctx.fillStyle = '#e8a33d';
+    kctx.beginPath();
+    kctx.arc(px(s[hover]), py(k[hover]), 5, 0, 2 * Math.PI);
+    kctx.fill();
+  }
   kctx.fillStyle = '#222';
   kctx.font = '11px sans-serif';
   kctx.fillText(`κ from ${fmt(Math.min(...k), 3)} to ${fmt(Math.max(...k), 3)}`, m, 14);

@@ -9,7 +9,7 @@ import { api } from './api.js';
 import { fmt } from './ui.js';
 
 // Points per piece the server samples for the picture.
-const DRAW = { segment: 161, overlay: 81, spline: 41, sketch: 51, bezier: 161, outline: 41 };
+const DRAW = { segment: 161, overlay: 81, spline: 41, g2: 41, sketch: 51, bezier: 161, outline: 41 };
 
 async function lcgOf(points) {
   try {
@@ -37,6 +37,45 @@ function piecesOf(d) {
 const rationalVerdict = (ra) => [ra.monotone ? 'rational cubic: curvature monotone (proven)' : 'rational cubic: curvature NOT monotone', ra.monotone];
 
 export const MODES = {
+  g2: {
+    box: { x0: 0, y0: 0, x1: 14, y1: 10 },
+    hint: 'Click to add a point, click on the curve to insert one, drag to move (Shift: snap the move, or the segment to the previous point, to horizontal or vertical). Select a point: Delete removes it, C (or Alt+click) makes it a corner or smooth again, x and y take typed coordinates. Ctrl+Z undo, Ctrl+Shift+Z redo.',
+    controls: ['closed-box', 'g2-alpha-box', 'point-box', 'remove-point', 'clear'],
+    addsPoints: true,
+    initial: () => ({ p: [[1.5, 2], [4.5, 6.5], [8, 4], [12, 7.5]], corners: [], closed: false, alpha: -1, selected: -1 }),
+    handles: (st) => st.p,
+    async update(st) {
+      const { p, closed, alpha } = st;
+      const corners = (st.corners || []).filter((i) => i < p.length);
+      const base = { handles: p, selected: st.selected, corners: corners.map((i) => p[i]) };
+      if (p.length < (closed ? 3 : 2)) {
+        return { shown: base, nurbs: null, numbers: [['points', 'points', p.length]], verdict: ['add points by clicking'], lcg: { fit: null, note: 'add points' } };
+      }
+      const r = await api({ op: 'spline.lac', points: p, closed, corners, alpha, draw: DRAW.g2 });
+      const pieces = piecesOf(r.drawing);
+      // Where each piece starts: joints inside a span (an inflection) are marked.
+      const inner = r.segments.slice(1).filter((g, i) => g.span === r.segments[i].span).map((g) => g.control[0]);
+      return {
+        shown: Object.assign(curveOf(r.drawing), base, { pieces, marks: inner, spans: r.segments.map((g) => g.span) }),
+        nurbs: r.drawing.nurbs,
+        numbers: [
+          ['points', 'points', p.length],
+          ['pieces', 'pieces (inflection halves)', `${r.segments.length} (${r.segments.filter((g) => g.kind === 'lac_inflection').length})`],
+          ['corners', 'corners', corners.length],
+          ['alpha', 'alpha', alpha],
+          ['g2', 'G2 at every smooth point', r.g2 ? 'yes' : 'no'],
+          ['max_curvature_jump', 'largest curvature jump (cubics)', r.max_cubic_jump],
+          ['inflections', 'inflections', r.inflections],
+          ['curvature_extrema', 'curvature extrema', r.curvature_extrema],
+          ['iterations', 'Newton steps', r.iterations],
+        ],
+        verdict: [r.all_monotone ? 'every piece: curvature monotone (proven)' : 'some piece is NOT proven monotone', r.all_monotone],
+        lcg: { fit: null, note: 'one log-aesthetic α for every piece: the graph of each is a line of that slope' },
+      };
+    },
+    region: () => null,
+  },
+
   lac: {
     box: { x0: -1, y0: -2, x1: 15, y1: 9 },
     hint: 'Drag the three control points; move the alpha slider. Green: where the third control point may go (a LAC segment exists). Dashed blue: the rational cubic Bézier.',
@@ -114,7 +153,7 @@ export const MODES = {
 
   spline: {
     box: { x0: 0, y0: 0, x1: 14, y1: 10 },
-    hint: 'Click to add points, drag them. The pseudo-elastic spline (S2) through them, open or closed.',
+    hint: 'Click to add points, drag them. The pseudo-elastic spline (S2) through them, open or closed: G1 (its curvature steps at every point; the G2 spline is the first mode).',
     controls: ['closed-box', 'add-point', 'remove-point', 'clear'],
     addsPoints: true,
     initial: () => ({ p: [[1.5, 2], [4.5, 6.5], [8, 4], [12, 7.5]], closed: false }),
@@ -198,10 +237,12 @@ export const MODES = {
 
   bezier: {
     box: { x0: 0, y0: -1, x1: 14, y1: 9 },
-    hint: 'Drag the control points; click one to select it. Green: where the selected point keeps the curvature monotone.',
+    hint: 'Drag the control points; click one to select it; click the canvas to add a point there (+ point adds one a step on). Green: where the selected point keeps the curvature monotone.',
     controls: ['region-box', 'add-point', 'remove-point'],
     polygon: true,
+    addsPoints: true,
     minPoints: 3,
+    maxPoints: 21,
     initial: () => ({ p: [[1, 1], [6, 1], [10, 3], [12, 7]], selected: 2 }),
     handles: (st) => st.p,
     async update(st) {
