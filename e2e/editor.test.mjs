@@ -411,6 +411,13 @@ await step('outline check: the sample contour, pasted path data, a dragged point
   assert.ok((await text('verdict')).length > 0);
   await shot('10-outline-font-o');
   console.log(`     DejaVu Sans o, contour 1: ${await text('verdict')}`);
+  // The glyph list is searchable: typing a name loads the first glyph that has it.
+  await page.fill('#outline-search', 'odieresis');
+  await page.waitForFunction(() => window.__editor.state.outline.name === 'odieresis', null, { timeout: 15000 });
+  await idle();
+  assert.ok((await page.$$eval('#outline-shape option', (o) => o.length)) < 10);
+  await page.fill('#outline-search', '');
+  await shot('10b-outline-search');
   // A font whose first glyphs are empty (.notdef without contours, as in Nimbus Sans): the
   // first glyph with segments is shown, not "could not load".
   await page.setInputFiles('#outline-file', `${root}crates/aecurve/tests/data/deep_composites.ttf`);

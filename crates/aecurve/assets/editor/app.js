@@ -570,7 +570,7 @@ function syncOutline() {
   // The glyph list, filtered by the search box (a font has thousands of names).
   const q = $('outline-search').value.trim().toLowerCase();
   const sel = $('outline-shape');
-  const keep = st.names.map((t, i) => [t, i]).filter(([t, i]) => !q || i === st.shape || t.toLowerCase().includes(q)).slice(0, 500);
+  const keep = st.names.map((t, i) => [t, i]).filter(([t, i]) => !q || i === st.shape || t.toLowerCase().includes(q));
   sel.replaceChildren(...keep.map(([t, i]) => {
     const o = document.createElement('option');
     o.value = String(i);
@@ -719,10 +719,19 @@ $('outline-file').addEventListener('change', () => {
 $('outline-search').addEventListener('input', () => {
   const st = state.outline;
   syncOutline();
-  // The first match is loaded as the search narrows to it.
-  const q = $('outline-search').value.trim().toLowerCase();
-  const first = st.names.findIndex((t) => t.toLowerCase().includes(q));
-  if (q && st.source && first >= 0 && !st.names[st.shape].toLowerCase().includes(q)) outlineLoad(st.source, first, 0);
+  // The best match is loaded: the name itself, then the name in any case, then the first
+  // that starts with the text, then the first that holds it.
+  const raw = $('outline-search').value.trim();
+  const q = raw.toLowerCase();
+  if (!q || !st.source) return;
+  const tests = [(t) => t === raw, (t) => t.toLowerCase() === q, (t) => t.toLowerCase().startsWith(q), (t) => t.toLowerCase().includes(q)];
+  for (const test of tests) {
+    const i = st.names.findIndex(test);
+    if (i >= 0) {
+      if (i !== st.shape) outlineLoad(st.source, i, 0);
+      return;
+    }
+  }
 });
 $('outline-shape').addEventListener('change', () => {
   const st = state.outline;

@@ -41,7 +41,7 @@ export function combLength(vp, shown, gain) {
 }
 
 // shown: {curve, kappa, normals, overlay, overlayPolygon, pieces, marks, corners, polygon,
-// handles, selected, stroke}; region: {grid, rows} or null; opts: {comb, gain, fixedLength
+// handles, offCurve (per handle: drawn hollow), selected, stroke}; region: {grid, rows} or null; opts: {comb, gain, fixedLength
 // (the tooth length to keep, while a drag goes on), hover (an index into the curve)}.
 // Returns the comb's tooth length used.
 export function drawStage(vp, ctx, shown, region, opts) {
@@ -120,12 +120,23 @@ export function drawStage(vp, ctx, shown, region, opts) {
     ctx.lineWidth = 2;
     ctx.strokeRect(x - 6, y - 6, 12, 12);
   }
+  // Handles: filled discs; an outline's off-curve points hollow and smaller, as font
+  // editors draw them.
   (shown.handles || []).forEach((p, i) => {
     const [x, y] = vp.toScreen(p);
     ctx.beginPath();
-    ctx.arc(x, y, 6, 0, 2 * Math.PI);
-    ctx.fillStyle = i === shown.selected ? '#e8a33d' : '#444';
-    ctx.fill();
+    const off = shown.offCurve && shown.offCurve[i];
+    ctx.arc(x, y, off ? 4.5 : 6, 0, 2 * Math.PI);
+    if (off) {
+      ctx.fillStyle = 'white';
+      ctx.fill();
+      ctx.strokeStyle = i === shown.selected ? '#e8a33d' : '#444';
+      ctx.lineWidth = 2;
+      ctx.stroke();
+    } else {
+      ctx.fillStyle = i === shown.selected ? '#e8a33d' : '#444';
+      ctx.fill();
+    }
   });
   // The place on the curve the curvature plot points at.
   if (opts.hover != null && shown.curve && shown.curve[opts.hover]) {

@@ -340,6 +340,13 @@ export function fontSource(st) {
   return /\.(ttf|otf|dxf)$/i.test(name);
 }
 
+// The off-curve points of a contour (every control point but a segment's ends), drawn
+// apart from the on-curve ones.
+function offCurve(st) {
+  const on = new Set(st.segs.flatMap((idx) => [idx[0], idx[idx.length - 1]]));
+  return st.p.map((_, i) => !on.has(i));
+}
+
 export function outlineSegments(st) {
   return st.segs.map((idx, k) => ({ control_points: idx.map((i) => st.p[i]), weights: st.weights[k] }));
 }
@@ -377,7 +384,7 @@ export const OUTLINE = {
     const jumps = k.joins.filter((j) => j.g1 && j.g2 === false).length;
     const polygon = st.closed ? st.p.concat([st.p[0]]) : st.p;
     return {
-      shown: Object.assign(curveOf(d), { handles: st.p, polygon, marks, ghost: st.ghost || null }),
+      shown: Object.assign(curveOf(d), { handles: st.p, offCurve: offCurve(st), polygon, marks, ghost: st.ghost || null }),
       nurbs: null,
       numbers: [
         ['outline', 'outline', `${st.name} (contour ${st.contour + 1} of ${st.contours})`],
