@@ -142,6 +142,11 @@ fn requests_at_the_limits() -> Vec<(&'static str, Value)> {
             "points": circle16, "closed": true, "mode": "exact"}),
         ),
         (
+            "spline.lac, 500 points, draw 300",
+            json!({"op": "spline.lac",
+            "points": wave(500).iter().map(|p| [p[0] * 100.0, p[1] * 30.0]).collect::<Vec<_>>(), "draw": 300}),
+        ),
+        (
             "lac.fit, 20,000 points",
             json!({"op": "lac.fit", "points": arc(20_000).collect::<Vec<_>>()}),
         ),
@@ -206,6 +211,11 @@ fn requests_over_the_limits_are_refused_at_once() {
             json!({"op": "spline.pseudo_elastic", "points": wave(17), "mode": "exact"}),
             "points",
             "16",
+        ),
+        (
+            json!({"op": "spline.lac", "points": wave(501)}),
+            "points",
+            "500",
         ),
         (
             json!({"op": "spline.pseudo_elastic", "points": wave(20_000), "draw": 11}),

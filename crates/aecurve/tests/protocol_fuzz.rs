@@ -158,7 +158,7 @@ fn arb_number() -> impl Strategy<Value = f64> {
 
 fn arb_lac_request() -> impl Strategy<Value = Value> {
     (
-        0usize..10,
+        0usize..12,
         arb_number(),
         arb_number(),
         prop::collection::vec(arb_number(), 0..6),
@@ -192,6 +192,8 @@ fn arb_lac_request() -> impl Strategy<Value = Value> {
                 9 => json!({"id": 10, "op": "sketch.contour", "points": control, "tolerance": lambda,
                     "closed": if alpha > 1.0 { json!(true) } else if alpha < -1.0 { json!(false) } else { Value::Null },
                     "corner_angle_degrees": theta.first().copied().unwrap_or(35.0)}),
+                10 => json!({"id": 11, "op": "spline.lac", "points": control, "alpha": alpha,
+                    "closed": lambda > 0.0, "corners": [0, 2]}),
                 _ => json!({"id": 4, "op": "lcg.estimate", "points": control}),
             };
             if let Some(s) = samples {

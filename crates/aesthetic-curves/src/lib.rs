@@ -3,7 +3,8 @@
 //! Curves whose curvature varies monotonically, and the tools to design, check and export
 //! them: the exact curvature-monotonicity test of Bézier curves, log-aesthetic curves (LAC),
 //! their approximation by one rational cubic with proven monotone curvature, the
-//! pseudo-elastic spline, and pen input to a G2 curve of LAC pieces. The mathematics of
+//! pseudo-elastic spline, the G2 log-aesthetic spline through points, and pen input to a G2
+//! curve of LAC pieces. The mathematics of
 //! every module, with the accuracy of each result and the test that checks it, is in
 //! `docs/math.md` of the repository; the papers (cited as S0-S4) in `docs/bibliography.md`.
 //!
@@ -38,6 +39,12 @@
 //! let spline = pseudo_elastic(&pts, false, Mode::Table)?;
 //! assert_eq!(spline.segments.len(), 3);
 //! assert!(spline.length > 7.0);
+//!
+//! // The G2 log-aesthetic spline through the same points (clothoid pieces, alpha = -1):
+//! // through every point, G2 at each, every piece one rational cubic proven monotone.
+//! use aesthetic_curves::lac_spline::{lac_spline, LacSplineOptions};
+//! let g2 = lac_spline(&pts, &LacSplineOptions::default())?;
+//! assert!(g2.all_monotone && g2.max_curvature_jump < 1e-10);
 //!
 //! // Pen input to a G2 curve of LAC pieces, each one rational cubic.
 //! let stroke: Vec<Point> = (0..=40)
