@@ -383,6 +383,22 @@ pub fn curve_with_comb(
 /// document and the Python package.
 pub use crate::export::{curve_samples, CombSample};
 
+/// (arc length, curvature) of comb samples: arc length as chord sums, samples whose
+/// curvature is not finite left out.
+pub fn curvature_series(samples: &[CombSample]) -> Vec<(f64, f64)> {
+    let mut s = 0.0;
+    let mut out = Vec::with_capacity(samples.len());
+    for (i, (p, _, k)) in samples.iter().enumerate() {
+        if i > 0 {
+            s += (*p - samples[i - 1].0).hypot();
+        }
+        if k.is_finite() {
+            out.push((s, *k));
+        }
+    }
+    out
+}
+
 /// The curve (as comb samples), its control polygon, its curvature comb and circled marks.
 /// Input units are unnamed; see [`comb_svg_in`].
 pub fn comb_svg(

@@ -848,6 +848,28 @@ pub fn contour_json(c: &aesthetic_curves::sketch::contour::SketchContour) -> Val
     out
 }
 
+/// One piece of a sketch or a spline as both ops send it: its kind, control triangle, end
+/// curvatures, rational cubic and monotone verdict (the callers add their own fields).
+fn piece_json(
+    kind: &str,
+    control: &[aesthetic_curves::Point; 3],
+    ends: (f64, f64),
+    rational: &aesthetic_curves::RationalBezier,
+    monotone: bool,
+) -> Value {
+    let pts = |ps: &[aesthetic_curves::Point]| ps.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
+    json!({
+        "kind": kind,
+        "control": pts(control),
+        "end_curvatures": [ends.0, ends.1],
+        "rational": {
+            "control_points": pts(rational.points()),
+            "weights": rational.weights(),
+        },
+        "monotone": monotone,
+    })
+}
+
 /// The `sketch.fit` result of a sketch (shared with `aecurve sketch --json`).
 pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Value {
     // Absent rather than null where a number is undefined (protocol: no NaN, no infinity).
@@ -861,18 +883,15 @@ pub fn sketch_json(sk: &aesthetic_curves::sketch::Sketch, tolerance: f64) -> Val
         .pieces
         .iter()
         .map(|p| {
-            let mut o = json!({
-                "kind": p.kind.as_str(),
-                "alpha": p.alpha,
-                "control": pts(&p.control),
-                "end_curvatures": [p.end_curvatures.0, p.end_curvatures.1],
-                "rational": {
-                    "control_points": pts(p.rational.points()),
-                    "weights": p.rational.weights(),
-                },
-                "monotone": p.monotone,
-                "alpha_at_bound": p.alpha_at_bound,
-            });
+            let mut o = piece_json(
+                p.kind.as_str(),
+                &p.control,
+                p.end_curvatures,
+                &p.rational,
+                p.monotone,
+            );
+            o["alpha"] = json!(p.alpha);
+            o["alpha_at_bound"] = json!(p.alpha_at_bound);
             put(&mut o, "alpha_estimate", p.alpha_estimate);
             put(&mut o, "rational_error", Some(p.rational_error));
             o
@@ -1419,23 +1438,19 @@ fn spline_lac(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
 /// `sketch.fit` gives its segments (kind, alpha, control, end curvatures, rational cubic,
 /// monotone verdict), with the span each belongs to.
 pub fn lac_spline_json(s: &aesthetic_curves::lac_spline::LacSpline) -> Value {
-    let pts = |ps: &[aesthetic_curves::Point]| ps.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
     let segments: Vec<Value> = s
         .pieces
         .iter()
         .map(|p| {
-            let mut o = json!({
-                "kind": p.kind.as_str(),
-                "span": p.span,
-                "control": pts(&p.control),
-                "end_curvatures": [p.end_curvatures.0, p.end_curvatures.1],
-                "rational": {
-                    "control_points": pts(p.rational.points()),
-                    "weights": p.rational.weights(),
-                },
-                "monotone": p.monotone,
-                "rational_error": p.rational_error,
-            });
+            let mut o = piece_json(
+                p.kind.as_str(),
+                &p.control,
+                p.end_curvatures,
+                &p.rational,
+                p.monotone,
+            );
+            o["span"] = json!(p.span);
+            o["rational_error"] = json!(p.rational_error);
             if let Some(a) = p.alpha {
                 o["alpha"] = json!(a);
             }

@@ -550,6 +550,26 @@ macro_rules! pymethods_with_exports {
 }
 
 /// The methods every Bézier type shares (same names as the Rust API).
+/// The methods of a curve made of rational cubic pieces held in `pieces` (a sketch, a
+/// contour, a spline): `domain` and `at` over the pieces, the exports, and `extra`.
+macro_rules! pieces_methods {
+    ($ty:ident { $($extra:tt)* }) => {
+        pymethods_with_exports!($ty {
+    /// The parameter interval of `at`: (0, n) for n pieces (piece i on [i, i + 1]).
+    fn domain(&self) -> (f64, f64) {
+        (0.0, self.pieces.len() as f64)
+    }
+    /// Point, first and second derivatives, curvature and dκ/ds at `u` (a float or an
+    /// array; piece `floor(u)` at its own t = u - floor(u); clamped into the domain).
+    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+        let pieces = ac::Pieces(self.pieces.iter().map(|p| p.inner.clone()).collect());
+        curve_at(py, &pieces, u)
+    }
+            $($extra)*
+        });
+    };
+}
+
 macro_rules! bezier_methods {
     ($ty:ident, { $($extra:tt)* }) => {
         pymethods_with_exports!($ty {
@@ -1229,17 +1249,7 @@ impl LacSpline {
     }
 }
 
-pymethods_with_exports!(LacSpline {
-    /// The parameter interval of `at`: (0, n) for n pieces (piece i on [i, i + 1]).
-    fn domain(&self) -> (f64, f64) {
-        (0.0, self.pieces.len() as f64)
-    }
-    /// Point, first and second derivatives, curvature and dκ/ds at `u` (a float or an
-    /// array; piece `floor(u)` at its own t = u - floor(u); clamped into the domain).
-    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
-        let pieces = ac::Pieces(self.pieces.iter().map(|p| p.inner.clone()).collect());
-        curve_at(py, &pieces, u)
-    }
+pieces_methods!(LacSpline {
     fn __len__(&self) -> usize {
         self.pieces.len()
     }
@@ -1458,18 +1468,7 @@ impl SketchContour {
     }
 }
 
-pymethods_with_exports!(SketchContour {
-    /// The parameter interval of `at`: (0, n) for n pieces (piece i on [i, i + 1]).
-    fn domain(&self) -> (f64, f64) {
-        (0.0, self.pieces.len() as f64)
-    }
-    /// Point, first and second derivatives, curvature and dκ/ds at `u` (a float or an
-    /// array; piece `floor(u)` at its own t = u - floor(u); clamped into the domain).
-    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
-        let pieces = ac::Pieces(self.pieces.iter().map(|p| p.inner.clone()).collect());
-        curve_at(py, &pieces, u)
-    }
-});
+pieces_methods!(SketchContour {});
 
 impl Bezier {
     fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
@@ -1512,18 +1511,7 @@ impl PseudoSpline {
 
 pymethods_with_exports!(RationalSpline {});
 
-pymethods_with_exports!(Sketch {
-    /// The parameter interval of `at`: (0, n) for n pieces (piece i on [i, i + 1]).
-    fn domain(&self) -> (f64, f64) {
-        (0.0, self.pieces.len() as f64)
-    }
-    /// Point, first and second derivatives, curvature and dκ/ds at `u` (a float or an
-    /// array; piece `floor(u)` at its own t = u - floor(u); clamped into the domain).
-    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
-        let pieces = ac::Pieces(self.pieces.iter().map(|p| p.inner.clone()).collect());
-        curve_at(py, &pieces, u)
-    }
-});
+pieces_methods!(Sketch {});
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {

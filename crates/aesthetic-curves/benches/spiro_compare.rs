@@ -12,55 +12,19 @@ use aesthetic_curves::pseudo_table::tables;
 use aesthetic_curves::samples::wavy_points;
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use std::os::raw::{c_char, c_int, c_void};
 
-#[repr(C)]
-#[derive(Clone, Copy)]
-struct SpiroCp {
-    x: f64,
-    y: f64,
-    ty: c_char,
-}
+#[path = "../tests/common/spiro.rs"]
+mod spiro_ffi;
+use spiro_ffi::SpiroCp;
 
-#[link(name = "spiro")]
-extern "C" {
-    fn run_spiro(src: *const SpiroCp, n: c_int) -> *mut c_void;
-    fn free_spiro(s: *mut c_void);
-}
-
+/// libspiro solved `cps`.
 fn spiro(cps: &[SpiroCp]) -> bool {
-    // SAFETY: `cps` is a valid array of `cps.len()` control points for the call's duration;
-    // the returned segment array is freed by the library's own function.
-    unsafe {
-        let s = run_spiro(cps.as_ptr(), cps.len() as c_int);
-        let ok = !s.is_null();
-        if ok {
-            free_spiro(s);
-        }
-        ok
-    }
+    spiro_ffi::run(cps).is_some()
 }
 
-/// Spiro control points through `pts`: open curves start with '{' and end with '}',
-/// closed ones are all 'c' (G2 everywhere).
+/// Spiro control points through `pts`, no corners.
 fn control_points(pts: &[aesthetic_curves::Point], closed: bool) -> Vec<SpiroCp> {
-    let n = pts.len();
-    pts.iter()
-        .enumerate()
-        .map(|(i, p)| SpiroCp {
-            x: p.x,
-            y: p.y,
-            ty: if closed {
-                b'c'
-            } else if i == 0 {
-                b'{'
-            } else if i == n - 1 {
-                b'}'
-            } else {
-                b'c'
-            } as c_char,
-        })
-        .collect()
+    spiro_ffi::control_points(pts, closed, &[])
 }
 
 /// The point sets of issue 17's spline race (the same as `aecurve bench spline`): 15 and

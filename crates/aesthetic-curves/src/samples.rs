@@ -89,6 +89,22 @@ pub fn wavy_points(n: usize, seed: u64) -> Vec<Point> {
         .collect()
 }
 
+/// A random open polyline's points, the input of the spline sweeps (`tests/lac_spline.rs`,
+/// `tests/spiro_oracle.rs`): 4 to 9 points from the origin, chords 0.5 to 2 long, each
+/// turning from the last by up to ±`turn` radians. Draws from `rng`, so one generator gives
+/// a reproducible sequence of sets.
+pub fn random_walk(rng: &mut SplitMix64, turn: f64) -> Vec<Point> {
+    let n = 4 + (rng.next_u64() % 6) as usize;
+    let mut pts = vec![Point::new(0.0, 0.0)];
+    let mut dir = 0.0f64;
+    for _ in 1..n {
+        dir += rng.range(-turn, turn);
+        let last = *pts.last().expect("one point at least");
+        pts.push(last + kurbo::Vec2::from_angle(dir) * rng.range(0.5, 2.0));
+    }
+    pts
+}
+
 /// `count` LAC segments of random shape, the distribution of the rational-cubic sweep
 /// (`tests/approx_sweep.rs`): α uniform in [-5, 5], turning uniform in 5° to 120°, the base
 /// angle at the high-curvature end uniform between the circle's and 0.98 of θ_lim; start

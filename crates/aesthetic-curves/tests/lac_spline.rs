@@ -4,7 +4,7 @@
 //! (similarity, reversal, points on a circle).
 
 use aesthetic_curves::lac_spline::{lac_spline, LacSpline, LacSplineOptions, SplinePieceKind};
-use aesthetic_curves::samples::{wavy_points, SplitMix64};
+use aesthetic_curves::samples::{random_walk, wavy_points, SplitMix64};
 use aesthetic_curves::{CurvatureMonotone, Error, Point, Vec2};
 
 /// Homogeneous point (w x, w y, w) and its first two derivatives of a rational cubic.
@@ -404,15 +404,7 @@ fn random_point_sets_converge() {
     let mut rng = SplitMix64::new(5);
     let (mut failed, total) = (0usize, 200usize);
     for _ in 0..total {
-        let n = 4 + (rng.next_u64() % 6) as usize;
-        let mut pts = vec![p(0.0, 0.0)];
-        let mut dir = 0.0f64;
-        for _ in 1..n {
-            dir += rng.range(-TURN, TURN);
-            let len = rng.range(0.5, 2.0);
-            let last = *pts.last().unwrap();
-            pts.push(last + Vec2::from_angle(dir) * len);
-        }
+        let pts = random_walk(&mut rng, TURN);
         match lac_spline(&pts, &LacSplineOptions::default()) {
             Ok(s) => {
                 let (jump, _) = check(&pts, &LacSplineOptions::default(), &s);

@@ -9,71 +9,17 @@
 //! spiro-bench --test spiro_oracle`
 
 use aesthetic_curves::lac_spline::{lac_spline, LacSplineOptions};
-use aesthetic_curves::samples::{wavy_points, SplitMix64};
+use aesthetic_curves::samples::{random_walk, wavy_points, SplitMix64};
 use aesthetic_curves::{Point, Vec2};
-use std::os::raw::{c_char, c_int};
 
-#[repr(C)]
-#[derive(Clone, Copy)]
-struct SpiroCp {
-    x: f64,
-    y: f64,
-    ty: c_char,
+mod common {
+    pub mod spiro;
 }
+use common::spiro::{control_points, run, SpiroSeg};
 
-/// libspiro's `spiro_seg` (spiro.h).
-#[repr(C)]
-#[derive(Clone, Copy)]
-struct SpiroSeg {
-    x: f64,
-    y: f64,
-    ty: c_char,
-    bend_th: f64,
-    ks: [f64; 4],
-    seg_ch: f64,
-    seg_th: f64,
-    l: f64,
-}
-
-#[link(name = "spiro")]
-extern "C" {
-    fn run_spiro(src: *const SpiroCp, n: c_int) -> *mut SpiroSeg;
-    fn free_spiro(s: *mut SpiroSeg);
-}
-
-/// Spiro's segments through `pts` (`corner[i]`: a 'v' point), or None when it fails.
+/// Spiro's segments through `pts` (corners 'v' at `corners`), or None when it fails.
 fn spiro(pts: &[Point], closed: bool, corners: &[usize]) -> Option<Vec<SpiroSeg>> {
-    let n = pts.len();
-    let cps: Vec<SpiroCp> = pts
-        .iter()
-        .enumerate()
-        .map(|(i, p)| SpiroCp {
-            x: p.x,
-            y: p.y,
-            ty: if corners.contains(&i) {
-                b'v'
-            } else if closed {
-                b'c'
-            } else if i == 0 {
-                b'{'
-            } else if i == n - 1 {
-                b'}'
-            } else {
-                b'c'
-            } as c_char,
-        })
-        .collect();
-    // SAFETY: `cps` is a valid array of n control points for the call's duration; the
-    // returned array holds n segments (one per point) and is freed by libspiro's own call.
-    unsafe {
-        let s = run_spiro(cps.as_ptr(), n as c_int);
-        if s.is_null() {
-            return None;
-        }
-        let segs = std::slice::from_raw_parts(s, n).to_vec();
-        free_spiro(s);
-        Some(segs)
-    }
+    run(&control_points(pts, closed, corners))
 }
 
 /// A Spiro segment's signed curvature at its start and end, input units: its curvature in
@@ -199,14 +145,7 @@ fn sweep(turn: f64, seed: u64) -> (usize, usize, usize, usize, f64) {
     let (mut both, mut spiro_failed, mut ours_failed, mut both_failed) = (0, 0, 0, 0);
     let mut worst = 0.0f64;
     for _ in 0..200 {
-        let n = 4 + (rng.next_u64() % 6) as usize;
-        let mut pts = vec![Point::new(0.0, 0.0)];
-        let mut dir = 0.0f64;
-        for _ in 1..n {
-            dir += rng.range(-turn, turn);
-            let last = *pts.last().unwrap();
-            pts.push(last + Vec2::from_angle(dir) * rng.range(0.5, 2.0));
-        }
+        let pts = random_walk(&mut rng, turn);
         let s = spiro(&pts, false, &[]).is_some();
         let r = lac_spline(&pts, &LacSplineOptions::default());
         if let Err(e) = &r {

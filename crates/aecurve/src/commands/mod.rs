@@ -100,16 +100,7 @@ impl crate::cli::CurveOutput {
 
 /// Curvature against arc length (chord sums of the samples) of a curve.
 fn write_curvature_plot(path: &Path, samples: &[plot::CombSample], title: &str) -> Result<()> {
-    let mut s = 0.0;
-    let mut pts = Vec::with_capacity(samples.len());
-    for (i, (p, _, k)) in samples.iter().enumerate() {
-        if i > 0 {
-            s += (*p - samples[i - 1].0).hypot();
-        }
-        if k.is_finite() {
-            pts.push((s, *k));
-        }
-    }
+    let pts = plot::curvature_series(samples);
     let mut series = plot::Series::new("curvature", pts, plot::PALETTE[0]);
     series.markers = false;
     plot::write_picture(

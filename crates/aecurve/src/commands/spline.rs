@@ -54,23 +54,43 @@ pub(crate) fn spline(
             r["energy"].as_f64().unwrap_or(f64::NAN)
         );
     }
-    if out.paths().next().is_some() {
-        let samples = plot::curve_samples(&s.as_curve()?, 41)?;
-        let caption = format!("pseudo-elastic spline: length {:.6}", s.length);
-        let mut polygon = pts.clone();
-        if closed {
-            polygon.push(pts[0]);
-        }
-        let nurbs = s.as_curve()?.to_nurbs(0.0)?;
-        out.write(
-            "pseudo_elastic_spline",
-            &mut || Ok(nurbs.clone()),
-            &samples,
-            &caption,
-            &mut || Ok(plot::comb_svg(&samples, &polygon, &[], &caption)),
-        )?;
+    let caption = format!("pseudo-elastic spline: length {:.6}", s.length);
+    write_spline(
+        out,
+        "pseudo_elastic_spline",
+        &s.as_curve()?,
+        &pts,
+        closed,
+        &caption,
+    )
+}
+
+/// The `-o` files and `--curvature-plot` of a spline through `pts`: the curve, its comb and
+/// the points (joined back to the first when `closed`).
+fn write_spline(
+    out: &CurveOutput,
+    entity: &str,
+    curve: &dyn Curve,
+    pts: &[aesthetic_curves::Point],
+    closed: bool,
+    caption: &str,
+) -> Result<()> {
+    if out.paths().next().is_none() {
+        return Ok(());
     }
-    Ok(())
+    let samples = plot::curve_samples(curve, 41)?;
+    let mut polygon = pts.to_vec();
+    if closed {
+        polygon.push(pts[0]);
+    }
+    let nurbs = curve.to_nurbs(0.0)?;
+    out.write(
+        entity,
+        &mut || Ok(nurbs.clone()),
+        &samples,
+        caption,
+        &mut || Ok(plot::comb_svg(&samples, &polygon, &[], caption)),
+    )
 }
 
 /// `aecurve spline --kind lac`: the G2 log-aesthetic spline through the points of a file.
@@ -92,29 +112,20 @@ pub(crate) fn lac_spline(
     } else {
         print_lac_spline(&s, pts.len(), opts);
     }
-    if out.paths().next().is_some() {
-        let curve = s.rationals();
-        let samples = plot::curve_samples(&curve, 41)?;
-        let caption = format!(
-            "log-aesthetic spline, alpha {}: {} pieces, G2 to {:.1e}",
-            opts.alpha,
-            s.pieces.len(),
-            s.max_cubic_jump
-        );
-        let mut polygon = pts.clone();
-        if opts.closed {
-            polygon.push(pts[0]);
-        }
-        let nurbs = curve.to_nurbs(0.0)?;
-        out.write(
-            "lac_spline",
-            &mut || Ok(nurbs.clone()),
-            &samples,
-            &caption,
-            &mut || Ok(plot::comb_svg(&samples, &polygon, &[], &caption)),
-        )?;
-    }
-    Ok(())
+    let caption = format!(
+        "log-aesthetic spline, alpha {}: {} pieces, G2 to {:.1e}",
+        opts.alpha,
+        s.pieces.len(),
+        s.max_cubic_jump
+    );
+    write_spline(
+        out,
+        "lac_spline",
+        &s.rationals(),
+        &pts,
+        opts.closed,
+        &caption,
+    )
 }
 
 fn print_lac_spline(

@@ -231,21 +231,6 @@ pub(crate) fn spline_gallery(out: &std::path::Path, quick: bool) -> Result<Strin
     Ok(html)
 }
 
-/// Curvature against arc length (chord sums) of comb samples.
-fn curvature_series(samples: &[plot::CombSample]) -> Vec<(f64, f64)> {
-    let mut s = 0.0;
-    let mut out = Vec::with_capacity(samples.len());
-    for (i, (p, _, k)) in samples.iter().enumerate() {
-        if i > 0 {
-            s += (*p - samples[i - 1].0).hypot();
-        }
-        if k.is_finite() {
-            out.push((s, *k));
-        }
-    }
-    out
-}
-
 /// S2's point sets through the pseudo-elastic spline (G1: its curvature steps at every
 /// point) and the G2 log-aesthetic spline (α = -1 and α = -0.4) side by side, each with
 /// its comb, and their curvature plots on one chart.
@@ -322,7 +307,7 @@ pub(crate) fn g1_g2_gallery(out: &std::path::Path) -> Result<String> {
                 "<figure style=\"display:inline-block;width:32%;margin:0\"><img src=\"{file}\" \
                  alt=\"{label}\" width=\"100%\"><figcaption>{label}</figcaption></figure>\n"
             );
-            let mut s = plot::Series::nth(short.clone(), curvature_series(samples), i);
+            let mut s = plot::Series::nth(short.clone(), plot::curvature_series(samples), i);
             s.markers = false;
             series.push(s);
         }
