@@ -19,6 +19,7 @@ __all__ = [
     "EndCurvature",
     "InvalidInputError",
     "LacFit",
+    "LacSpline",
     "LacInflectionSegment",
     "LacSegment",
     "MonotoneReport",
@@ -39,6 +40,7 @@ __all__ = [
     "SketchContour",
     "harmonize",
     "index_contour",
+    "lac_spline",
     "plot_comb",
     "pseudo_elastic",
 ]
@@ -254,7 +256,7 @@ class LacSpline(_Exportable):
 
 def lac_spline(
     points: _Points,
-    alpha: float = -1.0,
+    alpha: float = ...,
     closed: bool = False,
     corners: list[int] = ...,
     alphas: Optional[list[float]] = None,
