@@ -365,6 +365,43 @@ fn near_degenerate_points_are_normal_points() {
 }
 
 #[test]
+fn a_span_may_turn_past_a_half_turn() {
+    // A spiral through points 200° apart: its spans turn by more than π each, built in two
+    // halves of the same segment (no control triangle holds one).
+    let pts: Vec<Point> = (0..5)
+        .map(|k| {
+            let a = (200.0f64 * k as f64).to_radians();
+            (Vec2::from_angle(a) * (1.0 + 0.3 * k as f64)).to_point()
+        })
+        .collect();
+    for alpha in [-1.0, -0.5] {
+        let s = run(
+            &pts,
+            &LacSplineOptions {
+                alpha,
+                ..Default::default()
+            },
+        );
+        let turn = |span: usize| -> f64 {
+            s.pieces
+                .iter()
+                .filter(|pc| pc.span == span)
+                .map(|pc| {
+                    let c = pc.rational.points();
+                    let (u, v) = ((c[1] - c[0]).normalize(), (c[3] - c[2]).normalize());
+                    u.cross(v).atan2(u.dot(v)).abs()
+                })
+                .sum()
+        };
+        assert!(
+            (0..4).filter(|&k| turn(k) > std::f64::consts::PI).count() >= 2,
+            "alpha {alpha}: spans turn {:?}",
+            (0..4).map(turn).collect::<Vec<_>>()
+        );
+    }
+}
+
+#[test]
 fn bad_input_is_refused_by_name() {
     let pts = [p(0.0, 0.0), p(1.0, 1.0), p(1.0, 1.0), p(2.0, 0.0)];
     assert!(matches!(

@@ -118,7 +118,9 @@ impl LacSegment {
             // θ* = -θ_d: the start is the singular end; integrate end -> start and negate.
             -c.integral_to_domain_end(tb)?
         };
-        Ok(chord.y.atan2(chord.x) - ta)
+        // In [0, 2π): the base angle lies in (0, θ_d), past π only when a spline's span turns
+        // by more than a half turn (below π it is what atan2 gives).
+        Ok((chord.y.atan2(chord.x) - ta).rem_euclid(std::f64::consts::TAU))
     }
 
     /// `Λ_max = 1/(|α-1| θ_d)` (infinite for α = 1).

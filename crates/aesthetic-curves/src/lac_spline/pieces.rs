@@ -104,6 +104,14 @@ fn span_pieces(
             .into_iter()
             .map(|tri| arc_piece(k, problem.alphas[k], tri, approx))
             .collect(),
+        Shape::Lac { alpha } if da.abs() + db.abs() >= std::f64::consts::PI => {
+            let mut out = Vec::new();
+            for tri in long_halves(alpha, da, db)? {
+                let seg = segment_in(alpha, frame.triangle(tri))?;
+                out.extend(fit(k, Part::Lac(seg, true), approx, 0)?);
+            }
+            Ok(out)
+        }
         Shape::Lac { alpha } => {
             let seg = segment_in(alpha, frame.triangle(triangle(da, db)))?;
             fit(k, Part::Lac(seg, true), approx, 0)
@@ -123,6 +131,78 @@ fn span_pieces(
     }
 }
 
+/// A span's segment turning half a turn or more (no control triangle holds it), in the
+/// chord frame: the segment of shape `alpha` from the Λ solve and its standard form, mapped
+/// onto the chord by the similarity (with or without a reflection) that sends its start
+/// tangent along `da`; returned as the control triangles of its two halves by turning,
+/// each a segment of the same curve.
+fn long_halves(alpha: f64, da: f64, db: f64) -> Result<[[Point; 3]; 2]> {
+    use crate::lac::LacStandard;
+    let theta_d = da.abs() + db.abs();
+    let lambda = LacSegment::solve_lambda(alpha, theta_d, da.abs().max(db.abs()))?;
+    let std = LacStandard::new(alpha, lambda)?;
+    let (t0, t1) = if alpha <= 1.0 {
+        (0.0, theta_d)
+    } else {
+        (-theta_d, 0.0)
+    };
+    // The standard form's start is the high-curvature end: the span's start when |a| >= |b|.
+    let (ts, te) = if da.abs() >= db.abs() {
+        (t0, t1)
+    } else {
+        (t1, t0)
+    };
+    let dir = |t: f64| Vec2::from_angle(t) * (te - ts).signum();
+    let tm = 0.5 * (t0 + t1);
+    let (ps, pm, pe) = (
+        std.eval(ts)?.to_vec2(),
+        std.eval(tm)?.to_vec2(),
+        std.eval(te)?.to_vec2(),
+    );
+    let conj = |v: Vec2| Vec2::new(v.x, -v.y);
+    let cdiv = |a: Vec2, b: Vec2| {
+        let d = b.hypot2();
+        Vec2::new((a.x * b.x + a.y * b.y) / d, (a.y * b.x - a.x * b.y) / d)
+    };
+    let cmul = |a: Vec2, b: Vec2| Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
+    // z -> f (z - ps), or the same of the conjugates: ps to 0, pe to 1.
+    let maps = [false, true].map(|m| {
+        let c = |v: Vec2| if m { conj(v) } else { v };
+        let f = cdiv(Vec2::new(1.0, 0.0), c(pe) - c(ps));
+        (m, f)
+    });
+    let start = Vec2::from_angle(da);
+    let (m, f) = maps
+        .into_iter()
+        .max_by(|x, y| {
+            let d = |(m, f): (bool, Vec2)| {
+                let v = cmul(f, if m { conj(dir(ts)) } else { dir(ts) });
+                v.normalize().dot(start)
+            };
+            d(*x).total_cmp(&d(*y))
+        })
+        .expect("two maps");
+    let c = |v: Vec2| if m { conj(v) } else { v };
+    let mid = cmul(f, c(pm) - c(ps)).to_point();
+    let tangent = cmul(f, c(dir(tm))).normalize();
+    let meet = |p: Point, dp: Vec2, q: Point, dq: Vec2| -> Result<Point> {
+        let x = p + dp * ((q - p).cross(dq) / dp.cross(dq));
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(Error::Degenerate(
+                "a half's end tangents are parallel".into(),
+            ))
+        }
+    };
+    let (a, b) = (Point::ZERO, Point::new(1.0, 0.0));
+    let end = Vec2::from_angle(db);
+    Ok([
+        [a, meet(a, start, mid, tangent)?, mid],
+        [mid, meet(mid, tangent, b, end)?, b],
+    ])
+}
+
 /// The map from a span's chord frame (start 0, end 1) to the input.
 struct Frame {
     a: Point,
@@ -134,8 +214,15 @@ impl Frame {
         let c = self.b - self.a;
         self.a + Vec2::new(c.x * z.x - c.y * z.y, c.x * z.y + c.y * z.x)
     }
+    /// A triangle of the chord frame in the input (the chord's ends exactly).
     fn triangle(&self, t: [Point; 3]) -> [Point; 3] {
-        [self.a, self.point(t[1].to_vec2()), self.b]
+        t.map(|p| {
+            if p == Point::new(1.0, 0.0) {
+                self.b
+            } else {
+                self.point(p.to_vec2())
+            }
+        })
     }
     /// The unit vector at angle `x` from the chord.
     fn direction(&self, x: f64) -> Vec2 {

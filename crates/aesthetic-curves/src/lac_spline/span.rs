@@ -22,6 +22,10 @@ use crate::solve::roots::illinois;
 use kurbo::Vec2;
 use std::f64::consts::PI;
 
+/// The most one segment of a span may turn (radians): past a half turn it is built in two
+/// halves of its turning (pieces.rs).
+pub(super) const MAX_TURN: f64 = 1.8 * PI;
+
 /// Deviations below this (radians, summed) make a span a line.
 const LINE_TURN: f64 = 2e-9;
 
@@ -87,7 +91,7 @@ pub(super) fn solve(alpha: f64, a: f64, b: f64) -> Result<Solved> {
             kappa: (k, k),
         });
     }
-    if a * b < 0.0 && a.abs() + b.abs() < PI {
+    if a * b < 0.0 && a.abs() + b.abs() < MAX_TURN {
         if let Some(s) = one_segment(alpha, a, b)? {
             return Ok(s);
         }

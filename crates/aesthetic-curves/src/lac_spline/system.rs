@@ -175,8 +175,8 @@ impl Problem<'_> {
             if let Err(e) = self.span(k, theta) {
                 let (i, j) = self.ends[k];
                 return Error::NoSegment(format!(
-                    "the span from point {i} to point {j} cannot start: {} (a span turns by \
-                     less than 180 degrees: add a point between them, or make one a corner)",
+                    "the span from point {i} to point {j} cannot start: {} (add a point \
+                     between them, or make one a corner)",
                     e.message()
                 ));
             }
