@@ -1025,18 +1025,7 @@ fn chain_entities(pieces: Vec<(String, String, Contour)>) -> Vec<Shape> {
         (a.points()[0], b.points()[b.points().len() - 1])
     };
     let reversed = |c: Contour| -> Contour {
-        let segments = c
-            .segments
-            .iter()
-            .rev()
-            .map(|s| {
-                let mut p = s.points().to_vec();
-                let mut w = s.weights().to_vec();
-                p.reverse();
-                w.reverse();
-                RationalBezier::new(p, w).expect("a valid segment reversed")
-            })
-            .collect();
+        let segments = c.segments.iter().rev().map(|s| s.reversed()).collect();
         Contour {
             segments,
             closed: c.closed,

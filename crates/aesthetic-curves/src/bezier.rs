@@ -616,6 +616,15 @@ impl RationalBezier {
     pub fn control_box(&self) -> kurbo::Rect {
         control_box(&self.points)
     }
+
+    /// The same curve traversed the other way (points and weights in reverse order; its
+    /// signed curvature changes sign).
+    pub fn reversed(&self) -> RationalBezier {
+        RationalBezier {
+            points: self.points.iter().rev().copied().collect(),
+            weights: self.weights.iter().rev().copied().collect(),
+        }
+    }
 }
 
 fn control_box(points: &[Point]) -> kurbo::Rect {
@@ -665,6 +674,10 @@ mod tests {
         }
         assert!((r.kappa_start() - 0.5).abs() < 1e-14);
         assert!((r.kappa_end() - 0.5).abs() < 1e-14);
+        // Backwards: the same points in reverse, the curvature of the other sign.
+        let b = r.reversed();
+        assert_eq!(b.eval(0.25), r.eval(0.75));
+        assert_eq!(b.kappa_start(), -r.kappa_end());
     }
 
     #[test]

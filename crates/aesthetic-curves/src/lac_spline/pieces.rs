@@ -529,7 +529,7 @@ fn piece(span: usize, part: &Part, f: RationalCubicFit) -> Result<SplinePiece> {
         (
             [control[2], control[1], control[0]],
             (-kappa.1, -kappa.0),
-            reversed(&f.curve),
+            f.curve.reversed(),
         )
     };
     Ok(SplinePiece {
@@ -542,15 +542,6 @@ fn piece(span: usize, part: &Part, f: RationalCubicFit) -> Result<SplinePiece> {
         rational_error: f.max_error,
         monotone: f.monotone,
     })
-}
-
-/// The same curve traversed the other way.
-fn reversed(c: &RationalBezier) -> RationalBezier {
-    let mut p = c.points().to_vec();
-    let mut w = c.weights().to_vec();
-    p.reverse();
-    w.reverse();
-    RationalBezier::new(p, w).expect("reversal keeps a valid curve")
 }
 
 /// The spline from its pieces and the solve's report.

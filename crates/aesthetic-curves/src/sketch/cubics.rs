@@ -9,7 +9,6 @@ use super::types::{PieceCurve, PieceKind, SketchPiece};
 use crate::approx::{
     fit_inflection_cubic_from, fit_rational_cubic, ApproxOptions, RationalCubicFit,
 };
-use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
 use crate::lac::{LacInflectionSegment, ALPHA_RANGE};
 use kurbo::Point;
@@ -142,7 +141,7 @@ fn in_curve_order(
     if inflection_at_start {
         (c, f)
     } else {
-        f.curve = reverse(&f.curve);
+        f.curve = f.curve.reversed();
         ([c[2], c[1], c[0]], f)
     }
 }
@@ -206,15 +205,6 @@ fn inflection_fallback(seg: &LacInflectionSegment) -> Result<crate::approx::Rati
         // A fixed cubic, not an optimum.
         converged: false,
     })
-}
-
-/// The same curve traversed the other way.
-fn reverse(c: &RationalBezier) -> RationalBezier {
-    let mut p = c.points().to_vec();
-    let mut w = c.weights().to_vec();
-    p.reverse();
-    w.reverse();
-    RationalBezier::new(p, w).expect("reversal keeps a valid curve")
 }
 
 #[cfg(test)]
