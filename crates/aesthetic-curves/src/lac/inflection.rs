@@ -208,14 +208,9 @@ impl LacInflectionSegment {
         let (p, t) = (at.points[0], at.tangents[0]);
         let c = self.control;
         let meet = |a: Point, da: Vec2, b: Point, db: Vec2| -> Result<Point> {
-            let x = a + da * ((b - a).cross(db) / da.cross(db));
-            if x.is_finite() {
-                Ok(x)
-            } else {
-                Err(Error::Degenerate(
-                    "the split point's tangent is parallel to an end tangent".into(),
-                ))
-            }
+            super::tangents_meet(a, da, b, db).ok_or_else(|| {
+                Error::Degenerate("the split point's tangent is parallel to an end tangent".into())
+            })
         };
         let x0 = meet(c[0], c[1] - c[0], p, t)?;
         let x1 = meet(p, t, c[2], c[2] - c[1])?;

@@ -90,15 +90,24 @@ impl TurningSamples {
     }
 }
 
-fn cmul(a: Vec2, b: Vec2) -> Vec2 {
+/// Complex product, quotient and conjugate of vectors taken as complex numbers (the
+/// similarities here and the spline's chord frames).
+pub(crate) fn cmul(a: Vec2, b: Vec2) -> Vec2 {
     Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
 }
-fn cdiv(a: Vec2, b: Vec2) -> Vec2 {
+pub(crate) fn cdiv(a: Vec2, b: Vec2) -> Vec2 {
     let d = b.hypot2();
     Vec2::new((a.x * b.x + a.y * b.y) / d, (a.y * b.x - a.x * b.y) / d)
 }
-fn conj(a: Vec2) -> Vec2 {
+pub(crate) fn conj(a: Vec2) -> Vec2 {
     Vec2::new(a.x, -a.y)
+}
+
+/// Where the line through `a` along `da` meets the line through `b` along `db` (the apex of
+/// a control triangle from its end tangents); `None` for parallel lines.
+pub(crate) fn tangents_meet(a: Point, da: Vec2, b: Point, db: Vec2) -> Option<Point> {
+    let x = a + da * ((b - a).cross(db) / da.cross(db));
+    x.is_finite().then_some(x)
 }
 
 /// A similarity of the plane (possibly with a reflection): `z -> offset + factor z` in complex

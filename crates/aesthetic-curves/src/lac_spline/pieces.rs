@@ -8,7 +8,7 @@ use super::LacSpline;
 use crate::approx::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions, RationalCubicFit};
 use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
-use crate::lac::{LacInflectionSegment, LacSegment};
+use crate::lac::{cdiv, cmul, conj, tangents_meet, LacInflectionSegment, LacSegment};
 use kurbo::{Point, Vec2};
 
 /// Splits of one segment at most (a piece turns 1/32 of its segment at the least).
@@ -159,12 +159,6 @@ fn long_halves(alpha: f64, da: f64, db: f64) -> Result<[[Point; 3]; 2]> {
         std.eval(tm)?.to_vec2(),
         std.eval(te)?.to_vec2(),
     );
-    let conj = |v: Vec2| Vec2::new(v.x, -v.y);
-    let cdiv = |a: Vec2, b: Vec2| {
-        let d = b.hypot2();
-        Vec2::new((a.x * b.x + a.y * b.y) / d, (a.y * b.x - a.x * b.y) / d)
-    };
-    let cmul = |a: Vec2, b: Vec2| Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
     // z -> f (z - ps), or the same of the conjugates: ps to 0, pe to 1.
     let maps = [false, true].map(|m| {
         let c = |v: Vec2| if m { conj(v) } else { v };
@@ -186,14 +180,8 @@ fn long_halves(alpha: f64, da: f64, db: f64) -> Result<[[Point; 3]; 2]> {
     let mid = cmul(f, c(pm) - c(ps)).to_point();
     let tangent = cmul(f, c(dir(tm))).normalize();
     let meet = |p: Point, dp: Vec2, q: Point, dq: Vec2| -> Result<Point> {
-        let x = p + dp * ((q - p).cross(dq) / dp.cross(dq));
-        if x.is_finite() {
-            Ok(x)
-        } else {
-            Err(Error::Degenerate(
-                "a half's end tangents are parallel".into(),
-            ))
-        }
+        tangents_meet(p, dp, q, dq)
+            .ok_or_else(|| Error::Degenerate("a half's end tangents are parallel".into()))
     };
     let (a, b) = (Point::ZERO, Point::new(1.0, 0.0));
     let end = Vec2::from_angle(db);
@@ -211,8 +199,7 @@ struct Frame {
 
 impl Frame {
     fn point(&self, z: Vec2) -> Point {
-        let c = self.b - self.a;
-        self.a + Vec2::new(c.x * z.x - c.y * z.y, c.x * z.y + c.y * z.x)
+        self.a + cmul(self.b - self.a, z)
     }
     /// A triangle of the chord frame in the input (the chord's ends exactly).
     fn triangle(&self, t: [Point; 3]) -> [Point; 3] {
@@ -235,13 +222,8 @@ impl Frame {
 /// The inflection-end segment from the inflection `m` (tangent `dm`) to the end `p`
 /// (tangent `dp`): the triangle from where the two tangent lines meet.
 fn inflection_segment(m: Point, dm: Vec2, p: Point, dp: Vec2) -> Result<LacInflectionSegment> {
-    let den = dm.cross(dp);
-    let apex = m + dm * ((p - m).cross(dp) / den);
-    if !apex.is_finite() {
-        return Err(Error::Degenerate(
-            "an inflection half's tangents are parallel".into(),
-        ));
-    }
+    let apex = tangents_meet(m, dm, p, dp)
+        .ok_or_else(|| Error::Degenerate("an inflection half's tangents are parallel".into()))?;
     LacInflectionSegment::new([m, apex, p])
 }
 
@@ -426,9 +408,7 @@ fn tilted(
 
 /// Where the line from `p` at angle `angle` meets the line through `q` along `e`.
 fn turned_apex(p: Point, angle: f64, q: Point, e: Vec2) -> Option<Point> {
-    let dir = Vec2::from_angle(angle);
-    let x = p + dir * ((q - p).cross(e) / dir.cross(e));
-    x.is_finite().then_some(x)
+    tangents_meet(p, Vec2::from_angle(angle), q, e)
 }
 
 /// `x` wrapped into (-π, π].
