@@ -318,14 +318,10 @@ fn segment_in(alpha: f64, t: [Point; 3]) -> Result<LacSegment> {
             if phi - 0.5 * theta_d > 1e-8 * theta_d {
                 return Err(Error::NoSegment(m));
             }
-            let chord = t[2] - t[0];
-            let e0 = wrap((t[1] - t[0]).angle() - chord.angle());
             (0..6)
                 .find_map(|k| {
-                    let d = 1e-14 * 10f64.powi(k);
-                    let apex =
-                        turned_apex(t[0], chord.angle() + e0 * (1.0 + d), t[2], t[1] - t[2])?;
-                    LacSegment::new(alpha, [t[0], apex, t[2]]).ok()
+                    let turned = turned_triangle(t, true, 1e-14 * 10f64.powi(k))?;
+                    LacSegment::new(alpha, turned).ok()
                 })
                 .ok_or(Error::NoSegment(m))
         }
@@ -388,27 +384,37 @@ fn tilted(
         .iter()
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
     let first = (1e-13f64).max(10.0 * f64::EPSILON * reach / chord.hypot());
-    // The end with the larger base angle.
-    let (e0, e2) = (
-        wrap((c[1] - c[0]).angle() - chord.angle()),
-        wrap(chord.angle() - (c[2] - c[1]).angle()),
-    );
+    let (e0, e2) = base_angles(c);
     (0..TILTS).find_map(|k| {
-        let d = first * 10f64.powi(k);
-        let apex = if e0.abs() >= e2.abs() {
-            turned_apex(c[0], chord.angle() + e0 * (1.0 + d), c[2], c[1] - c[2])
-        } else {
-            turned_apex(c[2], (-chord).angle() - e2 * (1.0 + d), c[0], c[1] - c[0])
-        }?;
-        let tilted = LacSegment::new(alpha, [c[0], apex, c[2]]).ok()?;
+        let turned = turned_triangle(c, e0.abs() >= e2.abs(), first * 10f64.powi(k))?;
+        let tilted = LacSegment::new(alpha, turned).ok()?;
         let f = fit_cubic(&Part::Lac(tilted.clone(), true), approx).ok()?;
         f.monotone.then_some((tilted, f))
     })
 }
 
-/// Where the line from `p` at angle `angle` meets the line through `q` along `e`.
-fn turned_apex(p: Point, angle: f64, q: Point, e: Vec2) -> Option<Point> {
-    tangents_meet(p, Vec2::from_angle(angle), q, e)
+/// The signed angles of a triangle's start and end tangents from its chord.
+fn base_angles(c: [Point; 3]) -> (f64, f64) {
+    let chord = (c[2] - c[0]).angle();
+    (
+        wrap((c[1] - c[0]).angle() - chord),
+        wrap(chord - (c[2] - c[1]).angle()),
+    )
+}
+
+/// The triangle `c` with its start tangent (`at_start`) or its end tangent turned away from
+/// the chord by `d` of its angle to it, the other tangent and both ends kept.
+fn turned_triangle(c: [Point; 3], at_start: bool, d: f64) -> Option<[Point; 3]> {
+    let chord = c[2] - c[0];
+    let (e0, e2) = base_angles(c);
+    let apex = if at_start {
+        let dir = Vec2::from_angle(chord.angle() + e0 * (1.0 + d));
+        tangents_meet(c[0], dir, c[2], c[1] - c[2])
+    } else {
+        let dir = Vec2::from_angle((-chord).angle() - e2 * (1.0 + d));
+        tangents_meet(c[2], dir, c[0], c[1] - c[0])
+    }?;
+    Some([c[0], apex, c[2]])
 }
 
 /// `x` wrapped into (-π, π].
