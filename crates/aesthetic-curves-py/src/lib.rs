@@ -1167,6 +1167,20 @@ fn pseudo_elastic(
     Ok(PseudoSpline { inner })
 }
 
+/// A curve of rational cubic pieces as the Python classes hold it: one NURBS of all the
+/// pieces, and each piece.
+fn joined(curve: ac::Pieces<ac::RationalBezier>) -> PyResult<(Nurbs, Vec<RationalBezier>)> {
+    let nurbs = Nurbs {
+        inner: curve.to_nurbs(0.0).map_err(err)?,
+    };
+    let pieces = curve
+        .0
+        .into_iter()
+        .map(|inner| RationalBezier { inner })
+        .collect();
+    Ok((nurbs, pieces))
+}
+
 /// The G2 log-aesthetic spline through points: LAC pieces of one α, G2 at every smooth
 /// point, each delivered as a rational cubic proven curvature-monotone.
 #[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
@@ -1220,16 +1234,10 @@ fn lac_spline(
     let s = py
         .detach(move || ac::lac_spline::lac_spline(&p, &opts))
         .map_err(err)?;
-    let curve = s.rationals();
+    let (nurbs, pieces) = joined(s.rationals())?;
     Ok(LacSpline {
-        nurbs: Nurbs {
-            inner: curve.to_nurbs(0.0).map_err(err)?,
-        },
-        pieces: curve
-            .0
-            .into_iter()
-            .map(|inner| RationalBezier { inner })
-            .collect(),
+        nurbs,
+        pieces,
         kinds: s.pieces.iter().map(|p| p.kind.as_str()).collect(),
         spans: s.pieces.iter().map(|p| p.span).collect(),
         alphas: s.pieces.iter().map(|p| p.alpha).collect(),
@@ -1325,16 +1333,10 @@ fn fit_sketch(py: Python<'_>, points: &Bound<'_, PyAny>, tolerance: f64) -> PyRe
     let s = py
         .detach(move || ac::sketch::fit_sketch(&p, &opts))
         .map_err(err)?;
-    let curve = s.as_curve();
+    let (nurbs, pieces) = joined(s.as_curve())?;
     Ok(Sketch {
-        nurbs: Nurbs {
-            inner: curve.to_nurbs(0.0).map_err(err)?,
-        },
-        pieces: curve
-            .0
-            .into_iter()
-            .map(|inner| RationalBezier { inner })
-            .collect(),
+        nurbs,
+        pieces,
         alphas: s.pieces.iter().map(|p| p.alpha).collect(),
         max_deviation: s.max_deviation,
         rms_deviation: s.rms_deviation,
@@ -1405,7 +1407,7 @@ fn fit_contour(
         corner_angle: corner_angle.to_radians(),
     };
     let c = py.detach(move || fit_contour(&p, &opts)).map_err(err)?;
-    let curve = c.as_curve().map_err(err)?;
+    let (nurbs, pieces) = joined(c.as_curve().map_err(err)?)?;
     let curves = || {
         c.runs.iter().filter_map(|r| match r {
             Run::Curve(s) => Some(s),
@@ -1413,14 +1415,8 @@ fn fit_contour(
         })
     };
     Ok(SketchContour {
-        nurbs: Nurbs {
-            inner: curve.to_nurbs(0.0).map_err(err)?,
-        },
-        pieces: curve
-            .0
-            .into_iter()
-            .map(|inner| RationalBezier { inner })
-            .collect(),
+        nurbs,
+        pieces,
         runs: c.runs.iter().map(Run::kind).collect(),
         run_pieces: c
             .runs

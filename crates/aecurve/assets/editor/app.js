@@ -269,17 +269,7 @@ function removePoint() {
 // Which span of the G2 spline passes within 8 pixels of the pointer, and where.
 function spanUnder(ev) {
   if (!frame || frame.mode !== 'g2' || !frame.shown.curve || !frame.shown.spans) return null;
-  const [x, y] = vp.eventPixel(ev);
-  const c = frame.shown.curve;
-  let best = -1, bd = 8;
-  c.forEach((p, i) => {
-    const [u, v] = vp.toScreen(p);
-    const d = Math.hypot(u - x, v - y);
-    if (d < bd) {
-      bd = d;
-      best = i;
-    }
-  });
+  const best = nearestOnScreen(ev, frame.shown.curve, 8);
   if (best < 0) return null;
   const per = frame.shown.pieces[0].length - 1;
   const piece = Math.min(Math.floor(best / per), frame.shown.spans.length - 1);
@@ -318,10 +308,12 @@ $('g2-alpha').addEventListener('change', () => {
   remember();
   setG2Alpha(parseFloat($('g2-alpha').value));
 });
-function nearestHandle(ev) {
+// The index of the world point of `pts` nearest the pointer on screen, within `radius`
+// pixels; -1 when none is.
+function nearestOnScreen(ev, pts, radius) {
   const [x, y] = vp.eventPixel(ev);
-  let best = -1, bd = 12;
-  handles().forEach((p, i) => {
+  let best = -1, bd = radius;
+  pts.forEach((p, i) => {
     const [u, v] = vp.toScreen(p);
     const d = Math.hypot(u - x, v - y);
     if (d < bd) {
@@ -331,6 +323,7 @@ function nearestHandle(ev) {
   });
   return best;
 }
+const nearestHandle = (ev) => nearestOnScreen(ev, handles(), 12);
 view.addEventListener('contextmenu', (ev) => ev.preventDefault());
 view.addEventListener('pointerdown', (ev) => {
   view.setPointerCapture(ev.pointerId);
@@ -410,16 +403,8 @@ view.addEventListener('pointermove', (ev) => {
 // Hover: the place on the curve and on the curvature plot, linked.
 view.addEventListener('pointermove', (ev) => {
   if (drag || !frame || frame.mode !== state.mode || !frame.shown.curve) return;
-  const [x, y] = vp.eventPixel(ev);
-  let best = null, bd = 12;
-  frame.shown.curve.forEach((p, i) => {
-    const [u, v] = vp.toScreen(p);
-    const d = Math.hypot(u - x, v - y);
-    if (d < bd) {
-      bd = d;
-      best = i;
-    }
-  });
+  const i = nearestOnScreen(ev, frame.shown.curve, 12);
+  const best = i < 0 ? null : i;
   if (best !== hover) {
     hover = best;
     draw();
