@@ -97,11 +97,7 @@ impl LacSegment {
     /// end) for Λ; `at_limit` evaluates the limiting curve Λ = Λ_max (α < 0 or α > 1).
     fn base_angle(alpha: f64, lambda: f64, theta_d: f64, at_limit: bool) -> Result<f64> {
         let c = LacStandard::new(alpha, lambda)?;
-        let (ta, tb) = if alpha <= 1.0 {
-            (0.0, theta_d)
-        } else {
-            (-theta_d, 0.0)
-        };
+        let (ta, tb) = Self::standard_interval(alpha, theta_d);
         let chord = if !at_limit {
             // Probes of the Λ solve often lie past the domain: refused here without the
             // formatted message of `integral`'s check (a fifth of a sketch fit's time).
@@ -316,11 +312,7 @@ impl LacSegment {
         if !lmax.is_finite() {
             return None;
         }
-        let (ta, tb) = if alpha <= 1.0 {
-            (0.0, theta_d)
-        } else {
-            (-theta_d, 0.0)
-        };
+        let (ta, tb) = Self::standard_interval(alpha, theta_d);
         let p1 = alpha / (alpha - 1.0);
         // The Newton variable: z = δ^q, δ = 1 - Λ/Λ_max, q = min(p1, 1) for α < 0 or α > 1
         // (θ_lim - φ ~ δ^q near the limit); Λ itself for 0 <= α < 1.
@@ -378,23 +370,45 @@ impl LacSegment {
         (l > 0.0 && l < lmax).then(|| (l, chord + d * (l - l_at), root.evaluations))
     }
 
+    /// The standard interval of a segment turning `theta_d`: [0, θ_d] for α <= 1 (the
+    /// radius grows from 1), [-θ_d, 0] above; its start is the high-curvature end.
+    pub(crate) fn standard_interval(alpha: f64, theta_d: f64) -> (f64, f64) {
+        if alpha <= 1.0 {
+            (0.0, theta_d)
+        } else {
+            (-theta_d, 0.0)
+        }
+    }
+
+    /// The curve of the Λ solve for (α, θ_d, φ): its standard form, its standard interval
+    /// and the chord over it (from the solve when it has it, else one integral; P(0) = 0).
+    pub(crate) fn solved_standard(
+        alpha: f64,
+        theta_d: f64,
+        phi: f64,
+    ) -> Result<(LacStandard, (f64, f64), Vec2)> {
+        let (lambda, chord) = Self::solve_lambda_chord(alpha, theta_d, phi)?;
+        let standard = LacStandard::new(alpha, lambda)?;
+        let interval = Self::standard_interval(alpha, theta_d);
+        let chord = match chord {
+            Some(c) => c,
+            None => standard.integral(interval.0, interval.1).map_err(|e| {
+                Error::NoConvergence(format!(
+                    "the segment for this triangle is too extreme to evaluate in f64 \
+                     (lambda = {lambda:.3e}): {e}"
+                ))
+            })?,
+        };
+        Ok((standard, interval, chord))
+    }
+
     /// The curvatures at the high- and the low-curvature end of the segment of shape
     /// `alpha` turning `theta_d` with base angle `phi` at its high-curvature end, for a chord
     /// of length 1, without building it (a spline's solve needs only these): the Λ solve,
     /// the standard chord and two closed-form curvatures. Errors as [`LacSegment::new`]
     /// (`NoSegment` outside the existence region).
     pub(crate) fn unit_chord_curvatures(alpha: f64, theta_d: f64, phi: f64) -> Result<(f64, f64)> {
-        let (lambda, chord) = Self::solve_lambda_chord(alpha, theta_d, phi)?;
-        let standard = LacStandard::new(alpha, lambda)?;
-        let (t0, t1) = if alpha <= 1.0 {
-            (0.0, theta_d)
-        } else {
-            (-theta_d, 0.0)
-        };
-        let chord = match chord {
-            Some(c) => c,
-            None => standard.integral(t0, t1)?,
-        };
+        let (standard, (t0, t1), chord) = Self::solved_standard(alpha, theta_d, phi)?;
         let len = chord.hypot();
         let (k0, k1) = (standard.kappa(t0)? * len, standard.kappa(t1)? * len);
         if !(k0.is_finite() && k1.is_finite()) {
@@ -451,24 +465,7 @@ impl LacSegment {
         let (p0, p1, p2) = (control[0], control[1], control[2]);
         let reversed = theta_f > theta_e;
         let phi = theta_e.max(theta_f);
-        let (lambda, chord) = Self::solve_lambda_chord(alpha, theta_d, phi)?;
-        let standard = LacStandard::new(alpha, lambda)?;
-        let interval = if alpha <= 1.0 {
-            (0.0, theta_d)
-        } else {
-            (-theta_d, 0.0)
-        };
-        let extreme = |e: Error| {
-            Error::NoConvergence(format!(
-                "the segment for this triangle is too extreme to evaluate in f64 \
-                 (lambda = {lambda:.3e}): {e}"
-            ))
-        };
-        // One integral: the interval is [0, θ_d] or [-θ_d, 0], and P(0) = 0.
-        let chord = match chord {
-            Some(c) => c,
-            None => standard.integral(interval.0, interval.1).map_err(extreme)?,
-        };
+        let (standard, interval, chord) = Self::solved_standard(alpha, theta_d, phi)?;
         let (a, b) = if interval.0 == 0.0 {
             (Vec2::ZERO, chord)
         } else {

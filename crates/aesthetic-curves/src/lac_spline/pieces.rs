@@ -137,15 +137,8 @@ fn span_pieces(
 /// tangent along `da`; returned as the control triangles of its two halves by turning,
 /// each a segment of the same curve.
 fn long_halves(alpha: f64, da: f64, db: f64) -> Result<[[Point; 3]; 2]> {
-    use crate::lac::LacStandard;
     let theta_d = da.abs() + db.abs();
-    let lambda = LacSegment::solve_lambda(alpha, theta_d, da.abs().max(db.abs()))?;
-    let std = LacStandard::new(alpha, lambda)?;
-    let (t0, t1) = if alpha <= 1.0 {
-        (0.0, theta_d)
-    } else {
-        (-theta_d, 0.0)
-    };
+    let (std, (t0, t1), _) = LacSegment::solved_standard(alpha, theta_d, da.abs().max(db.abs()))?;
     // The standard form's start is the high-curvature end: the span's start when |a| >= |b|.
     let (ts, te) = if da.abs() >= db.abs() {
         (t0, t1)
