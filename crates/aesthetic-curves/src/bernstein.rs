@@ -633,7 +633,7 @@ fn bisect_values(c: &[f64], lo: f64, hi: f64) -> Option<f64> {
         return None;
     }
     let zero = std::cell::Cell::new(None);
-    let b = crate::solve::bisect_by(
+    let b = crate::solve::roots::bisect_by(
         |t| {
             let v = de_casteljau(c, t);
             if v == 0.0 {

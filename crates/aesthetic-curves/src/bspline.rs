@@ -334,7 +334,7 @@ impl Spans {
     }
 
     /// Distance from `q` to the curve near parameter `u0` and the foot's parameter: the
-    /// solver layer's safeguarded Newton ([`crate::solve::newton_min_1d`]) on the squared
+    /// solver layer's safeguarded Newton ([`crate::solve::line_search::newton_min_1d`]) on the squared
     /// distance in the global parameter, so its steps cross spans; a step is kept only where
     /// the distance falls.
     fn project_near(&self, q: Point, u0: f64) -> (f64, f64) {
@@ -351,7 +351,7 @@ impl Spans {
                 -g / d1.hypot2().max(1e-300)
             })
         };
-        let opts = crate::solve::NewtonMin1d {
+        let opts = crate::solve::line_search::NewtonMin1d {
             max_iterations: 12,
             max_halvings: 8,
             // Below this the step no longer changes the distance in f64.
@@ -359,7 +359,12 @@ impl Spans {
             min_move: 1e-15 * (hi - lo),
             bounds: (lo, hi),
         };
-        let m = crate::solve::newton_min_1d(step, |u| (self.at_u(u).0 - q).hypot(), u0, &opts);
+        let m = crate::solve::line_search::newton_min_1d(
+            step,
+            |u| (self.at_u(u).0 - q).hypot(),
+            u0,
+            &opts,
+        );
         (m.value, m.x)
     }
 }
@@ -642,7 +647,7 @@ fn smoothing_fit_spans(
     } else {
         // (A failure inside the test ends the search as an error, as before.)
         let mut failure = None;
-        let found = crate::solve::bisect_by(
+        let found = crate::solve::roots::bisect_by(
             |mid| {
                 let s = solve(&eqs, 10f64.powf(mid)).ok_or_else(singular);
                 match s.and_then(|s| worst(&s, &params).map(|w| (w.0, s))) {

@@ -205,7 +205,7 @@ fn correspondence(
     let (lo, hi) = (ta.min(tb), ta.max(tb));
     let mut th = ta;
     let mut thetas = Vec::with_capacity(sigma.len());
-    let opts = crate::solve::Newton1d {
+    let opts = crate::solve::roots::Newton1d {
         max_iterations: 30,
         max_step: f64::INFINITY,
         abs_tol: 1e-14,
@@ -217,7 +217,7 @@ fn correspondence(
         let target = sa + (sb - sa) * f;
         let update = |t: f64| Some(-(c.arc_length(t).ok()? - target) / c.rho(t).ok()?);
         // (An unconverged run keeps its last iterate: the residuals measure what it costs.)
-        th = crate::solve::newton_1d(update, th, &opts).x;
+        th = crate::solve::roots::newton_1d(update, th, &opts).x;
         thetas.push(th);
     }
     let taus: Vec<f64> = thetas.iter().map(|t| (t - ta).abs()).collect();

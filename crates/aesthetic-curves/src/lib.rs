@@ -116,10 +116,10 @@
 //!   curvature monotonicity), on a grid: the shaded regions of an editor.
 //! - [`samples`]: reproducible random curve sets for benchmarks and tests.
 //! - [`sketch`]: pen input to a G2 curve of log-aesthetic pieces (as rational cubics).
-//! - [`solve`]: the solver layer, every solver with options and a report of how it ended:
-//!   Levenberg–Marquardt, root finding (`solve::roots`), Newton in one variable,
-//!   Nelder–Mead, Brent's method, the compass search, a walk along the boundary of a
-//!   feasible set, bisection on a yes/no test.
+//! - [`solve`]: the solver layer, every solver with its own options and a report of how it
+//!   ended, one file per kind: minimisers of a few variables (`solve::minimize`), of one
+//!   variable (`solve::line_search`), roots (`solve::roots`), systems and fixed points
+//!   (`solve::systems`), least squares (`solve::least_squares`).
 //!
 //! Points and vectors are [`kurbo::Point`] and [`kurbo::Vec2`]; angles are radians; signed
 //! curvature is positive where the curve turns counter-clockwise (kurbo's curvature has

@@ -216,7 +216,7 @@ pub fn suggest_handles(c: &crate::Bezier, tolerance: f64) -> Option<HandleSugges
     let (a, b, _) = best?;
     // Towards the current handles in (ln a, ln b) while it stays monotone.
     // (`inside`: the fraction of the way from (1, 1).)
-    let inside = crate::solve::bisect_by(
+    let inside = crate::solve::roots::bisect_by(
         |m| monotone(a.powf(m), b.powf(m)).then_some(()),
         1.0,
         0.0,

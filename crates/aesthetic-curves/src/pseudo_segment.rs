@@ -143,7 +143,7 @@ fn j_of(theta0: f64, theta1: f64, u: f64, v: f64) -> f64 {
     }
 }
 
-/// [`crate::solve::nelder_mead`] in two variables from `start` (simplex steps `step`) to
+/// [`crate::solve::minimize::nelder_mead`] in two variables from `start` (simplex steps `step`) to
 /// vertices within `tol` whose values agree to 1e-14 relative (or a simplex collapsed to
 /// 1e-13), at most 600 evaluations (about the 400 iterations of the loop it replaced: the
 /// same minima to 1e-15 on a 12 x 12 grid of end angles, in the same time); returns
@@ -154,11 +154,11 @@ fn nelder_mead(
     step: f64,
     tol: f64,
 ) -> ((f64, f64), f64) {
-    let m = crate::solve::nelder_mead(
+    let m = crate::solve::minimize::nelder_mead(
         &mut |x: &[f64]| f(x[0], x[1]),
         &[start.0, start.1],
         &[step, step],
-        crate::solve::Options {
+        crate::solve::minimize::NelderMead {
             f_tol: 1e-300,
             f_rel_tol: 1e-14,
             x_tol: tol,
@@ -464,7 +464,7 @@ fn circle_min(f: &mut dyn FnMut(f64) -> f64, n: usize, tol: f64) -> (f64, f64) {
             best = (x, v);
         }
     }
-    let (x, v) = crate::solve::brent(f, best.0 - h, best.0 + h, tol);
+    let (x, v) = crate::solve::line_search::brent(f, best.0 - h, best.0 + h, tol);
     if v < best.1 {
         (wrap(x), v)
     } else {

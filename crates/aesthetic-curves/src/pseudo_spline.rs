@@ -182,7 +182,7 @@ fn table_tangent(lp: f64, li: f64, turn: f64, guess: f64) -> Option<f64> {
     // Newton converges quadratically here: a step below 1e-6 leaves an error of order its
     // square (1e-12 rad), far below the accuracy of the tables themselves. The window:
     // within 0.6 of `guess`.
-    let opts = crate::solve::Newton1d {
+    let opts = crate::solve::roots::Newton1d {
         max_iterations: 30,
         max_step: 0.1,
         abs_tol: 1e-6,
@@ -190,7 +190,7 @@ fn table_tangent(lp: f64, li: f64, turn: f64, guess: f64) -> Option<f64> {
         bounds: (guess - 0.6, guess + 0.6),
         clamp: false,
     };
-    let root = crate::solve::newton_1d(update, a0, &opts);
+    let root = crate::solve::roots::newton_1d(update, a0, &opts);
     root.converged().then_some(root.x)
 }
 
@@ -298,7 +298,7 @@ fn pseudo_elastic_unit(points: &[Point], closed: bool, mode: Mode) -> Result<Pse
             Some(a) => a,
             None => {
                 let tol = if mode == Mode::Exact { 1e-7 } else { 1e-9 };
-                crate::solve::brent(&mut w, guess - 0.6, guess + 0.6, tol).0
+                crate::solve::line_search::brent(&mut w, guess - 0.6, guess + 0.6, tol).0
             }
         };
         dir[i] = phi[i] + a;

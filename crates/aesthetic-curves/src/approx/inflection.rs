@@ -94,7 +94,7 @@ impl InflectionTable {
     /// The arc-length fraction of the point of the segment nearest to `q`, from a start
     /// `sigma`: Gauss–Newton on the tabulated curve (the foot of the perpendicular).
     fn nearest_sigma(&self, q: Point, sigma: f64) -> f64 {
-        let opts = crate::solve::Newton1d {
+        let opts = crate::solve::roots::Newton1d {
             max_iterations: 30,
             max_step: f64::INFINITY,
             abs_tol: 1e-15,
@@ -107,7 +107,7 @@ impl InflectionTable {
             Some(-(p - q).dot(d) / d.hypot2())
         };
         // (Its last iterate either way: the fit measures the distance it gives.)
-        crate::solve::newton_1d(update, sigma, &opts).x
+        crate::solve::roots::newton_1d(update, sigma, &opts).x
     }
 
     fn at_turning(&self, tau: f64) -> Point {
@@ -172,7 +172,7 @@ const INFLECTION_STEP_FLOOR: f64 = 1e-6;
 /// `inflection_cubic`) for an inflection-end segment: a grid over (f0, ln w0);
 /// Levenberg–Marquardt, then a compass search, from the best curvature-monotone grid
 /// points with non-monotone steps refused; where the optimum lies on the boundary of the
-/// monotone set, a walk along it ([`crate::solve::along_boundary`]). The error is
+/// monotone set, a walk along it ([`crate::solve::minimize::along_boundary`]). The error is
 /// reported on the exact segment at `opts.report_samples` uniform t. Within 1 % of an
 /// exhaustive search in the tests. The curve starts at the
 /// inflection end (zero curvature) and matches the end point, tangent and curvature at C2:
@@ -267,14 +267,17 @@ pub(crate) fn fit_inflection_cubic_from(
                 0.02 / n as f64
             }
         };
-        let r = crate::solve::compass_search(
+        let opts = crate::solve::minimize::CompassSearch {
+            scale: 6.0,
+            step: h,
+            floor: INFLECTION_STEP_FLOOR,
+            max_evaluations: 20_000usize.saturating_sub(evals),
+        };
+        let r = crate::solve::minimize::compass_search(
             &mut |y| table.cost(make(y), &tr),
             &|y| monotone(y),
             (x, table.cost(make(x), &tr)),
-            6.0,
-            h,
-            INFLECTION_STEP_FLOOR,
-            20_000usize.saturating_sub(evals),
+            &opts,
         );
         evals += r.evaluations;
         let (mut cost, mut x, h) = (r.value, r.x, r.step);
@@ -287,7 +290,8 @@ pub(crate) fn fit_inflection_cubic_from(
         let behind = best.is_some_and(|b| cost > 1.5 * b.0);
         if h > 0.0 && !behind {
             let c = |y: (f64, f64)| table.cost(make(y), &tr);
-            if let Some((y, cy, e)) = crate::solve::along_boundary(&c, &feasible, x, (1.0, 6.0), 12)
+            if let Some((y, cy, e)) =
+                crate::solve::minimize::along_boundary(&c, &feasible, x, (1.0, 6.0), 12)
             {
                 evals += e;
                 (cost, x) = (cy, y);

@@ -8,6 +8,7 @@ use super::valley;
 use super::ApproxOptions;
 use crate::lac::LacSegment;
 use crate::solve::least_squares::LmOptions;
+use crate::solve::minimize::{compass_search as compass_search_in, CompassSearch};
 
 /// Minimise the cost along one grid line: `axis` 0 fixes f0 = `fixed` and varies f1 from
 /// `start` within `± width`, axis 1 the other way round ([`valley::line_min_along`] with
@@ -42,14 +43,17 @@ pub(super) fn compass_search(
 ) -> ((f64, f64), f64, usize) {
     let mut buf = Vec::new();
     let value = prob.cost(start.0, start.1, ts, &mut buf);
-    let r = crate::solve::compass_search(
+    let opts = CompassSearch {
+        scale: 1.0,
+        step: h,
+        floor: 1e-9,
+        max_evaluations: 1999,
+    };
+    let r = compass_search_in(
         &mut |y| prob.cost(y.0, y.1, ts, &mut buf),
         &|y| feasible(y.0, y.1),
         (start, value),
-        1.0,
-        h,
-        1e-9,
-        1999,
+        &opts,
     );
     (r.x, r.value, r.evaluations + 1)
 }
@@ -392,7 +396,7 @@ pub(super) fn grid_search(
         };
         let lo = (s0 - width).max(1e-6);
         let hi = (s0 + width).min(1.0 - 1e-6);
-        let (sv, c) = crate::solve::golden_section(&mut g, lo, hi, 8);
+        let (sv, c) = crate::solve::line_search::golden_section(&mut g, lo, hi, 8);
         let x = floor.1;
         if c.is_finite() {
             let pt = if axis == 0 { (sv, x) } else { (x, sv) };

@@ -67,7 +67,7 @@ pub fn fit_rational_spline(
         }
         // Longest feasible end by bisection on the turning angle (feasibility shrinks with
         // length), down to 1e-3 of the remaining turn.
-        let found = crate::solve::bisect_by(
+        let found = crate::solve::roots::bisect_by(
             |mid| try_piece(a, mid),
             a,
             td,
@@ -161,7 +161,7 @@ pub fn fit_inflection_spline(
         }
         hi = tau;
     };
-    let found = crate::solve::bisect_by(
+    let found = crate::solve::roots::bisect_by(
         try_head,
         lo,
         hi,

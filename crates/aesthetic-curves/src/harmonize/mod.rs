@@ -20,7 +20,7 @@
 //! **The coupling.** `e_A` depends on A's other handle length (a1 slides along A's start
 //! tangent, and its distance from T_A's line changes unless the two tangents are parallel),
 //! which the join before solves. The joins are therefore swept in turn until nothing moves
-//! ([`crate::solve::sweep_to_fixed_point`]). A cubic the result spoils (more curvature
+//! ([`crate::solve::systems::sweep_to_fixed_point`]). A cubic the result spoils (more curvature
 //! extrema than the input, a hook it did not have, or a join of its worse) is held half
 //! way back (then at a quarter, then at its input) and the rest swept again, so that its
 //! neighbours make up for it from their other sides (`settle`).
@@ -220,7 +220,7 @@ pub struct Harmonized {
     /// exact test could not run).
     pub extrema: Vec<(Option<usize>, Option<usize>)>,
     /// The sweeps over the joins.
-    pub sweeps: crate::solve::Sweeps,
+    pub sweeps: crate::solve::systems::Sweeps,
     /// The cubics whose curvature defects [`repair`] removed first (none from
     /// [`harmonize`] alone).
     pub bumps: Vec<BumpFix>,
@@ -905,8 +905,8 @@ fn settle(
     (closed, smooth): (bool, &[bool]),
     opts: &HarmonizeOptions,
     (guard, extrema_before): (&[(f64, f64)], &[Option<Profile>]),
-) -> (crate::solve::Sweeps, Vec<JoinOutcome>) {
-    let mut total = crate::solve::Sweeps {
+) -> (crate::solve::systems::Sweeps, Vec<JoinOutcome>) {
+    let mut total = crate::solve::systems::Sweeps {
         sweeps: 0,
         last_change: 0.0,
         converged: true,
@@ -959,17 +959,17 @@ fn spoiled(
 }
 
 /// The smooth joins swept in turn to G2 until nothing moves
-/// ([`crate::solve::sweep_to_fixed_point`]), each join's two handle lengths solved with
+/// ([`crate::solve::systems::sweep_to_fixed_point`]), each join's two handle lengths solved with
 /// [`solve_join`]; the outcome per join.
 fn sweep_joins(
     segments: &[Vec<Point>],
     h: &mut Handles,
     (closed, smooth): (bool, &[bool]),
     opts: &HarmonizeOptions,
-) -> (crate::solve::Sweeps, Vec<JoinOutcome>) {
+) -> (crate::solve::systems::Sweeps, Vec<JoinOutcome>) {
     let n = segments.len();
     let mut outcome = vec![JoinOutcome::Corner; smooth.len()];
-    let sweeps = crate::solve::sweep_to_fixed_point(opts.max_sweeps, 1e-13, || {
+    let sweeps = crate::solve::systems::sweep_to_fixed_point(opts.max_sweeps, 1e-13, || {
         let mut change = 0.0f64;
         for (j, ia, ib) in joins(n, closed) {
             if !smooth[j] {

@@ -718,7 +718,7 @@ impl LacSegment {
             let dg = -rho + sign * r.dot(n);
             (dg < 0.0).then(|| -r.dot(u) / dg)
         };
-        let opts = crate::solve::Newton1d {
+        let opts = crate::solve::roots::Newton1d {
             max_iterations: 50,
             max_step: 0.5,
             abs_tol: 1e-13,
@@ -726,7 +726,7 @@ impl LacSegment {
             bounds: (f64::NEG_INFINITY, f64::INFINITY),
             clamp: false,
         };
-        let root = crate::solve::newton_1d(update, tau0, &opts);
+        let root = crate::solve::roots::newton_1d(update, tau0, &opts);
         root.converged().then_some(root.x)
     }
 

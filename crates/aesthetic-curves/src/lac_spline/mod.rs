@@ -24,7 +24,7 @@ use crate::approx::ApproxOptions;
 use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
 use crate::lac::MAX_ABS_ALPHA;
-use crate::solve::SystemStop;
+use crate::solve::systems::SystemStop;
 use kurbo::Point;
 
 pub use pieces::{SplinePiece, SplinePieceKind};

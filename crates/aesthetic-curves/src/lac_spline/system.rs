@@ -1,6 +1,6 @@
 //! The G2 problem: unknown tangent angles at the smooth points, one equation per smooth
 //! point (the curvature coming in equals the curvature going out), solved by
-//! [`crate::solve::damped_newton`] with a Jacobian of forward differences span by span
+//! [`crate::solve::systems::damped_newton`] with a Jacobian of forward differences span by span
 //! (each span depends on the angles at its two ends only, so a column costs two spans).
 //!
 //! A free end (an open curve's first or last point, a corner) has no unknown: its span
@@ -9,7 +9,7 @@
 
 use super::span::{self, Solved};
 use crate::error::{Error, Result};
-use crate::solve::{damped_newton, DampedNewton, SystemStop};
+use crate::solve::systems::{damped_newton, DampedNewton, SystemStop};
 use kurbo::Point;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;

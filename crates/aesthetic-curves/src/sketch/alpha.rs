@@ -4,7 +4,7 @@ use super::slot::{rotate, slot_ends, triangle, Cut, EndPoints, Slot};
 use super::track::Track;
 use crate::bspline;
 use crate::lac::{LacSegment, ALPHA_RANGE};
-use crate::solve::golden_bracket;
+use crate::solve::line_search::golden_bracket;
 use kurbo::Point;
 
 /// Distance from `q` to a curve sampled at an odd number of points: each pair of
@@ -168,11 +168,11 @@ pub(super) fn fit_slot_alpha(
     let start = [alpha, 0.0, 0.0];
     let step = [0.25, 0.01, 0.01];
     let scale = cost(&start[..n]);
-    let m = crate::solve::nelder_mead(
+    let m = crate::solve::minimize::nelder_mead(
         &mut cost,
         &start[..n],
         &step[..n],
-        crate::solve::Options {
+        crate::solve::minimize::NelderMead {
             f_tol: 1e-8 * scale,
             x_tol: 1e-4,
             max_evaluations: 150,

@@ -130,14 +130,14 @@ pub(super) fn project(c: &RationalBezier, q: Point, samples: &[(f64, Point)]) ->
         let gg = d.d1.hypot2() + r.dot(d.d2);
         (gg > 0.0).then(|| -r.dot(d.d1) / gg)
     };
-    let opts = crate::solve::NewtonMin1d {
+    let opts = crate::solve::line_search::NewtonMin1d {
         max_iterations: 20,
         max_halvings: 1,
         x_tol: 0.0,
         min_move: 0.0,
         bounds: (0.0, 1.0),
     };
-    let m = crate::solve::newton_min_1d(step, |t| (c.eval(t) - q).hypot(), t0, &opts);
+    let m = crate::solve::line_search::newton_min_1d(step, |t| (c.eval(t) - q).hypot(), t0, &opts);
     (m.value, m.x)
 }
 

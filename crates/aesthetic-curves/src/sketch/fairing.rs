@@ -171,11 +171,11 @@ pub(super) fn fair(
     // Converged by the measure of the final report: over the build's own curvature.
     let own = |built: &[Built]| max_abs(&mismatches(built, &active, curvature_scale(built)));
     let converged = |(_, built): &(Vec<Vec2>, Vec<Built>), _: &[f64]| own(built) <= tol;
-    let newton = crate::solve::DampedNewton {
+    let newton = crate::solve::systems::DampedNewton {
         max_iterations: opts.max_fairing_iterations,
         halvings: 30,
     };
-    let run = crate::solve::damped_newton(
+    let run = crate::solve::systems::damped_newton(
         (dirs.to_vec(), built),
         d,
         direction,
@@ -338,11 +338,11 @@ pub(super) fn free_alphas(
     };
     let own = |built: &[Built]| max_abs(&mismatches(built, active, curvature_scale(built)));
     let converged = |(_, _, built): &State, _: &[f64]| own(built) <= tol;
-    let newton = crate::solve::DampedNewton {
+    let newton = crate::solve::systems::DampedNewton {
         max_iterations: opts.max_fairing_iterations,
         halvings: 30,
     };
-    let run = crate::solve::damped_newton(
+    let run = crate::solve::systems::damped_newton(
         (dirs.to_vec(), local, std::mem::take(built)),
         d0,
         direction,

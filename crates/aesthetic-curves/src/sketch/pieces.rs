@@ -2,7 +2,7 @@ use super::slot::{rotate, triangle, Cut, Slot};
 use super::types::PieceCurve;
 use crate::error::{Error, Result};
 use crate::lac::{LacInflectionSegment, LacSegment};
-use crate::solve::bisect_by;
+use crate::solve::roots::bisect_by;
 use kurbo::{Point, Vec2};
 
 /// A built piece.

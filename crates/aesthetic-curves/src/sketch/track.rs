@@ -101,7 +101,7 @@ impl Track {
 pub(super) fn u_at_turn(track: &Track, ua: f64, ub: f64, target: f64) -> f64 {
     let total = track.angle_between(ua, ub);
     let sgn = total.signum();
-    let b = crate::solve::bisect_by(
+    let b = crate::solve::roots::bisect_by(
         |mid| (sgn * track.angle_between(ua, mid) < target).then_some(()),
         ua,
         ub,

@@ -13,6 +13,13 @@
 //! at little extra cost, kept inside a bracket (a step that leaves it bisects instead),
 //! stopping when the next step is predicted to move less than `x_tol`; it reports how it
 //! ended ([`NewtonRoot::converged`]) instead of failing, so a caller can fall back.
+//!
+//! [`newton_1d`]: the safeguarded Newton (or Gauss–Newton projection) loop in one variable
+//! without a bracket, with its [`Newton1d`] safeguards and a [`Root1d`] report.
+//!
+//! [`bisect_by`]: bisection of a bracket on a yes/no test (the longest piece that meets a
+//! tolerance, the parameter where a condition starts to hold), carrying the last passing
+//! test's value.
 
 use crate::error::{Error, Result};
 
@@ -263,10 +270,161 @@ pub fn newton<P>(
     }
 }
 
+/// Stopping rules and safeguards of [`newton_1d`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Newton1d {
+    /// Most iterations (one evaluation each).
+    pub max_iterations: usize,
+    /// Each update is clamped to ±this.
+    pub max_step: f64,
+    /// Converged when an update moves x by at most `abs_tol + rel_tol |x|`.
+    pub abs_tol: f64,
+    /// See `abs_tol`.
+    pub rel_tol: f64,
+    /// The domain of x.
+    pub bounds: (f64, f64),
+    /// True: iterates are clamped into `bounds`; false: an iterate outside them ends the run
+    /// ([`Stop1d::Refused`]).
+    pub clamp: bool,
+}
+
+/// Why [`newton_1d`] stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop1d {
+    /// An update was below the tolerance: `x` is the root to it.
+    Converged,
+    /// `max_iterations` ran out first; `x` is the last iterate.
+    IterationLimit,
+    /// The update function refused the point (outside its domain, or a slope of the wrong
+    /// sign), or an iterate left `bounds` without `clamp`.
+    Refused,
+}
+
+/// The result of [`newton_1d`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Root1d {
+    /// The last iterate.
+    pub x: f64,
+    /// Evaluations of the update function.
+    pub iterations: usize,
+    /// Why the run ended.
+    pub stop: Stop1d,
+}
+
+impl Root1d {
+    /// Whether the stopping test was met.
+    pub fn converged(&self) -> bool {
+        self.stop == Stop1d::Converged
+    }
+}
+
+/// Newton's method (or any fixed-point update) in one variable without a bracket: from
+/// `x0`, `x <- x + update(x)`, the update (for Newton `-g/g'`, for a Gauss–Newton
+/// projection `-(P - q)·P'/|P'|²`) clamped to `max_step` and the iterate kept in `bounds`
+/// as [`Newton1d`] says. `update` returns `None` where it cannot go on. The one loop behind
+/// the library's point projections and one-dimensional Newton iterations; it never runs
+/// past `max_iterations` and says how it ended.
+#[inline]
+pub fn newton_1d(mut update: impl FnMut(f64) -> Option<f64>, x0: f64, opts: &Newton1d) -> Root1d {
+    let mut x = x0;
+    for i in 0..opts.max_iterations {
+        let Some(d) = update(x).filter(|d| d.is_finite()) else {
+            return Root1d {
+                x,
+                iterations: i + 1,
+                stop: Stop1d::Refused,
+            };
+        };
+        let mut next = x + d.clamp(-opts.max_step, opts.max_step);
+        if opts.clamp {
+            next = next.clamp(opts.bounds.0, opts.bounds.1);
+        } else if !(opts.bounds.0..=opts.bounds.1).contains(&next) {
+            return Root1d {
+                x,
+                iterations: i + 1,
+                stop: Stop1d::Refused,
+            };
+        }
+        let done = (next - x).abs() <= opts.abs_tol + opts.rel_tol * next.abs();
+        x = next;
+        if done {
+            return Root1d {
+                x,
+                iterations: i + 1,
+                stop: Stop1d::Converged,
+            };
+        }
+    }
+    Root1d {
+        x,
+        iterations: opts.max_iterations,
+        stop: Stop1d::IterationLimit,
+    }
+}
+
+/// The result of [`bisect_by`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bisection<T> {
+    /// The end of the final bracket where the test passes (the start's `inside` if no
+    /// tested point passed).
+    pub inside: f64,
+    /// The end where it fails.
+    pub outside: f64,
+    /// The test's value at `inside`, if `inside` was tested (None: no tested point passed).
+    pub value: Option<T>,
+    /// Tests made.
+    pub iterations: usize,
+    /// `done` held (or the bracket could not be split further in floating point); false:
+    /// `max_iterations` ran out first.
+    pub converged: bool,
+}
+
+/// Bisection on a test: `test(inside)` is taken to pass and `test(outside)` to fail (either
+/// may be the larger end); the point `split(inside, outside)` between them (the mean, or
+/// the geometric mean for a bracket in a scale) replaces the end of its outcome, until
+/// `done(inside, outside)` or `max_iterations` tests. `test` returns `Some(value)` to pass.
+pub fn bisect_by<T>(
+    mut test: impl FnMut(f64) -> Option<T>,
+    inside: f64,
+    outside: f64,
+    split: impl Fn(f64, f64) -> f64,
+    done: impl Fn(f64, f64) -> bool,
+    max_iterations: usize,
+) -> Bisection<T> {
+    let mut out = Bisection {
+        inside,
+        outside,
+        value: None,
+        iterations: 0,
+        converged: false,
+    };
+    while out.iterations < max_iterations {
+        if done(out.inside, out.outside) {
+            out.converged = true;
+            return out;
+        }
+        let mid = split(out.inside, out.outside);
+        if mid == out.inside || mid == out.outside || !mid.is_finite() {
+            out.converged = true;
+            return out;
+        }
+        out.iterations += 1;
+        match test(mid) {
+            Some(v) => {
+                out.inside = mid;
+                out.value = Some(v);
+            }
+            None => out.outside = mid,
+        }
+    }
+    out.converged = done(out.inside, out.outside);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
+    use std::f64::consts::SQRT_2;
     #[test]
     fn newton_converges_quadratically_and_reports_its_end() {
         // x^3 - 2 from 1: the root to rounding, in few evaluations, without a confirming one.
@@ -356,5 +514,90 @@ mod tests {
         // A tolerance below the float spacing is met at the spacing.
         let r = illinois(|x| Ok(x * x - 0.5), (0.5, -0.25), (1.0, 0.5), 0.0, 400).unwrap();
         assert!((r - 0.5f64.sqrt()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn newton_1d_converges_refuses_and_stops_as_it_says() {
+        let opts = Newton1d {
+            max_iterations: 40,
+            max_step: 1.0,
+            abs_tol: 1e-15,
+            rel_tol: 1e-15,
+            bounds: (0.0, 10.0),
+            clamp: true,
+        };
+        // √2 from 3: steps clamped to 1 at first, then quadratic.
+        let r = newton_1d(|x| Some(-(x * x - 2.0) / (2.0 * x)), 3.0, &opts);
+        assert!(
+            r.converged() && (r.x - 2f64.sqrt()).abs() < 1e-15 && r.iterations < 10,
+            "{r:?}"
+        );
+        // A refusing update ends the run where it is.
+        let r = newton_1d(|x| (x > 2.5).then_some(-0.3), 3.0, &opts);
+        assert_eq!((r.stop, r.iterations), (Stop1d::Refused, 3));
+        assert!((r.x - 2.4).abs() < 1e-12);
+        // Clamped into the bounds: the root of x + 1 is outside, so x rests at 0 (an update
+        // that moves nothing any more counts as converged); unclamped it is refused.
+        let r = newton_1d(|x| Some(-(x + 1.0)), 0.5, &opts);
+        assert_eq!((r.stop, r.x), (Stop1d::Converged, 0.0));
+        let free = Newton1d {
+            clamp: false,
+            ..opts
+        };
+        assert_eq!(
+            newton_1d(|x| Some(-(x + 1.0)), 0.5, &free).stop,
+            Stop1d::Refused
+        );
+        // A cycle never converges: the iteration limit, said so.
+        let r = newton_1d(|x| Some(if x < 1.0 { 1.0 } else { -1.0 }), 0.5, &opts);
+        assert_eq!((r.stop, r.iterations), (Stop1d::IterationLimit, 40));
+    }
+
+    #[test]
+    fn bisection_keeps_its_bracket_and_says_how_it_ended() {
+        // √2 from below (the test passes for x² <= 2), the value carried along.
+        let b = bisect_by(
+            |x| (x * x <= 2.0).then_some(x * x),
+            1.0,
+            2.0,
+            |a, b| 0.5 * (a + b),
+            |a, b| (b - a).abs() <= 1e-12,
+            100,
+        );
+        assert!(b.converged && b.inside <= SQRT_2 && b.outside >= SQRT_2);
+        assert!((b.inside - SQRT_2).abs() <= 1e-12 && b.value == Some(b.inside * b.inside));
+        // The bracket the other way round, in a scale (geometric means), to a ratio.
+        let b = bisect_by(
+            |x| (x >= 1e-3).then_some(()),
+            1.0,
+            1e-9,
+            |a, b| (a * b).sqrt(),
+            |a, b| a / b <= 1.01,
+            100,
+        );
+        assert!(
+            b.converged && b.inside >= 1e-3 && b.outside < 1e-3 && b.inside / b.outside <= 1.01
+        );
+        // The iteration limit, and a test that never passes (no value).
+        let b = bisect_by(
+            |_| None::<()>,
+            0.0,
+            1.0,
+            |a, b| 0.5 * (a + b),
+            |_, _| false,
+            5,
+        );
+        assert!(!b.converged && b.iterations == 5 && b.value.is_none());
+        assert_eq!((b.inside, b.outside), (0.0, 1.0 / 32.0));
+        // A bracket exhausted in floating point ends, converged.
+        let b = bisect_by(
+            |_| Some(()),
+            0.0,
+            1.0,
+            |a, b| 0.5 * (a + b),
+            |_, _| false,
+            10_000,
+        );
+        assert!(b.converged && b.iterations < 1100);
     }
 }
