@@ -2,9 +2,12 @@
 //! LAC segment, with the S3 error map.
 
 use crate::cli::CurveOutput;
+use crate::cli::{count, positive};
 use crate::commands::control_triangle;
+use crate::commands::Command;
 use aecurve::plot;
 use anyhow::Result;
+use std::path::{Path, PathBuf};
 
 pub(crate) fn approx(
     alpha: f64,
@@ -91,4 +94,48 @@ pub(crate) fn approx(
         eprintln!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// The arguments of `aecurve approx` (the command's help is its entry in `cli.rs`).
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// Shape parameter alpha.
+    #[arg(long, allow_hyphen_values = true)]
+    alpha: f64,
+    /// Control triangle: "x,y x,y x,y".
+    #[arg(long, allow_hyphen_values = true)]
+    control: String,
+    /// Largest distance to the LAC (input units): as many G2-joined pieces as needed.
+    #[arg(long, allow_hyphen_values = true, value_parser = positive)]
+    tolerance: Option<f64>,
+    #[command(flatten)]
+    out: CurveOutput,
+    /// Write the error map over (f0, f1) with the monotone region (S3 Fig. 3 and 5).
+    #[arg(long)]
+    map: Option<PathBuf>,
+    /// Cells per axis of the error map (2 to 2,000).
+    #[arg(long, default_value_t = 100, value_parser = count::<2, 2000>)]
+    map_cells: usize,
+}
+
+impl Command for Args {
+    fn outputs(&self) -> Vec<&Path> {
+        self.out.paths().chain(self.map.as_deref()).collect()
+    }
+
+    fn check(&self) -> Result<()> {
+        self.out.check()?;
+        plot::check_picture_paths(self.map.as_slice())
+    }
+
+    fn run(self) -> Result<()> {
+        approx(
+            self.alpha,
+            &self.control,
+            self.tolerance,
+            &self.out,
+            self.map.as_deref(),
+            self.map_cells,
+        )
+    }
 }

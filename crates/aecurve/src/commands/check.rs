@@ -1,12 +1,14 @@
 //! `aecurve check FILE`: the exact curvature check of a font's glyphs or an SVG's paths
 //! (`aesthetic_curves::outline`), as a summary with the places most worth a look, or JSON.
 
+use crate::commands::Command;
 use aecurve::outline_io::{self, finding_json, shape_json, Outlines, Shape, ShapeCheck as Checked};
 use aesthetic_curves::outline::{ContourCheck, Finding};
 use anyhow::Result;
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::Path;
+use std::path::PathBuf;
 
 pub(crate) fn check(
     file: &Path,
@@ -452,4 +454,93 @@ fn write_array(
         serde_json::to_writer(&mut *w, &v)?;
     }
     w.write_all(b"]")
+}
+
+/// The arguments of `aecurve check` (the command's help is its entry in `cli.rs`).
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// The file.
+    file: PathBuf,
+    /// Only these glyphs or SVG element ids (repeatable).
+    #[arg(long = "select", alias = "glyphs")]
+    select: Vec<String>,
+    /// Print everything as JSON instead of the summary.
+    #[arg(long)]
+    json: bool,
+    /// How many findings the summary lists.
+    #[arg(long, default_value_t = 20)]
+    top: usize,
+    /// Write an HTML report: a picture per glyph or path (curve, comb, extrema,
+    /// inflections, flagged joins), the worst first.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Most pictures in the report.
+    #[arg(long, default_value_t = 200)]
+    pictures: usize,
+    /// For every cubic whose curvature is not monotone, suggest handle lengths that make
+    /// it monotone (end points and tangent directions kept), moving it by at most this
+    /// (file units: font units for a font).
+    #[arg(long)]
+    suggest: Option<f64>,
+    /// The thresholds of the verdicts and the findings.
+    #[command(flatten)]
+    thresholds: Thresholds,
+}
+
+impl Command for Args {
+    fn outputs(&self) -> Vec<&Path> {
+        self.output.as_deref().into_iter().collect()
+    }
+
+    fn run(self) -> Result<()> {
+        check(
+            &self.file,
+            &self.select,
+            (self.json, self.top),
+            (self.output.as_deref(), self.pictures),
+            aesthetic_curves::outline::OutlineOptions {
+                suggest: self.suggest,
+                ..self.thresholds.options()?
+            },
+        )
+    }
+}
+
+/// `check`'s thresholds (the library's `OutlineOptions`).
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct Thresholds {
+    /// A join whose tangents differ by at most this (degrees) is G1 (plus what the
+    /// integer grid's rounding can make, for a font).
+    #[arg(long, default_value_t = 0.05)]
+    pub g1_angle: f64,
+    /// A G1 join whose relative curvature jump is under this is G2 (0.05: 5 %).
+    #[arg(long, default_value_t = 0.05)]
+    pub g2_jump: f64,
+    /// Breaks above G1 and under this (degrees) are listed as probably meant smooth.
+    #[arg(long, default_value_t = 3.0)]
+    pub near_break: f64,
+    /// Non-monotone segments whose curvature detour is under this share of their largest
+    /// curvature are not listed (0.05: 5 %; a cubic standing for a circular arc varies by a
+    /// few per cent).
+    #[arg(long, default_value_t = 0.05)]
+    pub min_bump: f64,
+}
+
+impl Thresholds {
+    /// The library's options (the grid and the suggestion set apart).
+    pub fn options(&self) -> anyhow::Result<aesthetic_curves::outline::OutlineOptions> {
+        aesthetic_curves::outline::Thresholds {
+            g1_angle_degrees: self.g1_angle,
+            g2_jump: self.g2_jump,
+            near_break_degrees: self.near_break,
+            min_bump: self.min_bump,
+        }
+        .options(0.0)
+        .map_err(|e| match e {
+            aesthetic_curves::Error::InvalidInput { field, message } => {
+                anyhow::anyhow!("--{}: {message}", field.replace('_', "-"))
+            }
+            e => e.into(),
+        })
+    }
 }

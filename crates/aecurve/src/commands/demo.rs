@@ -1,6 +1,7 @@
 //! `aecurve demo`: the main job on built-in example data: every paper's gallery, written
 //! as one HTML page with its pictures.
 
+use crate::commands::Command;
 use crate::gallery::{
     approx::approx_gallery,
     inflection::inflection_gallery,
@@ -12,6 +13,7 @@ use crate::gallery::{
 use aecurve::protocol::AnyBezier;
 use aecurve::{bench, plot};
 use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 pub(crate) struct Example {
@@ -234,4 +236,25 @@ pub(crate) fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     std::fs::write(&index, html)?;
     println!("gallery written: {}", index.display());
     Ok(())
+}
+
+/// The arguments of `aecurve demo` (the command's help is its entry in `cli.rs`).
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// Output folder.
+    #[arg(long, default_value = "demo-out")]
+    out: PathBuf,
+    /// Smaller benchmark (for CI smoke runs).
+    #[arg(long)]
+    quick: bool,
+}
+
+impl Command for Args {
+    fn outputs(&self) -> Vec<&Path> {
+        Vec::new()
+    }
+
+    fn run(self) -> Result<()> {
+        demo(&self.out, self.quick)
+    }
 }

@@ -2,10 +2,12 @@
 //! joins harmonized and the file written back (`aecurve::fix`), with a summary or every
 //! change as JSON.
 
+use crate::commands::Command;
 use aecurve::fix::masters::fix_designspace;
 use aecurve::fix::{figures, fix_json, fix_ufo, ContourFix, FixCounts, FixOptions};
 use anyhow::Result;
 use std::path::Path;
+use std::path::PathBuf;
 
 pub(crate) fn fix(
     input: &Path,
@@ -188,4 +190,78 @@ fn summary(fixes: &[ContourFix], c: &FixCounts, (tolerance, grid): (f64, f64)) {
             }
         }
     }
+}
+
+/// The arguments of `aecurve fix` (the command's help is its entry in `cli.rs`).
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// The UFO source (a .ufo folder), a .designspace file, or an SVG file.
+    input: PathBuf,
+    /// Where to write the result (a new .ufo folder, .svg file, or .designspace file:
+    /// its masters are written beside it at the same relative paths).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// How far the outline may move (font units): every segment within this of the
+    /// original at equal parameters. On-curve points move at most this much; a handle
+    /// may move further (alone up to 9/4 of it: it pulls its cubic by at most 4/9 of
+    /// its own move).
+    #[arg(long, default_value_t = 2.0)]
+    tolerance: f64,
+    /// The coordinates' grid (default 1 for a UFO: integer font units; for an SVG
+    /// 0.0001 user units, the precision moved numbers are written with).
+    #[arg(long)]
+    grid: Option<f64>,
+    /// Leave curvature hooks and extra extrema alone (by default each cubic with a hook
+    /// within 5 % of an end, or several extrema, gets monotone handle lengths first where
+    /// they exist within the tolerance).
+    #[arg(long)]
+    no_bumps: bool,
+    /// Leave the smooth joins alone (only the bumps).
+    #[arg(long)]
+    no_harmonize: bool,
+    /// Also move the on-curve point of a smooth join along the line of its two handles
+    /// (the handles stay, so the curvature elsewhere does not change; within the
+    /// tolerance).
+    #[arg(long)]
+    move_points: bool,
+    /// Print every change as JSON instead of the summary.
+    #[arg(long)]
+    json: bool,
+    /// Also write an HTML page of the changed glyphs or paths, before and after side by
+    /// side with their curvature combs and the moved points marked.
+    #[arg(long, value_name = "HTML")]
+    report: Option<PathBuf>,
+}
+
+impl Command for Args {
+    fn outputs(&self) -> Vec<&Path> {
+        // The output's folder is made by `fix` itself (a UFO folder is refused when it exists).
+        Vec::new()
+    }
+
+    fn run(self) -> Result<()> {
+        let opts = FixOptions {
+            tolerance: self.tolerance,
+            grid: self
+                .grid
+                .unwrap_or(if is_svg(&self.input) { 1e-4 } else { 1.0 }),
+            move_points: self.move_points,
+            repairs: aesthetic_curves::harmonize::Repairs {
+                bumps: !self.no_bumps,
+                harmonize: !self.no_harmonize,
+                ..Default::default()
+            },
+        };
+        fix(
+            &self.input,
+            &self.output,
+            opts,
+            (self.json, self.report.as_deref()),
+        )
+    }
+}
+
+/// Whether a path names an SVG file (by its extension).
+fn is_svg(p: &Path) -> bool {
+    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("svg"))
 }

@@ -1,13 +1,16 @@
 //! `aecurve lac` and `aecurve lac --inflection`: a log-aesthetic segment (or one with an
 //! inflection end) from its control triangle, with plots and exports.
 
+use crate::cli::count;
 use crate::cli::CurveOutput;
 use crate::commands::control_triangle;
+use crate::commands::Command;
 use aecurve::plot;
 use aesthetic_curves::approx::{self, ApproxOptions, RationalSpline};
 use aesthetic_curves::lac::{LacInflectionSegment, LacSegment};
 use aesthetic_curves::Curve;
 use anyhow::Result;
+use std::path::Path;
 
 /// The two kinds of segment the command makes.
 enum Segment {
@@ -138,4 +141,45 @@ pub(crate) fn lac(
         &caption,
         &mut || Ok(plot::comb_svg(&comb, &pts, &[], &caption)),
     )
+}
+
+/// The arguments of `aecurve lac` (the command's help is its entry in `cli.rs`).
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// Shape parameter alpha (not with --inflection, where the triangle fixes it).
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        required_unless_present = "inflection"
+    )]
+    alpha: Option<f64>,
+    /// A segment with an inflection point at the first control point (docs/math.md §3.2):
+    /// alpha < 0 comes from the triangle.
+    #[arg(long, conflicts_with = "alpha")]
+    inflection: bool,
+    /// Control triangle: "x,y x,y x,y" (start, tangent intersection, end).
+    #[arg(long, allow_hyphen_values = true)]
+    control: String,
+    /// Samples along the curve (2 to 1,000,000).
+    #[arg(long, default_value_t = 65, value_parser = count::<2, 1_000_000>)]
+    samples: usize,
+    #[command(flatten)]
+    out: CurveOutput,
+}
+
+impl Command for Args {
+    fn outputs(&self) -> Vec<&Path> {
+        self.out.paths().collect()
+    }
+
+    fn check(&self) -> Result<()> {
+        self.out.check()
+    }
+
+    fn run(self) -> Result<()> {
+        // --inflection and --alpha exclude each other (clap): no alpha is the inflection
+        // segment.
+        let alpha = self.alpha.filter(|_| !self.inflection);
+        lac(alpha, &self.control, self.samples, &self.out)
+    }
 }

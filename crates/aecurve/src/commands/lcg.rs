@@ -1,8 +1,12 @@
 //! `aecurve lcg`: the logarithmic curvature graph and alpha of samples or of a segment.
 
+use crate::commands::{control_triangle, Command};
 use aecurve::plot;
 use aecurve::protocol::AnyBezier;
+use aecurve::{parse_numbers, parse_points};
+use anyhow::Context;
 use anyhow::Result;
+use std::path::Path;
 use std::path::PathBuf;
 
 pub(crate) enum LcgSource {
@@ -42,4 +46,66 @@ pub(crate) fn lcg(source: LcgSource, json: bool, output: &[PathBuf]) -> Result<(
         eprintln!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// The arguments of `aecurve lcg` (the command's help is its entry in `cli.rs`).
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// Ordered points "x,y x,y ..." (at least 8).
+    #[arg(long, allow_hyphen_values = true, group = "source")]
+    points: Option<String>,
+    /// File of ordered points: CSV / whitespace rows "x,y", or a JSON array of pairs.
+    #[arg(long, group = "source")]
+    input: Option<PathBuf>,
+    /// Control points of a Bézier curve "x,y x,y ...".
+    #[arg(long, allow_hyphen_values = true, group = "source")]
+    bezier: Option<String>,
+    /// Weights of the Bézier curve (rational).
+    #[arg(long, requires = "bezier")]
+    weights: Option<String>,
+    /// Control triangle of a LAC segment (with --alpha).
+    #[arg(long, allow_hyphen_values = true, group = "source", requires = "alpha")]
+    control: Option<String>,
+    /// Alpha of the LAC segment.
+    #[arg(long, allow_hyphen_values = true, requires = "control")]
+    alpha: Option<f64>,
+    /// Print the protocol's JSON result.
+    #[arg(long)]
+    json: bool,
+    /// Write the graph with its fitted line (.svg or .png; repeatable).
+    #[arg(short, long)]
+    output: Vec<PathBuf>,
+}
+
+impl Command for Args {
+    fn outputs(&self) -> Vec<&Path> {
+        self.output.iter().map(PathBuf::as_path).collect()
+    }
+
+    fn check(&self) -> Result<()> {
+        plot::check_picture_paths(&self.output)
+    }
+
+    fn run(self) -> Result<()> {
+        let source = match (self.points, self.input, self.bezier, self.control) {
+            (Some(p), _, _, _) => LcgSource::Points(parse_points(&p).context("--points")?),
+            (_, Some(f), _, _) => LcgSource::Points(aecurve::read_points_file(&f)?),
+            (_, _, Some(b), _) => {
+                let w = self
+                    .weights
+                    .as_deref()
+                    .map(parse_numbers)
+                    .transpose()
+                    .context("--weights")?;
+                LcgSource::Bezier(AnyBezier::new(parse_points(&b).context("--bezier")?, w)?)
+            }
+            (_, _, _, Some(c)) => {
+                let pts = control_triangle(&c)?;
+                let a = self.alpha.context("--alpha is needed with --control")?;
+                LcgSource::Lac(aesthetic_curves::lac::LacSegment::new(a, pts)?)
+            }
+            _ => anyhow::bail!("give --points, --input, --bezier or --alpha with --control"),
+        };
+        lcg(source, self.json, &self.output)
+    }
 }

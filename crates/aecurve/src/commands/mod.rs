@@ -1,15 +1,37 @@
-//! One file per command of `aecurve` (the `clap` types are in `cli.rs`, the dispatch in
-//! `main.rs`), and the output helpers they share.
+//! One file per command of `aecurve`: its arguments (a `clap::Args` struct named `Args`),
+//! its [`Command`] impl and its work. The list of commands, their help and the dispatch are
+//! `cli.rs`'s `commands!` table; the output helpers the commands share are here.
 
 pub(crate) mod approx;
+pub(crate) mod batch;
+pub(crate) mod bench;
 pub(crate) mod check;
 pub(crate) mod demo;
+pub(crate) mod editor;
 pub(crate) mod fix;
 pub(crate) mod lac;
 pub(crate) mod lcg;
 pub(crate) mod monotone;
 pub(crate) mod sketch;
 pub(crate) mod spline;
+
+/// One command: what it will write, a check of that before any work, and the work.
+pub(crate) trait Command {
+    /// Every file path it will write (its `-o`, `--map`, `--curvature-plot`): `main` makes
+    /// their folders before it runs.
+    fn outputs(&self) -> Vec<&Path> {
+        Vec::new()
+    }
+
+    /// Refuses an output it could not write (an unknown picture or CAD format) before any
+    /// work.
+    fn check(&self) -> Result<()> {
+        Ok(())
+    }
+
+    /// Does the command's work.
+    fn run(self) -> Result<()>;
+}
 
 use aecurve::plot;
 use anyhow::Result;

@@ -1,12 +1,14 @@
 //! `aecurve monotone`: the exact curvature-monotonicity test of a Bézier curve (and the
 //! sampling test beside it), with plots and exports.
 
+use crate::cli::count;
 use crate::cli::CurveOutput;
-use crate::cli::Method;
+use crate::commands::Command;
 use aecurve::protocol::AnyBezier;
 use aecurve::{parse_numbers, parse_points, plot};
 use anyhow::{Context, Result};
 use std::io::Write;
+use std::path::Path;
 
 pub(crate) fn monotone(
     points: &str,
@@ -125,4 +127,50 @@ pub(crate) fn monotone(
         },
     )?;
     Ok(())
+}
+
+/// The arguments of `aecurve monotone` (the command's help is its entry in `cli.rs`).
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// Control points: "x,y x,y ..." (2 to 21 points).
+    #[arg(long, allow_hyphen_values = true)]
+    points: String,
+    /// Weights (rational curve): "w w w ...", one per point.
+    #[arg(long)]
+    weights: Option<String>,
+    /// Which test.
+    #[arg(long, value_enum, default_value_t = Method::Exact)]
+    method: Method,
+    /// Divisions of the sampling test (1 to 10,000,000).
+    #[arg(long, default_value_t = 100, value_parser = count::<1, 10_000_000>)]
+    samples: usize,
+    #[command(flatten)]
+    out: CurveOutput,
+}
+
+impl Command for Args {
+    fn outputs(&self) -> Vec<&Path> {
+        self.out.paths().collect()
+    }
+
+    fn check(&self) -> Result<()> {
+        self.out.check()
+    }
+
+    fn run(self) -> Result<()> {
+        monotone(
+            &self.points,
+            self.weights.as_deref(),
+            self.method,
+            self.samples,
+            &self.out,
+        )
+    }
+}
+
+/// Which test `aecurve monotone` runs.
+#[derive(Clone, Copy, clap::ValueEnum, PartialEq)]
+pub(crate) enum Method {
+    Exact,
+    Sampling,
 }

@@ -1,9 +1,12 @@
 //! `aecurve sketch`: pen input (CSV or SVG path) to a G2 curve of LAC pieces.
 
+use crate::cli::positive;
 use crate::cli::CurveOutput;
+use crate::commands::Command;
 use aecurve::plot;
 use aesthetic_curves::Curve;
 use anyhow::Result;
+use std::path::{Path, PathBuf};
 
 pub(crate) fn sketch(
     input: &std::path::Path,
@@ -128,4 +131,39 @@ pub(crate) fn sketch_contour(
         &mut || Ok(plot::comb_svg(&comb, &pts, &marks, &caption)),
     )?;
     Ok(())
+}
+
+/// The arguments of `aecurve sketch` (the command's help is its entry in `cli.rs`).
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// The points file.
+    input: PathBuf,
+    /// Largest distance from an input point to the result (default 0.5% of the bounding
+    /// box diagonal).
+    #[arg(long, allow_hyphen_values = true, value_parser = positive)]
+    tolerance: Option<f64>,
+    /// Take the stroke as a contour: corners found, straight runs as lines, a stroke
+    /// that ends at its start closed (docs/math.md §6.1; the protocol's sketch.contour).
+    #[arg(long)]
+    contour: bool,
+    #[command(flatten)]
+    out: CurveOutput,
+}
+
+impl Command for Args {
+    fn outputs(&self) -> Vec<&Path> {
+        self.out.paths().collect()
+    }
+
+    fn check(&self) -> Result<()> {
+        self.out.check()
+    }
+
+    fn run(self) -> Result<()> {
+        if self.contour {
+            sketch_contour(&self.input, self.tolerance, &self.out)
+        } else {
+            sketch(&self.input, self.tolerance, &self.out)
+        }
+    }
 }

@@ -2,9 +2,11 @@
 //! pseudo-elastic spline (`--kind pseudo-elastic`, G1).
 
 use crate::cli::CurveOutput;
+use crate::commands::Command;
 use aecurve::plot;
 use aesthetic_curves::Curve;
 use anyhow::Result;
+use std::path::{Path, PathBuf};
 
 pub(crate) fn spline(
     input: &std::path::Path,
@@ -169,4 +171,53 @@ fn print_lac_spline(
         "  events        {} inflections, {} curvature extrema",
         s.inflections, s.curvature_extrema
     );
+}
+
+/// The arguments of `aecurve spline` (the command's help is its entry in `cli.rs`).
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// The points file.
+    input: PathBuf,
+    /// Closed curve through all points.
+    #[arg(long)]
+    closed: bool,
+    /// Which spline: the G2 log-aesthetic one or S2's pseudo-elastic (G1) one.
+    #[arg(long, default_value = "lac", value_parser = ["lac", "pseudo-elastic"])]
+    kind: String,
+    /// Alpha of the log-aesthetic spline's pieces (-1: clothoids; within ±1000).
+    #[arg(long, default_value_t = -1.0, allow_hyphen_values = true)]
+    alpha: f64,
+    /// Corner points of the log-aesthetic spline, by index ("0,4").
+    #[arg(long, value_delimiter = ',')]
+    corners: Vec<usize>,
+    /// Pseudo-elastic segment values from the shipped tables (fast) or by direct
+    /// minimisation.
+    #[arg(long, default_value = "table", value_parser = ["table", "exact"])]
+    mode: String,
+    #[command(flatten)]
+    out: CurveOutput,
+}
+
+impl Command for Args {
+    fn outputs(&self) -> Vec<&Path> {
+        self.out.paths().collect()
+    }
+
+    fn check(&self) -> Result<()> {
+        self.out.check()
+    }
+
+    fn run(self) -> Result<()> {
+        if self.kind == "lac" {
+            let opts = aesthetic_curves::lac_spline::LacSplineOptions {
+                alpha: self.alpha,
+                closed: self.closed,
+                corners: self.corners,
+                ..Default::default()
+            };
+            lac_spline(&self.input, &opts, &self.out)
+        } else {
+            spline(&self.input, self.closed, &self.mode, &self.out)
+        }
+    }
 }
