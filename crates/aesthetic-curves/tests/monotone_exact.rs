@@ -529,22 +529,47 @@ fn cusps_and_turning_back_are_degenerate_exactly() {
     assert_eq!(t.degenerate, 2, "{t:?}");
 }
 
+// The slow oracle: ten times the default sets (the same seeds and labels as one test had),
+// one test per set so that the test harness runs them side by side.
 #[test]
 #[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
-fn all_classes_many_more() {
-    for (i, gen) in [
-        collinear_end as fn(&mut ChaCha8Rng) -> Vec<Point>,
-        retracted,
-        short_handles,
-        axis_aligned,
-        far_from_origin,
-    ]
-    .iter()
-    .enumerate()
-    {
-        family(&format!("class {i}, long run"), 100 + i as u64, 10 * N, gen);
-    }
+fn many_more_collinear_ends() {
+    family("class 0, long run", 100, 10 * N, collinear_end);
+}
+
+#[test]
+#[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
+fn many_more_retracted_handles() {
+    family("class 1, long run", 101, 10 * N, retracted);
+}
+
+#[test]
+#[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
+fn many_more_short_handles() {
+    family("class 2, long run", 102, 10 * N, short_handles);
+}
+
+#[test]
+#[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
+fn many_more_axis_aligned() {
+    family("class 3, long run", 103, 10 * N, axis_aligned);
+}
+
+#[test]
+#[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
+fn many_more_far_from_origin() {
+    family("class 4, long run", 104, 10 * N, far_from_origin);
+}
+
+#[test]
+#[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
+fn many_more_extents() {
     extents(N / 2);
+}
+
+#[test]
+#[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
+fn many_more_weights() {
     weights(2 * N);
 }
 
