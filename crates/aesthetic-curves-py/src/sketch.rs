@@ -1,0 +1,185 @@
+//! Pen input: the G2 sketch of one stroke, and the contour of runs and corners.
+
+use crate::args::*;
+use crate::curves::*;
+use crate::exports::*;
+use aesthetic_curves as ac;
+use pyo3::prelude::*;
+
+/// Pen input to a G2 curve of LAC pieces, each delivered as a rational cubic.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct Sketch {
+    /// The delivered curve, one NURBS of the pieces' rational cubics.
+    pub(crate) nurbs: Nurbs,
+    /// Each piece's rational cubic.
+    pub(crate) pieces: Vec<RationalBezier>,
+    /// Each piece's α.
+    pub(crate) alphas: Vec<f64>,
+    /// Largest distance from an input point to the delivered curve.
+    pub(crate) max_deviation: f64,
+    /// Root mean square of those distances.
+    pub(crate) rms_deviation: f64,
+    /// Largest relative curvature jump at a joint.
+    pub(crate) max_curvature_jump: f64,
+    /// Every joint is G2 to the fairing's tolerance.
+    pub(crate) g2: bool,
+    /// Every piece's rational cubic is proven curvature-monotone.
+    pub(crate) all_monotone: bool,
+    /// The fairing reached its tolerance.
+    pub(crate) converged: bool,
+}
+
+/// Fit a pen stroke (`points`, in drawing order) with LAC pieces joined G2, within
+/// `tolerance` (input units).
+#[pyfunction]
+#[pyo3(signature = (points, tolerance))]
+pub(crate) fn fit_sketch(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    tolerance: f64,
+) -> PyResult<Sketch> {
+    let p = points_arg("points", points)?;
+    let opts = ac::sketch::SketchOptions::with_tolerance(tolerance);
+    let s = py
+        .detach(move || ac::sketch::fit_sketch(&p, &opts))
+        .map_err(err)?;
+    let (nurbs, pieces) = joined(s.as_curve())?;
+    Ok(Sketch {
+        nurbs,
+        pieces,
+        alphas: s.pieces.iter().map(|p| p.alpha).collect(),
+        max_deviation: s.max_deviation,
+        rms_deviation: s.rms_deviation,
+        max_curvature_jump: s.max_curvature_jump,
+        g2: s.g2,
+        all_monotone: s.all_monotone,
+        converged: s.fairing.converged,
+    })
+}
+
+/// A pen stroke as a contour: runs (lines and G2 curves of LAC pieces) joined at corners.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct SketchContour {
+    /// The whole contour, one NURBS of its rational cubics (a line as a straight cubic).
+    pub(crate) nurbs: Nurbs,
+    /// Each piece's rational cubic, in order.
+    pub(crate) pieces: Vec<RationalBezier>,
+    /// Each run's kind, in order: "line" or "curve".
+    pub(crate) runs: Vec<&'static str>,
+    /// Each run's pieces (a line: 1).
+    pub(crate) run_pieces: Vec<usize>,
+    /// Each curve run's α per piece (a line: empty).
+    pub(crate) alphas: Vec<Vec<f64>>,
+    /// The corners in order, as (x, y, turn in degrees, index of the input point).
+    pub(crate) corners: Vec<(f64, f64, f64, usize)>,
+    /// The run each corner follows (the next run starts there; closed: the last may follow
+    /// the last run).
+    pub(crate) corner_runs: Vec<usize>,
+    /// The smooth joins in order, where a straight stretch inside a curved part of the
+    /// stroke meets a curve (G2: the curve leaves the line along it with zero curvature),
+    /// as (x, y, angle in degrees, relative curvature jump, the run it follows).
+    pub(crate) smooth_joins: Vec<(f64, f64, f64, f64, usize)>,
+    /// Closed.
+    pub(crate) closed: bool,
+    /// A closed contour that is one curve (no corners, no straight stretch): (angle in
+    /// degrees, relative curvature jump) where its one run ends at its start.
+    pub(crate) seam: Option<(f64, f64)>,
+    /// The tolerance used.
+    pub(crate) tolerance: f64,
+    /// Largest distance from an input point to the result.
+    pub(crate) max_deviation: f64,
+    /// Points of a closed stroke's overshoot past its start, left out.
+    pub(crate) trimmed: usize,
+    /// Every curve run is G2 inside.
+    pub(crate) g2: bool,
+    /// Every piece is proven curvature-monotone.
+    pub(crate) all_monotone: bool,
+}
+
+/// A pen stroke (`points`, in drawing order) as a contour: corners found, straight runs
+/// as lines, a stroke that ends at its start closed (`closed`: None decides from the
+/// stroke); `tolerance` None for the default from the points' size and noise;
+/// `corner_angle` the least turn of a corner (degrees).
+#[pyfunction]
+#[pyo3(signature = (points, tolerance=None, closed=None, corner_angle=35.0))]
+pub(crate) fn fit_contour(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    tolerance: Option<f64>,
+    closed: Option<bool>,
+    corner_angle: f64,
+) -> PyResult<SketchContour> {
+    use ac::sketch::contour::{fit_contour, ContourOptions, Run};
+    let p = points_arg("points", points)?;
+    let opts = ContourOptions {
+        tolerance,
+        closed,
+        corner_angle: corner_angle.to_radians(),
+    };
+    let c = py.detach(move || fit_contour(&p, &opts)).map_err(err)?;
+    let (nurbs, pieces) = joined(c.as_curve().map_err(err)?)?;
+    let curves = || {
+        c.runs.iter().filter_map(|r| match r {
+            Run::Curve(s) => Some(s),
+            Run::Line { .. } => None,
+        })
+    };
+    Ok(SketchContour {
+        nurbs,
+        pieces,
+        runs: c.runs.iter().map(Run::kind).collect(),
+        run_pieces: c
+            .runs
+            .iter()
+            .map(|r| match r {
+                Run::Line { .. } => 1,
+                Run::Curve(s) => s.pieces.len(),
+            })
+            .collect(),
+        alphas: c
+            .runs
+            .iter()
+            .map(|r| match r {
+                Run::Line { .. } => Vec::new(),
+                Run::Curve(s) => s.pieces.iter().map(|p| p.alpha).collect(),
+            })
+            .collect(),
+        corners: c
+            .corners
+            .iter()
+            .map(|k| (k.point.x, k.point.y, k.angle.to_degrees(), k.index))
+            .collect(),
+        corner_runs: c.corners.iter().map(|k| k.run).collect(),
+        smooth_joins: c
+            .smooth_joins
+            .iter()
+            .map(|j| {
+                let (x, y) = (j.point.x, j.point.y);
+                (x, y, j.angle.to_degrees(), j.curvature_jump, j.run)
+            })
+            .collect(),
+        closed: c.closed,
+        seam: c.seam.map(|s| (s.angle.to_degrees(), s.curvature_jump)),
+        tolerance: c.tolerance,
+        max_deviation: c.max_deviation,
+        trimmed: c.trimmed,
+        g2: curves().all(|s| s.g2),
+        all_monotone: curves().all(|s| s.all_monotone),
+    })
+}
+
+impl SketchContour {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(self.nurbs.inner.clone())
+    }
+}
+
+pieces_methods!(SketchContour {});
+
+impl Sketch {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(self.nurbs.inner.clone())
+    }
+}
+
+pieces_methods!(Sketch {});

@@ -1,0 +1,198 @@
+//! Splines through points: S2's pseudo-elastic spline (G1) and the G2 log-aesthetic spline.
+
+use crate::args::*;
+use crate::curves::*;
+use crate::exports::*;
+use ac::Curve;
+use aesthetic_curves as ac;
+use numpy::{IntoPyArray, PyArray1};
+use pyo3::prelude::*;
+
+/// The pseudo-elastic spline through points (Hermite cubics minimising the pseudo-energy).
+#[pyclass(module = "aesthetic_curves._native", frozen)]
+pub(crate) struct PseudoSpline {
+    pub(crate) inner: ac::pseudo_spline::PseudoSpline,
+}
+
+pymethods_with_exports!(PseudoSpline {
+    /// Tangent angle at each input point (radians), an array.
+    #[getter]
+    fn tangent_angles<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.tangent_angles.clone().into_pyarray(py)
+    }
+    /// Total length.
+    #[getter]
+    fn length(&self) -> f64 {
+        self.inner.length
+    }
+    /// Signed area between the curve and its chords (closed: the enclosed area).
+    #[getter]
+    fn area(&self) -> f64 {
+        self.inner.area
+    }
+    /// The pseudo-energy.
+    #[getter]
+    fn energy(&self) -> f64 {
+        self.inner.energy
+    }
+    /// The parameter interval of `at`: (0, n) for n spans (span i on [i, i + 1]).
+    fn domain(&self) -> PyResult<(f64, f64)> {
+        self.inner.as_curve().and_then(|c| c.domain()).map_err(err)
+    }
+    /// Point, first and second derivatives, curvature and dκ/ds at `u` (a float or an
+    /// array; span `floor(u)` at its own t = u - floor(u); clamped into the domain).
+    fn at(&self, py: Python<'_>, u: &Bound<'_, PyAny>) -> PyResult<CurveAt> {
+        curve_at(py, &self.inner.as_curve().map_err(err)?, u)
+    }
+    /// The spans as cubic Béziers.
+    fn beziers(&self) -> PyResult<Vec<Bezier>> {
+        Ok(self
+            .inner
+            .as_curve()
+            .map_err(err)?
+            .0
+            .into_iter()
+            .map(|inner| Bezier { inner })
+            .collect())
+    }
+    /// `n >= 2` samples per span (points, unit tangents, signed curvature), the spans'
+    /// shared ends once.
+    fn sample(&self, py: Python<'_>, n: usize) -> PyResult<Samples> {
+        samples_of(py, &self.inner.as_curve().map_err(err)?, n)
+    }
+    /// The spline as one NURBS (cubic spans joined at the input points).
+    fn to_nurbs(&self) -> PyResult<Nurbs> {
+        Ok(Nurbs {
+            inner: self.nurbs_of()?,
+        })
+    }
+
+    fn __len__(&self) -> usize {
+        self.inner.segments.len()
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "PseudoSpline(spans={}, length={}, energy={})",
+            self.inner.segments.len(),
+            self.inner.length,
+            self.inner.energy
+        )
+    }
+});
+
+/// The pseudo-elastic spline through `points` (open, or `closed`); `mode` "table" (fast,
+/// from the shipped tables) or "exact" (minimised per span, about a second per point).
+#[pyfunction]
+#[pyo3(signature = (points, closed=false, mode="table"))]
+pub(crate) fn pseudo_elastic(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    closed: bool,
+    mode: &str,
+) -> PyResult<PseudoSpline> {
+    let p = points_arg("points", points)?;
+    let mode = match mode {
+        "table" => ac::pseudo_spline::Mode::Table,
+        "exact" => ac::pseudo_spline::Mode::Exact,
+        _ => {
+            return Err(InvalidInputError::new_err(format!(
+                "invalid input: mode: must be \"table\" or \"exact\", got {mode:?}"
+            )))
+        }
+    };
+    let inner = py
+        .detach(move || ac::pseudo_spline::pseudo_elastic(&p, closed, mode))
+        .map_err(err)?;
+    Ok(PseudoSpline { inner })
+}
+
+/// The G2 log-aesthetic spline through points: LAC pieces of one α, G2 at every smooth
+/// point, each delivered as a rational cubic proven curvature-monotone.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct LacSpline {
+    /// The delivered curve, one NURBS of the pieces' rational cubics.
+    pub(crate) nurbs: Nurbs,
+    /// Each piece's rational cubic, in order.
+    pub(crate) pieces: Vec<RationalBezier>,
+    /// Each piece's kind: "line", "lac" or "lac_inflection".
+    pub(crate) kinds: Vec<&'static str>,
+    /// Each piece's span (the index of the point it starts from).
+    pub(crate) spans: Vec<usize>,
+    /// Each piece's α (None for a line).
+    pub(crate) alphas: Vec<Option<f64>>,
+    /// The unit tangent at each point (at a corner, the outgoing one).
+    pub(crate) tangents: Vec<(f64, f64)>,
+    /// Largest relative curvature jump at a smooth point, of the LAC pieces.
+    pub(crate) max_curvature_jump: f64,
+    /// The same on the delivered cubics.
+    pub(crate) max_cubic_jump: f64,
+    /// Every piece's rational cubic is proven curvature-monotone.
+    pub(crate) all_monotone: bool,
+    /// The G2 solve reached its target.
+    pub(crate) converged: bool,
+    /// Newton steps.
+    pub(crate) iterations: usize,
+    /// Closed.
+    pub(crate) closed: bool,
+}
+
+/// The G2 log-aesthetic spline through `points`: `alpha` for every span (-1: clothoids) or
+/// `alphas` one per span; `closed`; `corners` the indices of corner points.
+#[pyfunction]
+#[pyo3(signature = (points, alpha=-1.0, closed=false, corners=Vec::new(), alphas=None))]
+pub(crate) fn lac_spline(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    alpha: f64,
+    closed: bool,
+    corners: Vec<usize>,
+    alphas: Option<Vec<f64>>,
+) -> PyResult<LacSpline> {
+    let p = points_arg("points", points)?;
+    let opts = ac::lac_spline::LacSplineOptions {
+        alpha,
+        span_alphas: alphas,
+        closed,
+        corners,
+        ..Default::default()
+    };
+    let s = py
+        .detach(move || ac::lac_spline::lac_spline(&p, &opts))
+        .map_err(err)?;
+    let (nurbs, pieces) = joined(s.rationals())?;
+    Ok(LacSpline {
+        nurbs,
+        pieces,
+        kinds: s.pieces.iter().map(|p| p.kind.as_str()).collect(),
+        spans: s.pieces.iter().map(|p| p.span).collect(),
+        alphas: s.pieces.iter().map(|p| p.alpha).collect(),
+        tangents: s.tangents.iter().map(|t| (t.x, t.y)).collect(),
+        max_curvature_jump: s.max_curvature_jump,
+        max_cubic_jump: s.max_cubic_jump,
+        all_monotone: s.all_monotone,
+        converged: s.converged,
+        iterations: s.iterations,
+        closed: s.closed,
+    })
+}
+
+impl LacSpline {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        Ok(self.nurbs.inner.clone())
+    }
+}
+
+pieces_methods!(LacSpline {
+    fn __len__(&self) -> usize {
+        self.pieces.len()
+    }
+});
+
+impl PseudoSpline {
+    fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
+        self.inner
+            .as_curve()
+            .and_then(|c| c.to_nurbs(0.0))
+            .map_err(err)
+    }
+}
