@@ -454,6 +454,12 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
         TableMinima::default()
     };
     search::walk_best_valley(&prob, &mut from_table, best_converged, &tr, &mut evals);
+    let square = search::Square {
+        prob: &prob,
+        opts,
+        tr: &tr,
+        report_ts: &report_ts,
+    };
     let best = match from_table.first() {
         Some(&(x, c)) if c.is_finite() && prob.is_monotone(x.0, x.1) => Some((x, c)),
         Some(&(_, free)) if free.is_finite() => {
@@ -465,9 +471,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             match monotone_near(&prob, opts, &tr, &from_table, &mut evals) {
                 Some((y, c)) if c <= 1.002 * free => Some((y, c)),
                 near => {
-                    let searched = grid_search(
-                        &prob, opts, &tr, &report_ts, &mut buf, &mut evals, from_table,
-                    );
+                    let searched = grid_search(&square, &mut buf, &mut evals, from_table);
                     match (near, searched) {
                         (Some(a), Some(b)) => {
                             // Their costs may be on different measures: compare on one.
@@ -481,9 +485,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
                 }
             }
         }
-        _ => grid_search(
-            &prob, opts, &tr, &report_ts, &mut buf, &mut evals, from_table,
-        ),
+        _ => grid_search(&square, &mut buf, &mut evals, from_table),
     };
     let Some(((mut f0, mut f1), _)) = best else {
         return Err(Error::NoSegment(format!(

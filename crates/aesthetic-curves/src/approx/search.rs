@@ -322,72 +322,141 @@ pub(super) fn monotone_near(
     best
 }
 
+/// What the search of the whole square works with: the problem, the options, the
+/// refinement's and the report's samples.
+pub(super) struct Square<'a> {
+    pub(super) prob: &'a Problem<'a>,
+    pub(super) opts: &'a ApproxOptions,
+    /// The refinement's samples.
+    pub(super) tr: &'a Samples,
+    /// The reported error measure's samples (the compass search on the region's boundary).
+    pub(super) report_ts: &'a Samples,
+}
+
+/// The cost on the grid's cell centres, row by row (`n` = `opts.grid` per axis), on `tg`.
+struct Grid {
+    n: usize,
+    costs: Vec<f64>,
+}
+
+impl Grid {
+    /// The centre of cell `i` along an axis.
+    fn at(&self, i: usize) -> f64 {
+        (i as f64 + 0.5) / self.n as f64
+    }
+}
+
 /// The search without the table (or when the table's best minimum is not curvature
 /// monotone): the grid, valley floors, Levenberg–Marquardt, the scan across the best
 /// valley, and the constrained search of the monotone region (module documentation).
-/// `candidates`: minima already found (the table's).
+/// `candidates`: minima already found (the table's). `evals` counts the cost evaluations.
 pub(super) fn grid_search(
-    prob: &Problem,
-    opts: &ApproxOptions,
-    tr: &Samples,
-    report_ts: &Samples,
+    sq: &Square,
     buf: &mut Vec<f64>,
     evals: &mut usize,
     mut candidates: Vec<((f64, f64), f64)>,
 ) -> Option<((f64, f64), f64)> {
-    let n = opts.grid;
-    let tg = Samples::gauss(opts.grid_samples);
-    let at = |i: usize| (i as f64 + 0.5) / n as f64;
-    let mut grid = vec![f64::INFINITY; n * n];
-    for i in 0..n {
-        for j in 0..n {
-            grid[i * n + j] = prob.cost(at(i), at(j), &tg, buf);
-            *evals += 1;
-        }
+    let tg = Samples::gauss(sq.opts.grid_samples);
+    let grid = sq.grid(&tg, buf, evals);
+    let points = sq.floor_points(&grid, &tg, evals);
+    let minima = sq.distinct_minima(&points, grid.n);
+    sq.refine_minima(&minima, &mut candidates, buf, evals);
+    let best = candidates
+        .iter()
+        .find(|(x, c)| c.is_finite() && sq.prob.is_monotone(x.0, x.1))
+        .copied();
+    let unconstrained_best = candidates.first().map(|c| c.1).unwrap_or(f64::INFINITY);
+    if best.is_none_or(|b| b.1 > unconstrained_best * (1.0 + 1e-9)) {
+        // The best minimum is not curvature-monotone: search the monotone region.
+        let starts = sq.monotone_starts(&points, grid.n, &tg, buf, evals);
+        return sq.search_monotone(starts, grid.n, best, evals);
     }
-    // Valleys narrower than a grid cell (near-exact fits form a curve of them, S3's error
-    // surface is such a valley) are found by minimising along every grid row and column:
-    // the profile minima lie on the valley floors, at the grid's spacing along them.
-    let mut points: Vec<(f64, (f64, f64))> = Vec::new();
-    let mut profile: [Vec<(f64, f64, f64)>; 2] = [Vec::new(), Vec::new()];
-    for (axis, fam) in profile.iter_mut().enumerate() {
-        for i in 0..n {
-            let cell = |j: usize| {
-                if axis == 0 {
-                    grid[i * n + j]
-                } else {
-                    grid[j * n + i]
-                }
-            };
-            let Some(j) = (0..n)
-                .filter(|j| cell(*j).is_finite())
-                .min_by(|a, b| cell(*a).total_cmp(&cell(*b)))
-            else {
-                continue;
-            };
-            let (x, c, e) = line_min(prob, axis, at(i), at(j), 1.0 / n as f64, &tg);
-            *evals += e;
-            let pt = if axis == 0 { (at(i), x) } else { (x, at(i)) };
-            points.push((c, pt));
-            fam.push((c, at(i), x));
-        }
-    }
-    points.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Along the valley through the best profile point of each family, the profile
-    // g(s) = min over the other coordinate is smooth: golden-section search on it finds the
-    // dip between two grid lines (a near-exact fit's valley floor is almost flat, where
-    // Levenberg–Marquardt would crawl).
-    let mut minima: Vec<(f64, f64)> = Vec::new();
-    for (axis, fam) in profile.iter().enumerate() {
-        let Some(&(_, s0, x0)) = fam.iter().min_by(|a, b| a.0.total_cmp(&b.0)) else {
-            continue;
+    best
+}
+
+impl Square<'_> {
+    /// The cost at every cell centre of the grid.
+    fn grid(&self, tg: &Samples, buf: &mut Vec<f64>, evals: &mut usize) -> Grid {
+        let n = self.opts.grid;
+        let mut grid = Grid {
+            n,
+            costs: vec![f64::INFINITY; n * n],
         };
+        for i in 0..n {
+            for j in 0..n {
+                grid.costs[i * n + j] = self.prob.cost(grid.at(i), grid.at(j), tg, buf);
+                *evals += 1;
+            }
+        }
+        grid
+    }
+
+    /// Points on the valley floors, lowest first: the minima of the cost along every grid
+    /// row and column, and the dip between grid lines along the best valley of each family.
+    ///
+    /// Valleys narrower than a grid cell (near-exact fits form a curve of them, S3's error
+    /// surface is such a valley) are found by minimising along every grid row and column:
+    /// the profile minima lie on the valley floors, at the grid's spacing along them.
+    fn floor_points(&self, grid: &Grid, tg: &Samples, evals: &mut usize) -> Vec<(f64, (f64, f64))> {
+        let n = grid.n;
+        let mut points: Vec<(f64, (f64, f64))> = Vec::new();
+        let mut profile: [Vec<(f64, f64, f64)>; 2] = [Vec::new(), Vec::new()];
+        for (axis, fam) in profile.iter_mut().enumerate() {
+            for i in 0..n {
+                let cell = |j: usize| {
+                    if axis == 0 {
+                        grid.costs[i * n + j]
+                    } else {
+                        grid.costs[j * n + i]
+                    }
+                };
+                let Some(j) = (0..n)
+                    .filter(|j| cell(*j).is_finite())
+                    .min_by(|a, b| cell(*a).total_cmp(&cell(*b)))
+                else {
+                    continue;
+                };
+                let (x, c, e) =
+                    line_min(self.prob, axis, grid.at(i), grid.at(j), 1.0 / n as f64, tg);
+                *evals += e;
+                let pt = if axis == 0 {
+                    (grid.at(i), x)
+                } else {
+                    (x, grid.at(i))
+                };
+                points.push((c, pt));
+                fam.push((c, grid.at(i), x));
+            }
+        }
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (axis, fam) in profile.iter().enumerate() {
+            if let Some(dip) = self.valley_dip(axis, fam, n, tg, evals) {
+                points.insert(0, dip);
+            }
+        }
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        points
+    }
+
+    /// Along the valley through the best profile point of a family (`fam`: cost, grid line,
+    /// floor), the profile g(s) = min over the other coordinate is smooth: golden-section
+    /// search on it finds the dip between two grid lines (a near-exact fit's valley floor
+    /// is almost flat, where Levenberg–Marquardt would crawl).
+    fn valley_dip(
+        &self,
+        axis: usize,
+        fam: &[(f64, f64, f64)],
+        n: usize,
+        tg: &Samples,
+        evals: &mut usize,
+    ) -> Option<(f64, (f64, f64))> {
+        let &(_, s0, x0) = fam.iter().min_by(|a, b| a.0.total_cmp(&b.0))?;
         let width = 1.0 / n as f64;
         // The profile's value at s, each line search started from the floor of the best
         // profile point so far.
         let mut floor = (f64::INFINITY, x0);
         let mut g = |sv: f64| {
-            let (x, c, e) = line_min(prob, axis, sv, floor.1, width, &tg);
+            let (x, c, e) = line_min(self.prob, axis, sv, floor.1, width, tg);
             *evals += e;
             if c < floor.0 {
                 floor = (c, x);
@@ -398,82 +467,100 @@ pub(super) fn grid_search(
         let hi = (s0 + width).min(1.0 - 1e-6);
         let (sv, c) = crate::solve::line_search::golden_section(&mut g, lo, hi, 8);
         let x = floor.1;
-        if c.is_finite() {
-            let pt = if axis == 0 { (sv, x) } else { (x, sv) };
-            points.insert(0, (c, pt));
-        }
+        let pt = if axis == 0 { (sv, x) } else { (x, sv) };
+        c.is_finite().then_some((c, pt))
     }
-    points.sort_by(|a, b| a.0.total_cmp(&b.0));
-    for &(_, pt) in &points {
-        if minima.len() >= opts.starts.max(1) {
-            break;
-        }
-        let far = minima
-            .iter()
-            .all(|m| (m.0 - pt.0).abs().max((m.1 - pt.1).abs()) > 1.5 / n as f64);
-        if far {
-            minima.push(pt);
-        }
-    }
-    let mut best_cost = f64::INFINITY;
-    for &start in &minima {
-        // The whole-square search keeps forward differences throughout: it is the fallback
-        // (1 % of shapes), tuned with them, and with the exact Jacobian its minima lead the
-        // constrained stage below into a crawl (measured: 37 ms instead of 4 on one shape).
-        let (x, c, e) = refine(
-            prob,
-            start,
-            tr,
-            opts.max_iter,
-            &|_, _| true,
-            100.0 * best_cost,
-            false,
-        );
-        *evals += e;
-        best_cost = best_cost.min(c);
-        candidates.push((x, c));
-    }
-    candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
-    // A near-exact fit's valley can have a narrow twin running beside it, a few hundredths
-    // away, too narrow for the grid: scan across the best valley (along the direction in
-    // which the error rises fastest) and refine from every other dip of that profile.
-    if let Some(&(x, c)) = candidates.first() {
-        if c.is_finite() {
-            let scan = Samples::gauss(6);
-            let twins = valley::across_valley(prob, x, &scan, buf, evals);
-            for start in twins {
-                let (y, cy, e) = refine(
-                    prob,
-                    start,
-                    tr,
-                    opts.max_iter,
-                    &|_, _| true,
-                    100.0 * c,
-                    false,
-                );
-                *evals += e;
-                candidates.push((y, cy));
+
+    /// The lowest floor points at least 1.5 cells apart, at most `opts.starts` of them.
+    fn distinct_minima(&self, points: &[(f64, (f64, f64))], n: usize) -> Vec<(f64, f64)> {
+        let mut minima: Vec<(f64, f64)> = Vec::new();
+        for &(_, pt) in points {
+            if minima.len() >= self.opts.starts.max(1) {
+                break;
             }
-            candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
+            let far = minima
+                .iter()
+                .all(|m| (m.0 - pt.0).abs().max((m.1 - pt.1).abs()) > 1.5 / n as f64);
+            if far {
+                minima.push(pt);
+            }
         }
+        minima
     }
-    let mut best: Option<((f64, f64), f64)> = None;
-    for &(x, c) in &candidates {
-        if c.is_finite() && prob.is_monotone(x.0, x.1) {
-            best = Some((x, c));
-            break;
+
+    /// Every minimum refined by Levenberg–Marquardt, then the twins beside the best valley,
+    /// all added to `candidates` (sorted, lowest first).
+    fn refine_minima(
+        &self,
+        minima: &[(f64, f64)],
+        candidates: &mut Vec<((f64, f64), f64)>,
+        buf: &mut Vec<f64>,
+        evals: &mut usize,
+    ) {
+        let mut best_cost = f64::INFINITY;
+        for &start in minima {
+            // The whole-square search keeps forward differences throughout: it is the
+            // fallback (1 % of shapes), tuned with them, and with the exact Jacobian its
+            // minima lead the constrained stage below into a crawl (measured: 37 ms instead
+            // of 4 on one shape).
+            let (x, c, e) = refine(
+                self.prob,
+                start,
+                self.tr,
+                self.opts.max_iter,
+                &|_, _| true,
+                100.0 * best_cost,
+                false,
+            );
+            *evals += e;
+            best_cost = best_cost.min(c);
+            candidates.push((x, c));
         }
+        candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
+        // A near-exact fit's valley can have a narrow twin running beside it, a few
+        // hundredths away, too narrow for the grid: scan across the best valley (along the
+        // direction in which the error rises fastest) and refine from every other dip of
+        // that profile.
+        let Some(&(x, c)) = candidates.first() else {
+            return;
+        };
+        if !c.is_finite() {
+            return;
+        }
+        let scan = Samples::gauss(6);
+        let twins = valley::across_valley(self.prob, x, &scan, buf, evals);
+        for start in twins {
+            let (y, cy, e) = refine(
+                self.prob,
+                start,
+                self.tr,
+                self.opts.max_iter,
+                &|_, _| true,
+                100.0 * c,
+                false,
+            );
+            *evals += e;
+            candidates.push((y, cy));
+        }
+        candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
     }
-    let unconstrained_best = candidates.first().map(|c| c.1).unwrap_or(f64::INFINITY);
-    if best.is_none_or(|b| b.1 > unconstrained_best * (1.0 + 1e-9)) {
-        // The best minimum is not curvature-monotone: search the monotone region, starting
-        // from its best points, refusing steps out of it. The region can be smaller than a
-        // grid cell (near the edge of the segment's existence region), so the profile
-        // points come first, then ever finer grids, each in order of increasing error.
+
+    /// Starts inside the monotone region, at most `opts.starts`: the floor points first,
+    /// then ever finer grids (up to 8 times the grid's), each in order of increasing error.
+    /// The region can be smaller than a grid cell (near the edge of the segment's
+    /// existence region).
+    fn monotone_starts(
+        &self,
+        points: &[(f64, (f64, f64))],
+        n: usize,
+        tg: &Samples,
+        buf: &mut Vec<f64>,
+        evals: &mut usize,
+    ) -> Vec<(f64, f64)> {
         let mut starts: Vec<(f64, f64)> = Vec::new();
-        let want = opts.starts.max(1);
-        for &(_, pt) in &points {
-            if starts.len() < want && prob.is_monotone(pt.0, pt.1) {
+        let want = self.opts.starts.max(1);
+        for &(_, pt) in points {
+            if starts.len() < want && self.prob.is_monotone(pt.0, pt.1) {
                 starts.push(pt);
             }
         }
@@ -483,7 +570,7 @@ pub(super) fn grid_search(
             let mut cells: Vec<(f64, (f64, f64))> = Vec::with_capacity(m * m);
             for i in 0..m {
                 for j in 0..m {
-                    let c = prob.cost(atm(i), atm(j), &tg, buf);
+                    let c = self.prob.cost(atm(i), atm(j), tg, buf);
                     if c.is_finite() {
                         cells.push((c, (atm(i), atm(j))));
                     }
@@ -498,32 +585,52 @@ pub(super) fn grid_search(
                 let distinct = starts
                     .iter()
                     .all(|s| (s.0 - pt.0).abs().max((s.1 - pt.1).abs()) > 0.5 / m as f64);
-                if distinct && prob.is_monotone(pt.0, pt.1) {
+                if distinct && self.prob.is_monotone(pt.0, pt.1) {
                     starts.push(pt);
                 }
             }
             m *= 2;
         }
-        let feasible = |a: f64, b: f64| prob.is_monotone(a, b);
+        starts
+    }
+
+    /// From each start, Levenberg–Marquardt refusing steps out of the monotone region, then
+    /// a compass search along its boundary; the best of these and `best`.
+    fn search_monotone(
+        &self,
+        starts: Vec<(f64, f64)>,
+        n: usize,
+        mut best: Option<((f64, f64), f64)>,
+        evals: &mut usize,
+    ) -> Option<((f64, f64), f64)> {
+        let feasible = |a: f64, b: f64| self.prob.is_monotone(a, b);
         for s in starts {
             let lm = LmOptions {
                 abandon_after: 8,
                 ..LM_FULL
             };
-            let (x, _, e, _) = refine_with(prob, s, tr, opts.max_iter, &feasible, lm, false);
+            let (x, _, e, _) = refine_with(
+                self.prob,
+                s,
+                self.tr,
+                self.opts.max_iter,
+                &feasible,
+                lm,
+                false,
+            );
             *evals += e;
             // The constrained optimum usually lies on the region's boundary, where refused
             // steps stall Levenberg–Marquardt: finish with a compass search. There the
             // gradient does not vanish, so the optimum moves to first order with the error
             // measure: use the reported one (uniform t, both ends).
-            let (x, c, e) = compass_search(prob, x, report_ts, &feasible, 0.5 / n as f64);
+            let (x, c, e) = compass_search(self.prob, x, self.report_ts, &feasible, 0.5 / n as f64);
             *evals += e;
             if best.is_none_or(|b| c < b.1) {
                 best = Some((x, c));
             }
         }
+        best
     }
-    best
 }
 
 /// Step 3 of the module documentation of `approx`: the floor of the best table minimum's
