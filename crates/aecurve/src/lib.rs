@@ -1,6 +1,7 @@
 //! The `aecurve` command-line tool as a library: the JSON protocol, the batch loop, the
 //! benchmark of the monotonicity tests, plots and the demo gallery.
 
+pub mod any_bezier;
 pub mod batch;
 pub mod bench;
 pub mod bench_targets;

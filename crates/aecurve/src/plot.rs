@@ -2,7 +2,7 @@
 //! `plotters` with the shipped DejaVu Sans measuring the text; curves with their control
 //! polygon and curvature comb, and the S3 error map, written as SVG directly.
 
-use crate::protocol::AnyBezier;
+use crate::any_bezier::AnyBezier;
 use std::fmt::Write;
 
 /// One line of a chart.

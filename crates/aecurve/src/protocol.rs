@@ -5,9 +5,10 @@
 //! `invalid_input` naming the field, and library errors keep their own kind. Nothing in a
 //! result is NaN or infinite (checked once more before a response leaves).
 
+use crate::any_bezier::AnyBezier;
 pub use crate::json_out::{end_curvature_json, finite_or_null, object};
-use aesthetic_curves::monotone::CurvatureMonotone;
-use aesthetic_curves::{Bezier, Curve, Error, Point, RationalBezier};
+use aesthetic_curves::curve::MAX_NURBS_PIECES;
+use aesthetic_curves::{Curve, Error, Point, RationalBezier};
 use serde_json::{json, Map, Value};
 
 /// Largest number of divisions the sampling test accepts from a request.
@@ -266,46 +267,6 @@ fn string_param<'a>(
     }
 }
 
-/// A polynomial or rational curve from a request.
-pub enum AnyBezier {
-    /// Polynomial.
-    Poly(Bezier),
-    /// Rational.
-    Rational(RationalBezier),
-}
-
-impl AnyBezier {
-    /// From control points and optional weights.
-    pub fn new(points: Vec<Point>, weights: Option<Vec<f64>>) -> Result<Self, Error> {
-        Ok(match weights {
-            Some(w) => AnyBezier::Rational(RationalBezier::new(points, w)?),
-            None => AnyBezier::Poly(Bezier::new(points)?),
-        })
-    }
-    /// The curve as the monotonicity trait object.
-    pub fn as_monotone(&self) -> &dyn CurvatureMonotone {
-        match self {
-            AnyBezier::Poly(b) => b,
-            AnyBezier::Rational(r) => r,
-        }
-    }
-    /// The curve as the library's curve trait object.
-    pub fn as_curve(&self) -> &dyn aesthetic_curves::Curve {
-        match self {
-            AnyBezier::Poly(b) => b,
-            AnyBezier::Rational(r) => r,
-        }
-    }
-    /// Signed curvature at t.
-    pub fn kappa(&self, t: f64) -> f64 {
-        self.as_monotone().kappa(t)
-    }
-    /// Point at t.
-    pub fn eval(&self, t: f64) -> Point {
-        self.as_monotone().eval(t)
-    }
-}
-
 fn curvature_monotone(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let points = points_param(obj, "control_points", 2, 21)?;
     let weights = numbers_param(obj, "weights", points.len())?;
@@ -527,7 +488,7 @@ fn lac_inflection_segment(obj: &Map<String, Value>) -> Result<Value, ProtoError>
         let sp = aesthetic_curves::approx::fit_inflection_spline(
             &seg,
             t,
-            64,
+            MAX_NURBS_PIECES,
             &aesthetic_curves::approx::ApproxOptions::default(),
         )?;
         out["spline"] = rational_spline_json(&sp);
@@ -634,7 +595,7 @@ fn lac_rational_approx(obj: &Map<String, Value>) -> Result<Value, ProtoError> {
     let opts = approx::ApproxOptions::default();
     let fit = approx::fit_rational_cubic(&seg, &opts)?;
     let spline = tolerance
-        .map(|t| approx::fit_rational_spline(&seg, t, 64, &opts))
+        .map(|t| approx::fit_rational_spline(&seg, t, MAX_NURBS_PIECES, &opts))
         .transpose()?;
     let mut out = rational_approx_json(&seg, &fit, spline.as_ref())?;
     if let Some(n) = draw {
@@ -767,7 +728,7 @@ fn pieces_drawing(
     n: usize,
 ) -> Result<Value, ProtoError> {
     drawing_budget(curve.0.len(), n)?;
-    let nurbs = curve.to_nurbs(0.0)?;
+    let nurbs = curve.to_exact_nurbs()?;
     Ok(drawing_json(curve, n, Some(&nurbs))?)
 }
 
@@ -1367,7 +1328,7 @@ fn spline_pseudo_elastic(obj: &Map<String, Value>) -> Result<Value, ProtoError> 
     let mut out = spline_json(&s, mode);
     if let Some(n) = draw {
         let curve = s.as_curve()?;
-        let nurbs = curve.to_nurbs(0.0)?;
+        let nurbs = curve.to_exact_nurbs()?;
         out["drawing"] = drawing_json(&curve, n, Some(&nurbs))?;
     }
     Ok(out)

@@ -413,7 +413,7 @@ pub(crate) fn joined(
     curve: ac::Pieces<ac::RationalBezier>,
 ) -> PyResult<(Nurbs, Vec<RationalBezier>)> {
     let nurbs = Nurbs {
-        inner: curve.to_nurbs(0.0).map_err(err)?,
+        inner: curve.to_exact_nurbs().map_err(err)?,
     };
     let pieces = curve
         .0

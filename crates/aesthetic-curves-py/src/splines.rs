@@ -192,7 +192,7 @@ impl PseudoSpline {
     fn nurbs_of(&self) -> PyResult<ac::Nurbs> {
         self.inner
             .as_curve()
-            .and_then(|c| c.to_nurbs(0.0))
+            .and_then(|c| c.to_exact_nurbs())
             .map_err(err)
     }
 }

@@ -90,6 +90,12 @@ pub trait Curve {
     /// units), each proven curvature-monotone ([`crate::approx::fit_rational_spline`], at
     /// most [`MAX_NURBS_PIECES`] of them).
     fn to_nurbs(&self, accuracy: f64) -> Result<Nurbs>;
+    /// The curve as one NURBS, exactly: for the rational types (Béziers, NURBS, splines,
+    /// sketches, pieces). A log-aesthetic segment has no exact NURBS: an
+    /// [`crate::Error::InvalidInput`] asks for [`Curve::to_nurbs`]'s accuracy.
+    fn to_exact_nurbs(&self) -> Result<Nurbs> {
+        self.to_nurbs(0.0)
+    }
 }
 
 /// Most rational cubics a log-aesthetic segment's [`Curve::to_nurbs`] uses.

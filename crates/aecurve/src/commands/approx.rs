@@ -6,6 +6,7 @@ use crate::cli::{count, positive};
 use crate::commands::control_triangle;
 use crate::commands::Command;
 use aecurve::plot;
+use aesthetic_curves::curve::MAX_NURBS_PIECES;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 
@@ -30,7 +31,7 @@ pub(crate) fn approx(
     let opts = approx::ApproxOptions::default();
     let fit = approx::fit_rational_cubic(&seg, &opts).map_err(kinded)?;
     let spline = tolerance
-        .map(|t| approx::fit_rational_spline(&seg, t, 64, &opts))
+        .map(|t| approx::fit_rational_spline(&seg, t, MAX_NURBS_PIECES, &opts))
         .transpose()
         .map_err(kinded)?;
     let r = &aecurve::protocol::rational_approx_json(&seg, &fit, spline.as_ref())?;

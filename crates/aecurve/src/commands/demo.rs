@@ -10,7 +10,7 @@ use crate::gallery::{
     sketch::sketch_gallery,
     spline::{g1_g2_gallery, spline_gallery},
 };
-use aecurve::protocol::AnyBezier;
+use aecurve::any_bezier::AnyBezier;
 use aecurve::{bench, plot};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};

@@ -7,6 +7,7 @@ use crate::commands::control_triangle;
 use crate::commands::Command;
 use aecurve::plot;
 use aesthetic_curves::approx::{self, ApproxOptions, RationalSpline};
+use aesthetic_curves::curve::MAX_NURBS_PIECES;
 use aesthetic_curves::lac::{LacInflectionSegment, LacSegment};
 use aesthetic_curves::Curve;
 use anyhow::Result;
@@ -86,8 +87,10 @@ impl Segment {
     fn rational_spline(&self, tolerance: f64) -> aesthetic_curves::Result<RationalSpline> {
         let opts = ApproxOptions::default();
         match self {
-            Segment::Lac(s) => approx::fit_rational_spline(s, tolerance, 64, &opts),
-            Segment::Inflection(s) => approx::fit_inflection_spline(s, tolerance, 64, &opts),
+            Segment::Lac(s) => approx::fit_rational_spline(s, tolerance, MAX_NURBS_PIECES, &opts),
+            Segment::Inflection(s) => {
+                approx::fit_inflection_spline(s, tolerance, MAX_NURBS_PIECES, &opts)
+            }
         }
     }
 }

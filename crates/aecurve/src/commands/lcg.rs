@@ -1,8 +1,8 @@
 //! `aecurve lcg`: the logarithmic curvature graph and alpha of samples or of a segment.
 
 use crate::commands::{control_triangle, Command};
+use aecurve::any_bezier::AnyBezier;
 use aecurve::plot;
-use aecurve::protocol::AnyBezier;
 use aecurve::{parse_numbers, parse_points};
 use anyhow::Context;
 use anyhow::Result;

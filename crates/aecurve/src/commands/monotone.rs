@@ -4,7 +4,7 @@
 use crate::cli::count;
 use crate::cli::CurveOutput;
 use crate::commands::Command;
-use aecurve::protocol::AnyBezier;
+use aecurve::any_bezier::AnyBezier;
 use aecurve::{parse_numbers, parse_points, plot};
 use anyhow::{Context, Result};
 use std::io::Write;

@@ -35,7 +35,7 @@ pub(crate) fn sketch(
             );
         }
     }
-    let nurbs = sk.as_curve().to_nurbs(0.0)?;
+    let nurbs = sk.as_curve().to_exact_nurbs()?;
     let comb = plot::curve_samples(&sk.as_curve(), 61)?;
     let caption = format!(
         "sketch: {} LAC pieces (rational cubics), deviation {:.3e}, jump {:.1e}",
@@ -113,7 +113,7 @@ pub(crate) fn sketch_contour(
         }
     }
     let curve = c.as_curve()?;
-    let nurbs = curve.to_nurbs(0.0)?;
+    let nurbs = curve.to_exact_nurbs()?;
     let comb = plot::curve_samples(&curve, 61)?;
     let caption = format!(
         "sketch contour: {} runs, {} corners, {} pieces, deviation {:.3e}",

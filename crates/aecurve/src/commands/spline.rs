@@ -85,7 +85,7 @@ fn write_spline(
     if closed {
         polygon.push(pts[0]);
     }
-    let nurbs = curve.to_nurbs(0.0)?;
+    let nurbs = curve.to_exact_nurbs()?;
     out.write(
         entity,
         &mut || Ok(nurbs.clone()),
