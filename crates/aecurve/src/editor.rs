@@ -31,7 +31,7 @@ pub const MAX_BODY: usize = 4 * 1024 * 1024;
 
 /// The work budget of a Bézier region request: cells times (Bernstein degree of the exact
 /// test)^1.5, about 0.5 µs each on one core, so the worst case (every cell judged) stays near
-/// 2 s; a cubic's region may have 200 x 200 cells, a degree-20 rational curve's about 47 x 47.
+/// 2 s; a cubic's region may have 200 x 200 cells, a degree-20 rational curve's about 42 x 42.
 pub const REGION_WORK_BUDGET: f64 = 4.0e6;
 
 /// Largest region grid (cells per side).
@@ -369,11 +369,7 @@ fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
                 // judged cell; the budget holds the worst case (every cell judged) to a couple
                 // of seconds.
                 let n = pts.len() - 1;
-                let td = if weights.is_some() {
-                    8 * n - 12
-                } else {
-                    4 * n - 7
-                } as f64;
+                let td = aesthetic_curves::monotone::exact_test_degree(n, weights.is_some()) as f64;
                 let cells = grid.nx() * grid.ny();
                 let most = (REGION_WORK_BUDGET / td.powf(1.5)).floor() as usize;
                 if cells > most {

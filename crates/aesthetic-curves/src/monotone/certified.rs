@@ -72,22 +72,27 @@ impl<'a> Input<'a> {
 
     /// The degree of K̃ (see the module docs).
     pub(super) fn test_degree(&self) -> usize {
-        let n = self.degree();
-        let (r, s) = (self.r, self.s);
-        let (m, w) = match self.weights {
-            None => (n - 1 - r - s, 0),
-            Some(_) => (2 * n - 2 - r - s, n),
-        };
-        if m == 0 {
-            return 0;
-        }
-        w + 4 * m - 3 + usize::from(r > 0) + usize::from(s > 0)
+        k_degree(self.degree(), self.weights.is_some(), (self.r, self.s))
     }
 
     /// Whether an end's speed vanishes.
     pub(super) fn retracted(&self) -> bool {
         self.r > 0 || self.s > 0
     }
+}
+
+/// The degree of K̃ for a curve of degree `n` (rational or not) whose ends have `r` and `s`
+/// retracted handles.
+pub(super) fn k_degree(n: usize, rational: bool, (r, s): (usize, usize)) -> usize {
+    let (m, w) = if rational {
+        (2 * n - 2 - r - s, n)
+    } else {
+        (n - 1 - r - s, 0)
+    };
+    if m == 0 {
+        return 0;
+    }
+    w + 4 * m - 3 + usize::from(r > 0) + usize::from(s > 0)
 }
 
 /// z and W over a ring, from the control points' differences `diff(j, i) = b_j - b_i` and

@@ -163,6 +163,14 @@ impl EndCurvature {
 
 static EXACT_FALLBACKS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
+/// The degree of the polynomial whose sign the exact test decides (K̃ of the module docs) for
+/// a Bézier curve of `degree`, rational or not, with no handle retracted onto its end point:
+/// the largest it can be for that curve, and what the test's cost grows with (about its
+/// power 1.5: the editor's work budget for a region of control-point positions).
+pub fn exact_test_degree(degree: usize, rational: bool) -> usize {
+    certified::k_degree(degree, rational, (0, 0))
+}
+
 fn note_exact_fallback() {
     EXACT_FALLBACKS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
 }
@@ -1252,6 +1260,28 @@ fn sampled(f: impl Fn(f64) -> f64, samples: usize) -> Result<SampledReport> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn exact_test_degree_is_the_degree_the_test_runs() {
+        // Generic curves (no retracted handle, distinct weights) of degrees 2 to 7: the
+        // report's degree of K̃ is the one the editor's work budget assumes.
+        for n in 2..=7usize {
+            let pts: Vec<Point> = (0..=n)
+                .map(|i| {
+                    let t = i as f64;
+                    Point::new(t * 10.0 + (t * 1.3).sin(), (t * 0.7).cos() * 7.0 + t * t * 0.3)
+                })
+                .collect();
+            let poly = Bezier::new(pts.clone()).unwrap().curvature_monotone().unwrap();
+            assert_eq!(poly.test_degree, exact_test_degree(n, false), "degree {n}");
+            let w: Vec<f64> = (0..=n).map(|i| 1.0 + 0.25 * (i % 3) as f64).collect();
+            let rat = RationalBezier::new(pts, w)
+                .unwrap()
+                .curvature_monotone()
+                .unwrap();
+            assert_eq!(rat.test_degree, exact_test_degree(n, true), "rational degree {n}");
+        }
+    }
 
     fn bez(v: &[(f64, f64)]) -> Bezier {
         Bezier::new(v.iter().map(|&(x, y)| Point::new(x, y)).collect()).unwrap()
