@@ -7,9 +7,7 @@ use aesthetic_curves::monotone::CurvatureMonotone;
 use aesthetic_curves::samples::SplitMix64;
 use aesthetic_curves::PlanarCurve;
 
-#[path = "common/approx_cases.rs"]
-mod approx_cases;
-use approx_cases::{read_optima, triangle, write_optima};
+use crate::approx_cases::{read_optima, triangle, write_optima};
 
 /// The best rms of the family over a grid (exact error, 201 samples, exact monotone test),
 /// refined by a shrinking pattern search around the best monotone cell.
@@ -62,7 +60,7 @@ fn exhaustive_best(seg: &LacSegment, n: usize) -> (f64, f64, f64) {
 /// The random cases of the global-optimum check: (alpha, turning, base angle, scale,
 /// rotation). The exhaustive optimum of each is committed in
 /// `tests/data/approx_exhaustive.csv` (regenerate with
-/// `cargo test --release -p aesthetic-curves --test approx_reference -- --ignored`).
+/// `cargo test --release -p aesthetic-curves --test integration approx_reference:: -- --ignored`).
 fn random_cases(count: usize) -> Vec<[f64; 5]> {
     let mut rng = SplitMix64::new(20261122);
     (0..count)

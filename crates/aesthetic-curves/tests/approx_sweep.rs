@@ -16,7 +16,7 @@
 //! (the minimum across the valley as a function of the position along it); the optimum's
 //! rms then by the library's exact `approximation_error`. The optima are
 //! committed in `tests/data/approx_sweep.csv`; regenerate them (a few minutes) with
-//! `AECURVE_WRITE_DATA=1 cargo test --release -p aesthetic-curves --test approx_sweep -- --ignored`.
+//! `AECURVE_WRITE_DATA=1 cargo test --release -p aesthetic-curves --test integration approx_sweep:: -- --ignored`.
 
 use aesthetic_curves::approx::{approximation_error, construct, fit_rational_cubic, ApproxOptions};
 use aesthetic_curves::lac::LacSegment;
@@ -25,9 +25,7 @@ use aesthetic_curves::samples::SplitMix64;
 use aesthetic_curves::{Point, Vec2};
 use rayon::prelude::*;
 
-#[path = "common/approx_cases.rs"]
-mod approx_cases;
-use approx_cases::{read_optima, triangle, write_optima, OptimumRow};
+use crate::approx_cases::{read_optima, triangle, write_optima, OptimumRow};
 
 const CASES: usize = 1000;
 const SWEEP: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/approx_sweep.csv");

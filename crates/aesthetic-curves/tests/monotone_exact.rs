@@ -9,7 +9,7 @@
 //! No case is excluded as "near the boundary": the verdicts must agree on every curve, and
 //! every extremum must be within 1e-12 of the oracle's.
 
-mod common;
+use crate::common;
 
 use aesthetic_curves::monotone::{CurvatureMonotone, EndCurvature};
 use aesthetic_curves::{Bezier, Error, PlanarCurve, Point, RationalBezier};

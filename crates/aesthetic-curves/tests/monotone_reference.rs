@@ -10,7 +10,7 @@
 //! 1e-7 of each other are "within rounding of the boundary" and counted separately (they must
 //! stay rare).
 
-mod common;
+use crate::common;
 
 use aesthetic_curves::monotone::CurvatureMonotone;
 use aesthetic_curves::{Bezier, Error, Point, RationalBezier};
