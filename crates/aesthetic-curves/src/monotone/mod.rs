@@ -1269,17 +1269,27 @@ mod tests {
             let pts: Vec<Point> = (0..=n)
                 .map(|i| {
                     let t = i as f64;
-                    Point::new(t * 10.0 + (t * 1.3).sin(), (t * 0.7).cos() * 7.0 + t * t * 0.3)
+                    Point::new(
+                        t * 10.0 + (t * 1.3).sin(),
+                        (t * 0.7).cos() * 7.0 + t * t * 0.3,
+                    )
                 })
                 .collect();
-            let poly = Bezier::new(pts.clone()).unwrap().curvature_monotone().unwrap();
+            let poly = Bezier::new(pts.clone())
+                .unwrap()
+                .curvature_monotone()
+                .unwrap();
             assert_eq!(poly.test_degree, exact_test_degree(n, false), "degree {n}");
             let w: Vec<f64> = (0..=n).map(|i| 1.0 + 0.25 * (i % 3) as f64).collect();
             let rat = RationalBezier::new(pts, w)
                 .unwrap()
                 .curvature_monotone()
                 .unwrap();
-            assert_eq!(rat.test_degree, exact_test_degree(n, true), "rational degree {n}");
+            assert_eq!(
+                rat.test_degree,
+                exact_test_degree(n, true),
+                "rational degree {n}"
+            );
         }
     }
 
