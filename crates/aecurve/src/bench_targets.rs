@@ -5,7 +5,7 @@
 //! alike), and each reports the median of its rounds, per call (or per curve for the
 //! monotone test, which runs over a set). The targets are the issue's; a row says whether
 //! its median meets it. libspiro is not linked into `aecurve`: the spline's ratio to it is
-//! measured by `cargo bench -p aesthetic-curves --features spiro-bench --bench spiro_compare`
+//! measured by `cargo bench -p spiro-oracle --features libspiro --bench spiro_compare`
 //! (the targets below are a tenth of libspiro's times on this machine class).
 
 use aesthetic_curves::approx::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions};

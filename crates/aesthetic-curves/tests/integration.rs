@@ -1,8 +1,8 @@
 //! The library's integration tests, as one test binary (one link instead of one per file):
 //! each file beside this one is a module, named for what it checks. Run one file's tests with
 //! `cargo test --release -p aesthetic-curves --test integration FILE::` (for example
-//! `sketch_reference::`). The comparison with libspiro (`spiro_oracle.rs`) is a binary of its
-//! own: it needs the `spiro-bench` feature and Debian's libspiro.
+//! `sketch_reference::`). The comparison with libspiro is the crate `spiro-oracle`: it needs
+//! Debian's libspiro.
 
 #[path = "common/approx_cases.rs"]
 mod approx_cases;

@@ -441,6 +441,12 @@ fn weights_from_1e_minus_3_to_1e3() {
 }
 
 fn weights(count: usize) {
+    weights_part(count, 0..count);
+}
+
+/// The cases of `weights(count)` whose index lies in `part` (the whole set is drawn, so a
+/// part checks the same curves it would in the whole run).
+fn weights_part(count: usize, part: std::ops::Range<usize>) {
     let mut r = rng(20);
     let mut t = Tally::default();
     for i in 0..count {
@@ -453,9 +459,11 @@ fn weights(count: usize) {
         let w: Vec<f64> = (0..p.len())
             .map(|_| 10f64.powf(r.random_range(-3.0..3.0)))
             .collect();
-        check(&format!("weights {i}"), &p, Some(&w), &mut t);
+        if part.contains(&i) {
+            check(&format!("weights {i}"), &p, Some(&w), &mut t);
+        }
     }
-    println!("weights: {t:?}");
+    println!("weights {part:?}: {t:?}");
 }
 
 /// Exact identities: a translation by integers and a scaling by a power of two (both exact
@@ -567,10 +575,30 @@ fn many_more_extents() {
     extents(N / 2);
 }
 
+// The weights' long run is the slowest set (exact arithmetic on weights from 1e-3 to 1e3):
+// four quarters, side by side.
 #[test]
 #[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
-fn many_more_weights() {
-    weights(2 * N);
+fn many_more_weights_first_quarter() {
+    weights_part(2 * N, 0..N / 2);
+}
+
+#[test]
+#[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
+fn many_more_weights_second_quarter() {
+    weights_part(2 * N, N / 2..N);
+}
+
+#[test]
+#[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
+fn many_more_weights_third_quarter() {
+    weights_part(2 * N, N..3 * N / 2);
+}
+
+#[test]
+#[ignore = "slow oracle (ten times the default sets); .ci/run runs it"]
+fn many_more_weights_fourth_quarter() {
+    weights_part(2 * N, 3 * N / 2..2 * N);
 }
 
 #[allow(dead_code)]

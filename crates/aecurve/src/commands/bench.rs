@@ -43,8 +43,8 @@ pub(crate) enum BenchCmd {
     /// The rational cubic fits and the rational monotone test, against their targets.
     Approx(TargetArgs),
     /// The pseudo-elastic spline in table mode on the point sets, against a tenth of
-    /// libspiro's times (the ratio itself: `cargo bench --features spiro-bench --bench
-    /// spiro_compare` in crates/aesthetic-curves, with libspiro installed).
+    /// libspiro's times (the ratio itself: `cargo bench -p spiro-oracle --features libspiro
+    /// --bench spiro_compare`, with libspiro installed).
     Spline(TargetArgs),
 }
 

@@ -5,17 +5,14 @@
 //! span next to them (one parameter): exactly the spline of `lac_spline` with α = -1. The
 //! two must agree on the curvature at every point.
 //!
-//! `apt-get install libspiro-dev && cargo test --release -p aesthetic-curves --features
-//! spiro-bench --test spiro_oracle`
+//! `apt-get install libspiro-dev && cargo test --release --workspace --features
+//! spiro-oracle/libspiro --test spiro_oracle`
 
 use aesthetic_curves::lac_spline::{lac_spline, LacSplineOptions};
 use aesthetic_curves::samples::{random_walk, wavy_points, SplitMix64};
 use aesthetic_curves::{Point, Vec2};
 
-mod common {
-    pub mod spiro;
-}
-use common::spiro::{control_points, run, SpiroSeg};
+use spiro_oracle::ffi::{control_points, run, SpiroSeg};
 
 /// Spiro's segments through `pts` (corners 'v' at `corners`), or None when it fails.
 fn spiro(pts: &[Point], closed: bool, corners: &[usize]) -> Option<Vec<SpiroSeg>> {

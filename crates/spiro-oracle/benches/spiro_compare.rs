@@ -4,7 +4,7 @@
 //! a different curve (piecewise Euler spirals, G2, a global Newton solve); both interpolate
 //! the points with a fair curve, which is the work compared.
 //!
-//! `apt-get install libspiro-dev && cargo bench -p aesthetic-curves --features spiro-bench --bench spiro_compare`
+//! `apt-get install libspiro-dev && cargo bench -p spiro-oracle --features libspiro --bench spiro_compare`
 
 use aesthetic_curves::lac_spline::{lac_spline, lac_spline_tangents, LacSplineOptions};
 use aesthetic_curves::pseudo_spline::{pseudo_elastic, Mode};
@@ -13,9 +13,8 @@ use aesthetic_curves::samples::wavy_points;
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 
-#[path = "../tests/common/spiro.rs"]
-mod spiro_ffi;
 use spiro_ffi::SpiroCp;
+use spiro_oracle::ffi as spiro_ffi;
 
 /// libspiro solved `cps`.
 fn spiro(cps: &[SpiroCp]) -> bool {
