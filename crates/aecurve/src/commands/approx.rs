@@ -120,6 +120,10 @@ pub(crate) struct Args {
 }
 
 impl Command for Args {
+    fn curve_output(&self) -> Option<&CurveOutput> {
+        Some(&self.out)
+    }
+
     fn outputs(&self) -> Vec<&Path> {
         self.out.paths().chain(self.map.as_deref()).collect()
     }

@@ -11,7 +11,6 @@ use aesthetic_curves::curve::MAX_NURBS_PIECES;
 use aesthetic_curves::lac::{LacInflectionSegment, LacSegment};
 use aesthetic_curves::Curve;
 use anyhow::Result;
-use std::path::Path;
 
 /// The two kinds of segment the command makes.
 enum Segment {
@@ -171,12 +170,8 @@ pub(crate) struct Args {
 }
 
 impl Command for Args {
-    fn outputs(&self) -> Vec<&Path> {
-        self.out.paths().collect()
-    }
-
-    fn check(&self) -> Result<()> {
-        self.out.check()
+    fn curve_output(&self) -> Option<&CurveOutput> {
+        Some(&self.out)
     }
 
     fn run(self) -> Result<()> {

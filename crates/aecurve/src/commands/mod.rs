@@ -17,16 +17,24 @@ pub(crate) mod spline;
 
 /// One command: what it will write, a check of that before any work, and the work.
 pub(crate) trait Command {
+    /// The curve outputs of a command that makes one curve (`--json`, `-o`,
+    /// `--curvature-plot`); the defaults of `outputs` and `check` are theirs.
+    fn curve_output(&self) -> Option<&crate::cli::CurveOutput> {
+        None
+    }
+
     /// Every file path it will write (its `-o`, `--map`, `--curvature-plot`): `main` makes
     /// their folders before it runs.
     fn outputs(&self) -> Vec<&Path> {
-        Vec::new()
+        self.curve_output()
+            .map(|o| o.paths().collect())
+            .unwrap_or_default()
     }
 
     /// Refuses an output it could not write (an unknown picture or CAD format) before any
     /// work.
     fn check(&self) -> Result<()> {
-        Ok(())
+        self.curve_output().map_or(Ok(()), |o| o.check())
     }
 
     /// Does the command's work.

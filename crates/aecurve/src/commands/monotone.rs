@@ -8,7 +8,6 @@ use aecurve::any_bezier::AnyBezier;
 use aecurve::{parse_numbers, parse_points, plot};
 use anyhow::{Context, Result};
 use std::io::Write;
-use std::path::Path;
 
 pub(crate) fn monotone(
     points: &str,
@@ -149,12 +148,8 @@ pub(crate) struct Args {
 }
 
 impl Command for Args {
-    fn outputs(&self) -> Vec<&Path> {
-        self.out.paths().collect()
-    }
-
-    fn check(&self) -> Result<()> {
-        self.out.check()
+    fn curve_output(&self) -> Option<&CurveOutput> {
+        Some(&self.out)
     }
 
     fn run(self) -> Result<()> {

@@ -6,7 +6,7 @@ use crate::commands::Command;
 use aecurve::plot;
 use aesthetic_curves::Curve;
 use anyhow::Result;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 pub(crate) fn sketch(
     input: &std::path::Path,
@@ -151,12 +151,8 @@ pub(crate) struct Args {
 }
 
 impl Command for Args {
-    fn outputs(&self) -> Vec<&Path> {
-        self.out.paths().collect()
-    }
-
-    fn check(&self) -> Result<()> {
-        self.out.check()
+    fn curve_output(&self) -> Option<&CurveOutput> {
+        Some(&self.out)
     }
 
     fn run(self) -> Result<()> {
