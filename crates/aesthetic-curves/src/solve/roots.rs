@@ -1,4 +1,5 @@
-//! Bracketed scalar root finding shared by the solvers of the library.
+//! Roots of one variable: in a bracket (Illinois, Brent from guesses, a bracketed Newton),
+//! without one (a safeguarded Newton), and the boundary of a yes/no test (bisection).
 //!
 //! [`illinois`]: regula falsi with the Illinois modification (the retained end's value is
 //! halved when the same end is kept twice), plus a plain bisection step every fourth
