@@ -8,7 +8,7 @@ use crate::commands::Command;
 use aecurve::plot;
 use aesthetic_curves::curve::MAX_NURBS_PIECES;
 use anyhow::Result;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 pub(crate) fn approx(
     alpha: f64,
@@ -124,13 +124,8 @@ impl Command for Args {
         Some(&self.out)
     }
 
-    fn outputs(&self) -> Vec<&Path> {
-        self.out.paths().chain(self.map.as_deref()).collect()
-    }
-
-    fn check(&self) -> Result<()> {
-        self.out.check()?;
-        plot::check_picture_paths(self.map.as_slice())
+    fn pictures(&self) -> &[PathBuf] {
+        self.map.as_slice()
     }
 
     fn run(self) -> Result<()> {

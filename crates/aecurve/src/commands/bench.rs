@@ -62,17 +62,10 @@ pub(crate) struct TargetArgs {
 }
 
 impl Command for Args {
-    fn outputs(&self) -> Vec<&Path> {
+    fn pictures(&self) -> &[PathBuf] {
         match &self.what {
-            BenchCmd::Monotone { output, .. } => output.as_deref().into_iter().collect(),
-            _ => Vec::new(),
-        }
-    }
-
-    fn check(&self) -> Result<()> {
-        match &self.what {
-            BenchCmd::Monotone { output, .. } => plot::check_picture_paths(output.as_slice()),
-            _ => Ok(()),
+            BenchCmd::Monotone { output, .. } => output.as_slice(),
+            _ => &[],
         }
     }
 

@@ -6,7 +6,6 @@ use aecurve::plot;
 use aecurve::{parse_numbers, parse_points};
 use anyhow::Context;
 use anyhow::Result;
-use std::path::Path;
 use std::path::PathBuf;
 
 pub(crate) enum LcgSource {
@@ -78,12 +77,8 @@ pub(crate) struct Args {
 }
 
 impl Command for Args {
-    fn outputs(&self) -> Vec<&Path> {
-        self.output.iter().map(PathBuf::as_path).collect()
-    }
-
-    fn check(&self) -> Result<()> {
-        plot::check_picture_paths(&self.output)
+    fn pictures(&self) -> &[PathBuf] {
+        &self.output
     }
 
     fn run(self) -> Result<()> {

@@ -18,23 +18,32 @@ pub(crate) mod spline;
 /// One command: what it will write, a check of that before any work, and the work.
 pub(crate) trait Command {
     /// The curve outputs of a command that makes one curve (`--json`, `-o`,
-    /// `--curvature-plot`); the defaults of `outputs` and `check` are theirs.
+    /// `--curvature-plot`).
     fn curve_output(&self) -> Option<&crate::cli::CurveOutput> {
         None
     }
 
-    /// Every file path it will write (its `-o`, `--map`, `--curvature-plot`): `main` makes
-    /// their folders before it runs.
-    fn outputs(&self) -> Vec<&Path> {
-        self.curve_output()
-            .map(|o| o.paths().collect())
-            .unwrap_or_default()
+    /// The other pictures it will write (.svg or .png: a graph, a map, a chart).
+    fn pictures(&self) -> &[PathBuf] {
+        &[]
     }
 
-    /// Refuses an output it could not write (an unknown picture or CAD format) before any
+    /// Every file path it will write (its curve outputs, then its pictures; a command that
+    /// writes something else says so here): `main` makes their folders before it runs.
+    fn outputs(&self) -> Vec<&Path> {
+        let curve = self.curve_output().into_iter().flat_map(|o| o.paths());
+        curve
+            .chain(self.pictures().iter().map(PathBuf::as_path))
+            .collect()
+    }
+
+    /// Refuses an output it could not write (an unknown CAD or picture format) before any
     /// work.
     fn check(&self) -> Result<()> {
-        self.curve_output().map_or(Ok(()), |o| o.check())
+        if let Some(o) = self.curve_output() {
+            o.check()?;
+        }
+        plot::check_picture_paths(self.pictures())
     }
 
     /// Does the command's work.
