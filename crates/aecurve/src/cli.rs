@@ -1,7 +1,8 @@
 //! The command line of `aecurve` (`clap` types and argument parsers).
 
 use crate::commands::{
-    approx, batch, bench, check, demo, editor, fix, lac, lcg, monotone, sketch, spline, Command,
+    approx, batch, bench, check, demo, editor, fix, lac, lcg, monotone, schema, sketch, spline,
+    Command,
 };
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -101,6 +102,10 @@ commands! {
     /// The interactive editor in the browser: a local server on 127.0.0.1 only (LAC
     /// segments, inflection segments, pseudo-elastic splines, sketches, Bézier curves).
     Editor(editor::Args),
+    /// The JSON Schema (draft 2020-12) of the protocol, from its request and response
+    /// types: every op's request and response (`x-ops`), any request line (the document),
+    /// any response line (`$defs/Response`).
+    Schema(schema::Args),
 }
 
 /// A count within `LO..=HI` (a size option: refused with its range rather than tried).

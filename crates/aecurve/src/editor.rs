@@ -14,7 +14,7 @@
 //! [`MAX_BODY`] get 413. The computations run on tokio's blocking pool, so concurrent
 //! requests proceed in parallel.
 
-use crate::protocol;
+use crate::protocol::{self, fields, fields::IntIn, fields::Points, fields::Weights};
 use aesthetic_curves::nurbs::Nurbs;
 use aesthetic_curves::region::{self, Grid};
 use axum::body::Bytes;
@@ -23,6 +23,8 @@ use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::Router;
+use schemars::JsonSchema;
+use serde::Deserialize;
 use serde_json::{json, Value};
 use std::time::Instant;
 
@@ -285,34 +287,107 @@ async fn api(axum::extract::State(c): axum::extract::State<Compute>, body: Bytes
     timed_json(v, started)
 }
 
+/// Cells along one side of a region's grid.
+type Cells = IntIn<1, { MAX_REGION_CELLS as u64 }>;
+
 /// A grid over a box: `{"x0", "y0", "x1", "y1", "nx", "ny"}`; cells judged at their centres.
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct GridJson {
+    x0: f64,
+    y0: f64,
+    x1: f64,
+    y1: f64,
+    nx: Cells,
+    ny: Cells,
+}
+
+impl GridJson {
+    fn grid(&self) -> Result<Grid, protocol::ProtoError> {
+        let (nx, ny) = (self.nx.0 as usize, self.ny.0 as usize);
+        Ok(Grid::new(self.x0, self.y0, self.x1, self.y1, nx, ny)?)
+    }
+}
+
+/// The grid of a request's `grid` field (errors named `grid.x0`, ...).
+#[cfg(test)]
 fn grid_param(v: &Value) -> Result<Grid, protocol::ProtoError> {
-    let num = |k: &str| -> Result<f64, protocol::ProtoError> {
-        match v.get(k).and_then(Value::as_f64) {
-            Some(x) if x.is_finite() => Ok(x),
-            _ => Err(protocol::ProtoError::invalid(
-                &format!("grid.{k}"),
-                "must be a finite number",
-            )),
+    #[derive(Deserialize, JsonSchema)]
+    struct G {
+        grid: GridJson,
+    }
+    impl protocol::Request for G {}
+    protocol::read::<G>(json!({ "grid": v }))?.grid.grid()
+}
+
+/// What a region request asks: see [`region_answer`].
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+enum RegionRequest {
+    Lac {
+        alpha: f64,
+        control: Points<3, 3>,
+        grid: GridJson,
+    },
+    Inflection {
+        control: Points<3, 3>,
+        grid: GridJson,
+    },
+    Bezier {
+        control_points: Points<3, 21>,
+        #[serde(default)]
+        weights: Option<Weights>,
+        index: usize,
+        grid: GridJson,
+    },
+}
+
+impl protocol::Request for RegionRequest {
+    fn check(&self) -> Result<(), protocol::ProtoError> {
+        if let RegionRequest::Bezier {
+            control_points,
+            weights,
+            index,
+            grid,
+        } = self
+        {
+            let n = control_points.0.len();
+            if *index >= n {
+                return Err(protocol::ProtoError::invalid(
+                    "index",
+                    "must name a control point",
+                ));
+            }
+            if weights.as_ref().is_some_and(|w| w.len() != n) {
+                return Err(protocol::ProtoError::invalid(
+                    "weights",
+                    format!("needs {n} numbers (one per control point)"),
+                ));
+            }
+            // Work budget: the exact test costs about td^1.5 (td its Bernstein degree) per
+            // judged cell; the budget holds the worst case (every cell judged) to a couple
+            // of seconds.
+            let td = aesthetic_curves::monotone::exact_test_degree(n - 1, weights.is_some()) as f64;
+            let cells = (grid.nx.0 * grid.ny.0) as usize;
+            let most = (REGION_WORK_BUDGET / td.powf(1.5)).floor() as usize;
+            if cells > most {
+                return Err(protocol::ProtoError::invalid(
+                    "grid",
+                    format!(
+                        "{cells} cells exceed the region budget for a {} Bézier curve of degree \
+                         {} (exact test of degree {td}): at most {most} cells",
+                        if weights.is_some() {
+                            "rational"
+                        } else {
+                            "polynomial"
+                        },
+                        n - 1
+                    ),
+                ));
+            }
         }
-    };
-    let count = |k: &str| -> Result<usize, protocol::ProtoError> {
-        match v.get(k).and_then(Value::as_u64) {
-            Some(n) if (1..=MAX_REGION_CELLS as u64).contains(&n) => Ok(n as usize),
-            _ => Err(protocol::ProtoError::invalid(
-                &format!("grid.{k}"),
-                format!("must be an integer in 1..={MAX_REGION_CELLS}"),
-            )),
-        }
-    };
-    Ok(Grid::new(
-        num("x0")?,
-        num("y0")?,
-        num("x1")?,
-        num("y1")?,
-        count("nx")?,
-        count("ny")?,
-    )?)
+        Ok(())
+    }
 }
 
 /// Threads for a region: half the cores, so the other half stays free for the interactive
@@ -332,65 +407,27 @@ fn region_threads() -> usize {
 /// one string per grid row from y0 up, '1' where the property holds, '0' where not, and
 /// `judged`, the number of cells actually tested (see [`aesthetic_curves::region`]).
 fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
-    let obj = v
-        .as_object()
-        .ok_or_else(|| protocol::ProtoError::invalid("request", "must be a JSON object"))?;
-    let grid = grid_param(obj.get("grid").unwrap_or(&Value::Null))?;
-    let kind = obj.get("kind").and_then(Value::as_str).unwrap_or("");
     let threads = region_threads();
-    let r =
-        match kind {
-            "lac" => {
-                let alpha = match obj.get("alpha").and_then(Value::as_f64) {
-                    Some(a) if a.is_finite() => a,
-                    _ => return Err(protocol::ProtoError::invalid("alpha", "must be a number")),
-                };
-                let c = protocol::points_param(obj, "control", 3, 3)?;
-                region::lac_existence(alpha, c[0], c[1], grid, threads)?
-            }
-            "inflection" => {
-                let c = protocol::points_param(obj, "control", 3, 3)?;
-                region::inflection_existence(c[0], c[1], grid, threads)?
-            }
-            "bezier" => {
-                let pts = protocol::points_param(obj, "control_points", 3, 21)?;
-                let weights = match obj.get("weights") {
-                    None | Some(Value::Null) => None,
-                    Some(_) => protocol::numbers_param(obj, "weights", pts.len())?,
-                };
-                let index = obj
-                    .get("index")
-                    .and_then(Value::as_u64)
-                    .filter(|i| (*i as usize) < pts.len())
-                    .ok_or_else(|| {
-                        protocol::ProtoError::invalid("index", "must name a control point")
-                    })? as usize;
-                // Work budget: the exact test costs about td^1.5 (td its Bernstein degree) per
-                // judged cell; the budget holds the worst case (every cell judged) to a couple
-                // of seconds.
-                let n = pts.len() - 1;
-                let td = aesthetic_curves::monotone::exact_test_degree(n, weights.is_some()) as f64;
-                let cells = grid.nx() * grid.ny();
-                let most = (REGION_WORK_BUDGET / td.powf(1.5)).floor() as usize;
-                if cells > most {
-                    return Err(protocol::ProtoError::invalid(
-                        "grid",
-                        format!(
-                        "{cells} cells exceed the region budget for a {} Bézier curve of degree \
-                         {n} (exact test of degree {td}): at most {most} cells",
-                        if weights.is_some() { "rational" } else { "polynomial" }
-                    ),
-                    ));
-                }
-                region::bezier_monotone(&pts, weights.as_deref(), index, grid, 4, threads)?
-            }
-            _ => {
-                return Err(protocol::ProtoError::invalid(
-                    "kind",
-                    "must be \"lac\", \"inflection\" or \"bezier\"",
-                ))
-            }
-        };
+    let r = match protocol::read::<RegionRequest>(v.clone())? {
+        RegionRequest::Lac {
+            alpha,
+            control: Points(c),
+            grid,
+        } => region::lac_existence(alpha, c[0], c[1], grid.grid()?, threads)?,
+        RegionRequest::Inflection {
+            control: Points(c),
+            grid,
+        } => region::inflection_existence(c[0], c[1], grid.grid()?, threads)?,
+        RegionRequest::Bezier {
+            control_points: Points(pts),
+            weights,
+            index,
+            grid,
+        } => {
+            let w = weights.map(|w| fields::weights(&w));
+            region::bezier_monotone(&pts, w.as_deref(), index, grid.grid()?, 4, threads)?
+        }
+    };
     Ok(json!({"ok": true, "result": {"rows": r.rows(), "judged": r.judged()}}))
 }
 
@@ -406,59 +443,89 @@ async fn region(axum::extract::State(c): axum::extract::State<Compute>, body: By
     timed_json(v, started)
 }
 
+/// The file formats the editor exports.
+#[derive(Debug, Clone, Copy, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+enum ExportFormat {
+    Dxf,
+    Step,
+    Iges,
+    Svg,
+    Json,
+}
+
+/// An export request: a NURBS and the format of the file.
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct ExportRequest {
+    format: ExportFormat,
+    degree: IntIn<1, 20>,
+    control_points: Points<2, 100_000>,
+    knots: Vec<f64>,
+    #[serde(default)]
+    weights: Option<Weights>,
+}
+
+impl protocol::Request for ExportRequest {
+    fn check(&self) -> Result<(), protocol::ProtoError> {
+        let n = self.control_points.0.len();
+        let k = n + self.degree.0 as usize + 1;
+        if self.knots.len() != k {
+            return Err(protocol::ProtoError::invalid(
+                "knots",
+                format!(
+                    "needs {k} numbers (control points + degree + 1), got {}",
+                    self.knots.len()
+                ),
+            ));
+        }
+        if self.weights.as_ref().is_some_and(|w| w.len() != n) {
+            return Err(protocol::ProtoError::invalid(
+                "weights",
+                format!("needs {n} numbers (one per control point)"),
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The file for an export request, or a protocol error.
 fn export_file(v: &Value) -> Result<(&'static str, String, Vec<u8>), protocol::ProtoError> {
-    let obj = v
-        .as_object()
-        .ok_or_else(|| protocol::ProtoError::invalid("request", "must be a JSON object"))?;
-    let format = obj.get("format").and_then(Value::as_str).unwrap_or("");
-    let degree = obj
-        .get("degree")
-        .and_then(Value::as_u64)
-        .filter(|d| (1..=20).contains(d))
-        .ok_or_else(|| protocol::ProtoError::invalid("degree", "must be an integer in 1..=20"))?;
-    let pts = protocol::points_param(obj, "control_points", 2, 100_000)?;
-    let need = |f: &str| protocol::ProtoError::invalid(f, "missing");
-    let knots = protocol::numbers_param(obj, "knots", pts.len() + degree as usize + 1)?
-        .ok_or_else(|| need("knots"))?;
-    let weights =
-        protocol::numbers_param(obj, "weights", pts.len())?.unwrap_or(vec![1.0; pts.len()]);
+    let req = protocol::read::<ExportRequest>(v.clone())?;
+    let (format, degree, pts, knots) = (req.format, req.degree.0, req.control_points.0, req.knots);
+    let weights = req
+        .weights
+        .map_or_else(|| vec![1.0; pts.len()], |w| fields::weights(&w));
     let curve = Nurbs::new(degree as usize, knots, pts, weights)?;
     crate::export::check_exportable(&curve)
         .map_err(|e| protocol::ProtoError::invalid("control_points", e.to_string()))?;
     let name = "aesthetic_curve";
     let bad = |e: anyhow::Error| protocol::ProtoError::invalid("format", e.to_string());
     Ok(match format {
-        "dxf" => (
+        ExportFormat::Dxf => (
             "application/dxf",
             "curve.dxf".into(),
             crate::export::dxf_bytes(&curve).map_err(bad)?,
         ),
-        "step" => (
+        ExportFormat::Step => (
             "application/step",
             "curve.step".into(),
             crate::export::step_text(&curve, name).into_bytes(),
         ),
-        "iges" => (
+        ExportFormat::Iges => (
             "application/iges",
             "curve.iges".into(),
             crate::export::iges_text(&curve, name).into_bytes(),
         ),
-        "json" => (
+        ExportFormat::Json => (
             "application/json",
             "curve.json".into(),
             crate::export::json_text(&curve).to_string().into_bytes(),
         ),
-        "svg" => {
+        ExportFormat::Svg => {
             let doc = crate::export::svg_document(&curve, 1e-6 * curve.size(), &[], name)
                 .ok_or_else(|| protocol::ProtoError::invalid("knots", "the curve has no spans"))?;
             ("image/svg+xml", "curve.svg".into(), doc.into_bytes())
-        }
-        _ => {
-            return Err(protocol::ProtoError::invalid(
-                "format",
-                "must be dxf, step, iges, svg or json",
-            ))
         }
     })
 }

@@ -20,27 +20,53 @@ pub fn finite_or_null(v: f64) -> Value {
 
 /// One end's curvature: `{"kind": "regular" | "finite" | "unbounded", "curvature": value or
 /// null, "retracted_handles": n, "growth": "1/t" (unbounded only), "sign"}`.
-pub fn end_curvature_json(e: &aesthetic_curves::monotone::EndCurvature) -> Value {
-    use aesthetic_curves::monotone::EndCurvature as E;
-    match *e {
-        E::Regular(k) => {
-            json!({"kind": "regular", "curvature": finite_or_null(k), "retracted_handles": 0})
+#[derive(Debug, Clone, serde::Serialize, schemars::JsonSchema)]
+pub struct EndCurvatureJson {
+    /// `regular`, `finite` (at retracted handles) or `unbounded`.
+    pub kind: &'static str,
+    /// The curvature there; null where it grows without bound.
+    pub curvature: Option<f64>,
+    /// How many handles at this end are retracted onto their point.
+    pub retracted_handles: usize,
+    /// How fast an unbounded curvature grows (`1/t`, `1/t^2`, ...).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub growth: Option<String>,
+    /// The sign of an unbounded curvature.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sign: Option<i8>,
+}
+
+impl From<&aesthetic_curves::monotone::EndCurvature> for EndCurvatureJson {
+    fn from(e: &aesthetic_curves::monotone::EndCurvature) -> Self {
+        use aesthetic_curves::monotone::EndCurvature as E;
+        let finite = |k: f64| Some(k).filter(|k| k.is_finite());
+        let (kind, curvature, retracted_handles) = match *e {
+            E::Regular(k) => ("regular", finite(k), 0),
+            E::Finite { curvature, order } => ("finite", finite(curvature), order),
+            E::Unbounded { order, .. } => ("unbounded", None, order),
+        };
+        let (growth, sign) = match *e {
+            E::Unbounded { positive, rate, .. } => (
+                Some(if rate == 1 {
+                    "1/t".to_string()
+                } else {
+                    format!("1/t^{rate}")
+                }),
+                Some(if positive { 1 } else { -1 }),
+            ),
+            _ => (None, None),
+        };
+        EndCurvatureJson {
+            kind,
+            curvature,
+            retracted_handles,
+            growth,
+            sign,
         }
-        E::Finite { curvature, order } => json!({
-            "kind": "finite",
-            "curvature": finite_or_null(curvature),
-            "retracted_handles": order,
-        }),
-        E::Unbounded {
-            positive,
-            order,
-            rate,
-        } => json!({
-            "kind": "unbounded",
-            "curvature": null,
-            "retracted_handles": order,
-            "growth": if rate == 1 { "1/t".to_string() } else { format!("1/t^{rate}") },
-            "sign": if positive { 1 } else { -1 },
-        }),
     }
+}
+
+/// [`EndCurvatureJson`] as a JSON value.
+pub fn end_curvature_json(e: &aesthetic_curves::monotone::EndCurvature) -> Value {
+    serde_json::to_value(EndCurvatureJson::from(e)).unwrap_or(Value::Null)
 }

@@ -1187,12 +1187,40 @@ pub fn check_shapes<'a>(
         .collect()
 }
 
+/// One finding (as `aecurve check --json` writes it).
+#[derive(Debug, serde::Serialize, schemars::JsonSchema)]
+pub struct FindingJson {
+    /// The shape's name.
+    pub shape: String,
+    /// The contour's index.
+    pub contour: usize,
+    /// The segment's index in its contour.
+    pub segment: usize,
+    /// What was found.
+    pub kind: String,
+    /// Where.
+    pub point: [f64; 2],
+    /// For a person.
+    pub message: String,
+}
+
+impl FindingJson {
+    /// A finding of shape `name`.
+    pub fn new(name: &str, f: &aesthetic_curves::outline::Finding) -> Self {
+        FindingJson {
+            shape: name.to_string(),
+            contour: f.contour,
+            segment: f.segment,
+            kind: f.kind.to_string(),
+            point: [f.point.x, f.point.y],
+            message: f.message.clone(),
+        }
+    }
+}
+
 /// A finding as JSON (shared by `aecurve check --json` and the protocol's `outline.check`).
 pub fn finding_json(name: &str, f: &Finding) -> Value {
-    json!({
-        "shape": name, "contour": f.contour, "segment": f.segment, "kind": f.kind,
-        "point": [f.point.x, f.point.y], "message": f.message,
-    })
+    serde_json::to_value(FindingJson::new(name, f)).unwrap_or(Value::Null)
 }
 
 /// A shape's check as JSON: per contour its segments and joins.

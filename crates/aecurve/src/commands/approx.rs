@@ -59,12 +59,12 @@ pub(crate) fn approx(
             fit.max_error * len
         );
         println!("  curvature       monotone (exact test), G2 at both ends");
-        if let Some(sp) = r.get("spline") {
+        if let Some(sp) = &r.spline {
             println!(
                 "  spline          {} piece(s) within {:e}: max error {:.3e}",
-                sp["pieces"],
+                sp.pieces,
                 tolerance.unwrap_or(0.0),
-                sp["max_error"].as_f64().unwrap_or(f64::NAN)
+                sp.max_error
             );
         }
     }

@@ -29,8 +29,12 @@ impl Segment {
     /// The protocol's result (`lac.segment` or `lac.inflection_segment`).
     fn json(&self, samples: usize) -> Result<serde_json::Value> {
         Ok(match self {
-            Segment::Lac(s) => aecurve::protocol::lac_segment_json(s, samples)?,
-            Segment::Inflection(s) => aecurve::protocol::lac_inflection_json(s, samples)?,
+            Segment::Lac(s) => {
+                serde_json::to_value(aecurve::protocol::lac_segment_json(s, samples)?)?
+            }
+            Segment::Inflection(s) => {
+                serde_json::to_value(aecurve::protocol::lac_inflection_json(s, samples)?)?
+            }
         })
     }
 

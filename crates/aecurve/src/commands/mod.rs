@@ -12,6 +12,7 @@ pub(crate) mod fix;
 pub(crate) mod lac;
 pub(crate) mod lcg;
 pub(crate) mod monotone;
+pub(crate) mod schema;
 pub(crate) mod sketch;
 pub(crate) mod spline;
 

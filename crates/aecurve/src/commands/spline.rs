@@ -30,9 +30,9 @@ pub(crate) fn spline(
     let s = aesthetic_curves::pseudo_spline::pseudo_elastic(
         &pts,
         closed,
-        aecurve::protocol::spline_mode(mode),
+        aecurve::protocol::SplineMode::named(mode).mode(),
     )?;
-    let r = &aecurve::protocol::spline_json(&s, mode);
+    let r = &aecurve::protocol::spline_json(&s, aecurve::protocol::SplineMode::named(mode));
     if out.json {
         println!("{r}");
     } else {
@@ -41,20 +41,17 @@ pub(crate) fn spline(
             pts.len(),
             if closed { "closed" } else { "open" }
         );
-        println!("  length   {:.9}", r["length"].as_f64().unwrap_or(f64::NAN));
+        println!("  length   {:.9}", r.length);
         println!(
             "  area     {:.9} ({})",
-            r["area"].as_f64().unwrap_or(f64::NAN),
+            r.area,
             if closed {
                 "enclosed"
             } else {
                 "between the curve and the chord of its ends"
             }
         );
-        println!(
-            "  energy   {:.9} (sum of l_i J_i)",
-            r["energy"].as_f64().unwrap_or(f64::NAN)
-        );
+        println!("  energy   {:.9} (sum of l_i J_i)", r.energy);
     }
     let caption = format!("pseudo-elastic spline: length {:.6}", s.length);
     write_spline(
