@@ -5,6 +5,7 @@ pub mod any_bezier;
 pub mod batch;
 pub mod bench;
 pub mod bench_targets;
+pub mod check_json;
 pub mod editor;
 /// The exports live in their own crate (shared with the Python package).
 pub use aesthetic_curves_export as export;

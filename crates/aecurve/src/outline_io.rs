@@ -13,11 +13,10 @@
 //! before it is read, a truncated or foreign file says what it is not, a glyph that cannot be
 //! drawn is reported with its name and the others are read.
 
-use crate::json_out::object;
 use aesthetic_curves::outline::{check_contour, findings, ContourCheck, Finding, OutlineOptions};
 use aesthetic_curves::{Point, RationalBezier};
 use anyhow::{bail, Context, Result};
-use serde_json::{json, Value};
+
 use skrifa::instance::{LocationRef, Size};
 use skrifa::outline::{DrawSettings, OutlinePen};
 use skrifa::{FontRef, GlyphId, MetadataProvider};
@@ -1185,141 +1184,6 @@ pub fn check_shapes<'a>(
             })
         })
         .collect()
-}
-
-/// One finding (as `aecurve check --json` writes it).
-#[derive(Debug, serde::Serialize, schemars::JsonSchema)]
-pub struct FindingJson {
-    /// The shape's name.
-    pub shape: String,
-    /// The contour's index.
-    pub contour: usize,
-    /// The segment's index in its contour.
-    pub segment: usize,
-    /// What was found.
-    pub kind: String,
-    /// Where.
-    pub point: [f64; 2],
-    /// For a person.
-    pub message: String,
-}
-
-impl FindingJson {
-    /// A finding of shape `name`.
-    pub fn new(name: &str, f: &aesthetic_curves::outline::Finding) -> Self {
-        FindingJson {
-            shape: name.to_string(),
-            contour: f.contour,
-            segment: f.segment,
-            kind: f.kind.to_string(),
-            point: [f.point.x, f.point.y],
-            message: f.message.clone(),
-        }
-    }
-}
-
-/// A finding as JSON (shared by `aecurve check --json` and the protocol's `outline.check`).
-pub fn finding_json(name: &str, f: &Finding) -> Value {
-    serde_json::to_value(FindingJson::new(name, f)).unwrap_or(Value::Null)
-}
-
-/// A shape's check as JSON: per contour its segments and joins.
-pub fn shape_json(c: &ShapeCheck) -> Value {
-    let contours = c.contours.iter().map(|k| {
-        object([
-            ("closed", Value::Bool(k.closed)),
-            (
-                "segments",
-                Value::Array(k.segments.iter().map(segment_json).collect()),
-            ),
-            (
-                "joins",
-                Value::Array(k.joins.iter().map(join_json).collect()),
-            ),
-        ])
-    });
-    object([
-        ("name", Value::String(c.name.to_string())),
-        ("contours", Value::Array(contours.collect())),
-    ])
-}
-
-fn point_json(p: Point) -> Value {
-    json!([p.x, p.y])
-}
-
-/// One segment's check as JSON (the values moved in: see [`object`]).
-fn segment_json(s: &aesthetic_curves::outline::SegmentCheck) -> Value {
-    let places = |v: &[(f64, Point)]| {
-        let each = v
-            .iter()
-            .map(|(t, p)| object([("t", json!(t)), ("point", point_json(*p))]));
-        Value::Array(each.collect())
-    };
-    let mut o = object([
-        ("degree", json!(s.degree)),
-        ("rational", Value::Bool(s.rational)),
-        ("extrema", places(&s.extrema)),
-        ("inflections", places(&s.inflections)),
-        ("exact_arithmetic", Value::Bool(s.exact)),
-    ]);
-    // A curvature that grows without bound is null, with its kind in "ends".
-    let num = crate::json_out::finite_or_null;
-    o["max_abs_curvature"] = num(s.max_abs_curvature);
-    if s.bump > 0.0 {
-        o["bump"] = json!(s.bump);
-    }
-    if let Some(e) = &s.ends {
-        o["ends"] = Value::Array(e.iter().map(crate::json_out::end_curvature_json).collect());
-    }
-    if !s.notes.is_empty() {
-        o["notes"] = json!(s.notes);
-    }
-    if let Some(m) = s.monotone {
-        o["monotone"] = json!(m);
-    }
-    if let Some(t) = s.trend {
-        o["trend"] = json!(t.as_str());
-    }
-    if let Some((a, b)) = s.end_curvatures {
-        o["end_curvatures"] = Value::Array(vec![num(a), num(b)]);
-    }
-    if let Some(f) = &s.flag {
-        o["flag"] = json!(f);
-    }
-    if let Some(g) = &s.suggestion {
-        o["suggestion"] = object([
-            (
-                "control_points",
-                Value::Array(g.curve.points().iter().map(|p| point_json(*p)).collect()),
-            ),
-            ("handle_scale", json!([g.scale.0, g.scale.1])),
-            ("deviation", json!(g.deviation)),
-        ]);
-    }
-    o
-}
-
-/// One join's check as JSON.
-fn join_json(j: &aesthetic_curves::outline::JoinCheck) -> Value {
-    let mut o = object([
-        ("after_segment", json!(j.after_segment)),
-        ("point", point_json(j.point)),
-        (
-            "angle_break_degrees",
-            crate::json_out::finite_or_null(j.angle_break.to_degrees()),
-        ),
-        ("g1", Value::Bool(j.g1)),
-        ("g2", Value::Bool(j.g2)),
-        ("near_break", Value::Bool(j.near_break)),
-    ]);
-    if let Some(x) = j.curvature_jump {
-        o["curvature_jump"] = json!(x);
-    }
-    if j.unbounded_curvature {
-        o["unbounded_curvature"] = json!(true);
-    }
-    o
 }
 
 #[cfg(test)]

@@ -2,7 +2,8 @@
 //! (`aesthetic_curves::outline`), as a summary with the places most worth a look, or JSON.
 
 use crate::commands::Command;
-use aecurve::outline_io::{self, finding_json, shape_json, Outlines, Shape, ShapeCheck as Checked};
+use aecurve::check_json::{finding_json, shape_json};
+use aecurve::outline_io::{self, Outlines, Shape, ShapeCheck as Checked};
 use aesthetic_curves::outline::{ContourCheck, Finding};
 use anyhow::Result;
 use serde_json::{json, Value};

@@ -5,11 +5,11 @@ use super::drawing::{drawing_budget, drawing_json, Drawing, MAX_DRAWING_POINTS};
 use super::fields::{weights, Draw, List, NonNegative, Points, Positive, Weights};
 use super::piece::RationalJson;
 use super::{xy, Op, ProtoError, Request};
-use crate::outline_io::{check_shapes, options_for, shape_json, FindingJson, Outlines};
+use crate::check_json::{shape_json, FindingJson, ShapeJson};
+use crate::outline_io::{check_shapes, options_for, Outlines};
 use aesthetic_curves::{Point, RationalBezier};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use serde_json::Value;
 
 /// Longest SVG path data `outline.check` accepts (characters).
 pub const MAX_PATH_DATA: usize = 1 << 20;
@@ -268,7 +268,7 @@ pub struct OutlineCheckResult {
     pub shape_segments: Vec<usize>,
     /// The checked shapes: per contour its segments and joins, as `aecurve check --json`
     /// writes them.
-    pub shapes: Vec<Value>,
+    pub shapes: Vec<ShapeJson>,
     /// What the check found.
     pub findings: Vec<FindingJson>,
     /// With `draw`: the (first) checked shape.
