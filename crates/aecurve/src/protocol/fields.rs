@@ -61,6 +61,9 @@ pub struct Points<const MIN: usize, const MAX: usize>(pub Vec<Point>);
 
 /// The message of a count outside `min..=max`.
 pub fn count_message(min: usize, max: usize, got: usize) -> String {
+    if min == max {
+        return format!("needs {min} points, got {got}");
+    }
     format!("needs {min} to {max} points, got {got}")
 }
 

@@ -77,7 +77,13 @@ impl ProtoError {
     /// ("missing field `x`" becomes "x: missing" at its place).
     fn from_serde(e: serde_path_to_error::Error<serde_json::Error>) -> Self {
         let path = e.path().to_string();
-        let inner = e.into_inner().to_string();
+        // serde names Rust types; a client reads JSON ones.
+        let inner = e
+            .into_inner()
+            .to_string()
+            .replace("expected f64", "expected a number")
+            .replace("expected usize", "expected a whole number >= 0")
+            .replace("expected u64", "expected a whole number >= 0");
         let at = |field: &str| match path.as_str() {
             "." => field.to_string(),
             p if field.is_empty() => p.to_string(),
