@@ -143,6 +143,8 @@ pub(crate) struct MonotoneReport {
     pub(crate) test_degree: usize,
     /// The floating-point filter could not decide: exact integer arithmetic did.
     pub(crate) exact: bool,
+    /// The same as `exact`, under the protocol's name.
+    pub(crate) exact_arithmetic: bool,
     /// How the curvature behaves at t = 0 and at t = 1.
     pub(crate) ends: (EndCurvature, EndCurvature),
 }
@@ -161,6 +163,8 @@ pub(crate) struct EndCurvature {
     pub(crate) retracted_handles: usize,
     /// Where unbounded: the curvature grows like 1/t**growth_rate.
     pub(crate) growth_rate: Option<usize>,
+    /// Where unbounded: the growth as the protocol writes it, "1/t" or "1/t^k".
+    pub(crate) growth: Option<String>,
     /// Where unbounded: the sign of the curvature near the end (+1 or -1).
     pub(crate) sign: Option<i8>,
 }
@@ -202,6 +206,13 @@ impl From<ac::monotone::EndCurvature> for EndCurvature {
             curvature: e.value(),
             retracted_handles,
             growth_rate,
+            growth: growth_rate.map(|r| {
+                if r == 1 {
+                    "1/t".to_string()
+                } else {
+                    format!("1/t^{r}")
+                }
+            }),
             sign,
         }
     }
@@ -230,6 +241,7 @@ pub(crate) fn report(py: Python<'_>, r: ac::MonotoneReport) -> MonotoneReport {
         extrema: r.extrema.into_pyarray(py).unbind(),
         test_degree: r.test_degree,
         exact: r.exact,
+        exact_arithmetic: r.exact,
         ends: (r.ends[0].into(), r.ends[1].into()),
     }
 }

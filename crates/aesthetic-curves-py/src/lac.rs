@@ -29,6 +29,10 @@ pub(crate) struct RationalCubicFit {
     pub(crate) converged: bool,
     /// Objective evaluations spent.
     pub(crate) evaluations: usize,
+    /// The cubic's control points, a (4, 2) array (the protocol's `control_points`).
+    pub(crate) control_points: Py<PyArray2<f64>>,
+    /// The cubic's weights (the protocol's `weights`).
+    pub(crate) weights: Py<PyArray1<f64>>,
 }
 
 pymethods_with_exports!(RationalCubicFit {
@@ -46,8 +50,10 @@ pymethods_with_exports!(RationalCubicFit {
     }
 });
 
-pub(crate) fn fit_of(f: ac::approx::RationalCubicFit) -> RationalCubicFit {
+pub(crate) fn fit_of(py: Python<'_>, f: ac::approx::RationalCubicFit) -> RationalCubicFit {
     RationalCubicFit {
+        control_points: points_array(py, f.curve.points()).unbind(),
+        weights: f.curve.weights().to_vec().into_pyarray(py).unbind(),
         curve: RationalBezier { inner: f.curve },
         f0: f.f0,
         f1: f.f1,
@@ -76,7 +82,7 @@ pub(crate) fn spline_of(py: Python<'_>, s: ac::approx::RationalSpline) -> PyResu
         pieces: s
             .pieces
             .into_iter()
-            .map(|f| Py::new(py, fit_of(f)))
+            .map(|f| Py::new(py, fit_of(py, f)))
             .collect::<PyResult<_>>()?,
         max_error: s.max_error,
     })
@@ -147,7 +153,7 @@ macro_rules! lac_methods {
                 let f = py
                     .detach(move || ac::approx::$cubic(&seg, &ApproxOptions::default()))
                     .map_err(err)?;
-                Ok(fit_of(f))
+                Ok(fit_of(py, f))
             }
             /// Rational cubics (G2 joints) within `tolerance` (input units).
             #[pyo3(signature = (tolerance, max_pieces=64))]
@@ -271,26 +277,50 @@ pub(crate) struct LacFit {
     pub(crate) max_deviation: f64,
     /// The fit met its stopping test.
     pub(crate) converged: bool,
+    /// The segment's control triangle, a (3, 2) array.
+    pub(crate) control: Py<PyArray2<f64>>,
+    /// Root mean square distance at arc-length correspondence (the paper's measure).
+    pub(crate) rms_correspondence: f64,
+    /// The objective minimised: "band", "distance" or "arc_length".
+    pub(crate) objective: &'static str,
+    /// The segment's largest curvature.
+    pub(crate) max_curvature: f64,
+    /// α stopped at the library's bound.
+    pub(crate) alpha_at_bound: bool,
+    /// The curvature cap the fit held, where it held one.
+    pub(crate) curvature_cap: Option<f64>,
+    /// The paper start's guess of α, where there is one.
+    pub(crate) alpha_guess: Option<f64>,
 }
 
 /// The LAC segment nearest to `points` (an ordered sequence of at least 6), with α fitted
 /// or fixed.
 #[pyfunction]
-#[pyo3(signature = (points, alpha=None))]
+#[pyo3(signature = (points, alpha=None, objective="band", start="scan"))]
 pub(crate) fn fit_lac(
     py: Python<'_>,
     points: &Bound<'_, PyAny>,
     alpha: Option<f64>,
+    objective: &str,
+    start: &str,
 ) -> PyResult<LacFit> {
     let p = points_arg("points", points)?;
     let opts = ac::lac_fit::LacFitOptions {
         alpha,
-        ..Default::default()
+        objective: ac::lac_fit::LacFitObjective::from_name(objective).map_err(err)?,
+        start: ac::lac_fit::LacFitStart::from_name(start).map_err(err)?,
     };
     let f = py
         .detach(move || ac::lac_fit::fit_lac(&p, opts))
         .map_err(err)?;
     Ok(LacFit {
+        control: points_array(py, &f.segment.control()).unbind(),
+        rms_correspondence: f.rms_correspondence,
+        objective: opts.objective.as_str(),
+        max_curvature: f.max_curvature,
+        alpha_at_bound: f.alpha_at_bound,
+        curvature_cap: f.curvature_cap,
+        alpha_guess: f.alpha_guess,
         segment: LacSegment { inner: f.segment },
         alpha: f.alpha,
         rms_deviation: f.rms_deviation,

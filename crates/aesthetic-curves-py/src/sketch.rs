@@ -27,6 +27,12 @@ pub(crate) struct Sketch {
     pub(crate) all_monotone: bool,
     /// The fairing reached its tolerance.
     pub(crate) converged: bool,
+    /// The tolerance used.
+    pub(crate) tolerance: f64,
+    /// Inflections.
+    pub(crate) inflections: usize,
+    /// Curvature extrema.
+    pub(crate) curvature_extrema: usize,
 }
 
 /// Fit a pen stroke (`points`, in drawing order) with LAC pieces joined G2, within
@@ -54,6 +60,9 @@ pub(crate) fn fit_sketch(
         g2: s.g2,
         all_monotone: s.all_monotone,
         converged: s.fairing.converged,
+        tolerance,
+        inflections: s.inflections,
+        curvature_extrema: s.curvature_extrema,
     })
 }
 

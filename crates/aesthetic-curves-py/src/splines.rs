@@ -134,6 +134,16 @@ pub(crate) struct LacSpline {
     pub(crate) iterations: usize,
     /// Closed.
     pub(crate) closed: bool,
+    /// G2 as delivered: converged, and the cubics' curvature jumps below 1e-8.
+    pub(crate) g2: bool,
+    /// Largest tangent angle between the delivered cubics at a smooth point (radians).
+    pub(crate) max_cubic_angle: f64,
+    /// Largest distance of a cubic from its LAC piece.
+    pub(crate) max_rational_error: f64,
+    /// Inflections.
+    pub(crate) inflections: usize,
+    /// Curvature extrema.
+    pub(crate) curvature_extrema: usize,
 }
 
 /// The G2 log-aesthetic spline through `points`: `alpha` for every span (-1: clothoids) or
@@ -173,6 +183,11 @@ pub(crate) fn lac_spline(
         converged: s.converged,
         iterations: s.iterations,
         closed: s.closed,
+        g2: s.g2(),
+        max_cubic_angle: s.max_cubic_angle,
+        max_rational_error: s.max_rational_error,
+        inflections: s.inflections,
+        curvature_extrema: s.curvature_extrema,
     })
 }
 

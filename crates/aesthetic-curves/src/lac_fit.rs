@@ -49,6 +49,16 @@ impl LacFitObjective {
             LacFitObjective::Distance => "distance",
         }
     }
+
+    /// The objective of a protocol name (`band`, `arc_length` or `distance`).
+    pub fn from_name(name: &str) -> crate::Result<Self> {
+        [Self::Band, Self::ArcLength, Self::Distance]
+            .into_iter()
+            .find(|o| o.as_str() == name)
+            .ok_or_else(|| {
+                crate::Error::invalid("objective", "must be band, arc_length or distance")
+            })
+    }
 }
 
 /// Where [`fit_lac`] starts alpha and how far it lets it move.
@@ -64,6 +74,24 @@ pub enum LacFitStart {
     /// lines the least-squares cost is nearly flat in alpha, so this reproduces their
     /// published alphas where the scan finds other, slightly better fits.
     Paper,
+}
+
+impl LacFitStart {
+    /// The protocol's name: `scan` or `paper`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            LacFitStart::Scan => "scan",
+            LacFitStart::Paper => "paper",
+        }
+    }
+
+    /// The start of a protocol name (`scan` or `paper`).
+    pub fn from_name(name: &str) -> crate::Result<Self> {
+        [Self::Scan, Self::Paper]
+            .into_iter()
+            .find(|o| o.as_str() == name)
+            .ok_or_else(|| crate::Error::invalid("start", "must be scan or paper"))
+    }
 }
 
 /// Options of [`fit_lac`].

@@ -291,7 +291,7 @@ pub fn lac_spline_json(s: &LacSpline) -> LacSplineResult {
         closed: s.closed,
         iterations: s.iterations,
         converged: s.converged,
-        g2: s.converged && s.max_cubic_jump <= 1e-8,
+        g2: s.g2(),
         max_curvature_jump: s.max_curvature_jump,
         max_cubic_jump: s.max_cubic_jump,
         max_cubic_angle: s.max_cubic_angle,

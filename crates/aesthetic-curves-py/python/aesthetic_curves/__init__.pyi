@@ -94,6 +94,7 @@ class MonotoneReport:
     extrema: _Array1
     test_degree: int
     exact: bool
+    exact_arithmetic: bool
     ends: Tuple[EndCurvature, EndCurvature]
 
 @final
@@ -102,6 +103,7 @@ class EndCurvature:
     curvature: Optional[float]
     retracted_handles: int
     growth_rate: Optional[int]
+    growth: Optional[str]
     sign: Optional[int]
 
 @final
@@ -170,6 +172,8 @@ class RationalCubicFit(_Exportable):
     monotone: bool
     converged: bool
     evaluations: int
+    control_points: _Array2
+    weights: _Array1
 
 @final
 class RationalSpline(_Exportable):
@@ -249,6 +253,11 @@ class LacSpline(_Exportable):
     converged: bool
     iterations: int
     closed: bool
+    g2: bool
+    max_cubic_angle: float
+    max_rational_error: float
+    inflections: int
+    curvature_extrema: int
     def domain(self) -> Tuple[float, float]: ...
     def at(self, u: _Params) -> CurveAt:
         """Piece ``floor(u)`` at its own t = u - floor(u) (clamped into (0, n))."""
@@ -269,8 +278,15 @@ class LacFit:
     rms_deviation: float
     max_deviation: float
     converged: bool
+    control: _Array2
+    rms_correspondence: float
+    objective: str
+    max_curvature: float
+    alpha_at_bound: bool
+    curvature_cap: Optional[float]
+    alpha_guess: Optional[float]
 
-def fit_lac(points: _Points, alpha: Optional[float] = None) -> LacFit: ...
+def fit_lac(points: _Points, alpha: Optional[float] = None, objective: str = "band", start: str = "scan") -> LacFit: ...
 
 @final
 class Sketch(_Exportable):
@@ -283,6 +299,9 @@ class Sketch(_Exportable):
     g2: bool
     all_monotone: bool
     converged: bool
+    tolerance: float
+    inflections: int
+    curvature_extrema: int
     def domain(self) -> Tuple[float, float]: ...
     def at(self, u: _Params) -> CurveAt:
         """Piece ``floor(u)`` at its own t = u - floor(u) (clamped into (0, n))."""

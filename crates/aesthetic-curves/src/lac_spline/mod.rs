@@ -100,6 +100,12 @@ pub struct LacSpline {
 }
 
 impl LacSpline {
+    /// G2 as delivered: the solve converged and the cubics' curvature jumps at smooth
+    /// points are below 1e-8 of the largest curvature.
+    pub fn g2(&self) -> bool {
+        self.converged && self.max_cubic_jump <= 1e-8
+    }
+
     /// The rational cubics in curve order.
     pub fn rationals(&self) -> crate::Pieces<RationalBezier> {
         crate::Pieces(self.pieces.iter().map(|p| p.rational.clone()).collect())
