@@ -16,7 +16,6 @@
 
 use crate::protocol::{self, fields, fields::IntIn, fields::Points, fields::Weights};
 use aesthetic_curves::nurbs::Nurbs;
-use aesthetic_curves::region::{self, Grid};
 use axum::body::Bytes;
 use axum::extract::DefaultBodyLimit;
 use axum::http::{header, HeaderValue, StatusCode};
@@ -31,13 +30,7 @@ use std::time::Instant;
 /// Largest request body (bytes).
 pub const MAX_BODY: usize = 4 * 1024 * 1024;
 
-/// The work budget of a Bézier region request: cells times (Bernstein degree of the exact
-/// test)^1.5, about 0.5 µs each on one core, so the worst case (every cell judged) stays near
-/// 2 s; a cubic's region may have 200 x 200 cells, a degree-20 rational curve's about 42 x 42.
-pub const REGION_WORK_BUDGET: f64 = 4.0e6;
-
-/// Largest region grid (cells per side).
-pub const MAX_REGION_CELLS: usize = 200;
+pub use crate::protocol::region::{MAX_REGION_CELLS, REGION_WORK_BUDGET};
 
 static INDEX_HTML: &str = include_str!("../assets/editor/index.html");
 static STYLE_CSS: &str = include_str!("../assets/editor/style.css");
@@ -287,148 +280,13 @@ async fn api(axum::extract::State(c): axum::extract::State<Compute>, body: Bytes
     timed_json(v, started)
 }
 
-/// Cells along one side of a region's grid.
-type Cells = IntIn<1, { MAX_REGION_CELLS as u64 }>;
-
-/// A grid over a box: `{"x0", "y0", "x1", "y1", "nx", "ny"}`; cells judged at their centres.
-#[derive(Debug, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-struct GridJson {
-    x0: f64,
-    y0: f64,
-    x1: f64,
-    y1: f64,
-    nx: Cells,
-    ny: Cells,
-}
-
-impl GridJson {
-    fn grid(&self) -> Result<Grid, protocol::ProtoError> {
-        let (nx, ny) = (self.nx.0 as usize, self.ny.0 as usize);
-        Ok(Grid::new(self.x0, self.y0, self.x1, self.y1, nx, ny)?)
-    }
-}
-
-/// The grid of a request's `grid` field (errors named `grid.x0`, ...).
-#[cfg(test)]
-fn grid_param(v: &Value) -> Result<Grid, protocol::ProtoError> {
-    #[derive(Deserialize, JsonSchema)]
-    struct G {
-        grid: GridJson,
-    }
-    impl protocol::Request for G {}
-    protocol::read::<G>(json!({ "grid": v }))?.grid.grid()
-}
-
-/// What a region request asks: see [`region_answer`].
-#[derive(Debug, Deserialize, JsonSchema)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-enum RegionRequest {
-    Lac {
-        alpha: f64,
-        control: Points<3, 3>,
-        grid: GridJson,
-    },
-    Inflection {
-        control: Points<3, 3>,
-        grid: GridJson,
-    },
-    Bezier {
-        control_points: Points<3, 21>,
-        #[serde(default)]
-        weights: Option<Weights>,
-        index: usize,
-        grid: GridJson,
-    },
-}
-
-impl protocol::Request for RegionRequest {
-    fn check(&self) -> Result<(), protocol::ProtoError> {
-        if let RegionRequest::Bezier {
-            control_points,
-            weights,
-            index,
-            grid,
-        } = self
-        {
-            let n = control_points.0.len();
-            if *index >= n {
-                return Err(protocol::ProtoError::invalid(
-                    "index",
-                    "must name a control point",
-                ));
-            }
-            if weights.as_ref().is_some_and(|w| w.len() != n) {
-                return Err(protocol::ProtoError::invalid(
-                    "weights",
-                    format!("needs {n} numbers (one per control point)"),
-                ));
-            }
-            // Work budget: the exact test costs about td^1.5 (td its Bernstein degree) per
-            // judged cell; the budget holds the worst case (every cell judged) to a couple
-            // of seconds.
-            let td = aesthetic_curves::monotone::exact_test_degree(n - 1, weights.is_some()) as f64;
-            let cells = (grid.nx.0 * grid.ny.0) as usize;
-            let most = (REGION_WORK_BUDGET / td.powf(1.5)).floor() as usize;
-            if cells > most {
-                return Err(protocol::ProtoError::invalid(
-                    "grid",
-                    format!(
-                        "{cells} cells exceed the region budget for a {} Bézier curve of degree \
-                         {} (exact test of degree {td}): at most {most} cells",
-                        if weights.is_some() {
-                            "rational"
-                        } else {
-                            "polynomial"
-                        },
-                        n - 1
-                    ),
-                ));
-            }
-        }
-        Ok(())
-    }
-}
-
-/// Threads for a region: half the cores, so the other half stays free for the interactive
-/// requests.
-fn region_threads() -> usize {
-    (std::thread::available_parallelism()
-        .map(|n| n.get())
-        .unwrap_or(2)
-        / 2)
-    .max(1)
-}
-
-/// Region request: `{"kind": "lac", "alpha", "control": [p0, p1, p2], "grid"}` (where the
-/// third control point may go), `{"kind": "inflection", "control", "grid"}` (the same for a
-/// segment with an inflection end) or `{"kind": "bezier", "control_points", "weights"?, "index",
-/// "grid"}` (where control point `index` keeps the curvature monotone). The answer: `rows`,
-/// one string per grid row from y0 up, '1' where the property holds, '0' where not, and
-/// `judged`, the number of cells actually tested (see [`aesthetic_curves::region`]).
+/// Region request (`POST /api/region`): the protocol's `region.map` (see
+/// [`protocol::region`]), its body without `op`; the answer `{"ok": true, "result": {"rows",
+/// "judged"}}`.
 fn region_answer(v: &Value) -> Result<Value, protocol::ProtoError> {
-    let threads = region_threads();
-    let r = match protocol::read::<RegionRequest>(v.clone())? {
-        RegionRequest::Lac {
-            alpha,
-            control: Points(c),
-            grid,
-        } => region::lac_existence(alpha, c[0], c[1], grid.grid()?, threads)?,
-        RegionRequest::Inflection {
-            control: Points(c),
-            grid,
-        } => region::inflection_existence(c[0], c[1], grid.grid()?, threads)?,
-        RegionRequest::Bezier {
-            control_points: Points(pts),
-            weights,
-            index,
-            grid,
-        } => {
-            let w = weights.map(|w| fields::weights(&w));
-            region::bezier_monotone(&pts, w.as_deref(), index, grid.grid()?, 4, threads)?
-        }
-    };
-    Ok(json!({"ok": true, "result": {"rows": r.rows(), "judged": r.judged()}}))
+    use protocol::Op;
+    let r = protocol::region::RegionMap::answer(protocol::read(v.clone())?)?;
+    Ok(json!({"ok": true, "result": r}))
 }
 
 async fn region(axum::extract::State(c): axum::extract::State<Compute>, body: Bytes) -> Response {
@@ -635,6 +493,17 @@ pub fn serve(port: u16, open: bool, limits: Limits) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The grid of a request's `grid` field (errors named `grid.x0`, ...).
+    fn grid_param(v: &Value) -> Result<aesthetic_curves::region::Grid, protocol::ProtoError> {
+        #[derive(Deserialize, JsonSchema)]
+        struct G {
+            grid: protocol::region::GridJson,
+        }
+        impl protocol::Request for G {}
+        protocol::read::<G>(json!({ "grid": v }))?.grid.grid()
+    }
+
     use serde_json::json;
 
     #[test]

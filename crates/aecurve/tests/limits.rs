@@ -118,6 +118,11 @@ fn requests_at_the_limits() -> Vec<(&'static str, Value)> {
             json!({"op": "lac.point", "alpha": -1, "lambda": 0.2, "theta": thetas}),
         ),
         (
+            "lac.inflection_segment, 100,000 samples, its cubic and a spline to 1e-6, draw 2000",
+            json!({"op": "lac.inflection_segment", "control": [[0, 0], [1, 0], [1, 0.577]],
+                "samples": 100_000, "rational": true, "tolerance": 1e-6, "draw": 2000}),
+        ),
+        (
             "lac.segment, 100,000 samples, draw 2000",
             json!({"op": "lac.segment", "alpha": -1,
             "control": [[0, 0], [10, 0], [16, 9]], "samples": 100_000, "draw": 2000}),
@@ -172,7 +177,53 @@ fn requests_at_the_limits() -> Vec<(&'static str, Value)> {
             json!({"op": "outline.check", "shape": 100,
             "draw": 1000, "file": {"name": "DejaVuSans.ttf", "base64": font_base64()}}),
         ),
+        ("outline.fix, 10,000 cubics with smooth joins", {
+            // Cubic i from (i, 0) to (i + 1, 0), handles of heights a_i and -a_(i+1):
+            // every join is smooth (G1) with a curvature jump to harmonize.
+            let n = 10_000;
+            let a = |i: usize| 0.2 + 0.1 * ((i % n) as f64 * 0.7).sin();
+            let mut segs: Vec<Value> = (0..n)
+                .map(|i| {
+                    let x = i as f64;
+                    json!({"control_points": [[x, 0.0], [x + 1.0 / 3.0, a(i)],
+                            [x + 2.0 / 3.0, -a(i + 1)], [x + 1.0, 0.0]]})
+                })
+                .collect();
+            segs.push(json!({"control_points": [[n as f64, 0.0], [0.0, 0.0]]}));
+            segs.truncate(n);
+            json!({"op": "outline.fix", "tolerance": 0.05, "segments": segs})
+        }),
+        (
+            "region.map, a LAC segment, 200 x 200 cells",
+            json!({"op": "region.map", "kind": "lac", "alpha": -1,
+                "control": [[0, 0], [10, 0], [16, 9]],
+                "grid": {"x0": -20, "y0": -20, "x1": 40, "y1": 40, "nx": 200, "ny": 200}}),
+        ),
+        (
+            "region.map, a rational curve of degree 20 at its work budget",
+            {
+                let pts: Vec<[f64; 2]> = (0..21)
+                    .map(|i| [i as f64, ((i * 7 % 5) as f64) - 2.0])
+                    .collect();
+                let w: Vec<f64> = (0..21).map(|i| 1.0 + (i % 3) as f64 * 0.25).collect();
+                json!({"op": "region.map", "kind": "bezier", "control_points": pts,
+                    "weights": w, "index": 10,
+                    "grid": {"x0": 0, "y0": -5, "x1": 20, "y1": 5, "nx": 42, "ny": 42}})
+            },
+        ),
     ]
+}
+
+/// Every op of the protocol has a case at its limits above.
+#[test]
+fn every_op_has_a_case_at_its_limits() {
+    let cases = requests_at_the_limits();
+    for op in aecurve::protocol::OPS {
+        assert!(
+            cases.iter().any(|(_, r)| r["op"] == *op),
+            "{op} has no case in requests_at_the_limits"
+        );
+    }
 }
 
 #[test]

@@ -19,6 +19,7 @@ mod lac;
 mod lcg;
 mod outline;
 mod piece;
+pub mod region;
 mod sketch;
 mod spline;
 
@@ -94,10 +95,16 @@ impl ProtoError {
             return ProtoError::invalid(&at(&quoted(rest)), "missing");
         }
         if let Some(rest) = inner.strip_prefix("unknown field ") {
-            // The path ends with the unknown field's own name.
+            // The path ends with the unknown field's own name (an internally tagged
+            // request, read from a buffer, has none: the name is in the message).
             let expected = rest.split_once(", expected ").map_or("", |(_, e)| e);
+            let field = if path == "." {
+                quoted(rest)
+            } else {
+                path.clone()
+            };
             return ProtoError::invalid(
-                &path,
+                &field,
                 format!(
                     "not a field of this request (a typo?); expected {}",
                     expected.replace('`', "")
@@ -155,6 +162,16 @@ fn run<O: Op>(fields: Map<String, Value>) -> Result<Value, ProtoError> {
     })
 }
 
+/// `op` (required, this op) and `id` (optional, anything) in a request object's schema.
+fn add_op_and_id(def: &mut Value, op: &str) {
+    def["properties"]["op"] = json!({"const": op});
+    def["properties"]["id"] = json!({"description": "Echoed in the response."});
+    match def["required"].as_array_mut() {
+        Some(r) => r.insert(0, json!("op")),
+        None => def["required"] = json!(["op"]),
+    }
+}
+
 /// The request and response schemas of op `O`, their types' definitions in `defs`.
 fn op_schemas<O: Op>(
     requests: &mut schemars::SchemaGenerator,
@@ -164,11 +181,10 @@ fn op_schemas<O: Op>(
     // The request's own fields, with `op` (this op) and `id` (anything, echoed).
     let name = <O::Request as JsonSchema>::schema_name();
     if let Some(def) = requests.definitions_mut().get_mut(name.as_ref()) {
-        def["properties"]["op"] = json!({"const": O::NAME});
-        def["properties"]["id"] = json!({"description": "Echoed in the response."});
-        match def["required"].as_array_mut() {
-            Some(r) => r.insert(0, json!("op")),
-            None => def["required"] = json!(["op"]),
+        // A request of several kinds (`oneOf`) takes `op` and `id` in each.
+        match def.get_mut("oneOf").and_then(Value::as_array_mut) {
+            Some(kinds) => kinds.iter_mut().for_each(|k| add_op_and_id(k, O::NAME)),
+            None => add_op_and_id(def, O::NAME),
         }
         req = json!({"$ref": format!("#/$defs/{name}")});
     }
@@ -237,6 +253,7 @@ ops! {
     sketch::SketchContourOp,
     outline::OutlineCheck,
     outline::OutlineFix,
+    region::RegionMap,
 }
 
 /// The JSON Schema (draft 2020-12) of the protocol: the document validates one request line;
