@@ -3,11 +3,11 @@
 //! - `POST /api`: one request of the batch protocol, one response (the same JSON as a batch
 //!   line; malformed JSON gets a `parse` error). Each response carries the server's compute
 //!   time in a `Server-Timing` header.
-//! - `POST /api/region`: which positions of one control point keep a property, on a grid over
-//!   a box (the existence region of a LAC segment's third control point; the
-//!   curvature-monotone region of a Bézier control point).
+//! - `POST /api/region`: the protocol's `region.map` (its body without `op`): which positions
+//!   of one control point keep a property, on a grid over a box.
 //! - `POST /api/export`: a NURBS (`degree`, `knots`, `control_points`, `weights`) as a
-//!   `dxf`, `step`, `iges`, `svg` or `json` file.
+//!   `dxf`, `step`, `iges`, `svg` or `json` file: the one endpoint outside the protocol's ops,
+//!   because its answer is a file, not a JSON result.
 //!
 //! Security model: loopback only, same origin only (the `Host` must be this server, an
 //! `Origin` must be its own page, POST bodies must be JSON: see [`router`]), bodies over
