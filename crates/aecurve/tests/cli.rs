@@ -7,6 +7,24 @@ fn aecurve() -> Command {
     Command::new(env!("CARGO_BIN_EXE_aecurve"))
 }
 
+/// `v` is valid by the JSON Schema of the protocol's type `T` (what `--json` prints), or the
+/// test fails with every error.
+fn valid_as<T: schemars::JsonSchema>(v: &serde_json::Value) {
+    let schema = aecurve::protocol::response_schema::<T>();
+    let validator = jsonschema::validator_for(&schema).expect("the schema compiles");
+    let bad: Vec<String> = validator.iter_errors(v).map(|e| e.to_string()).collect();
+    assert!(bad.is_empty(), "{}: {bad:?}", std::any::type_name::<T>());
+}
+
+/// Any response line of the protocol, by its schema.
+fn valid_response(v: &serde_json::Value) {
+    let mut schema = aecurve::protocol::schema();
+    schema["oneOf"] = serde_json::json!([{"$ref": "#/$defs/Response"}]);
+    let validator = jsonschema::validator_for(&schema).expect("the schema compiles");
+    let bad: Vec<String> = validator.iter_errors(v).map(|e| e.to_string()).collect();
+    assert!(bad.is_empty(), "{v}: {bad:?}");
+}
+
 /// Run a command that must succeed and print one JSON value.
 fn json_output(cmd: &mut Command) -> serde_json::Value {
     let out = cmd.output().unwrap();
@@ -34,7 +52,9 @@ fn batch_one(request: &str) -> serde_json::Value {
         .unwrap();
     let out = child.wait_with_output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
-    serde_json::from_str(text.lines().next().unwrap()).unwrap()
+    let v = serde_json::from_str(text.lines().next().unwrap()).unwrap();
+    valid_response(&v);
+    v
 }
 
 #[test]
@@ -67,6 +87,7 @@ fn batch_answers_every_line_in_order() {
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
     assert_eq!(lines.len(), 4);
+    lines.iter().for_each(valid_response);
     assert_eq!(lines[0]["id"], 1);
     assert_eq!(lines[0]["result"]["monotone"], false);
     assert_eq!(lines[1]["error"]["kind"], "parse");
@@ -184,6 +205,7 @@ fn lac_command_summarises_and_refuses_outside_the_region() {
         "0,0 10,0 16,9",
         "--json",
     ]));
+    valid_as::<aecurve::protocol::lac::LacSegmentResult>(&v);
     assert!(v["lambda"].as_f64().unwrap() > 0.0);
     assert_eq!(v["points"].as_array().unwrap().len(), 65);
     let out = aecurve()
@@ -214,6 +236,7 @@ fn lcg_command_reads_a_file_and_plots() {
         "150",
         "--json",
     ]));
+    valid_as::<aecurve::protocol::lac::LacSegmentResult>(&seg);
     let mut csv = String::from("x,y\n");
     for p in seg["points"].as_array().unwrap() {
         csv += &format!("{},{}\n", p[0], p[1]);
@@ -229,6 +252,7 @@ fn lcg_command_reads_a_file_and_plots() {
         "-o",
         svg.to_str().unwrap(),
     ]));
+    valid_as::<aecurve::protocol::lcg::LcgResult>(&v);
     assert!(
         (v["alpha"].as_f64().unwrap() - 2.0).abs() < 1e-4,
         "{}",
@@ -239,6 +263,7 @@ fn lcg_command_reads_a_file_and_plots() {
     // The analytic graph of the segment itself.
     let v =
         json_output(aecurve().args(["lcg", "--alpha", "-1", "--control", "0,0 4,0 7,3", "--json"]));
+    valid_as::<aecurve::protocol::lcg::LcgResult>(&v);
     assert!((v["alpha"].as_f64().unwrap() + 1.0).abs() < 1e-9);
     // A circle has no LCG slope: a clear error, not a number.
     let circle: Vec<String> = (0..12)
@@ -264,6 +289,7 @@ fn lac_inflection_form() {
         "0,0 1,0 1,0.5773502691896257",
         "--json",
     ]));
+    valid_as::<aecurve::protocol::lac::LacInflectionResult>(&v);
     // 90 degrees of turning, 30 degrees at the inflection end: docs/math.md §3.2's check value.
     assert!(
         (v["alpha"].as_f64().unwrap() + 1.066636984).abs() < 1e-8,
@@ -347,6 +373,7 @@ fn approx_command_gives_a_checked_cubic_and_pictures() {
             ])
             .arg(&map),
     );
+    valid_as::<aecurve::protocol::lac::RationalApproxResult>(&v);
     assert_eq!(v["control_points"].as_array().unwrap().len(), 4);
     let w: Vec<f64> = v["weights"]
         .as_array()
@@ -396,6 +423,7 @@ fn spline_command_and_op() {
             .arg("-o")
             .arg(&step),
     );
+    valid_as::<aecurve::protocol::spline::PseudoSplineResult>(&v);
     assert!(std::fs::read_to_string(&step)
         .unwrap()
         .contains("B_SPLINE_CURVE_WITH_KNOTS"));
@@ -481,6 +509,7 @@ fn lac_spline_command_and_op() {
             .args(["--json", "--alpha", "-1", "-o"])
             .arg(&dxf),
     );
+    valid_as::<aecurve::protocol::spline::LacSplineResult>(&v);
     assert!(std::fs::read_to_string(&dxf).unwrap().contains("SPLINE"));
     let segs = v["segments"].as_array().unwrap();
     // Each piece starts where the last ended; the spans cover the five gaps.
@@ -526,6 +555,7 @@ fn sketch_command_and_op() {
             .arg("-o")
             .arg(&dxf),
     );
+    valid_as::<aecurve::protocol::sketch::SketchResult>(&v);
     let segs = v["segments"].as_array().unwrap();
     assert!(!segs.is_empty());
     assert!(v["g2"].as_bool().unwrap());
@@ -549,6 +579,7 @@ fn sketch_command_and_op() {
     )
     .unwrap();
     let w = json_output(aecurve().arg("sketch").arg(&svg_in).arg("--json"));
+    valid_as::<aecurve::protocol::sketch::SketchResult>(&w);
     assert_eq!(w["segments"].as_array().unwrap().len(), segs.len());
     assert_eq!(w["max_deviation"], v["max_deviation"]);
     // The op: bad input gets typed errors, the batch goes on.
@@ -577,6 +608,7 @@ fn sketch_command_and_op() {
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
     assert_eq!(resp.len(), 4);
+    resp.iter().for_each(valid_response);
     assert_eq!(resp[0]["error"]["kind"], "invalid_input");
     assert_eq!(resp[1]["error"]["kind"], "degenerate");
     assert_eq!(resp[2]["error"]["kind"], "invalid_input");
@@ -1059,6 +1091,7 @@ fn sketch_contour_command() {
     }
     std::fs::write(&csv, text).unwrap();
     let v = json_output(aecurve().args(["sketch", "--contour", "--json"]).arg(&csv));
+    valid_as::<aecurve::protocol::sketch::ContourResult>(&v);
     let kinds: Vec<&str> = v["runs"]
         .as_array()
         .unwrap()

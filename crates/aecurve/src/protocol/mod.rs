@@ -2,7 +2,7 @@
 //!
 //! Every op is a type pair and a function ([`Op`]): a request type that reads and checks its
 //! fields (serde, with the rules in the field types of [`fields`] and the rules between
-//! fields in [`Request::check`]), a response type, and `answer`. The table in [`ops!`] names
+//! fields in [`Request::check`]), a response type, and `answer`. The table in `ops!` names
 //! every op once: the dispatch, the list of ops and the JSON Schema ([`schema`], printed by
 //! `aecurve schema`) come from it.
 //!
@@ -12,16 +12,16 @@
 //! errors keep their own kind. Nothing in a result is NaN or infinite (checked once more
 //! before a response leaves).
 
-mod bezier;
+pub mod bezier;
 pub mod drawing;
 pub mod fields;
-mod lac;
-mod lcg;
-mod outline;
-mod piece;
+pub mod lac;
+pub mod lcg;
+pub mod outline;
+pub mod piece;
 pub mod region;
-mod sketch;
-mod spline;
+pub mod sketch;
+pub mod spline;
 
 pub use self::bezier::{monotone_json, sampled_json, MAX_SAMPLES};
 pub use self::drawing::{drawing_json, Drawing, NurbsJson, MAX_DRAWING_POINTS, MAX_DRAW_SAMPLES};
@@ -306,6 +306,16 @@ pub fn schema() -> Value {
         "x-ops": x_ops,
         "$defs": defs,
     })
+}
+
+/// The JSON Schema of one response type `T` (a document of its own: what the CLI's `--json`
+/// prints is checked against it).
+pub fn response_schema<T: JsonSchema>() -> Value {
+    SchemaSettings::draft2020_12()
+        .for_serialize()
+        .into_generator()
+        .into_root_schema_for::<T>()
+        .to_value()
 }
 
 /// Answer one request line (JSON text) with one response object.
