@@ -145,7 +145,10 @@ async function regionCompute() {
   regionBusy = true;
   let v;
   try {
-    v = await (await post('/api/region', req)).json();
+    // `key` is the page's own (which state the region is for): the server takes only the
+    // request's fields.
+    const { key: _key, ...body } = req;
+    v = await (await post('/api/region', body)).json();
   } finally {
     regionBusy = false;
     if (regionAgain) {
@@ -153,7 +156,12 @@ async function regionCompute() {
       regionUpdate();
     }
   }
-  if (!v.ok || state.mode !== m) return;
+  if (state.mode !== m) return;
+  if (!v.ok) {
+    // Said, not swallowed: a region the server refuses (over its work budget, a bad field).
+    setStatus(`region: ${v.error.message}`, true);
+    return;
+  }
   region = { grid: req.grid, rows: v.result.rows, key: req.key, mode: m };
   document.body.dataset.region = String(v.result.rows.join('').split('1').length - 1);
   document.body.dataset.regionFor = req.kind === 'bezier' ? `bezier:${req.index}` : req.kind;
