@@ -84,12 +84,25 @@ pub(crate) fn points_arg(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<Poi
              (convert with numpy.asarray(x, dtype=float))"
         )));
     }
-    match obj.extract::<Vec<(f64, f64)>>() {
-        Ok(v) => Ok(v.into_iter().map(|(x, y)| Point::new(x, y)).collect()),
-        Err(_) => Err(PyTypeError::new_err(format!(
-            "{name}: expected a float64 array of shape (n, 2) or a sequence of (x, y) pairs"
-        ))),
+    if let Ok(v) = obj.extract::<Vec<(f64, f64)>>() {
+        return Ok(v.into_iter().map(|(x, y)| Point::new(x, y)).collect());
     }
+    // Lists of lists, `[[0, 0], [1, 2]]`, numbers int or float: each pair checked.
+    let Ok(rows) = obj.extract::<Vec<Vec<f64>>>() else {
+        return Err(PyTypeError::new_err(format!(
+            "{name}: expected a float64 array of shape (n, 2) or a sequence of (x, y) pairs"
+        )));
+    };
+    rows.into_iter()
+        .enumerate()
+        .map(|(i, r)| match r[..] {
+            [x, y] => Ok(Point::new(x, y)),
+            _ => Err(PyValueError::new_err(format!(
+                "{name}[{i}]: expected an (x, y) pair, got {} numbers",
+                r.len()
+            ))),
+        })
+        .collect()
 }
 
 /// A 1-D float64 array or sequence of numbers.

@@ -33,11 +33,7 @@ pub(crate) fn export(
         Format::Step => ex::step_text(c, name).into_bytes(),
         Format::Iges => ex::iges_text(c, name).into_bytes(),
         Format::Svg => {
-            if !(tolerance.is_finite() && tolerance > 0.0) {
-                return Err(InvalidInputError::new_err(
-                    "invalid input: tolerance: must be a positive number",
-                ));
-            }
+            ac::Error::check_positive("tolerance", tolerance).map_err(err)?;
             let spans = c.as_curve().map_err(err)?;
             let comb = ex::curve_samples(&spans, 40).map_err(err)?;
             ex::svg_document(c, tolerance, &comb, name)

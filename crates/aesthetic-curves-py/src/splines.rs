@@ -91,15 +91,7 @@ pub(crate) fn pseudo_elastic(
     mode: &str,
 ) -> PyResult<PseudoSpline> {
     let p = points_arg("points", points)?;
-    let mode = match mode {
-        "table" => ac::pseudo_spline::Mode::Table,
-        "exact" => ac::pseudo_spline::Mode::Exact,
-        _ => {
-            return Err(InvalidInputError::new_err(format!(
-                "invalid input: mode: must be \"table\" or \"exact\", got {mode:?}"
-            )))
-        }
-    };
+    let mode = ac::pseudo_spline::Mode::from_name(mode).map_err(err)?;
     let inner = py
         .detach(move || ac::pseudo_spline::pseudo_elastic(&p, closed, mode))
         .map_err(err)?;

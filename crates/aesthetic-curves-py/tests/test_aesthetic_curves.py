@@ -96,6 +96,29 @@ def test_bezier_accepts_arrays_and_pairs_and_refuses_the_rest():
         ac.Bezier("not points")
     with pytest.raises(TypeError, match="1-D float64"):
         ac.RationalBezier(pts, np.ones((2, 2)))
+    # Lists of lists, ints or floats, are points as JSON writes them; a bad pair is named.
+    listed = ac.Bezier([[0, 0], [1, 0], [2, 1], [3, 3]])
+    assert np.array_equal(listed.points, pts)
+    with pytest.raises(ValueError, match=r"points\[2\]: expected an \(x, y\) pair, got 3"):
+        ac.Bezier([[0, 0], [1, 0], [2, 1, 5], [3, 3]])
+
+
+@needs_aecurve
+def test_option_names_and_their_errors_are_the_librarys():
+    for call, field in [
+        (lambda: ac.pseudo_elastic([[0, 0], [1, 1], [2, 0]], mode="fast"), "mode"),
+        (lambda: ac.fit_lac([[i, 0.02 * i * i] for i in range(8)], objective="x"), "objective"),
+        (lambda: ac.fit_lac([[i, 0.02 * i * i] for i in range(8)], start="x"), "start"),
+    ]:
+        with pytest.raises(ac.InvalidInputError) as e:
+            call()
+        # The protocol refuses the same option with the same field named.
+        assert str(e.value).startswith(f"invalid input: {field}: must be")
+    fit = ac.fit_lac([[i, 0.02 * i * i] for i in range(11)], objective="distance", start="paper")
+    assert fit.objective == "distance"
+    want = batch({"op": "lac.fit", "points": [[i, 0.02 * i * i] for i in range(11)],
+                  "objective": "distance", "start": "paper"})[0]
+    assert abs(fit.alpha - want["alpha"]) < 1e-9 and abs(fit.rms_correspondence - want["rms_correspondence"]) < 1e-12
 
 
 def test_errors_map_to_one_base_class_with_the_library_messages():

@@ -143,6 +143,24 @@ pub enum Mode {
     Exact,
 }
 
+impl Mode {
+    /// The protocol's name: `table` or `exact`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Mode::Table => "table",
+            Mode::Exact => "exact",
+        }
+    }
+
+    /// The mode of a protocol name (`table` or `exact`).
+    pub fn from_name(name: &str) -> Result<Self> {
+        [Mode::Table, Mode::Exact]
+            .into_iter()
+            .find(|m| m.as_str() == name)
+            .ok_or_else(|| crate::Error::invalid("mode", "must be table or exact"))
+    }
+}
+
 /// Segment values used by the spline: (J, r0, r1, L, S).
 fn segment_values(mode: Mode, t0: f64, t1: f64) -> Result<(f64, f64, f64, f64, f64)> {
     match mode {

@@ -27,12 +27,9 @@ pub(crate) fn spline(
         "at most {max} points in {mode} mode, got {}",
         pts.len()
     );
-    let s = aesthetic_curves::pseudo_spline::pseudo_elastic(
-        &pts,
-        closed,
-        aecurve::protocol::SplineMode::named(mode).mode(),
-    )?;
-    let r = &aecurve::protocol::spline_json(&s, aecurve::protocol::SplineMode::named(mode));
+    let m = aesthetic_curves::pseudo_spline::Mode::from_name(mode)?;
+    let s = aesthetic_curves::pseudo_spline::pseudo_elastic(&pts, closed, m)?;
+    let r = &aecurve::protocol::spline_json(&s, m.into());
     if out.json {
         println!("{r}");
     } else {

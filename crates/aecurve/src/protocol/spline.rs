@@ -45,13 +45,13 @@ impl SplineMode {
             SplineMode::Exact => Mode::Exact,
         }
     }
+}
 
-    /// The mode named by a string (`exact`; anything else is `table`).
-    pub fn named(name: &str) -> Self {
-        if name == "exact" {
-            SplineMode::Exact
-        } else {
-            SplineMode::Table
+impl From<Mode> for SplineMode {
+    fn from(m: Mode) -> Self {
+        match m {
+            Mode::Table => SplineMode::Table,
+            Mode::Exact => SplineMode::Exact,
         }
     }
 }

@@ -449,3 +449,27 @@ fn outline_fix_harmonizes_a_smooth_join_and_names_bad_input() {
         );
     }
 }
+
+/// The protocol's option names are the library's (`as_str`): the serde enums and the
+/// library's own names cannot drift apart.
+#[test]
+fn option_names_are_the_librarys() {
+    use aesthetic_curves::lac_fit::{LacFitObjective, LacFitStart};
+    use aesthetic_curves::pseudo_spline::Mode;
+    for o in [
+        LacFitObjective::Band,
+        LacFitObjective::Distance,
+        LacFitObjective::ArcLength,
+    ] {
+        serde_json::from_value::<lac::Objective>(json!(o.as_str())).unwrap();
+        assert_eq!(LacFitObjective::from_name(o.as_str()).unwrap(), o);
+    }
+    for s in [LacFitStart::Scan, LacFitStart::Paper] {
+        serde_json::from_value::<lac::Start>(json!(s.as_str())).unwrap();
+    }
+    for m in [Mode::Table, Mode::Exact] {
+        let parsed: spline::SplineMode = serde_json::from_value(json!(m.as_str())).unwrap();
+        assert_eq!(parsed.mode(), m);
+        assert_eq!(json!(spline::SplineMode::from(m)), json!(m.as_str()));
+    }
+}
