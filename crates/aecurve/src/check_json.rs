@@ -1,7 +1,7 @@
 //! The JSON of a check (`aecurve check --json` and the protocol's `outline.check`): one type
 //! per record, so that both write the same fields and the protocol's schema describes them.
 
-use crate::json_out::EndCurvatureJson;
+use crate::json_out::{finite, EndCurvatureJson};
 use crate::outline_io::ShapeCheck;
 use aesthetic_curves::outline::{Finding, JoinCheck, SegmentCheck};
 use aesthetic_curves::Point;
@@ -112,11 +112,6 @@ pub struct SegmentCheckJson {
     /// With `suggest`: a monotone cubic close to it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub suggestion: Option<SuggestionJson>,
-}
-
-/// A number, or None where it is not finite (JSON has no infinities).
-fn finite(v: f64) -> Option<f64> {
-    Some(v).filter(|v| v.is_finite())
 }
 
 impl From<&SegmentCheck> for SegmentCheckJson {

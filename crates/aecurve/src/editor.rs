@@ -337,11 +337,8 @@ impl protocol::Request for ExportRequest {
                 ),
             ));
         }
-        if self.weights.as_ref().is_some_and(|w| w.len() != n) {
-            return Err(protocol::ProtoError::invalid(
-                "weights",
-                format!("needs {n} numbers (one per control point)"),
-            ));
+        if let Some(w) = &self.weights {
+            fields::check_weight_count("weights", n, w.len())?;
         }
         Ok(())
     }

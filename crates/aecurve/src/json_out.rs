@@ -9,6 +9,12 @@ pub fn object<const N: usize>(pairs: [(&str, Value); N]) -> Value {
     Value::Object(pairs.into_iter().map(|(k, v)| (k.to_string(), v)).collect())
 }
 
+/// A number where it is finite, else None (absent or null in a response: JSON has no
+/// infinities).
+pub fn finite(v: f64) -> Option<f64> {
+    Some(v).filter(|v| v.is_finite())
+}
+
 /// A number, or null where it is not finite (JSON has no infinities).
 pub fn finite_or_null(v: f64) -> Value {
     if v.is_finite() {
@@ -39,7 +45,6 @@ pub struct EndCurvatureJson {
 impl From<&aesthetic_curves::monotone::EndCurvature> for EndCurvatureJson {
     fn from(e: &aesthetic_curves::monotone::EndCurvature) -> Self {
         use aesthetic_curves::monotone::EndCurvature as E;
-        let finite = |k: f64| Some(k).filter(|k| k.is_finite());
         let (kind, curvature, retracted_handles) = match *e {
             E::Regular(k) => ("regular", finite(k), 0),
             E::Finite { curvature, order } => ("finite", finite(curvature), order),
@@ -64,9 +69,4 @@ impl From<&aesthetic_curves::monotone::EndCurvature> for EndCurvatureJson {
             sign,
         }
     }
-}
-
-/// [`EndCurvatureJson`] as a JSON value.
-pub fn end_curvature_json(e: &aesthetic_curves::monotone::EndCurvature) -> Value {
-    serde_json::to_value(EndCurvatureJson::from(e)).unwrap_or(Value::Null)
 }

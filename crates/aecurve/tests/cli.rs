@@ -1,28 +1,11 @@
 //! End-to-end runs of the `aecurve` binary.
 
+use crate::schema::{valid_as, valid_response};
 use std::io::Write;
 use std::process::{Command, Stdio};
 
 fn aecurve() -> Command {
     Command::new(env!("CARGO_BIN_EXE_aecurve"))
-}
-
-/// `v` is valid by the JSON Schema of the protocol's type `T` (what `--json` prints), or the
-/// test fails with every error.
-fn valid_as<T: schemars::JsonSchema>(v: &serde_json::Value) {
-    let schema = aecurve::protocol::response_schema::<T>();
-    let validator = jsonschema::validator_for(&schema).expect("the schema compiles");
-    let bad: Vec<String> = validator.iter_errors(v).map(|e| e.to_string()).collect();
-    assert!(bad.is_empty(), "{}: {bad:?}", std::any::type_name::<T>());
-}
-
-/// Any response line of the protocol, by its schema.
-fn valid_response(v: &serde_json::Value) {
-    let mut schema = aecurve::protocol::schema();
-    schema["oneOf"] = serde_json::json!([{"$ref": "#/$defs/Response"}]);
-    let validator = jsonschema::validator_for(&schema).expect("the schema compiles");
-    let bad: Vec<String> = validator.iter_errors(v).map(|e| e.to_string()).collect();
-    assert!(bad.is_empty(), "{v}: {bad:?}");
 }
 
 /// Run a command that must succeed and print one JSON value.

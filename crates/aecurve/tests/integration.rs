@@ -9,3 +9,4 @@ mod limits;
 mod protocol_fuzz;
 mod readers;
 mod readme_commands;
+mod schema;

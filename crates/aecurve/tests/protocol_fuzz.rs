@@ -15,22 +15,8 @@ fn responses(input: &[u8]) -> Vec<Value> {
         .collect()
 }
 
-/// Any response line, by the protocol's generated schema.
-fn response_schema() -> &'static jsonschema::Validator {
-    static V: std::sync::OnceLock<jsonschema::Validator> = std::sync::OnceLock::new();
-    V.get_or_init(|| {
-        let mut s = aecurve::protocol::schema();
-        s["oneOf"] = json!([{"$ref": "#/$defs/Response"}]);
-        jsonschema::validator_for(&s).expect("the schema compiles")
-    })
-}
-
 fn well_formed(v: &Value) {
-    let bad: Vec<String> = response_schema()
-        .iter_errors(v)
-        .map(|e| e.to_string())
-        .collect();
-    assert!(bad.is_empty(), "{v}: {bad:?}");
+    crate::schema::valid_response(v);
     let ok = v["ok"].as_bool().expect("ok is a bool");
     assert!(v.get("id").is_some(), "id present: {v}");
     if ok {

@@ -143,8 +143,6 @@ pub(crate) struct MonotoneReport {
     pub(crate) test_degree: usize,
     /// The floating-point filter could not decide: exact integer arithmetic did.
     pub(crate) exact: bool,
-    /// The same as `exact`, under the protocol's name.
-    pub(crate) exact_arithmetic: bool,
     /// How the curvature behaves at t = 0 and at t = 1.
     pub(crate) ends: (EndCurvature, EndCurvature),
 }
@@ -206,13 +204,7 @@ impl From<ac::monotone::EndCurvature> for EndCurvature {
             curvature: e.value(),
             retracted_handles,
             growth_rate,
-            growth: growth_rate.map(|r| {
-                if r == 1 {
-                    "1/t".to_string()
-                } else {
-                    format!("1/t^{r}")
-                }
-            }),
+            growth: e.growth(),
             sign,
         }
     }
@@ -220,6 +212,12 @@ impl From<ac::monotone::EndCurvature> for EndCurvature {
 
 #[pymethods]
 impl MonotoneReport {
+    /// `exact` under the protocol's name.
+    #[getter]
+    fn exact_arithmetic(&self) -> bool {
+        self.exact
+    }
+
     fn __repr__(&self, py: Python<'_>) -> String {
         format!(
             "MonotoneReport(monotone={}, trend={}, extrema={}, test_degree={}, exact={})",
@@ -241,7 +239,6 @@ pub(crate) fn report(py: Python<'_>, r: ac::MonotoneReport) -> MonotoneReport {
         extrema: r.extrema.into_pyarray(py).unbind(),
         test_degree: r.test_degree,
         exact: r.exact,
-        exact_arithmetic: r.exact,
         ends: (r.ends[0].into(), r.ends[1].into()),
     }
 }

@@ -2,7 +2,7 @@
 //! Bézier curve, polynomial or rational.
 
 use super::drawing::{drawing_json, WithDrawing};
-use super::fields::{weights, Draw, IntIn, Points, Weights};
+use super::fields::{check_weight_count, weights, Draw, IntIn, Points, Weights};
 use super::{Op, ProtoError, Request};
 use crate::any_bezier::AnyBezier;
 use crate::json_out::EndCurvatureJson;
@@ -45,12 +45,8 @@ pub struct CurvatureMonotoneRequest {
 
 impl Request for CurvatureMonotoneRequest {
     fn check(&self) -> Result<(), ProtoError> {
-        let n = self.control_points.0.len();
-        if let Some(w) = self.weights.as_ref().filter(|w| w.len() != n) {
-            return Err(ProtoError::invalid(
-                "weights",
-                format!("needs {n} numbers (one per control point), got {}", w.len()),
-            ));
+        if let Some(w) = &self.weights {
+            check_weight_count("weights", self.control_points.0.len(), w.len())?;
         }
         if self.samples.is_some() && self.method.unwrap_or_default() == Method::Exact {
             // Accepted and ignored would hide a mistake: say so.

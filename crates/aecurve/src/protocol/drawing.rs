@@ -104,10 +104,10 @@ pub fn drawing_budget(pieces: usize, n: usize) -> Result<(), ProtoError> {
     Ok(())
 }
 
-/// The drawing of a curve of rational cubics (a sketch, a contour, a spline), within the
+/// The drawing of a curve of Bézier pieces (a sketch, a contour, a spline), within the
 /// drawing budget for its pieces, with its exact NURBS.
-pub fn pieces_drawing(
-    curve: &aesthetic_curves::Pieces<aesthetic_curves::RationalBezier>,
+pub fn pieces_drawing<C: aesthetic_curves::Curve>(
+    curve: &aesthetic_curves::Pieces<C>,
     n: usize,
 ) -> Result<Drawing, ProtoError> {
     drawing_budget(curve.0.len(), n)?;

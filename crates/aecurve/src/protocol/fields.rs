@@ -3,6 +3,7 @@
 //! cannot drift apart. A rule that ties two fields together is a request's
 //! [`Request::check`](super::Request::check).
 
+use super::ProtoError;
 use aesthetic_curves::Point;
 use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -67,6 +68,42 @@ pub fn count_message(min: usize, max: usize, got: usize) -> String {
     format!("needs {min} to {max} points, got {got}")
 }
 
+/// The items of a sequence, `min` to `max` of them: more than `max` is refused before the
+/// items are read (the length a JSON array announces) or as soon as one is too many; `too`
+/// says what is wrong for a count.
+pub fn bounded_seq<'de, A: SeqAccess<'de>, T: Deserialize<'de>>(
+    mut seq: A,
+    (min, max): (usize, usize),
+    too: impl Fn(usize) -> String,
+) -> Result<Vec<T>, A::Error> {
+    let hint = seq.size_hint().unwrap_or(0);
+    if hint > max {
+        return Err(de::Error::custom(too(hint)));
+    }
+    let mut out = Vec::with_capacity(hint);
+    while let Some(x) = seq.next_element()? {
+        if out.len() == max {
+            return Err(de::Error::custom(too(max + 1)));
+        }
+        out.push(x);
+    }
+    if out.len() < min {
+        return Err(de::Error::custom(too(out.len())));
+    }
+    Ok(out)
+}
+
+/// `invalid_input` on `field` unless there is one weight per control point.
+pub fn check_weight_count(field: &str, points: usize, weights: usize) -> Result<(), ProtoError> {
+    if weights == points {
+        return Ok(());
+    }
+    Err(ProtoError::invalid(
+        field,
+        format!("needs {points} numbers (one per control point), got {weights}"),
+    ))
+}
+
 impl<'de, const MIN: usize, const MAX: usize> Deserialize<'de> for Points<MIN, MAX> {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         struct V<const MIN: usize, const MAX: usize>;
@@ -75,22 +112,9 @@ impl<'de, const MIN: usize, const MAX: usize> Deserialize<'de> for Points<MIN, M
             fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
                 f.write_str("an array of [x, y] points")
             }
-            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
-                let hint = seq.size_hint().unwrap_or(0);
-                if hint > MAX {
-                    return Err(de::Error::custom(count_message(MIN, MAX, hint)));
-                }
-                let mut out = Vec::with_capacity(hint);
-                while let Some(Xy(p)) = seq.next_element()? {
-                    if out.len() == MAX {
-                        return Err(de::Error::custom(count_message(MIN, MAX, MAX + 1)));
-                    }
-                    out.push(p);
-                }
-                if out.len() < MIN {
-                    return Err(de::Error::custom(count_message(MIN, MAX, out.len())));
-                }
-                Ok(Points(out))
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Self::Value, A::Error> {
+                let xy: Vec<Xy> = bounded_seq(seq, (MIN, MAX), |n| count_message(MIN, MAX, n))?;
+                Ok(Points(xy.into_iter().map(|p| p.0).collect()))
             }
         }
         d.deserialize_seq(V::<MIN, MAX>)
@@ -232,23 +256,9 @@ impl<'de, T: Deserialize<'de>, const MIN: usize, const MAX: usize> Deserialize<'
             fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
                 write!(f, "an array of {MIN} to {MAX} items")
             }
-            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
-                let hint = seq.size_hint().unwrap_or(0);
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Self::Value, A::Error> {
                 let message = |n: usize| format!("must hold {MIN} to {MAX} items, got {n}");
-                if hint > MAX {
-                    return Err(de::Error::custom(message(hint)));
-                }
-                let mut out = Vec::with_capacity(hint);
-                while let Some(x) = seq.next_element()? {
-                    if out.len() == MAX {
-                        return Err(de::Error::custom(message(MAX + 1)));
-                    }
-                    out.push(x);
-                }
-                if out.len() < MIN {
-                    return Err(de::Error::custom(message(out.len())));
-                }
-                Ok(List(out))
+                Ok(List(bounded_seq(seq, (MIN, MAX), message)?))
             }
         }
         d.deserialize_seq(V::<T, MIN, MAX>(std::marker::PhantomData))

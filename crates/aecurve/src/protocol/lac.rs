@@ -2,7 +2,7 @@
 //! `lac.rational_approx` and `lac.fit`.
 
 use super::drawing::{drawing_json, Drawing, NurbsJson, WithDrawing};
-use super::fields::{Draw, IntIn, Points, Positive};
+use super::fields::{bounded_seq, Draw, IntIn, Points, Positive};
 use super::{xy, Op, ProtoError, Request};
 use aesthetic_curves::approx::{self, ApproxOptions};
 use aesthetic_curves::curve::MAX_NURBS_PIECES;
@@ -44,18 +44,9 @@ impl<'de> Deserialize<'de> for Thetas {
             fn visit_i64<E: de::Error>(self, v: i64) -> Result<Thetas, E> {
                 Ok(Thetas(vec![v as f64]))
             }
-            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Thetas, A::Error> {
-                let n = seq.size_hint().unwrap_or(0);
-                if n > MAX_THETAS {
-                    return Err(de::Error::custom(format!(
-                        "at most {MAX_THETAS} values, got {n}"
-                    )));
-                }
-                let mut out = Vec::with_capacity(n);
-                while let Some(t) = seq.next_element::<f64>()? {
-                    out.push(t);
-                }
-                Ok(Thetas(out))
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Thetas, A::Error> {
+                let too = |n: usize| format!("at most {MAX_THETAS} values, got {n}");
+                Ok(Thetas(bounded_seq(seq, (0, MAX_THETAS), too)?))
             }
         }
         d.deserialize_any(V)

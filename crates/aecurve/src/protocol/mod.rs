@@ -38,7 +38,7 @@ pub use self::spline::{
     lac_spline_json, spline_json, SplineMode, MAX_EXACT_SPLINE_POINTS, MAX_LAC_SPLINE_POINTS,
     MAX_SPLINE_POINTS,
 };
-pub use crate::json_out::{end_curvature_json, finite_or_null, object};
+pub use crate::json_out::{finite_or_null, object};
 use aesthetic_curves::Error;
 use schemars::generate::SchemaSettings;
 use schemars::JsonSchema;
@@ -306,6 +306,14 @@ pub fn schema() -> Value {
         "x-ops": x_ops,
         "$defs": defs,
     })
+}
+
+/// The schema of any response line (the document's `$defs` with `$defs/Response` at the
+/// root): what the tests check every answer against.
+pub fn response_line_schema() -> Value {
+    let mut s = schema();
+    s["oneOf"] = json!([{"$ref": "#/$defs/Response"}]);
+    s
 }
 
 /// The JSON Schema of one response type `T` (a document of its own: what the CLI's `--json`

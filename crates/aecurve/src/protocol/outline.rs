@@ -2,7 +2,9 @@
 //! shape) and `outline.fix` (one contour repaired as `aecurve fix` repairs an SVG path).
 
 use super::drawing::{drawing_budget, drawing_json, Drawing, MAX_DRAWING_POINTS};
-use super::fields::{weights, Draw, List, NonNegative, Points, Positive, Weights};
+use super::fields::{
+    check_weight_count, weights, Draw, List, NonNegative, Points, Positive, Weights,
+};
 use super::piece::RationalJson;
 use super::{xy, Op, ProtoError, Request};
 use crate::check_json::{shape_json, FindingJson, ShapeJson};
@@ -94,21 +96,6 @@ fn check_consecutive<'a>(
     Ok(())
 }
 
-/// Each segment's weights, one per control point.
-fn check_weight_counts<'a>(
-    segments: impl Iterator<Item = (usize, Option<&'a Weights>)>,
-) -> Result<(), ProtoError> {
-    for (i, (n, w)) in segments.enumerate() {
-        if let Some(w) = w.filter(|w| w.len() != n) {
-            return Err(ProtoError::invalid(
-                &format!("segments[{i}].weights"),
-                format!("needs {n} numbers (one per control point), got {}", w.len()),
-            ));
-        }
-    }
-    Ok(())
-}
-
 impl Request for OutlineCheckRequest {
     fn check(&self) -> Result<(), ProtoError> {
         let given = [
@@ -130,10 +117,12 @@ impl Request for OutlineCheckRequest {
             ));
         }
         if let Some(s) = &self.segments {
-            check_weight_counts(
-                s.0.iter()
-                    .map(|s| (s.control_points.0.len(), s.weights.as_ref())),
-            )?;
+            for (i, s) in s.0.iter().enumerate() {
+                if let Some(w) = &s.weights {
+                    let field = format!("segments[{i}].weights");
+                    check_weight_count(&field, s.control_points.0.len(), w.len())?;
+                }
+            }
             let pts: Vec<&[Point]> = s.0.iter().map(|s| s.control_points.0.as_slice()).collect();
             check_consecutive(pts.windows(2).map(|w| (w[0], w[1])))?;
         }

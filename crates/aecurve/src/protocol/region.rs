@@ -94,11 +94,8 @@ impl Request for RegionRequest {
             if *index >= n {
                 return Err(ProtoError::invalid("index", "must name a control point"));
             }
-            if weights.as_ref().is_some_and(|w| w.len() != n) {
-                return Err(ProtoError::invalid(
-                    "weights",
-                    format!("needs {n} numbers (one per control point)"),
-                ));
+            if let Some(w) = weights {
+                fields::check_weight_count("weights", n, w.len())?;
             }
             // Work budget: the exact test costs about td^1.5 (td its Bernstein degree) per
             // judged cell; the budget holds the worst case (every cell judged) to a couple

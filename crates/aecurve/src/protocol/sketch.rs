@@ -5,6 +5,7 @@ use super::drawing::{pieces_drawing, WithDrawing};
 use super::fields::{Draw, Points, Positive};
 use super::piece::PieceJson;
 use super::{xy, Op, ProtoError, Request};
+use crate::json_out::finite;
 use aesthetic_curves::sketch::contour::{fit_contour, ContourOptions, Run, SketchContour};
 use aesthetic_curves::sketch::Sketch;
 use schemars::JsonSchema;
@@ -12,11 +13,6 @@ use serde::{Deserialize, Serialize};
 
 /// Largest point sequence `sketch.fit` accepts.
 pub const MAX_SKETCH_POINTS: usize = 20_000;
-
-/// A number where it is finite (absent rather than null otherwise: no NaN, no infinity).
-fn finite(v: f64) -> Option<f64> {
-    Some(v).filter(|v| v.is_finite())
-}
 
 /// A pen stroke to fit with one G2 run.
 #[derive(Debug, Deserialize, JsonSchema)]

@@ -1,13 +1,12 @@
 //! The splines through points: `spline.pseudo_elastic` (S2's, G1) and `spline.lac` (G2,
 //! log-aesthetic).
 
-use super::drawing::{drawing_budget, drawing_json, pieces_drawing, WithDrawing};
+use super::drawing::{drawing_budget, pieces_drawing, WithDrawing};
 use super::fields::{count_message, Draw, Points};
 use super::piece::PieceJson;
 use super::{Op, ProtoError, Request};
 use aesthetic_curves::lac_spline::{LacSpline, LacSplineOptions};
 use aesthetic_curves::pseudo_spline::{Mode, PseudoSpline};
-use aesthetic_curves::Curve as _;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -163,14 +162,10 @@ impl Op for PseudoElastic {
         let closed = req.closed == Some(true);
         let s =
             aesthetic_curves::pseudo_spline::pseudo_elastic(&req.points.0, closed, mode.mode())?;
-        let drawing = match req.draw {
-            Some(n) => {
-                let curve = s.as_curve()?;
-                let nurbs = curve.to_exact_nurbs()?;
-                Some(drawing_json(&curve, n.0 as usize, Some(&nurbs))?)
-            }
-            None => None,
-        };
+        let drawing = req
+            .draw
+            .map(|n| pieces_drawing(&s.as_curve()?, n.0 as usize))
+            .transpose()?;
         Ok(WithDrawing {
             result: spline_json(&s, mode),
             drawing,

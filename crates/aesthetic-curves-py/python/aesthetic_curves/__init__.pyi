@@ -94,7 +94,8 @@ class MonotoneReport:
     extrema: _Array1
     test_degree: int
     exact: bool
-    exact_arithmetic: bool
+    @property
+    def exact_arithmetic(self) -> bool: ...
     ends: Tuple[EndCurvature, EndCurvature]
 
 @final

@@ -141,6 +141,15 @@ impl EndCurvature {
         }
     }
 
+    /// How an unbounded curvature grows: `1/t`, `1/t^2`, ... (None where it is bounded).
+    pub fn growth(&self) -> Option<String> {
+        match self {
+            EndCurvature::Unbounded { rate: 1, .. } => Some("1/t".into()),
+            EndCurvature::Unbounded { rate, .. } => Some(format!("1/t^{rate}")),
+            _ => None,
+        }
+    }
+
     /// For a person: None at a regular end.
     pub fn describe(&self) -> Option<String> {
         match self {
@@ -151,12 +160,10 @@ impl EndCurvature {
             EndCurvature::Finite { curvature, .. } => Some(format!(
                 "retracted handle: the curvature tends to {curvature:.6} towards this end"
             )),
-            EndCurvature::Unbounded { rate, .. } => {
-                Some(format!(
-                "retracted handle: the curvature grows without bound towards this end (like 1/t{})",
-                if *rate == 1 { String::new() } else { format!("^{rate}") }
-            ))
-            }
+            EndCurvature::Unbounded { .. } => Some(format!(
+                "retracted handle: the curvature grows without bound towards this end (like {})",
+                self.growth().unwrap_or_default()
+            )),
         }
     }
 }
