@@ -1,4 +1,4 @@
-use super::constants::HOOK_FACTOR;
+use super::constants::{tame_curvatures, HOOK_FACTOR};
 use super::slot::{rotate, slot_ends, triangle, Cut, EndPoints, Slot};
 
 use super::track::Track;
@@ -8,27 +8,62 @@ use crate::solve::line_search::golden_bracket;
 use kurbo::Point;
 
 /// Distance from `q` to a curve sampled at an odd number of points: each pair of
-/// neighbouring chords is read as the parabola through its three points (chord plus the
-/// bulge of its middle sample), which removes the chord's sagitta from the distance; the
-/// nearest of all of them (no assumption that the points advance along the curve).
+/// neighbouring chords is read as the parabola over its outer chord through its three
+/// points (the middle sample at its own place along the chord, which need not be the
+/// middle: samples even in turning angle are not even in length), which removes the
+/// chord's sagitta from the distance; the nearest of all of them (no assumption that the
+/// points advance along the curve).
 pub(super) fn curve_distance(samples: &[Point], q: Point) -> f64 {
     let mut best = f64::INFINITY;
     let mut k = 0;
     while k + 2 < samples.len() {
-        let (p0, p1, p2) = (samples[k], samples[k + 1], samples[k + 2]);
-        let d = p2 - p0;
-        let l2 = d.hypot2();
-        let t = if l2 > 0.0 {
-            ((q - p0).dot(d) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let bulge = p1 - p0.midpoint(p2);
-        let c = p0 + d * t + bulge * (4.0 * t * (1.0 - t));
-        best = best.min((c - q).hypot2());
+        best = best.min(arc_distance(
+            [samples[k], samples[k + 1], samples[k + 2]],
+            q,
+        ));
         k += 2;
     }
-    best.sqrt()
+    best
+}
+
+/// Distance from `q` to the parabola over the chord `p0 p2` through `p1` (as a graph over
+/// the chord), to first order in the parabola's slope; beyond the chord's ends, the
+/// distance to the nearer end. A middle sample too close to an end for a parabola gives
+/// the two chords.
+fn arc_distance([p0, p1, p2]: [Point; 3], q: Point) -> f64 {
+    let d = p2 - p0;
+    let len = d.hypot();
+    let chords = || segment_distance(p0, p1, q).min(segment_distance(p1, p2, q));
+    if len <= 0.0 || !len.is_finite() {
+        return chords();
+    }
+    let e = d / len;
+    let n = kurbo::Vec2::new(-e.y, e.x);
+    let x1 = (p1 - p0).dot(e) / len;
+    if !(0.05..=0.95).contains(&x1) {
+        return chords();
+    }
+    let h1 = (p1 - p0).dot(n);
+    let (xq, yq) = ((q - p0).dot(e) / len, (q - p0).dot(n));
+    if !(0.0..=1.0).contains(&xq) {
+        return (q - p0).hypot().min((q - p2).hypot());
+    }
+    let c = h1 / (x1 * (1.0 - x1));
+    let y = c * xq * (1.0 - xq);
+    let slope = c * (1.0 - 2.0 * xq) / len;
+    (yq - y).abs() / (1.0 + slope * slope).sqrt()
+}
+
+/// Distance from `q` to the segment `a b`.
+fn segment_distance(a: Point, b: Point, q: Point) -> f64 {
+    let ab = b - a;
+    let l2 = ab.hypot2();
+    let t = if l2 > 0.0 {
+        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + ab * t - q).hypot()
 }
 
 /// Sum of squared and largest distance of `pts` to the LAC segment of shape `alpha` in
@@ -36,7 +71,7 @@ pub(super) fn curve_distance(samples: &[Point], q: Point) -> f64 {
 pub(super) fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point], cap: f64) -> Option<(f64, f64)> {
     let seg = LacSegment::new(alpha, tri).ok()?;
     let (k0, k1) = seg.end_curvatures().ok()?;
-    if k0.abs().max(k1.abs()) > cap {
+    if k0.abs().max(k1.abs()) > cap || !tame_curvatures(k0, k1) {
         return None;
     }
     let poly = seg.sample(129).ok()?.points;
@@ -63,8 +98,11 @@ pub(super) fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point], cap: f64) -> 
 
 /// α of the LAC segment in `tri` closest to `pts` in the least-squares sense (point-to-curve
 /// distances), and the largest distance of all `pts`: a scan over [`ALPHA_RANGE`] then
-/// golden-section refinement to 1e-4, on at most 64 of the points (evenly spread; the
-/// largest distance is measured on all). `None` when no α of the range gives a segment.
+/// golden-section refinement to 1e-4 between the grid's neighbours of its best α, on at
+/// most 64 of the points (evenly spread; the largest distance is measured on all). Where a
+/// neighbour gives no segment (the triangle's existence region, or the hook cap, ends
+/// there) the refinement stops at that edge, found by bisection: the least-squares α
+/// may lie on it. `None` when no α of the range gives a segment.
 pub(super) fn fit_alpha(tri: [Point; 3], all: &[Point], cap: f64) -> Option<(f64, f64)> {
     let sub = spread(all, 64);
     let pts = &sub[..];
@@ -79,17 +117,35 @@ pub(super) fn fit_alpha(tri: [Point; 3], all: &[Point], cap: f64) -> Option<(f64
     let &(a0, _) = grid.iter().min_by(|x, y| x.1.total_cmp(&y.1))?;
     let h = (hi - lo) / steps as f64;
     let f = |a: f64| lac_cost(a, tri, pts, cap).map_or(f64::INFINITY, |c| c.0);
-    let (a, b) = ((a0 - h).max(lo), (a0 + h).min(hi));
+    let a = feasible_edge(&f, a0, (a0 - h).max(lo));
+    let b = feasible_edge(&f, a0, (a0 + h).min(hi));
     let bracket = golden_bracket(&mut |x| f(x), a, b, 1e-4, 40);
-    let (a, b) = (bracket.lo, bracket.hi);
-    // The best of the refined point and the grid's (the refinement never loses it).
-    let cand = [(0.5 * (a + b)), a0];
+    // The best of the refined point, the edges and the grid's (the refinement never loses
+    // it).
+    let cand = [0.5 * (bracket.lo + bracket.hi), a, b, a0];
     let best = cand
         .iter()
         .copied()
         .filter(|&x| f(x).is_finite())
         .min_by(|x, y| f(*x).total_cmp(&f(*y)))?;
     lac_cost(best, tri, all, cap).map(|c| (best, c.1))
+}
+
+/// `to` when `f` is finite there, else the last α from `from` (where it is finite) towards
+/// `to` where it still is, to 1e-4 (bisection).
+fn feasible_edge(f: &dyn Fn(f64) -> f64, from: f64, to: f64) -> f64 {
+    if f(to).is_finite() {
+        return to;
+    }
+    let b = crate::solve::roots::bisect_by(
+        |x| f(x).is_finite().then_some(()),
+        from,
+        to,
+        |a, b| 0.5 * (a + b),
+        |a, b| (a - b).abs() < 1e-4,
+        30,
+    );
+    b.inside
 }
 
 /// At most `n` of `pts`, evenly spread (every k-th), for the searches; results are measured
@@ -195,6 +251,58 @@ pub(super) fn fit_slot_alpha(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Samples even in turning angle of a clothoid whose curvature grows 26-fold are 10
+    /// times further apart at its flat end: the middle sample of a pair sits off the chord's
+    /// middle there. Points on the curve (denser samples of it, an oracle of their own)
+    /// are within 1e-5 of its size of the parabolic arcs; reading the middle sample as the
+    /// chord's middle (as this measure did before) put them up to 6e-3 of the size off,
+    /// which moved the least-squares α of such a piece by 0.08 (issue 35).
+    #[test]
+    fn curve_distance_is_exact_on_unevenly_spaced_samples() {
+        let tri = [
+            Point::new(0.0, 0.0),
+            Point::new(6.0, 3.0),
+            Point::new(9.0, 0.5),
+        ];
+        let seg = LacSegment::new(-1.0, tri).unwrap();
+        let poly = seg.sample(129).unwrap().points;
+        let gaps: Vec<f64> = poly.windows(2).map(|w| (w[1] - w[0]).hypot()).collect();
+        assert!(gaps[0] > 8.0 * gaps[gaps.len() - 1]);
+        let worst = seg
+            .sample(1000)
+            .unwrap()
+            .points
+            .iter()
+            .map(|q| curve_distance(&poly, *q))
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-4, "{worst:e}");
+        let (sum, max) = lac_cost(-1.0, tri, &seg.sample(200).unwrap().points, 1e9).unwrap();
+        assert!(max < 1e-4 && sum < 1e-7, "{max:e} {sum:e}");
+    }
+
+    /// The least-squares α of a segment's own points is its α, including where the grid's
+    /// best α borders one that gives no segment (the refinement stops at that edge).
+    #[test]
+    fn fit_alpha_recovers_alpha_next_to_the_existence_edge() {
+        let tri = [
+            Point::new(0.0, 0.0),
+            Point::new(6.0, 3.0),
+            Point::new(9.0, 0.5),
+        ];
+        // This triangle admits α from about -1.1 to 2.2 only.
+        assert!(LacSegment::new(-1.5, tri).is_err() && LacSegment::new(2.5, tri).is_err());
+        for alpha in [-1.0, -0.5, 0.0, 1.0, 2.0] {
+            let pts = LacSegment::new(alpha, tri)
+                .unwrap()
+                .sample(150)
+                .unwrap()
+                .points;
+            let (a, max) = fit_alpha(tri, &pts, 1e9).unwrap();
+            assert!((a - alpha).abs() < 2e-3, "{alpha}: {a}");
+            assert!(max < 1e-4, "{alpha}: {max:e}");
+        }
+    }
 
     #[test]
     fn curve_distance_removes_the_sagitta() {

@@ -77,3 +77,21 @@ pub(super) const MAX_JUMP_SPLITS: usize = 4;
 /// An inflection of the fair spline closer to a line's end than this share of the curve's
 /// turning is noise about the zero curvature there ([`super::SketchOptions::line_ends`]).
 pub(super) const LINE_END_SHARE: f64 = 0.2;
+
+/// The largest ratio of a piece's end curvatures: a control triangle near the edge of its
+/// existence region puts one end's curvature towards 0 or ∞, a shape that one rational
+/// cubic cannot follow (its piece would be split for want of a monotone cubic). The α fit
+/// and the admissible α of a moved triangle stop there (measured: 100 gave the jittery S
+/// strokes invented inflections, 1000 none; the pieces of the Prius lines and the exact
+/// samples stay far below it).
+pub(super) const MAX_CURVATURE_RATIO: f64 = 1000.0;
+
+/// Whether end curvatures `k0`, `k1` are within [`MAX_CURVATURE_RATIO`] of each other.
+pub(super) fn tame_curvatures(k0: f64, k1: f64) -> bool {
+    k0.abs().max(k1.abs()) <= MAX_CURVATURE_RATIO * k0.abs().min(k1.abs())
+}
+
+/// A curvature peak of precise input that the root finder missed (on a knot) counts when
+/// its |κ| stands this share above the ends of its interval (or above the maximum found
+/// there): a feature of the data, not the tight spline's rounding.
+pub(super) const PEAK_PROMINENCE: f64 = 0.02;

@@ -208,6 +208,9 @@ pub(super) struct Context<'a> {
     /// The unit directions of the lines its ends join, if any (the fair spline's tangent
     /// there, noisy, is not used for those ends' pieces).
     pub(super) line_ends: [Option<kurbo::Vec2>; 2],
+    /// The input is precise to rounding ([`Noise::precise`]): its curvature extrema are
+    /// the data's, wherever they lie.
+    pub(super) precise: bool,
 }
 
 impl<'a> Context<'a> {
@@ -221,9 +224,16 @@ impl<'a> Context<'a> {
             return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
         }
         let end_dirs = line_ends(opts)?;
-        let (fit, fit_tol) = fair_spline(points, opts.tolerance)?;
+        let noise = Noise::of(points);
+        let precise = noise.precise(bbox_diagonal(points));
+        let (fit, fit_tol) = fair_spline(points, opts.tolerance, &noise)?;
         let track = Track::new(&fit.spline)?;
         check_turning(&track, opts.min_turn)?;
+        let track = if opts.closed {
+            track
+        } else {
+            track.with_flat_ends()
+        };
         let shape = shape_track(points, opts.tolerance, fit_tol)?;
         let ends = (fit.points[0], *fit.points.last().unwrap());
         Ok(Context {
@@ -233,6 +243,7 @@ impl<'a> Context<'a> {
             shape,
             ends,
             line_ends: end_dirs,
+            precise,
         })
     }
 
@@ -271,9 +282,8 @@ fn line_ends(opts: &SketchOptions) -> Result<[Option<kurbo::Vec2>; 2]> {
 /// (measured lines, pen strokes) the smoothest spline within [`FAIR_SHARE`] of the
 /// tolerance, which carries no hooks or wiggles the tolerance does not demand. Outliers the
 /// noise estimate ignores can keep the tight fit from converging: then half the tolerance.
-fn fair_spline(points: &[Point], tolerance: f64) -> Result<(BSplineFit, f64)> {
+fn fair_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(BSplineFit, f64)> {
     let size = bbox_diagonal(points);
-    let noise = Noise::of(points);
     let noisy = !noise.precise(size);
     let fit_tol = (4.0 * noise.fine).max(1e-5 * size).min(0.5 * tolerance);
     let tight = |tolerance: f64| {

@@ -1,3 +1,4 @@
+use super::constants::tame_curvatures;
 use super::slot::{rotate, triangle, Cut, Slot};
 use super::types::PieceCurve;
 use crate::error::{Error, Result};
@@ -186,9 +187,11 @@ fn settle_line_ends(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) -> Vec<usi
 }
 
 /// The segment in `tri` at the admissible α nearest to `target` towards 0.5 (0 <= α <= 1
-/// always admits a triangle): bisection on the existence test (no Λ solve), then the solve
-/// just inside the boundary, where it can still refuse (the curve overflows f64 right at
-/// it); failing that, bisection on the solve itself.
+/// always admits a triangle): bisection on the existence test with end curvatures within
+/// [`MAX_CURVATURE_RATIO`](super::constants::MAX_CURVATURE_RATIO) of each other (at the
+/// bare edge of the existence region one end's curvature is 0 or ∞, which no rational
+/// cubic follows), then the solve just inside that boundary, where it can still refuse;
+/// failing that, bisection on the solve itself.
 fn nearest_admissible(target: f64, tri: [Point; 3]) -> Result<LacSegment> {
     let towards_half = |test: &dyn Fn(f64) -> bool| {
         let mean = |a: f64, b: f64| 0.5 * (a + b);
@@ -202,7 +205,13 @@ fn nearest_admissible(target: f64, tri: [Point; 3]) -> Result<LacSegment> {
         )
         .inside
     };
-    let good = towards_half(&|a| LacSegment::exists(a, tri).unwrap_or(false));
+    let tame = |a: f64| {
+        LacSegment::exists(a, tri).unwrap_or(false)
+            && LacSegment::new(a, tri)
+                .and_then(|s| s.end_curvatures())
+                .is_ok_and(|(k0, k1)| tame_curvatures(k0, k1))
+    };
+    let good = towards_half(&tame);
     let inside = [0.0, 1e-9, 1e-6, 1e-3]
         .iter()
         .find_map(|f| LacSegment::new(good + (0.5 - good) * f, tri).ok());

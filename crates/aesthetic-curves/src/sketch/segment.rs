@@ -1,5 +1,5 @@
 use super::alpha::{curve_distance, fit_slot_alpha, points_in};
-use super::constants::{LINE_END_SHARE, MERGE_SHARE};
+use super::constants::{LINE_END_SHARE, MERGE_SHARE, PEAK_PROMINENCE};
 use super::input::Context;
 use super::slot::{slot, slot_ends, triangle, Cut, EndPoints, Slot};
 
@@ -10,7 +10,8 @@ use crate::error::{Error, Result};
 use crate::lac::LacInflectionSegment;
 
 /// Step 2: the cuts of the B-spline.
-pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Result<Vec<Slot>> {
+pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
+    let (track, shape, opts) = (&cx.track, cx.shape(), cx.opts);
     let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
     let (mut infl, mut maxima) = shape.events();
     if !std::ptr::eq(track, shape) {
@@ -35,6 +36,13 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
                 .filter(|v| (v - *u).abs() < w)
                 .max_by(|a, b| track.abs_kappa(*a).total_cmp(&track.abs_kappa(*b)))
             {
+                *u = v;
+            } else if let Some(v) = cx
+                .precise
+                .then(|| sampled_peak(track, (*u - w).max(u0), (*u + w).min(u1)))
+                .flatten()
+            {
+                // Precise input whose tight spline has its peak on a knot.
                 *u = v;
             }
         }
@@ -106,49 +114,11 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
     bounds.push((u1, end_cut(opts.line_ends[1])));
     let mut cuts: Vec<(f64, Cut)> = vec![bounds[0]];
     for w in bounds.windows(2) {
-        let ((a, ca), (b, cb)) = (w[0], w[1]);
-        let inside: Vec<f64> = maxima
-            .iter()
-            .copied()
-            .filter(|&u| {
-                // Away from a line's end as the inflections are (the spline's wiggle about
-                // the zero curvature there is no peak).
-                let room = |c: Cut| {
-                    if c == Cut::Line {
-                        LINE_END_SHARE * total
-                    } else {
-                        0.5 * opts.min_turn
-                    }
-                };
-                u > a && u < b && turn(a, u) >= room(ca) && turn(u, b) >= room(cb)
-            })
-            .collect();
-        let best = inside
-            .iter()
-            .copied()
-            .max_by(|x, y| track.abs_kappa(*x).total_cmp(&track.abs_kappa(*y)));
-        let pick = match best {
-            Some(u) => {
-                // Only a true interior maximum: above both ends of its interval.
-                let k = track.abs_kappa(u);
-                let need = ca.zero() && cb.zero();
-                if need || (k > track.abs_kappa(a) && k > track.abs_kappa(b)) {
-                    Some(u)
-                } else {
-                    None
-                }
-            }
-            None if ca.zero() && cb.zero() => {
-                // Between two inflections there is a maximum; the root finder missed it
-                // (flat): take the half-turning point.
-                Some(u_at_turn(track, a, b, 0.5 * turn(a, b)))
-            }
-            None => None,
-        };
-        if let Some(u) = pick {
-            cuts.push((u, Cut::Other));
+        if let Some(u) = interval_cut(cx, &maxima, (w[0], w[1]), total) {
+            // Precise input's peaks are the data's: no merge joins across them.
+            cuts.push((u, if cx.precise { Cut::Peak } else { Cut::Other }));
         }
-        cuts.push((b, cb));
+        cuts.push(w[1]);
     }
     // Split pieces turning more than max_turn.
     let mut slots = Vec::new();
@@ -165,6 +135,81 @@ pub(super) fn segment(track: &Track, shape: &Track, opts: &SketchOptions) -> Res
         slots.push(slot(track, prev, (b, cb)));
     }
     Ok(slots)
+}
+
+/// The cut inside the interval between two bounds (ends or inflections): its largest
+/// curvature maximum, if that stands above both ends (between two inflections always one,
+/// at half the turning if the root finder found none). For precise input, the tight
+/// spline's own largest peak instead where it stands [`PEAK_PROMINENCE`] above that one
+/// (or there is none): a peak on a knot, which the root finder cannot see, or one that the
+/// smoother shape spline rounds into two.
+fn interval_cut(
+    cx: &Context,
+    maxima: &[f64],
+    ((a, ca), (b, cb)): ((f64, Cut), (f64, Cut)),
+    total: f64,
+) -> Option<f64> {
+    let (track, opts) = (&cx.track, cx.opts);
+    let turn = |a: f64, b: f64| track.angle_between(a, b).abs();
+    // Away from a line's end as the inflections are (the spline's wiggle about the zero
+    // curvature there is no peak).
+    let room = |c: Cut| {
+        if c == Cut::Line {
+            LINE_END_SHARE * total
+        } else {
+            0.5 * opts.min_turn
+        }
+    };
+    let allowed = |u: f64| u > a && u < b && turn(a, u) >= room(ca) && turn(u, b) >= room(cb);
+    let k = |u: f64| track.abs_kappa(u);
+    let best = maxima
+        .iter()
+        .copied()
+        .filter(|&u| allowed(u))
+        .max_by(|x, y| k(*x).total_cmp(&k(*y)));
+    let both_zero = ca.zero() && cb.zero();
+    let pick = match best {
+        // Only a true interior maximum: above both ends of its interval.
+        Some(u) if both_zero || (k(u) > k(a) && k(u) > k(b)) => Some(u),
+        Some(_) => None,
+        // Between two inflections there is a maximum; the root finder missed it (flat):
+        // take the half-turning point.
+        None if both_zero => Some(u_at_turn(track, a, b, 0.5 * turn(a, b))),
+        None => None,
+    };
+    let own = cx
+        .precise
+        .then(|| sampled_peak(track, a, b))
+        .flatten()
+        .filter(|&v| allowed(v));
+    match (pick, own) {
+        (Some(u), Some(v)) if k(v) > (1.0 + PEAK_PROMINENCE) * k(u) => Some(v),
+        (None, Some(v)) => Some(v),
+        (pick, _) => pick,
+    }
+}
+
+/// The largest |κ| strictly inside [a, b], [`PEAK_PROMINENCE`] above |κ| at both ends, if
+/// there is one (a maximum the root finder may not see: on a knot, dκ/ds jumps from + to -
+/// without a root; symmetric data put their peak there). Sampled at 64 steps, then refined
+/// by golden sections to 1e-9 of the interval.
+fn sampled_peak(track: &Track, a: f64, b: f64) -> Option<f64> {
+    let n = 64;
+    let k = |u: f64| track.abs_kappa(u);
+    let (i, _) = (1..n)
+        .map(|i| (i, k(a + (b - a) * i as f64 / n as f64)))
+        .max_by(|x, y| x.1.total_cmp(&y.1))?;
+    let h = (b - a) / n as f64;
+    let u0 = a + h * i as f64;
+    let g = crate::solve::line_search::golden_bracket(
+        &mut |u| -k(u),
+        u0 - h,
+        u0 + h,
+        1e-9 * (b - a),
+        80,
+    );
+    let u = 0.5 * (g.lo + g.hi);
+    (u > a && u < b && k(u) > (1.0 + PEAK_PROMINENCE) * k(a).max(k(b))).then_some(u)
 }
 
 /// Next to a line's end the curvature starts from zero: a sign change there is the noise
@@ -382,7 +427,7 @@ pub(super) fn merge_slots(
 /// The pieces at the curve's ends fit their outer tangent with α (in the rounds).
 pub(super) fn initial_slots(cx: &Context) -> Result<Vec<Slot>> {
     let opts = cx.opts;
-    let mut slots = segment(&cx.track, cx.shape(), opts)?;
+    let mut slots = segment(cx)?;
     split_s_shapes(&cx.track, &mut slots)?;
     let merge_tol = MERGE_SHARE * opts.tolerance;
     merge_slots(
@@ -403,7 +448,40 @@ pub(super) fn initial_slots(cx: &Context) -> Result<Vec<Slot>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use kurbo::Point;
+    use crate::lac::LacSegment;
+    use kurbo::{Point, Vec2};
+
+    /// A clothoid rising to its curvature peak and its mirror image: the tight spline of
+    /// these exact samples has a knot at the peak, where dκ/ds jumps from + to - and the
+    /// root finder sees no maximum; the cut still lands on the peak.
+    #[test]
+    fn a_peak_on_a_knot_is_cut() {
+        let seg = LacSegment::new(
+            -1.0,
+            [Point::ZERO, Point::new(5.0, 2.0), Point::new(9.0, 1.0)],
+        )
+        .unwrap();
+        let half = seg.sample(200).unwrap().points;
+        let peak = half[199];
+        let d = seg.eval_turning(&[seg.theta_d()]).unwrap().tangents[0];
+        let n = Vec2::new(-d.y, d.x);
+        let mut pts = half.clone();
+        for q in half.iter().rev().skip(1) {
+            let v = *q - peak;
+            pts.push(peak + n * (2.0 * v.dot(n)) - v);
+        }
+        let opts = SketchOptions::with_tolerance(1e-3);
+        let cx = Context::new(&pts, &opts).unwrap();
+        assert!(cx.precise);
+        assert!(
+            cx.track.events().1.is_empty(),
+            "the root finder sees the peak now"
+        );
+        let slots = segment(&cx).unwrap();
+        assert_eq!(slots.len(), 2);
+        assert_eq!(slots[0].cut_b, Cut::Peak);
+        assert!((cx.track.point(slots[0].ub) - peak).hypot() < 1e-4);
+    }
 
     #[test]
     fn an_s_is_cut_at_its_inflection_into_slots_that_cover_the_spline() {

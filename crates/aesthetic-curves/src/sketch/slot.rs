@@ -13,6 +13,8 @@ pub(super) enum Cut {
     /// An end of the curve that joins a line ([`super::SketchOptions::line_ends`]): zero
     /// curvature like an inflection, and the piece there must be an inflection-end one.
     Line,
+    /// A curvature maximum of precise input: a feature of the data, never merged across.
+    Peak,
     Other,
 }
 

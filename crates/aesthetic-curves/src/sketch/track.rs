@@ -4,10 +4,17 @@ use crate::bspline::BSpline;
 use crate::error::Result;
 use kurbo::{Point, Vec2};
 
+/// A stretch next to an end is flat when its curvature stays below this share of the
+/// curve's largest (the segmentation's test for an inflection that is noise).
+pub(super) const FLAT_SHARE: f64 = 0.1;
+
 /// The B-spline as Bézier spans over its knot intervals, for derivatives at any u.
 pub(super) struct Track {
     pub(super) spans: Vec<Bezier>,
     pub(super) breaks: Vec<f64>,
+    /// The tangent each end of the curve is fitted with, where it is not the spline's own
+    /// there ([`Track::with_flat_ends`]).
+    end_dirs: [Option<Vec2>; 2],
 }
 
 impl Track {
@@ -16,7 +23,48 @@ impl Track {
         let n = spans.len();
         let p = s.degree;
         let breaks = (0..=n).map(|i| s.knots[p + i]).collect();
-        Ok(Track { spans, breaks })
+        Ok(Track {
+            spans,
+            breaks,
+            end_dirs: [None, None],
+        })
+    }
+
+    /// The track whose free ends leave a flat end stretch crossed by noise: where the
+    /// curvature next to an end stays below [`FLAT_SHARE`] of the curve's largest and
+    /// changes sign there (a pen stroke or a measured line that ends at zero curvature,
+    /// as an S does), the segmentation drops that inflection as noise, so the end takes the
+    /// tangent at its last sign change instead of the spline's at the end, which leans the
+    /// noise's way (a piece from there would turn both ways and form no triangle).
+    pub(super) fn with_flat_ends(mut self) -> Self {
+        let (u0, u1) = (self.breaks[0], *self.breaks.last().unwrap());
+        let n = 256;
+        let us: Vec<f64> = (0..=n)
+            .map(|k| u0 + (u1 - u0) * k as f64 / n as f64)
+            .collect();
+        let ks: Vec<f64> = us.iter().map(|&u| self.derivs(u).kappa()).collect();
+        let flat = FLAT_SHARE * ks.iter().fold(0.0f64, |m, k| m.max(k.abs()));
+        let last_crossing = |order: &mut dyn Iterator<Item = usize>| {
+            let mut prev: Option<usize> = None;
+            let mut found = None;
+            for i in order {
+                if ks[i].abs() >= flat {
+                    break;
+                }
+                if let Some(j) = prev {
+                    if ks[i] * ks[j] < 0.0 {
+                        found = Some(i);
+                    }
+                }
+                prev = Some(i);
+            }
+            found
+        };
+        self.end_dirs = [
+            last_crossing(&mut (0..=n)).map(|i| self.direction(us[i])),
+            last_crossing(&mut (0..=n).rev()).map(|i| self.direction(us[i])),
+        ];
+        self
     }
 
     pub(super) fn locate(&self, u: f64) -> (usize, f64) {
@@ -39,9 +87,19 @@ impl Track {
         self.spans[i].derivs(t)
     }
 
+    /// The unit tangent at `u`; at an end of the curve the one it is fitted with.
     pub(super) fn direction(&self, u: f64) -> Vec2 {
-        let d = self.derivs(u).d1;
-        d / d.hypot()
+        let end = if u <= self.breaks[0] {
+            self.end_dirs[0]
+        } else if u >= *self.breaks.last().unwrap() {
+            self.end_dirs[1]
+        } else {
+            None
+        };
+        end.unwrap_or_else(|| {
+            let d = self.derivs(u).d1;
+            d / d.hypot()
+        })
     }
 
     /// Inflection parameters and curvature-maximum (of |κ|) parameters, sorted.
@@ -110,4 +168,43 @@ pub(super) fn u_at_turn(track: &Track, ua: f64, ub: f64, target: f64) -> f64 {
         60,
     );
     0.5 * (b.inside + b.outside)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bspline::{fit, FitOptions};
+
+    /// y = x³ from x = -0.025: its curvature changes sign at x = 0, and before it stays
+    /// below 9 % of its largest (about 1.76 at x = 0.45), so the start is a flat stretch
+    /// crossed by noise; the start takes the tangent at the sign change (horizontal), not
+    /// the spline's there (slope 0.0019). The far end, curved, keeps the spline's own.
+    #[test]
+    fn a_flat_end_crossing_zero_takes_the_tangent_of_its_sign_change() {
+        let pts: Vec<Point> = (0..=410)
+            .map(|i| {
+                let x = -0.025 + i as f64 / 400.0;
+                Point::new(x, x * x * x)
+            })
+            .collect();
+        let s = fit(
+            &pts,
+            FitOptions {
+                tolerance: 1e-6,
+                max_segments: 50,
+            },
+        )
+        .unwrap();
+        let plain = Track::new(&s.spline).unwrap();
+        let (u0, u1) = (plain.breaks[0], *plain.breaks.last().unwrap());
+        let flat = Track::new(&s.spline).unwrap().with_flat_ends();
+        assert!(plain.direction(u0).y > 1.5e-3);
+        let d = flat.direction(u0);
+        assert!(d.y.abs() < 2e-4 && d.x > 0.0, "{d:?}");
+        assert_eq!(flat.direction(u1), plain.direction(u1));
+        assert_eq!(
+            flat.direction(0.5 * (u0 + u1)),
+            plain.direction(0.5 * (u0 + u1))
+        );
+    }
 }
