@@ -90,7 +90,7 @@ try:
     ax.plot(points[:, 0], points[:, 1], ".", color="C3", markersize=3, alpha=0.5, label="measured")
     for i, p in enumerate(sketch.pieces):
         ac.plot_comb(p, ax=ax, scale=-scale, zorder=3, label="fitted (comb in grey)" if i == 0 else None)
-    ax.set_title("Prius key line ps_3: 4 LAC pieces, G2, within 0.3 mm")
+    ax.set_title(f"Prius key line ps_3: {len(sketch.pieces)} LAC pieces, G2, within 0.3 mm")
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.08), fontsize="small")

@@ -6,6 +6,7 @@ they look for target/release/aecurve in the repository and are skipped if it is 
 """
 
 import json
+import re
 import math
 import os
 import subprocess
@@ -505,9 +506,13 @@ def test_the_example_script_runs(tmp_path):
         [sys.executable, str(script), str(tmp_path)],
         capture_output=True, text=True, check=True,
     ).stdout
-    assert "sketch: 4 pieces" in out and "G2 True, every piece monotone True" in out
+    # The Prius bar of the Rust tests: at most 4 pieces (3 since session 31).
+    pieces = re.search(r"sketch: (\d+) pieces", out)
+    assert pieces and 1 <= int(pieces.group(1)) <= 4, out
+    assert "G2 True, every piece monotone True" in out
     svg = (tmp_path / "prius-ps_3.svg").read_text()
-    assert svg.startswith("<svg") and svg.count("<line") > 200
+    # One comb tooth per sample, 60 samples per piece.
+    assert svg.startswith("<svg") and svg.count("<line") >= 60 * int(pieces.group(1))
     assert b"SPLINE" in (tmp_path / "prius-ps_3.dxf").read_bytes()
     assert "RATIONAL_B_SPLINE_CURVE" in (tmp_path / "prius-ps_3.step").read_text()
 
