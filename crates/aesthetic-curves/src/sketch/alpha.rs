@@ -67,14 +67,17 @@ fn segment_distance(a: Point, b: Point, q: Point) -> f64 {
 }
 
 /// Sum of squared and largest distance of `pts` to the LAC segment of shape `alpha` in
-/// `tri`; `None` where the segment does not exist.
+/// `tri` (its end curvatures within `cap` and within [`MAX_CURVATURE_RATIO`](super::constants::MAX_CURVATURE_RATIO) of each
+/// other), from 65 samples read as parabolic arcs: within 5e-5 of the segment's size even
+/// where its curvature grows 26-fold (tested; 129 samples gave 6e-6 and a sixth more time
+/// to a Prius line's fit). `None` where the segment does not exist.
 pub(super) fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point], cap: f64) -> Option<(f64, f64)> {
     let seg = LacSegment::new(alpha, tri).ok()?;
     let (k0, k1) = seg.end_curvatures().ok()?;
     if k0.abs().max(k1.abs()) > cap || !tame_curvatures(k0, k1) {
         return None;
     }
-    let poly = seg.sample(129).ok()?.points;
+    let poly = seg.sample(65).ok()?.points;
     let (mut sum, mut max) = (0.0, 0.0f64);
     // The nearest sample by descent from the previous point's (either way: points may step
     // back), then the parabolic arcs around it.
@@ -277,8 +280,9 @@ mod tests {
             .map(|q| curve_distance(&poly, *q))
             .fold(0.0, f64::max);
         assert!(worst < 1e-4, "{worst:e}");
+        // The fit's own measure, from 65 samples: within 5e-5 of the size (about 10).
         let (sum, max) = lac_cost(-1.0, tri, &seg.sample(200).unwrap().points, 1e9).unwrap();
-        assert!(max < 1e-4 && sum < 1e-7, "{max:e} {sum:e}");
+        assert!(max < 5e-4 && sum < 1e-6, "{max:e} {sum:e}");
     }
 
     /// The least-squares α of a segment's own points is its α, including where the grid's
@@ -300,7 +304,7 @@ mod tests {
                 .points;
             let (a, max) = fit_alpha(tri, &pts, 1e9).unwrap();
             assert!((a - alpha).abs() < 2e-3, "{alpha}: {a}");
-            assert!(max < 1e-4, "{alpha}: {max:e}");
+            assert!(max < 5e-4, "{alpha}: {max:e}");
         }
     }
 

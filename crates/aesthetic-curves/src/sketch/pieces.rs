@@ -187,11 +187,13 @@ fn settle_line_ends(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) -> Vec<usi
 }
 
 /// The segment in `tri` at the admissible α nearest to `target` towards 0.5 (0 <= α <= 1
-/// always admits a triangle): bisection on the existence test with end curvatures within
-/// [`MAX_CURVATURE_RATIO`](super::constants::MAX_CURVATURE_RATIO) of each other (at the
+/// always admits a triangle) whose end curvatures stay within
+/// [`MAX_CURVATURE_RATIO`](super::constants::MAX_CURVATURE_RATIO) of each other: at the
 /// bare edge of the existence region one end's curvature is 0 or ∞, which no rational
-/// cubic follows), then the solve just inside that boundary, where it can still refuse;
-/// failing that, bisection on the solve itself.
+/// cubic follows. The edge by bisection on the existence test (no Λ solve), then steps
+/// back towards 0.5, growing fourfold from 1e-4 of the way, until the segment is tame (a
+/// few solves: the fairing builds pieces for every column of its Jacobian); failing all,
+/// bisection on the solve itself.
 fn nearest_admissible(target: f64, tri: [Point; 3]) -> Result<LacSegment> {
     let towards_half = |test: &dyn Fn(f64) -> bool| {
         let mean = |a: f64, b: f64| 0.5 * (a + b);
@@ -205,17 +207,23 @@ fn nearest_admissible(target: f64, tri: [Point; 3]) -> Result<LacSegment> {
         )
         .inside
     };
-    let tame = |a: f64| {
-        LacSegment::exists(a, tri).unwrap_or(false)
-            && LacSegment::new(a, tri)
-                .and_then(|s| s.end_curvatures())
-                .is_ok_and(|(k0, k1)| tame_curvatures(k0, k1))
+    let edge = towards_half(&|a| LacSegment::exists(a, tri).unwrap_or(false));
+    let tame = |s: &LacSegment| {
+        s.end_curvatures()
+            .is_ok_and(|(k0, k1)| tame_curvatures(k0, k1))
     };
-    let good = towards_half(&tame);
-    let inside = [0.0, 1e-9, 1e-6, 1e-3]
-        .iter()
-        .find_map(|f| LacSegment::new(good + (0.5 - good) * f, tri).ok());
-    match inside {
+    let mut share = 1e-4;
+    let mut first_built = None;
+    while share < 1.0 {
+        if let Ok(s) = LacSegment::new(edge + (0.5 - edge) * share, tri) {
+            if tame(&s) {
+                return Ok(s);
+            }
+            first_built.get_or_insert(s);
+        }
+        share *= 4.0;
+    }
+    match first_built {
         Some(s) => Ok(s),
         None => LacSegment::new(towards_half(&|a| LacSegment::new(a, tri).is_ok()), tri),
     }
