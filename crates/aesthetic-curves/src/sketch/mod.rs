@@ -10,17 +10,19 @@
 //!    `h = 2 g' f - 3 g f'`, `f = |x'|²`), isolated exactly on each Bézier span's Bernstein
 //!    form; simplified as in S4 (one curvature maximum between two inflections, pieces
 //!    turning more than [`SketchOptions::max_turn`] split) and without inflection pairs
-//!    across a flat stretch (noise). Known limit: a maximum that sits on a knot (dκ/ds
-//!    changes sign from one span to the next, as on symmetric data) is not found, so such
-//!    a peak is not cut (issue 35; counting them changed the noisy Prius lines' pieces);
+//!    across a flat stretch (noise; a free end of such a stretch takes the tangent of its
+//!    last sign change, `Track::with_flat_ends`). For precise input a peak that sits on a
+//!    knot (dκ/ds changes sign from one span to the next without a root, as on symmetric
+//!    data) is found by sampling and cut as a peak that no merge crosses;
 //! 3. neighbouring pieces merge while one LAC segment still fits their input points;
 //! 4. per piece, α by least squares against its input points (point-to-curve distances) in
-//!    the triangle of its end points and tangents, the tangent at the curve's ends fitted
-//!    with it; a piece with an inflection at one end becomes an inflection-end segment
+//!    the triangle of its end points and tangents, up to the edge of the segment's
+//!    existence, the tangent at the curve's ends fitted with it; a piece with an inflection at one end becomes an inflection-end segment
 //!    (docs/math.md §3.2, α from its triangle). α outside the triangle's existence region
 //!    moves to the nearest admissible value; α on its bound ([`crate::lac::ALPHA_RANGE`]) is reported;
 //!    α keeps the segment's end curvatures within `HOOK_FACTOR` times the fair spline's
-//!    largest over the piece (no hooks from triangles at the edge of their existence region);
+//!    largest over the piece (no hooks from triangles at the edge of their existence region)
+//!    and within `MAX_CURVATURE_RATIO` of each other (no end flattened to zero curvature);
 //! 5. **G2 fairing**: the tangent directions at the joints are the unknowns, the curvature
 //!    mismatches at the joints the equations; Newton's method with a finite-difference
 //!    Jacobian (tridiagonal: a joint's tangent moves its two pieces) and a backtracking line
