@@ -5,7 +5,7 @@
 use super::pieces::Built;
 use super::slot::Slot;
 
-use super::types::{PieceCurve, PieceKind, SketchPiece};
+use super::types::{PieceCurve, PieceKind, PieceShape, SketchPiece};
 use crate::approx::{
     fit_inflection_cubic_from, fit_rational_cubic, ApproxOptions, RationalCubicFit,
 };
@@ -148,10 +148,7 @@ fn in_curve_order(
 
 /// The delivered piece of a slot.
 fn piece(s: &Slot, b: Built, control: [Point; 3], rat: RationalCubicFit) -> SketchPiece {
-    let kind = match b.curve {
-        PieceCurve::Lac(_) => PieceKind::Lac,
-        PieceCurve::Inflection { .. } => PieceKind::LacInflection,
-    };
+    let kind = b.curve.kind();
     SketchPiece {
         kind,
         alpha: b.alpha,

@@ -2,7 +2,7 @@ use super::constants::ALPHA_WEIGHT;
 use super::pieces::{build_all, build_piece, Built};
 use super::slot::{rotate, Slot};
 
-use super::types::{FairingReport, PieceCurve, SketchOptions};
+use super::types::{FairingReport, PieceShape, SketchOptions};
 use crate::error::Result;
 use crate::lac::ALPHA_RANGE;
 use kurbo::{Point, Vec2};
@@ -97,19 +97,7 @@ pub(super) fn fair(
     // faired.
     let zero_both = |built: &[Built], j: usize| {
         let (a, b) = sides(j, m);
-        matches!(
-            built[a].curve,
-            PieceCurve::Inflection {
-                inflection_at_start: false,
-                ..
-            }
-        ) && matches!(
-            built[b].curve,
-            PieceCurve::Inflection {
-                inflection_at_start: true,
-                ..
-            }
-        )
+        built[a].curve.zero_curvature_ends()[1] && built[b].curve.zero_curvature_ends()[0]
     };
     // A closed curve's seam (joint 0) is faired too.
     let first = usize::from(!opts.closed);
@@ -241,7 +229,7 @@ pub(super) fn free_alphas(
         if d0[k].abs() > tol {
             let (a, b) = sides(j, built.len());
             for i in [a, b] {
-                if matches!(built[i].curve, PieceCurve::Lac(_)) && !free.contains(&i) {
+                if built[i].curve.alpha_is_free() && !free.contains(&i) {
                     free.push(i);
                 }
             }

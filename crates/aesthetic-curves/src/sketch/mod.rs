@@ -69,7 +69,8 @@ mod track;
 mod types;
 
 pub use types::{
-    count_events, FairingReport, PieceCurve, PieceKind, Sketch, SketchOptions, SketchPiece,
+    count_events, FairingReport, PieceCurve, PieceKind, PieceShape, Sketch, SketchOptions,
+    SketchPiece,
 };
 
 use constants::{

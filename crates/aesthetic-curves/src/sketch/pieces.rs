@@ -1,6 +1,6 @@
 use super::constants::tame_curvatures;
 use super::slot::{rotate, triangle, Cut, Slot};
-use super::types::PieceCurve;
+use super::types::{PieceCurve, PieceKind, PieceShape};
 use crate::error::{Error, Result};
 use crate::lac::{LacInflectionSegment, LacSegment};
 use crate::solve::roots::bisect_by;
@@ -81,19 +81,7 @@ pub(super) fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2
     let both = |j: usize, d: Vec2, before: Vec2, after: Vec2| {
         let l = build_piece(&slots[j - 1], pts[j - 1], before, pts[j], d);
         let r = build_piece(&slots[j], pts[j], d, pts[j + 1], after);
-        matches!(
-            (l, r),
-            (
-                Ok(Built {
-                    curve: PieceCurve::Inflection { .. },
-                    ..
-                }),
-                Ok(Built {
-                    curve: PieceCurve::Inflection { .. },
-                    ..
-                })
-            )
-        )
+        is_inflection(&l) && is_inflection(&r)
     };
     for j in 1..slots.len() {
         if !(slots[j - 1].cut_b == Cut::Inflection && slots[j].cut_a == Cut::Inflection) {
@@ -107,19 +95,16 @@ pub(super) fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2
         if let Some(d) = found {
             dirs[j] = d;
         } else {
-            let is_infl = |r: Result<Built>| {
-                matches!(
-                    r,
-                    Ok(Built {
-                        curve: PieceCurve::Inflection { .. },
-                        ..
-                    })
-                )
-            };
-            if !is_infl(build_piece(&slots[j - 1], pts[j - 1], before, pts[j], here)) {
+            if !is_inflection(&build_piece(
+                &slots[j - 1],
+                pts[j - 1],
+                before,
+                pts[j],
+                here,
+            )) {
                 failed.push(j - 1);
             }
-            if !is_infl(build_piece(&slots[j], pts[j], here, pts[j + 1], after)) {
+            if !is_inflection(&build_piece(&slots[j], pts[j], here, pts[j + 1], after)) {
                 failed.push(j);
             }
         }
@@ -128,6 +113,13 @@ pub(super) fn settle_inflections(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2
     failed.sort_unstable();
     failed.dedup();
     failed
+}
+
+/// Whether a piece was built, as an inflection-end piece.
+fn is_inflection(built: &Result<Built>) -> bool {
+    built
+        .as_ref()
+        .is_ok_and(|b| b.curve.kind() == PieceKind::LacInflection)
 }
 
 /// The tangent `here` turned by the least angle (steps of 0.0025 rad, either way, up to
@@ -165,13 +157,7 @@ fn settle_line_ends(slots: &[Slot], pts: &[Point], dirs: &mut [Vec2]) -> Vec<usi
             let own = build_piece(&slots[i], pts[i], trial[i], pts[i + 1], trial[i + 1]);
             let k = if i == 0 { 1 } else { m - 2 };
             let other = build_piece(&slots[k], pts[k], trial[k], pts[k + 1], trial[k + 1]);
-            matches!(
-                own,
-                Ok(Built {
-                    curve: PieceCurve::Inflection { .. },
-                    ..
-                })
-            ) && other.is_ok()
+            is_inflection(&own) && other.is_ok()
         };
         let here = dirs[j];
         if works(here) {

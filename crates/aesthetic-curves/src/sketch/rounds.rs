@@ -11,7 +11,7 @@ use super::input::Context;
 use super::pieces::{settle_inflections, Built};
 use super::segment::{split_at_mid_turn, split_at_peak, split_s_shapes, split_worst};
 use super::slot::{triangle, Slot};
-use super::types::{count_events, FairingReport, PieceCurve, Sketch, SketchPiece};
+use super::types::{count_events, FairingReport, PieceShape, Sketch, SketchPiece};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 use rayon::prelude::*;
@@ -249,13 +249,7 @@ fn keep_end_triangles(cx: &Context, slots: &[Slot], pts: &mut [Point], dirs: &mu
 /// The input's largest distance to the LAC pieces' polylines (129 samples each), with its
 /// piece and spline parameter; `None` where a piece cannot be sampled.
 fn lac_deviation(cx: &Context, built: &[Built]) -> Option<(f64, usize, f64)> {
-    let polys: Option<Vec<Vec<Point>>> = built
-        .iter()
-        .map(|b| match &b.curve {
-            PieceCurve::Lac(seg) => seg.sample(129).ok().map(|x| x.points),
-            PieceCurve::Inflection { segment, .. } => segment.sample(129).ok().map(|x| x.points),
-        })
-        .collect();
+    let polys: Option<Vec<Vec<Point>>> = built.iter().map(|b| b.curve.polyline(129).ok()).collect();
     Some(polyline_deviation(&cx.fit.points, &cx.fit.params, &polys?))
 }
 

@@ -3,6 +3,7 @@
 use crate::approx::ApproxOptions;
 use crate::bezier::{PlanarCurve, RationalBezier};
 use crate::bspline::BSpline;
+use crate::error::Result;
 use crate::lac::{LacInflectionSegment, LacSegment};
 use kurbo::{Point, Vec2};
 
@@ -82,6 +83,61 @@ pub enum PieceCurve {
         /// Whether the inflection is at the piece's start.
         inflection_at_start: bool,
     },
+}
+
+/// What the sketch's stages ask of a piece's curve, whatever its family: the family, its
+/// points in curve order, where its curvature is zero by construction, and whether its α
+/// is free (a LAC's is; an inflection piece's α its triangle fixes). A new family (a line,
+/// an arc) is a variant of [`PieceCurve`] and its arms here, plus its rational cubic
+/// (`cubics`); the stages only call these.
+pub trait PieceShape {
+    /// The family.
+    fn kind(&self) -> PieceKind;
+    /// `n >= 2` points from the piece's start to its end.
+    fn polyline(&self, n: usize) -> Result<Vec<Point>>;
+    /// Whether the curvature is zero by construction at its start and at its end.
+    fn zero_curvature_ends(&self) -> [bool; 2];
+    /// Whether its α may move with the fairing's unknowns.
+    fn alpha_is_free(&self) -> bool;
+}
+
+impl PieceShape for PieceCurve {
+    fn kind(&self) -> PieceKind {
+        match self {
+            PieceCurve::Lac(_) => PieceKind::Lac,
+            PieceCurve::Inflection { .. } => PieceKind::LacInflection,
+        }
+    }
+
+    fn polyline(&self, n: usize) -> Result<Vec<Point>> {
+        match self {
+            PieceCurve::Lac(seg) => Ok(seg.sample(n)?.points),
+            PieceCurve::Inflection {
+                segment,
+                inflection_at_start,
+            } => {
+                let mut pts = segment.sample(n)?.points;
+                if !inflection_at_start {
+                    pts.reverse();
+                }
+                Ok(pts)
+            }
+        }
+    }
+
+    fn zero_curvature_ends(&self) -> [bool; 2] {
+        match self {
+            PieceCurve::Lac(_) => [false, false],
+            PieceCurve::Inflection {
+                inflection_at_start,
+                ..
+            } => [*inflection_at_start, !inflection_at_start],
+        }
+    }
+
+    fn alpha_is_free(&self) -> bool {
+        self.kind() == PieceKind::Lac
+    }
 }
 
 /// One piece of the result, in curve order.
@@ -207,6 +263,39 @@ impl Sketch {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A piece's points run in curve order whatever its segment's own order, and its zero
+    /// curvature sits at the inflection end.
+    #[test]
+    fn piece_shapes_in_curve_order() {
+        let ctrl = [
+            Point::new(0.0, 0.0),
+            Point::new(5.0, 0.0),
+            Point::new(7.0, 3.0),
+        ];
+        let segment = LacInflectionSegment::new(ctrl).unwrap();
+        for at_start in [true, false] {
+            let c = PieceCurve::Inflection {
+                segment: segment.clone(),
+                inflection_at_start: at_start,
+            };
+            let pts = c.polyline(9).unwrap();
+            let (first, last) = (pts[0], pts[8]);
+            let want = if at_start {
+                (ctrl[0], ctrl[2])
+            } else {
+                (ctrl[2], ctrl[0])
+            };
+            assert_eq!((first, last), want);
+            assert_eq!(c.zero_curvature_ends(), [at_start, !at_start]);
+            assert_eq!(c.kind(), PieceKind::LacInflection);
+            assert!(!c.alpha_is_free());
+        }
+        let lac = PieceCurve::Lac(LacSegment::new(0.5, ctrl).unwrap());
+        assert_eq!(lac.polyline(5).unwrap()[0], ctrl[0]);
+        assert_eq!(lac.zero_curvature_ends(), [false, false]);
+        assert!(lac.alpha_is_free());
+    }
 
     #[test]
     fn events_of_monotone_pieces() {
