@@ -117,38 +117,41 @@ pub(super) fn fit_alpha(tri: [Point; 3], all: &[Point], cap: f64) -> Option<(f64
             lac_cost(a, tri, pts, cap).map(|c| (a, c.0))
         })
         .collect();
-    let &(a0, _) = grid.iter().min_by(|x, y| x.1.total_cmp(&y.1))?;
+    let &(a0, c0) = grid.iter().min_by(|x, y| x.1.total_cmp(&y.1))?;
     let h = (hi - lo) / steps as f64;
     let f = |a: f64| lac_cost(a, tri, pts, cap).map_or(f64::INFINITY, |c| c.0);
     let a = feasible_edge(&f, a0, (a0 - h).max(lo));
     let b = feasible_edge(&f, a0, (a0 + h).min(hi));
-    let bracket = golden_bracket(&mut |x| f(x), a, b, 1e-4, 40);
+    let bracket = golden_bracket(&mut |x| f(x), a.0, b.0, 1e-4, 40);
+    let mid = 0.5 * (bracket.lo + bracket.hi);
     // The best of the refined point, the edges and the grid's (the refinement never loses
-    // it).
-    let cand = [0.5 * (bracket.lo + bracket.hi), a, b, a0];
-    let best = cand
-        .iter()
-        .copied()
-        .filter(|&x| f(x).is_finite())
-        .min_by(|x, y| f(*x).total_cmp(&f(*y)))?;
+    // it), each valued once.
+    let (best, _) = [(mid, f(mid)), a, b, (a0, c0)]
+        .into_iter()
+        .filter(|c| c.1.is_finite())
+        .min_by(|x, y| x.1.total_cmp(&y.1))?;
     lac_cost(best, tri, all, cap).map(|c| (best, c.1))
 }
 
 /// `to` when `f` is finite there, else the last α from `from` (where it is finite) towards
-/// `to` where it still is, to 1e-4 (bisection).
-fn feasible_edge(f: &dyn Fn(f64) -> f64, from: f64, to: f64) -> f64 {
-    if f(to).is_finite() {
-        return to;
+/// `to` where it still is, to 1e-4 (bisection); with its value.
+fn feasible_edge(f: &dyn Fn(f64) -> f64, from: f64, to: f64) -> (f64, f64) {
+    let at_to = f(to);
+    if at_to.is_finite() {
+        return (to, at_to);
     }
     let b = crate::solve::roots::bisect_by(
-        |x| f(x).is_finite().then_some(()),
+        |x| {
+            let v = f(x);
+            v.is_finite().then_some(v)
+        },
         from,
         to,
         |a, b| 0.5 * (a + b),
         |a, b| (a - b).abs() < 1e-4,
         30,
     );
-    b.inside
+    (b.inside, b.value.unwrap_or_else(|| f(b.inside)))
 }
 
 /// At most `n` of `pts`, evenly spread (every k-th), for the searches; results are measured
