@@ -40,10 +40,10 @@
 //! with rounded turns) or next to an open end is fitted with the run's pieces, not as a
 //! line: the flank of an S or a wave looks the same.
 
-use super::input::{bbox_diagonal, check_points, noise_level};
+use super::input::{bbox_diagonal, check_points, noise_level, Noise};
 use super::straight;
 use super::types::{Sketch, SketchOptions};
-use super::{default_tolerance, fit_sketch};
+use super::{default_tolerance_of, fit_sketch};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 
@@ -66,7 +66,7 @@ pub const SHORT_SHARE: f64 = 0.7;
 /// What [`fit_contour`] may do.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContourOptions {
-    /// Largest distance from an input point to the result; `None`: [`default_tolerance`].
+    /// Largest distance from an input point to the result; `None`: [`default_tolerance`](super::default_tolerance).
     pub tolerance: Option<f64>,
     /// Closed or open; `None`: decided from the stroke ([`closes`]).
     pub closed: Option<bool>,
@@ -243,23 +243,27 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     if !(opts.corner_angle > 0.0 && opts.corner_angle < std::f64::consts::PI) {
         return Err(Error::invalid("corner_angle", "must lie in (0, π) radians"));
     }
+    // Estimated once for the stroke: the default tolerance, the corners' windows and the
+    // straight stretches' test all read it (a closed stroke's overlapping tail, dropped
+    // below, is a few points of hundreds).
+    let noise = Noise::of(points);
     let tolerance = match opts.tolerance {
         Some(t) => {
             Error::check_positive("tolerance", t)?;
             t
         }
-        None if points.len() >= 4 => default_tolerance(points),
+        None if points.len() >= 4 => default_tolerance_of(points, &noise),
         None => 0.005 * size,
     };
     let (closed, kept) = closes(points, tolerance, opts.closed);
     let stroke = &points[..kept];
-    let corners = corners(stroke, closed, tolerance, opts.corner_angle);
+    let corners = corners_at(stroke, closed, tolerance, opts.corner_angle, noise.sigma);
     let runs = runs_of(stroke, closed, &corners);
     // A closed contour without corners is one run whose seam is faired G2, unless it has
     // straight stretches: then it starts with the first and every join is smooth.
     let one_loop = closed && corners.is_empty();
     let lines = line_ends(&runs, closed && !one_loop, tolerance);
-    let sigma = noise_level(stroke);
+    let sigma = noise.sigma;
     let mut out = Assembly::default();
     for (k, (r, line)) in runs.iter().zip(&lines).enumerate() {
         let parts = fit_parts(r, *line, tolerance, one_loop, sigma).map_err(|e| match e {
@@ -520,13 +524,24 @@ pub fn corners(
     tolerance: f64,
     min_angle: f64,
 ) -> Vec<(usize, f64)> {
+    corners_at(points, closed, tolerance, min_angle, noise_level(points))
+}
+
+/// [`corners`] of a stroke whose noise is `sigma`.
+fn corners_at(
+    points: &[Point],
+    closed: bool,
+    tolerance: f64,
+    min_angle: f64,
+    sigma: f64,
+) -> Vec<(usize, f64)> {
     let n = points.len();
     if n < 5 {
         return Vec::new();
     }
     let arc = ArcLength::of(points, closed);
     let w = (WINDOW_TOLERANCES * tolerance)
-        .max(WINDOW_NOISE * noise_level(points))
+        .max(WINDOW_NOISE * sigma)
         .min(arc.total / 6.0);
     let mut found: Vec<(usize, f64)> = (0..n)
         .filter_map(|i| {

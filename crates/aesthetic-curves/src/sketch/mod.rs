@@ -93,8 +93,12 @@ use kurbo::Point;
 /// two scales, or residuals that shrink with the window as a curve's own do) 0.5 % of the
 /// diagonal.
 pub fn default_tolerance(points: &[Point]) -> f64 {
+    default_tolerance_of(points, &Noise::of(points))
+}
+
+/// [`default_tolerance`] with the points' noise already estimated.
+fn default_tolerance_of(points: &[Point], noise: &Noise) -> f64 {
     let size = bbox_diagonal(points);
-    let noise = Noise::of(points);
     if noise.sampled(size) {
         PRECISE_SIZE_SHARE * size
     } else {
