@@ -1,5 +1,5 @@
 use super::constants::{tame_curvatures, HOOK_FACTOR};
-use super::slot::{rotate, slot_ends, triangle, Cut, EndPoints, Slot};
+use super::slot::{rotate, segment_distance, slot_ends, triangle, Cut, EndPoints, Slot};
 
 use super::track::Track;
 use crate::bspline;
@@ -33,7 +33,7 @@ pub(super) fn curve_distance(samples: &[Point], q: Point) -> f64 {
 fn arc_distance([p0, p1, p2]: [Point; 3], q: Point) -> f64 {
     let d = p2 - p0;
     let len = d.hypot();
-    let chords = || segment_distance(p0, p1, q).min(segment_distance(p1, p2, q));
+    let chords = || segment_distance(q, p0, p1).min(segment_distance(q, p1, p2));
     if len <= 0.0 || !len.is_finite() {
         return chords();
     }
@@ -52,18 +52,6 @@ fn arc_distance([p0, p1, p2]: [Point; 3], q: Point) -> f64 {
     let y = c * xq * (1.0 - xq);
     let slope = c * (1.0 - 2.0 * xq) / len;
     (yq - y).abs() / (1.0 + slope * slope).sqrt()
-}
-
-/// Distance from `q` to the segment `a b`.
-fn segment_distance(a: Point, b: Point, q: Point) -> f64 {
-    let ab = b - a;
-    let l2 = ab.hypot2();
-    let t = if l2 > 0.0 {
-        ((q - a).dot(ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + ab * t - q).hypot()
 }
 
 /// Sum of squared and largest distance of `pts` to the LAC segment of shape `alpha` in

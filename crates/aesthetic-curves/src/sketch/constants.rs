@@ -78,6 +78,11 @@ pub(super) const MAX_JUMP_SPLITS: usize = 4;
 /// turning is noise about the zero curvature there ([`super::SketchOptions::line_ends`]).
 pub(super) const LINE_END_SHARE: f64 = 0.2;
 
+/// A stretch whose |κ| stays below this share of the curve's largest is flat: an inflection
+/// pair across it (or an inflection and an end) is noise, which the segmentation drops, and
+/// a free end in one takes the tangent of its last sign change (`Track::with_flat_ends`).
+pub(super) const FLAT_STRETCH_SHARE: f64 = 0.1;
+
 /// The largest ratio of a piece's end curvatures: a control triangle near the edge of its
 /// existence region puts one end's curvature towards 0 or ∞, a shape that one rational
 /// cubic cannot follow (its piece would be split for want of a monotone cubic). The α fit

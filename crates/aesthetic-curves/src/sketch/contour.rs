@@ -41,6 +41,7 @@
 //! line: the flank of an S or a wave looks the same.
 
 use super::input::{bbox_diagonal, check_points, noise_level, Noise};
+use super::slot::segment_distance;
 use super::straight;
 use super::types::{Sketch, SketchOptions};
 use super::{default_tolerance_of, fit_sketch};
@@ -846,13 +847,6 @@ fn chord_deviation(points: &[Point]) -> f64 {
         .iter()
         .map(|&q| segment_distance(q, a, b))
         .fold(0.0, f64::max)
-}
-
-/// The distance from `q` to the segment from `a` to `b` (kurbo's nearest point on a line;
-/// a zero-length segment is its point).
-fn segment_distance(q: Point, a: Point, b: Point) -> f64 {
-    use kurbo::ParamCurveNearest;
-    kurbo::Line::new(a, b).nearest(q, 0.0).distance_sq.sqrt()
 }
 
 /// A run's largest distance from its points.

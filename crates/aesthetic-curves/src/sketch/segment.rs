@@ -1,5 +1,5 @@
 use super::alpha::{curve_distance, fit_slot_alpha, points_in};
-use super::constants::{LINE_END_SHARE, MERGE_SHARE, PEAK_PROMINENCE};
+use super::constants::{FLAT_STRETCH_SHARE, LINE_END_SHARE, MERGE_SHARE, PEAK_PROMINENCE};
 use super::input::Context;
 use super::slot::{slot, slot_ends, triangle, Cut, EndPoints, Slot};
 
@@ -82,7 +82,7 @@ pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
         // The flattest stretch next to an inflection, if it is flat enough.
         let flat = (0..bounds.len() - 1)
             .map(|i| (i, kappa_max_on(bounds[i], bounds[i + 1])))
-            .filter(|(_, k)| *k < 0.1 * k_all)
+            .filter(|(_, k)| *k < FLAT_STRETCH_SHARE * k_all)
             .min_by(|x, y| x.1.total_cmp(&y.1));
         let Some((i, _)) = flat else { break };
         // Stretch i lies between bounds i and i + 1; inflections are bounds 1..=len.

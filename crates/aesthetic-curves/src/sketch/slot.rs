@@ -98,6 +98,13 @@ pub(super) fn slot_ends(track: &Track, s: &Slot, ends: EndPoints) -> (Point, Poi
     (a, b)
 }
 
+/// The distance from `q` to the segment from `a` to `b` (kurbo's nearest point on a line;
+/// a zero-length segment is its point).
+pub(super) fn segment_distance(q: Point, a: Point, b: Point) -> f64 {
+    use kurbo::ParamCurveNearest;
+    kurbo::Line::new(a, b).nearest(q, 0.0).distance_sq.sqrt()
+}
+
 impl Slot {
     /// One of its ends joins a line ([`Cut::Line`]).
     pub(super) fn at_line(&self) -> bool {

@@ -1,12 +1,9 @@
+use super::constants::FLAT_STRETCH_SHARE;
 use crate::bernstein::sign_change_roots;
 use crate::bezier::{Bezier, PlanarCurve};
 use crate::bspline::BSpline;
 use crate::error::Result;
 use kurbo::{Point, Vec2};
-
-/// A stretch next to an end is flat when its curvature stays below this share of the
-/// curve's largest (the segmentation's test for an inflection that is noise).
-pub(super) const FLAT_SHARE: f64 = 0.1;
 
 /// The B-spline as Bézier spans over its knot intervals, for derivatives at any u.
 pub(super) struct Track {
@@ -31,7 +28,7 @@ impl Track {
     }
 
     /// The track whose free ends leave a flat end stretch crossed by noise: where the
-    /// curvature next to an end stays below [`FLAT_SHARE`] of the curve's largest and
+    /// curvature next to an end stays below [`FLAT_STRETCH_SHARE`] of the curve's largest and
     /// changes sign there (a pen stroke or a measured line that ends at zero curvature,
     /// as an S does), the segmentation drops that inflection as noise, so the end takes the
     /// tangent at its last sign change instead of the spline's at the end, which leans the
@@ -43,7 +40,7 @@ impl Track {
             .map(|k| u0 + (u1 - u0) * k as f64 / n as f64)
             .collect();
         let ks: Vec<f64> = us.iter().map(|&u| self.derivs(u).kappa()).collect();
-        let flat = FLAT_SHARE * ks.iter().fold(0.0f64, |m, k| m.max(k.abs()));
+        let flat = FLAT_STRETCH_SHARE * ks.iter().fold(0.0f64, |m, k| m.max(k.abs()));
         let last_crossing = |order: &mut dyn Iterator<Item = usize>| {
             let mut prev: Option<usize> = None;
             let mut found = None;
