@@ -164,6 +164,127 @@ pub fn outline_move(a: &[Point], b: &[Point]) -> f64 {
     upper.max(lower) * (1.0 + 1e-12)
 }
 
+/// How far the outline of cubic `b` lies from that of cubic `a`, as a shape: a sound upper
+/// bound of their Fréchet distance (so of the Hausdorff distance, both ways), never more
+/// than [`outline_move`]. A handle slid along its tangent moves its cubic's points along the
+/// curve as much as off it; at equal parameters that counts in full, as a shape it does not.
+///
+/// `b` is cut at even parameters `t_i`, `a` at the parameters `s_i` nearest to `b(t_i)`
+/// (Newton on `(a(s) - b(t_i))·a'(s)` from `t_i`, then made non-decreasing, `s_0 = 0`,
+/// `s_k = 1`), and each pair of pieces compared at equal local parameters with
+/// [`outline_move`]; a piece whose bound stands above the distances at the cuts is halved. The pieces' parameters joined end to end are a
+/// monotone map of `[0, 1]` onto itself, so the largest piece bound is the length of a
+/// matching of the two curves: whatever `s_i` the search finds, the bound holds. Any
+/// degree other than 3, or a pair of different degrees: [`outline_move`].
+pub fn outline_distance(a: &[Point], b: &[Point]) -> f64 {
+    let equal_parameters = outline_move(a, b);
+    if a.len() != 4 || b.len() != 4 || equal_parameters == 0.0 {
+        return equal_parameters;
+    }
+    let cubic = |p: &[Point]| kurbo::CubicBez::new(p[0], p[1], p[2], p[3]);
+    let (ca, cb) = (cubic(a), cubic(b));
+    matched_distance(&ca, &cb, 0.0).min(equal_parameters)
+}
+
+/// Whether cubic `b`'s outline lies within `tolerance` of `a`'s ([`outline_distance`]),
+/// asking the cheaper bound at equal parameters first.
+pub fn outline_within(a: &[Point], b: &[Point], tolerance: f64) -> bool {
+    if outline_move(a, b) <= tolerance {
+        return true;
+    }
+    if a.len() != 4 || b.len() != 4 {
+        return false;
+    }
+    let cubic = |p: &[Point]| kurbo::CubicBez::new(p[0], p[1], p[2], p[3]);
+    matched_distance(&cubic(a), &cubic(b), tolerance) <= tolerance
+}
+
+/// How many pieces [`outline_distance`] starts from, and how many halvings it may add.
+const MATCHED_PIECES: usize = 8;
+const MATCHED_DEPTH: u8 = 5;
+
+/// The parameter of `a` nearest to `q`, from `s` (Newton on `(a(s) - q)·a'(s)`), kept in
+/// `range`.
+fn nearest_from(a: &kurbo::CubicBez, q: Point, s: f64, range: (f64, f64)) -> f64 {
+    use kurbo::{ParamCurve, ParamCurveDeriv};
+    let (da, dda) = (a.deriv(), a.deriv().deriv());
+    let mut x = s;
+    for _ in 0..6 {
+        let (d, v, w) = (a.eval(x) - q, da.eval(x).to_vec2(), dda.eval(x).to_vec2());
+        let (f, df) = (d.dot(v), v.dot(v) + d.dot(w));
+        if df.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            break;
+        }
+        x = (x - f / df).clamp(range.0, range.1);
+    }
+    if x.is_finite() {
+        x
+    } else {
+        s.clamp(range.0, range.1)
+    }
+}
+
+/// The matched pieces' bound ([`outline_distance`]): pieces whose bound stands more than
+/// 10⁻³ above the distances at the matched points are halved (a point of `b` and its
+/// nearest on `a` in the middle), at most [`MATCHED_DEPTH`] times; a piece within `enough`
+/// is not halved, and once a matched point is further than `enough` the bound so far is
+/// returned (more than `enough`: all a caller asking whether it is within needs).
+fn matched_distance(a: &kurbo::CubicBez, b: &kurbo::CubicBez, enough: f64) -> f64 {
+    use kurbo::ParamCurve;
+    let k = MATCHED_PIECES;
+    let mut s = vec![0.0; k + 1];
+    s[k] = 1.0;
+    for i in 1..k {
+        let t = i as f64 / k as f64;
+        s[i] = nearest_from(a, b.eval(t), t, (0.0, 1.0)).max(s[i - 1]);
+    }
+    let points = |c: kurbo::CubicBez| [c.p0, c.p1, c.p2, c.p3];
+    let gap = |t: f64, s: f64| (b.eval(t) - a.eval(s)).hypot();
+    let mut lower = (0..=k)
+        .map(|i| gap(i as f64 / k as f64, s[i]))
+        .fold(0.0, f64::max);
+    // Pieces to bound: b's parameter range, a's, and how often halved.
+    type Piece = ((f64, f64), (f64, f64), u8);
+    let mut stack: Vec<Piece> = (0..k)
+        .map(|i| {
+            (
+                (i as f64 / k as f64, (i + 1) as f64 / k as f64),
+                (s[i], s[i + 1]),
+                0,
+            )
+        })
+        .collect();
+    let mut worst = 0.0f64;
+    while let Some((t, s, depth)) = stack.pop() {
+        if lower > enough && enough > 0.0 {
+            break;
+        }
+        let piece = outline_move(
+            &points(a.subsegment(s.0..s.1)),
+            &points(b.subsegment(t.0..t.1)),
+        );
+        if piece <= worst
+            || piece <= enough
+            || piece <= lower * (1.0 + 1e-3)
+            || depth >= MATCHED_DEPTH
+        {
+            worst = worst.max(piece);
+            continue;
+        }
+        let tm = 0.5 * (t.0 + t.1);
+        let sm = nearest_from(a, b.eval(tm), 0.5 * (s.0 + s.1), s);
+        lower = lower.max(gap(tm, sm));
+        stack.push(((t.0, tm), (s.0, sm), depth + 1));
+        stack.push(((tm, t.1), (sm, s.1), depth + 1));
+    }
+    // The pieces' own rounding: a few units in the last place of the coordinates.
+    let size = [a.p0, a.p1, a.p2, a.p3, b.p0, b.p1, b.p2, b.p3]
+        .iter()
+        .map(|p| p.x.abs().max(p.y.abs()))
+        .fold(0.0, f64::max);
+    worst.max(lower) + 64.0 * f64::EPSILON * size
+}
+
 fn split_points<const D: usize>(pts: &[[f64; D]], t: f64) -> (Vec<[f64; D]>, Vec<[f64; D]>) {
     let n = pts.len();
     let mut work = pts.to_vec();
@@ -632,12 +753,127 @@ fn control_box(points: &[Point]) -> kurbo::Rect {
     points.iter().fold(first, |r, p| r.union_pt(*p))
 }
 
+/// Test oracle: the Hausdorff distance of two cubics, one way: the largest, over 401 points
+/// of `b`, of the distance to `a` (its nearest of 1001 samples, then golden sections on the
+/// two intervals beside it). Power-form sums, not kurbo's or this module's evaluation.
+#[cfg(test)]
+pub(crate) fn sampled_hausdorff(a: &[Point], b: &[Point]) -> f64 {
+    let at = |p: &[Point], t: f64| {
+        let m = 1.0 - t;
+        let w = [m * m * m, 3.0 * t * m * m, 3.0 * t * t * m, t * t * t];
+        p.iter()
+            .zip(w)
+            .fold(Vec2::ZERO, |c, (q, w)| c + q.to_vec2() * w)
+    };
+    let dist = |q: Vec2, s: f64| (at(a, s) - q).hypot();
+    let n = 1000;
+    (0..=400)
+        .map(|k| at(b, k as f64 / 400.0))
+        .map(|q| {
+            let best = (0..=n)
+                .min_by(|&i, &j| {
+                    dist(q, i as f64 / n as f64).total_cmp(&dist(q, j as f64 / n as f64))
+                })
+                .unwrap();
+            let (mut lo, mut hi) = (
+                (best.max(1) - 1) as f64 / n as f64,
+                ((best + 1).min(n)) as f64 / n as f64,
+            );
+            for _ in 0..60 {
+                let (x1, x2) = (lo + (hi - lo) * 0.382, lo + (hi - lo) * 0.618);
+                if dist(q, x1) < dist(q, x2) {
+                    hi = x2;
+                } else {
+                    lo = x1;
+                }
+            }
+            dist(q, (lo + hi) / 2.0).min(dist(q, best as f64 / n as f64))
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Test oracle: the Hausdorff distance of two cubics both ways ([`sampled_hausdorff`]).
+#[cfg(test)]
+pub(crate) fn sampled_shape_distance(a: &[Point], b: &[Point]) -> f64 {
+    sampled_hausdorff(a, b).max(sampled_hausdorff(b, a))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn pts(v: &[(f64, f64)]) -> Vec<Point> {
         v.iter().map(|&(x, y)| Point::new(x, y)).collect()
+    }
+
+    /// outline_distance bounds the Hausdorff distance both ways (the oracle above), is never
+    /// more than outline_move, and is close to the truth where a handle slides along its
+    /// tangent: at equal parameters that move counts in full.
+    #[test]
+    fn outline_distance_bounds_the_shape_distance() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut random = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut slides, mut ratio_sum, mut worst_ratio) = (0, 0.0, 0.0f64);
+        for k in 0..120 {
+            let scale = 10f64.powi(k % 8 - 2);
+            let origin = if k % 3 == 0 { 1e4 * scale } else { 0.0 };
+            let mut r = || (random() - 0.5) * scale;
+            let a: Vec<Point> = (0..4).map(|_| Point::new(origin + r(), r())).collect();
+            let slide = k % 2 == 0;
+            let b: Vec<Point> = if slide {
+                let (f0, f1) = (0.6 + 0.8 * random(), 0.6 + 0.8 * random());
+                vec![
+                    a[0],
+                    a[0] + (a[1] - a[0]) * f0,
+                    a[3] + (a[2] - a[3]) * f1,
+                    a[3],
+                ]
+            } else {
+                let mut r = || (random() - 0.5) * scale * 0.1;
+                a.iter().map(|q| *q + Vec2::new(r(), r())).collect()
+            };
+            let bound = outline_distance(&a, &b);
+            let truth = sampled_shape_distance(&a, &b);
+            let tiny = 1e-12 * (scale + origin);
+            assert!(
+                truth <= bound + tiny,
+                "{a:?} {b:?}: bound {bound} < {truth}"
+            );
+            assert!(bound <= outline_move(&a, &b), "{a:?} {b:?}");
+            // The question "within T?" refines only what it needs, and agrees.
+            for share in [0.5, 0.9, 0.99, 1.01, 1.1, 2.0] {
+                let within = outline_within(&a, &b, share * bound);
+                assert!(
+                    !within || truth <= share * bound + tiny,
+                    "{a:?} {b:?} {share}"
+                );
+                assert!(share < 1.01 || within, "{a:?} {b:?} {share}");
+            }
+            if slide && truth > 1e-3 * scale {
+                slides += 1;
+                let ratio = bound / truth;
+                ratio_sum += ratio;
+                worst_ratio = worst_ratio.max(ratio);
+            }
+        }
+        eprintln!(
+            "{slides} slides: bound / truth mean {:.3}, worst {worst_ratio:.3}",
+            ratio_sum / slides as f64
+        );
+        assert!(
+            slides >= 30 && ratio_sum / (slides as f64) < 1.2,
+            "{slides} {ratio_sum}"
+        );
+        // A straight cubic's handles slid along it (inside the chord): the same segment.
+        let a = pts(&[(0.0, 0.0), (10.0, 0.0), (20.0, 0.0), (30.0, 0.0)]);
+        let b = pts(&[(0.0, 0.0), (4.0, 0.0), (27.0, 0.0), (30.0, 0.0)]);
+        let (d, m) = (outline_distance(&a, &b), outline_move(&a, &b));
+        assert!(d < 0.05 && m > 2.0, "{d} {m}");
     }
 
     #[test]

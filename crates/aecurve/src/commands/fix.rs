@@ -201,10 +201,11 @@ pub(crate) struct Args {
     /// its masters are written beside it at the same relative paths).
     #[arg(short, long)]
     output: PathBuf,
-    /// How far the outline may move (font units): every segment within this of the
-    /// original at equal parameters. On-curve points move at most this much; a handle
-    /// may move further (alone up to 9/4 of it: it pulls its cubic by at most 4/9 of
-    /// its own move).
+    /// How far the outline may move (font units): every segment's shape within this of
+    /// the original's (every point of each within this of the other; a sound bound of
+    /// their Fréchet distance). On-curve points move at most this much; a handle may move
+    /// further (it pulls its cubic by a fraction of its own move, and mostly along the
+    /// curve when it slides along its tangent).
     #[arg(long, default_value_t = 2.0)]
     tolerance: f64,
     /// The coordinates' grid (default 1 for a UFO: integer font units; for an SVG

@@ -389,7 +389,8 @@ pub struct OutlineFixRequest {
     /// A closed contour (default false).
     #[serde(default)]
     pub closed: Option<bool>,
-    /// How far any point of the outline may move (its units).
+    /// How far the outline may move from the input's shape (its units): every point of
+    /// each segment within this of the other.
     pub tolerance: Positive,
     /// Round moved coordinates to this step (0 or absent: none).
     #[serde(default)]

@@ -94,8 +94,8 @@ def fix_glyph(glyph, tolerance=2.0, grid=1.0, bumps=True):
     with a curvature hook near an end or several extrema first get monotone handle lengths
     where some exist; then every smooth join between two cubics (the points' ``smooth``
     flags, or G1 within rounding) moved towards G2 by sliding its handles along their
-    tangents; no outline further than ``tolerance`` from the original (each segment at
-    equal parameters; a handle may move further), on the ``grid``, and no join or cubic
+    tangents; no outline further than ``tolerance`` from the original (each segment's
+    shape, both ways; a handle may move further), on the ``grid``, and no join or cubic
     left worse, no new hook (the library's ``harmonize::repair``). Works on glyphs whose
     ``contours`` hold ``points`` with ``x``, ``y``, ``type`` (or ``segmentType``) and
     ``smooth`` (ufoLib2, defcon). Returns one dict per contour: its index and either

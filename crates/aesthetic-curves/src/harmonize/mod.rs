@@ -12,10 +12,10 @@
 //! when `u / v = √(e_B / e_A)`: one equation in the two lengths, solved with the least change
 //! of their logarithms, inside the box the tolerance allows.
 //!
-//! **The tolerance** bounds how far the outline moves: each cubic within it of the
-//! original at equal parameters ([`outline_move`]), whichever stage moved it; a handle may
-//! move further (alone up to 9/4 of it), since it pulls its cubic by a fraction of its
-//! own move.
+//! **The tolerance** bounds how far the outline moves: each cubic's shape within it of the
+//! original's (a sound bound of their Fréchet distance, [`outline_distance`]), whichever
+//! stage moved it; a handle may move further, since it pulls its cubic by a fraction of its
+//! own move, and mostly along the curve when it slides along its tangent.
 //!
 //! **The coupling.** `e_A` depends on A's other handle length (a1 slides along A's start
 //! tangent, and its distance from T_A's line changes unless the two tangents are parallel),
@@ -49,7 +49,7 @@
 mod grid;
 mod joint;
 
-use crate::bezier::outline_move;
+use crate::bezier::{outline_distance, outline_move, outline_within};
 use crate::monotone::CurvatureMonotone;
 use crate::{Bezier, Point, Vec2};
 
@@ -165,7 +165,7 @@ struct Reach<'a> {
 impl Reach<'_> {
     /// Whether `q` may replace segment `i`.
     fn allows(&self, i: usize, q: &[Point]) -> bool {
-        q == &self.original[i][..] || outline_move(&self.original[i], q) <= self.tolerance
+        q == &self.original[i][..] || outline_within(&self.original[i], q, self.tolerance)
     }
 
     /// How far segment `i`'s on-curve points in `now` are from the original's.
@@ -768,7 +768,7 @@ impl Stage<'_> {
             })
             .collect();
         let moved = (reach.original.iter().zip(&pts))
-            .map(|(s, p)| outline_move(s, p))
+            .map(|(s, p)| outline_distance(s, p))
             .collect();
         let extrema = (extrema_before.iter().map(|b| b.map(|b| b.0)))
             .zip(pts.iter().map(|p| extrema(p)))
@@ -1768,7 +1768,8 @@ mod tests {
         }
         for (s, t) in segs.iter().zip(&r.segments) {
             assert!(t.iter().all(|c| c.x.fract() == 0.0 && c.y.fract() == 0.0));
-            assert!(outline_move(s, t) <= 2.0);
+            assert!(outline_distance(s, t) <= 2.0);
+            assert!(crate::bezier::sampled_shape_distance(s, t) <= 2.0);
         }
     }
 
@@ -1885,9 +1886,10 @@ mod tests {
         assert_eq!(j.outcome, JoinOutcome::Limited, "{j:?}");
         assert!(j.jump.1 < j.jump.0 && j.jump.1 > 1e-6, "{j:?}");
         assert!(r.moved.iter().all(|m| *m <= 0.02 + 1e-12), "{:?}", r.moved);
-        // The oracle: the two outlines sampled at equal parameters (not outline_move).
+        // The oracle: the two outlines sampled, each point's distance to the other shape
+        // (not outline_distance).
         for (a, b) in segs.iter().zip(&r.segments) {
-            assert!(sampled_distance(a, b) <= 0.02 + 1e-12);
+            assert!(crate::bezier::sampled_shape_distance(a, b) <= 0.02 + 1e-12);
         }
     }
 
