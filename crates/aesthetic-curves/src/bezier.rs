@@ -177,26 +177,24 @@ pub fn outline_move(a: &[Point], b: &[Point]) -> f64 {
 /// matching of the two curves: whatever `s_i` the search finds, the bound holds. Any
 /// degree other than 3, or a pair of different degrees: [`outline_move`].
 pub fn outline_distance(a: &[Point], b: &[Point]) -> f64 {
-    let equal_parameters = outline_move(a, b);
-    if a.len() != 4 || b.len() != 4 || equal_parameters == 0.0 {
-        return equal_parameters;
-    }
-    let cubic = |p: &[Point]| kurbo::CubicBez::new(p[0], p[1], p[2], p[3]);
-    let (ca, cb) = (cubic(a), cubic(b));
-    matched_distance(&ca, &cb, 0.0).min(equal_parameters)
+    shape_bound(a, b, 0.0)
 }
 
 /// Whether cubic `b`'s outline lies within `tolerance` of `a`'s ([`outline_distance`]),
 /// asking the cheaper bound at equal parameters first.
 pub fn outline_within(a: &[Point], b: &[Point], tolerance: f64) -> bool {
-    if outline_move(a, b) <= tolerance {
-        return true;
-    }
-    if a.len() != 4 || b.len() != 4 {
-        return false;
+    shape_bound(a, b, tolerance) <= tolerance
+}
+
+/// [`outline_distance`], refined only as far as a caller comparing it with `enough` needs
+/// ([`matched_distance`]); the bound at equal parameters where that is within `enough`.
+fn shape_bound(a: &[Point], b: &[Point], enough: f64) -> f64 {
+    let equal_parameters = outline_move(a, b);
+    if equal_parameters <= enough || a.len() != 4 || b.len() != 4 {
+        return equal_parameters;
     }
     let cubic = |p: &[Point]| kurbo::CubicBez::new(p[0], p[1], p[2], p[3]);
-    matched_distance(&cubic(a), &cubic(b), tolerance) <= tolerance
+    matched_distance(&cubic(a), &cubic(b), enough).min(equal_parameters)
 }
 
 /// How many pieces [`outline_distance`] starts from, and how many halvings it may add.
