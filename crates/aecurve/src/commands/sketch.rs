@@ -138,8 +138,10 @@ pub(crate) fn sketch_contour(
 pub(crate) struct Args {
     /// The points file.
     input: PathBuf,
-    /// Largest distance from an input point to the result (default 0.5% of the bounding
-    /// box diagonal).
+    /// Largest distance from an input point to the result (default from the points: about
+    /// twice a hand's jitter, 3 times the noise estimated from them; for points sampled from
+    /// a curve 0.5 % of their bounding box's diagonal). A value inside the noise gets the
+    /// fairest curve within it, or an error naming the smallest tolerance that has one.
     #[arg(long, allow_hyphen_values = true, value_parser = positive)]
     tolerance: Option<f64>,
     /// Take the stroke as a contour: corners found, straight runs as lines, a stroke

@@ -100,3 +100,16 @@ pub(super) fn tame_curvatures(k0: f64, k1: f64) -> bool {
 /// its |κ| stands this share above the ends of its interval (or above the maximum found
 /// there): a feature of the data, not the tight spline's rounding.
 pub(super) const PEAK_PROMINENCE: f64 = 0.02;
+
+/// A tolerance typed inside the noise (`inside_noise`): the fit also tries these multiples
+/// of the default tolerance, loosest first; a fair curve fitted there may still stay within
+/// the typed tolerance...
+pub(super) const NOISE_RUNGS_ABOVE: [f64; 2] = [1.5, 1.25];
+
+/// ... then the default, then the default times the powers of this step down to the typed
+/// tolerance...
+pub(super) const NOISE_RUNG_STEP: f64 = 0.9;
+
+/// ... each allowed twice the pieces of the fit at the default and this many more (a fit
+/// that follows the noise splits piece after piece: the cap ends it early).
+pub(super) const NOISE_EXTRA_PIECES: usize = 4;

@@ -216,17 +216,26 @@ pub(super) struct Context<'a> {
 impl<'a> Context<'a> {
     /// Stage 1: the input checked, its noise estimated, the fair spline fitted, and a
     /// straight input refused (no LAC turns along it).
+    #[cfg(test)]
     pub(super) fn new(points: &[Point], opts: &'a SketchOptions) -> Result<Self> {
-        // The points first: a tolerance derived from unusable points is not the cause.
         check_points(points)?;
+        Self::with_noise(points, opts, &Noise::of(points))
+    }
+
+    /// [`Context::new`] with the points already checked ([`check_points`]) and their
+    /// noise estimated.
+    pub(super) fn with_noise(
+        points: &[Point],
+        opts: &'a SketchOptions,
+        noise: &Noise,
+    ) -> Result<Self> {
         Error::check_positive("tolerance", opts.tolerance)?;
         if !(opts.max_turn > 0.1 && opts.max_turn < 3.0) {
             return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
         }
         let end_dirs = line_ends(opts)?;
-        let noise = Noise::of(points);
         let precise = noise.precise(bbox_diagonal(points));
-        let (fit, fit_tol) = fair_spline(points, opts.tolerance, &noise)?;
+        let (fit, fit_tol) = fair_spline(points, opts.tolerance, noise)?;
         let track = Track::new(&fit.spline)?;
         check_turning(&track, opts.min_turn)?;
         let track = if opts.closed {

@@ -40,6 +40,12 @@
 //!
 //! The result reports its inflections and curvature extrema ([`count_events`]).
 //!
+//! A tolerance typed inside the noise of noisy input (below 0.9 times
+//! [`default_tolerance`]) would make the fair spline of step 1 follow the noise's extremes:
+//! `inside_noise` then runs steps 1-7 at a ladder of tolerances and delivers the first fair
+//! curve (G2, no event the fit at the default lacks) within the typed tolerance, or a typed
+//! error naming the closest one found.
+//!
 //! ## The stages, one file each
 //!
 //! - `types`: the public options, pieces and result; `constants`: the fit's constants;
@@ -51,7 +57,8 @@
 //! - `alpha`: step 4, α of a piece by least squares; `pieces`: the LAC or inflection-end
 //!   segment of a piece for given joint tangents;
 //! - `fairing`: step 5; `cubics`: step 6, with its memo and warm starts; `deviation`: step 7;
-//! - `rounds`: steps 4-7 as one round, repeated by [`fit_sketch`] until the tolerance is met.
+//! - `rounds`: steps 4-7 as one round, repeated by [`fit_sketch`] until the tolerance is met;
+//! - `inside_noise`: a tolerance typed inside the noise, a ladder of whole fits.
 
 mod alpha;
 mod constants;
@@ -60,6 +67,7 @@ mod cubics;
 mod deviation;
 mod fairing;
 mod input;
+mod inside_noise;
 mod pieces;
 mod rounds;
 mod segment;
@@ -74,13 +82,13 @@ pub use types::{
 };
 
 use constants::{
-    DEFAULT_NOISE_FACTOR, EXTREME_FACTOR, NOISE_FACTOR_POINTS, NOISY_SIZE_SHARE, PRECISE_SIZE_SHARE,
+    DEFAULT_NOISE_FACTOR, EXTREME_FACTOR, NOISE_FACTOR_POINTS, NOISE_RUNG_STEP, NOISY_SIZE_SHARE,
+    PRECISE_SIZE_SHARE,
 };
-use input::{bbox_diagonal, noise_level, Context, Noise};
-use rounds::{Round, Rounds};
-use segment::initial_slots;
+use input::{bbox_diagonal, check_points, noise_level, Noise};
+use rounds::fit_at;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use kurbo::Point;
 
 /// The default tolerance of a sketch (the protocol's `sketch.fit` default). For noisy
@@ -133,13 +141,14 @@ pub fn estimated_noise(points: &[Point]) -> f64 {
 /// tangents that do not form triangles; [`crate::Error::NoConvergence`] when `max_pieces` are not
 /// enough for the tolerance.
 pub fn fit_sketch(points: &[Point], opts: &SketchOptions) -> Result<Sketch> {
-    let cx = Context::new(points, opts)?;
-    let mut slots = initial_slots(&cx)?;
-    let mut rounds = Rounds::default();
-    loop {
-        crate::deadline::check()?;
-        if let Round::Done(sketch) = rounds.run(&cx, &mut slots)? {
-            return Ok(*sketch);
-        }
+    // The points first: a tolerance derived from unusable points is not the cause.
+    let size = check_points(points)?;
+    Error::check_positive("tolerance", opts.tolerance)?;
+    let noise = Noise::of(points);
+    let default = default_tolerance_of(points, &noise);
+    if noise.sampled(size) || opts.tolerance >= NOISE_RUNG_STEP * default {
+        fit_at(points, opts, &noise)
+    } else {
+        inside_noise::fit(points, opts, &noise, default)
     }
 }

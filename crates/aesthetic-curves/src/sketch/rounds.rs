@@ -7,14 +7,30 @@ use super::constants::{BATCH_AFTER, MAX_JUMP_SPLITS};
 use super::cubics::{CubicCache, Cubics};
 use super::deviation::{measure, polyline_deviation, Deviation};
 use super::fairing::fair;
-use super::input::Context;
+use super::input::{Context, Noise};
 use super::pieces::{settle_inflections, Built};
-use super::segment::{split_at_mid_turn, split_at_peak, split_s_shapes, split_worst};
+use super::segment::{
+    initial_slots, split_at_mid_turn, split_at_peak, split_s_shapes, split_worst,
+};
 use super::slot::{triangle, Slot};
-use super::types::{count_events, FairingReport, PieceShape, Sketch, SketchPiece};
+use super::types::{count_events, FairingReport, PieceShape, Sketch, SketchOptions, SketchPiece};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 use rayon::prelude::*;
+
+/// The fit at `opts.tolerance` (steps 1-7), the points checked and their noise estimated:
+/// the context, the first pieces, then rounds until one delivers.
+pub(super) fn fit_at(points: &[Point], opts: &SketchOptions, noise: &Noise) -> Result<Sketch> {
+    let cx = Context::with_noise(points, opts, noise)?;
+    let mut slots = initial_slots(&cx)?;
+    let mut rounds = Rounds::default();
+    loop {
+        crate::deadline::check()?;
+        if let Round::Done(sketch) = rounds.run(&cx, &mut slots)? {
+            return Ok(*sketch);
+        }
+    }
+}
 
 /// How a round ended.
 pub(super) enum Round {
