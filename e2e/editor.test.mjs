@@ -351,6 +351,21 @@ await step('sketch: an L, a straight stroke, a closed loop and a rounded rectang
   assert.ok(Math.abs((await num('tolerance')) - auto * 1.5) < 1e-4, `tolerance ${await num('tolerance')}`);
   assert.match(await page.textContent('#numbers'), /tolerance \(set\)/);
   assert.ok((await num('max_deviation')) <= auto * 1.5, 'the set tolerance is met');
+  // Typed inside the noise (a fifth of the default): the status names the noise and the
+  // tolerance that has a fair curve; that tolerance, typed, gives one within it.
+  await page.fill('#sketch-tolerance', String(auto * 0.2));
+  await page.dispatchEvent('#sketch-tolerance', 'change');
+  await idle();
+  const refusal = await text('status');
+  console.log(`     typed ${(auto * 0.2).toFixed(3)}: ${refusal}`);
+  const advised = refusal.match(/a tolerance of at least ([0-9.e+-]+) gets it/);
+  assert.ok(advised && /inside the stroke's noise/.test(refusal), refusal);
+  await page.fill('#sketch-tolerance', advised[1]);
+  await page.dispatchEvent('#sketch-tolerance', 'change');
+  await idle();
+  assert.ok((await num('max_deviation')) <= Number(advised[1]), 'the advised tolerance is met');
+  assert.equal(await text('n-g2'), 'yes');
+  await shot('06-sketch-contour-advised-tolerance');
   await page.fill('#sketch-tolerance', '');
   await page.dispatchEvent('#sketch-tolerance', 'change');
   await idle();

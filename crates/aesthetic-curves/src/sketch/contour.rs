@@ -270,6 +270,9 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
         let parts = fit_parts(r, *line, tolerance, one_loop, sigma).map_err(|e| match e {
             Error::NoSegment(m) => Error::NoSegment(format!("run {k}: {m}")),
             Error::NoConvergence(m) => Error::NoConvergence(format!("run {k}: {m}")),
+            Error::InvalidInput { field, message } if field == "tolerance" => {
+                Error::invalid(field, format!("run {k}: {message}"))
+            }
             other => other,
         })?;
         out.push_run(parts);
