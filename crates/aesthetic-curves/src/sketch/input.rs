@@ -1,6 +1,6 @@
 use super::constants::{
     EXTREME_CUT, FAIR_SHARE, FAIR_SHARE_LAST, NEAR_NOISE, NEAR_NOISE_SHARE, PRECISE_NOISE,
-    PRECISE_SCALING,
+    PRECISE_SCALING, TIGHT_SHARE,
 };
 use super::slot::EndPoints;
 use super::track::Track;
@@ -287,14 +287,17 @@ fn line_ends(opts: &SketchOptions) -> Result<[Option<kurbo::Vec2>; 2]> {
 
 /// The fair spline of the points and the tolerance it was fitted to. Precise data (noise
 /// below [`PRECISE_NOISE`] of the size) get the tight least-squares fit, whose tangents
-/// and curvature graphs are accurate, never looser than half the tolerance; noisy data
+/// and curvature graphs are accurate: within 4 times their noise and at least
+/// [`TIGHT_SHARE`] of the size, never looser than half the tolerance; noisy data
 /// (measured lines, pen strokes) the smoothest spline within [`FAIR_SHARE`] of the
 /// tolerance, which carries no hooks or wiggles the tolerance does not demand. Outliers the
 /// noise estimate ignores can keep the tight fit from converging: then half the tolerance.
 fn fair_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(BSplineFit, f64)> {
     let size = bbox_diagonal(points);
     let noisy = !noise.precise(size);
-    let fit_tol = (4.0 * noise.fine).max(1e-5 * size).min(0.5 * tolerance);
+    let fit_tol = (4.0 * noise.fine)
+        .max(TIGHT_SHARE * size)
+        .min(0.5 * tolerance);
     let tight = |tolerance: f64| {
         let opts = FitOptions {
             tolerance,
@@ -416,7 +419,7 @@ mod tests {
         // passes the noise test: a known limit, issue 35).
         let clean = arc(300, 100.0);
         let cx = Context::new(&clean, &opts).unwrap();
-        // Tight: within 1e-5 of the size (the noise is nil), far below the tolerance; the
+        // Tight: within 1e-6 of the size (the noise is nil), far below the tolerance; the
         // events come from a looser spline of their own.
         assert!(cx.fit.max_deviation < 2e-3, "{}", cx.fit.max_deviation);
         assert!(!std::ptr::eq(cx.shape(), &cx.track));
