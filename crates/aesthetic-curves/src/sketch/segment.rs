@@ -9,52 +9,75 @@ use crate::bspline;
 use crate::error::{Error, Result};
 use crate::lac::LacInflectionSegment;
 
-/// Step 2: the cuts of the B-spline.
+/// Step 2: the cuts of the B-spline, in stages: the events located on the tight spline,
+/// inflections that are noise dropped (too close to an end or to each other, near a line's
+/// end, across a flat stretch), one maximum cut per interval, long pieces split.
 pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
-    let (track, shape, opts) = (&cx.track, cx.shape(), cx.opts);
+    let (track, opts) = (&cx.track, cx.opts);
+    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    let (mut infl, maxima) = located_events(cx);
+    drop_close_inflections(track, &mut infl, opts.min_turn);
+    let total = track.angle_between(u0, u1).abs();
+    let turn = |a: f64, b: f64| track.angle_between(a, b).abs();
+    drop_near_line_ends(&mut infl, &turn, (u0, u1, total), opts);
+    drop_flat_stretches(track, &mut infl);
+    let cuts = cuts(cx, &infl, &maxima, total);
+    Ok(within_max_turn(track, &cuts, opts.max_turn))
+}
+
+/// The inflections and curvature maxima of the shape track, each moved to the tight
+/// spline's own event nearby (its location is more accurate) when there is one: the
+/// nearest inflection, the largest maximum; for precise input whose tight spline has its
+/// peak on a knot, that peak found by sampling.
+fn located_events(cx: &Context) -> (Vec<f64>, Vec<f64>) {
+    let (track, shape) = (&cx.track, cx.shape());
     let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
     let (mut infl, mut maxima) = shape.events();
-    if !std::ptr::eq(track, shape) {
-        // Move each event to the tight spline's own event nearby (its location is more
-        // accurate), when there is one: the nearest inflection, the largest maximum.
-        let (ti, tm) = track.events();
-        let w = 0.05 * (u1 - u0);
-        for u in infl.iter_mut() {
-            if let Some(v) = ti
-                .iter()
-                .copied()
-                .filter(|v| (v - *u).abs() < w)
-                .min_by(|a, b| (a - *u).abs().total_cmp(&(b - *u).abs()))
-            {
-                *u = v;
-            }
-        }
-        for u in maxima.iter_mut() {
-            if let Some(v) = tm
-                .iter()
-                .copied()
-                .filter(|v| (v - *u).abs() < w)
-                .max_by(|a, b| track.abs_kappa(*a).total_cmp(&track.abs_kappa(*b)))
-            {
-                *u = v;
-            } else if let Some(v) = cx
-                .precise
-                .then(|| sampled_peak(track, (*u - w).max(u0), (*u + w).min(u1)))
-                .flatten()
-            {
-                // Precise input whose tight spline has its peak on a knot.
-                *u = v;
-            }
+    if std::ptr::eq(track, shape) {
+        return (infl, maxima);
+    }
+    let (ti, tm) = track.events();
+    let w = 0.05 * (u1 - u0);
+    for u in infl.iter_mut() {
+        if let Some(v) = ti
+            .iter()
+            .copied()
+            .filter(|v| (v - *u).abs() < w)
+            .min_by(|a, b| (a - *u).abs().total_cmp(&(b - *u).abs()))
+        {
+            *u = v;
         }
     }
+    for u in maxima.iter_mut() {
+        if let Some(v) = tm
+            .iter()
+            .copied()
+            .filter(|v| (v - *u).abs() < w)
+            .max_by(|a, b| track.abs_kappa(*a).total_cmp(&track.abs_kappa(*b)))
+        {
+            *u = v;
+        } else if let Some(v) = cx
+            .precise
+            .then(|| sampled_peak(track, (*u - w).max(u0), (*u + w).min(u1)))
+            .flatten()
+        {
+            *u = v;
+        }
+    }
+    (infl, maxima)
+}
+
+/// Inflections that turn less than `min_turn` from an end dropped, then inflection pairs
+/// with less turning between them, until none is left to drop.
+fn drop_close_inflections(track: &Track, infl: &mut Vec<f64>, min_turn: f64) {
+    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
     let turn = |a: f64, b: f64| track.angle_between(a, b).abs();
-    // Drop inflections too close to an end, then inflection pairs with little turning between.
     loop {
         let before = infl.len();
-        infl.retain(|&u| turn(u0, u) >= opts.min_turn && turn(u, u1) >= opts.min_turn);
+        infl.retain(|&u| turn(u0, u) >= min_turn && turn(u, u1) >= min_turn);
         let mut i = 0;
         while i + 1 < infl.len() {
-            if turn(infl[i], infl[i + 1]) < opts.min_turn {
+            if turn(infl[i], infl[i + 1]) < min_turn {
                 infl.drain(i..i + 2);
             } else {
                 i += 1;
@@ -64,11 +87,14 @@ pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
             break;
         }
     }
-    let total = turn(u0, u1);
-    drop_near_line_ends(&mut infl, &turn, (u0, u1, total), opts);
-    // An inflection pair (or an inflection and an end) with hardly any curvature between
-    // them is a flat stretch crossed by noise, not an S: drop it (below a tenth of the
-    // curve's largest |κ|).
+}
+
+/// An inflection pair (or an inflection and an end) with hardly any curvature between them
+/// is a flat stretch crossed by noise, not an S: dropped, the flattest first, while a
+/// stretch next to an inflection stays below [`FLAT_STRETCH_SHARE`] of the curve's largest
+/// |κ|.
+fn drop_flat_stretches(track: &Track, infl: &mut Vec<f64>) {
+    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
     let kappa_max_on = |a: f64, b: f64| {
         (0..=16)
             .map(|k| track.abs_kappa(a + (b - a) * k as f64 / 16.0))
@@ -77,9 +103,8 @@ pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
     let k_all = kappa_max_on(u0, u1);
     loop {
         let mut bounds = vec![u0];
-        bounds.extend(&infl);
+        bounds.extend(infl.iter());
         bounds.push(u1);
-        // The flattest stretch next to an inflection, if it is flat enough.
         let flat = (0..bounds.len() - 1)
             .map(|i| (i, kappa_max_on(bounds[i], bounds[i + 1])))
             .filter(|(_, k)| *k < FLAT_STRETCH_SHARE * k_all)
@@ -100,8 +125,13 @@ pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
             }
         }
     }
-    // Boundaries: ends and inflections; one |κ| maximum per interval.
-    // An end that joins a line has zero curvature: an inflection end.
+}
+
+/// The cuts in order: the ends (an end that joins a line has zero curvature: a line cut),
+/// the inflections, and one |κ| maximum per interval between them ([`interval_cut`]; a
+/// peak of precise input is the data's, which no merge crosses).
+fn cuts(cx: &Context, infl: &[f64], maxima: &[f64], total: f64) -> Vec<(f64, Cut)> {
+    let (track, opts) = (&cx.track, cx.opts);
     let end_cut = |given: Option<kurbo::Vec2>| {
         if given.is_some() {
             Cut::Line
@@ -109,23 +139,27 @@ pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
             Cut::End
         }
     };
-    let mut bounds: Vec<(f64, Cut)> = vec![(u0, end_cut(opts.line_ends[0]))];
+    let mut bounds: Vec<(f64, Cut)> = vec![(track.breaks[0], end_cut(opts.line_ends[0]))];
     bounds.extend(infl.iter().map(|&u| (u, Cut::Inflection)));
-    bounds.push((u1, end_cut(opts.line_ends[1])));
+    bounds.push((*track.breaks.last().unwrap(), end_cut(opts.line_ends[1])));
     let mut cuts: Vec<(f64, Cut)> = vec![bounds[0]];
     for w in bounds.windows(2) {
-        if let Some(u) = interval_cut(cx, &maxima, (w[0], w[1]), total) {
-            // Precise input's peaks are the data's: no merge joins across them.
+        if let Some(u) = interval_cut(cx, maxima, (w[0], w[1]), total) {
             cuts.push((u, if cx.precise { Cut::Peak } else { Cut::Other }));
         }
         cuts.push(w[1]);
     }
-    // Split pieces turning more than max_turn.
+    cuts
+}
+
+/// The slots between the cuts, each split evenly in turning into pieces that turn at most
+/// `max_turn`.
+fn within_max_turn(track: &Track, cuts: &[(f64, Cut)], max_turn: f64) -> Vec<Slot> {
     let mut slots = Vec::new();
     for w in cuts.windows(2) {
         let ((a, ca), (b, cb)) = (w[0], w[1]);
-        let t = turn(a, b);
-        let parts = ((t / opts.max_turn).ceil() as usize).max(1);
+        let t = track.angle_between(a, b).abs();
+        let parts = ((t / max_turn).ceil() as usize).max(1);
         let mut prev = (a, ca);
         for k in 1..parts {
             let u = u_at_turn(track, a, b, t * k as f64 / parts as f64);
@@ -134,7 +168,7 @@ pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
         }
         slots.push(slot(track, prev, (b, cb)));
     }
-    Ok(slots)
+    slots
 }
 
 /// The cut inside the interval between two bounds (ends or inflections): its largest
