@@ -83,203 +83,299 @@ pub(super) fn difference_column(
     }
 }
 
-/// Step 4: G2 fairing by Newton on the active joints' tangent angles.
+/// The fairing problem, read by both of its stages: the pieces' slots and joint points,
+/// the joints faired (every joint but those with zero curvature by construction on both
+/// sides), and the merit's scale, which stays that of the first build: measured against a
+/// trial's own largest curvature, a step that blows one free end up into a hook (a triangle
+/// at the edge of its existence region) would shrink every relative mismatch and be
+/// accepted.
+struct Fairing<'a> {
+    slots: &'a [Slot],
+    pts: &'a [Point],
+    opts: &'a SketchOptions,
+    active: Vec<usize>,
+    scale: f64,
+}
+
+/// The state of the tangent stage: the joints' directions and the pieces built on them.
+type Tangents = (Vec<Vec2>, Vec<Built>);
+
+/// The state of the α stage: the directions, the slots with their α, the pieces.
+type WithAlphas = (Vec<Vec2>, Vec<Slot>, Vec<Built>);
+
+/// Step 5: G2 fairing by Newton on the active joints' tangent angles, then, where that
+/// leaves a jump, with the α of the LAC pieces next to it ([`Fairing::alphas`]). Returns the
+/// pieces and the report, whose jump covers every joint of the result.
 pub(super) fn fair(
     slots: &[Slot],
     pts: &[Point],
     dirs: &mut [Vec2],
     opts: &SketchOptions,
 ) -> Result<(Vec<Built>, FairingReport)> {
-    let m = slots.len();
     let built = build_all(slots, pts, dirs)?;
-    // Joints where both sides are inflection ends have zero curvature on both sides; every
-    // other joint (an inflection cut whose piece could not be an inflection piece too) is
-    // faired.
-    let zero_both = |built: &[Built], j: usize| {
-        let (a, b) = sides(j, m);
-        built[a].curve.zero_curvature_ends()[1] && built[b].curve.zero_curvature_ends()[0]
+    let active = faired_joints(&built, opts.closed);
+    let problem = Fairing {
+        slots,
+        pts,
+        opts,
+        scale: curvature_scale(&built),
+        active,
     };
-    // A closed curve's seam (joint 0) is faired too.
-    let first = usize::from(!opts.closed);
-    let faired =
-        |built: &[Built]| -> Vec<usize> { (first..m).filter(|&j| !zero_both(built, j)).collect() };
-    let active = faired(&built);
-    // The merit's scale stays that of the first build: measured against the trial's own
-    // largest curvature, a step that blows one free end up into a hook (a triangle at the
-    // edge of its existence region) would shrink every relative mismatch and be accepted.
-    let scale = curvature_scale(&built);
-    let d = mismatches(&built, &active, scale);
-    let initial = max_abs(&d);
-    let na = active.len();
-    let tol = opts.g2_tolerance;
-    // Newton on the active joints' tangent angles (the solver layer's damped Newton); the
-    // state is the tangent directions and the pieces built on them.
-    let direction = |(dirs, built): &(Vec<Vec2>, Vec<Built>), d: &[f64]| {
-        // Finite-difference Jacobian: joint k's angle moves pieces active[k]-1 and active[k].
-        // Central difference; one-sided where a side leaves the admissible set. The columns
-        // are independent: computed in parallel (the same numbers in any order).
-        let column = |j: usize| -> Option<Vec<f64>> {
-            let at = |h: f64| -> Option<Vec<f64>> {
-                let mut trial = dirs.to_vec();
-                turn_joint(&mut trial, j, h);
-                let mut b2 = built.clone();
-                rebuild_joint(&mut b2, (slots, pts, &trial), j)?;
-                Some(mismatches(&b2, &active, scale))
-            };
-            let h = 1e-6;
-            difference_column(at(h), at(-h), d, h)
-        };
-        let columns: Vec<Option<Vec<f64>>> = if na >= 4 {
-            active.par_iter().map(|&j| column(j)).collect()
-        } else {
-            active.iter().map(|&j| column(j)).collect()
-        };
-        let mut jac = DMatrix::<f64>::zeros(na, na);
-        for (k, c) in columns.into_iter().enumerate() {
-            for (r, v) in c?.into_iter().enumerate() {
-                jac[(r, k)] = v;
-            }
-        }
-        let step = jac
-            .lu()
-            .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))?;
-        let big = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let lam = if big > 0.3 { 0.3 / big } else { 1.0 };
-        Some((step.iter().copied().collect::<Vec<f64>>(), lam))
-    };
-    let trial = |(dirs, _): &(Vec<Vec2>, Vec<Built>), step: &[f64], lam: f64| {
-        let mut trial = dirs.to_vec();
-        for (k, &j) in active.iter().enumerate() {
-            turn_joint(&mut trial, j, lam * step[k]);
-        }
-        let b2 = build_all(slots, pts, &trial).ok()?;
-        let d2 = mismatches(&b2, &active, scale);
-        Some(((trial, b2), d2))
-    };
-    // Converged by the measure of the final report: over the build's own curvature.
-    let own = |built: &[Built]| max_abs(&mismatches(built, &active, curvature_scale(built)));
-    let converged = |(_, built): &(Vec<Vec2>, Vec<Built>), _: &[f64]| own(built) <= tol;
-    let newton = crate::solve::systems::DampedNewton {
-        max_iterations: opts.max_fairing_iterations,
-        halvings: 30,
-    };
-    let run = crate::solve::systems::damped_newton(
-        (dirs.to_vec(), built),
-        d,
-        direction,
-        trial,
-        converged,
-        &newton,
-    )?;
-    let (new_dirs, mut built) = run.state;
+    let initial = max_abs(&problem.mismatches(&built));
+    let (new_dirs, mut built, iterations) = problem.tangents(dirs.to_vec(), built)?;
     dirs.copy_from_slice(&new_dirs);
-    let final_jump = own(&built);
+    let final_jump = problem.own(&built);
     let mut report = FairingReport {
-        iterations: run.iterations,
+        iterations,
         initial_jump: initial,
         final_jump,
-        converged: final_jump <= tol,
+        converged: final_jump <= opts.g2_tolerance,
     };
     if !report.converged {
-        free_alphas(
-            slots,
-            pts,
-            dirs,
-            opts,
-            &active,
-            scale,
-            &mut built,
-            &mut report,
-        )?;
+        report.iterations += problem.alphas(dirs, &mut built)?;
     }
     // The report covers every joint of the result: a step can turn a piece next to a joint
     // left out (zero curvature on both sides) into an ordinary one, whose end curvature
     // there is not zero.
     report.final_jump = max_abs(&mismatches(
         &built,
-        &faired(&built),
+        &faired_joints(&built, opts.closed),
         curvature_scale(&built),
     ));
     report.converged = report.final_jump <= opts.g2_tolerance;
     Ok((built, report))
 }
 
-/// The fairing's second stage, when the joint tangents alone leave a jump: the α of every
-/// LAC piece next to a joint that still jumps joins the unknowns (a joint between an
-/// inflection-end piece, whose end curvature its triangle fixes, and a short piece whose
-/// least-squares α sits on its bound can have no tangent that matches). More unknowns than
-/// equations: the minimum-norm Gauss–Newton step (α weighted by [`ALPHA_WEIGHT`]), α kept
-/// within [`ALPHA_RANGE`], the same merit and line search as the first stage.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn free_alphas(
-    slots: &[Slot],
-    pts: &[Point],
-    dirs: &mut [Vec2],
-    opts: &SketchOptions,
-    active: &[usize],
-    scale: f64,
-    built: &mut Vec<Built>,
-    report: &mut FairingReport,
-) -> Result<()> {
-    let na = active.len();
-    let tol = opts.g2_tolerance;
-    let mut d0 = mismatches(built, active, scale);
-    let mut free: Vec<usize> = Vec::new();
-    for (k, &j) in active.iter().enumerate() {
-        if d0[k].abs() > tol {
-            let (a, b) = sides(j, built.len());
-            for i in [a, b] {
-                if built[i].curve.alpha_is_free() && !free.contains(&i) {
-                    free.push(i);
+/// The joints to fair: every joint (a closed curve's seam, joint 0, too) but those where
+/// both sides are inflection ends, whose curvature is zero on both sides by construction
+/// (an inflection cut whose piece could not be an inflection piece too is faired).
+fn faired_joints(built: &[Built], closed: bool) -> Vec<usize> {
+    let m = built.len();
+    let zero_both = |j: usize| {
+        let (a, b) = sides(j, m);
+        built[a].curve.zero_curvature_ends()[1] && built[b].curve.zero_curvature_ends()[0]
+    };
+    (usize::from(!closed)..m)
+        .filter(|&j| !zero_both(j))
+        .collect()
+}
+
+impl Fairing<'_> {
+    /// The mismatches at the active joints over the problem's scale.
+    fn mismatches(&self, built: &[Built]) -> Vec<f64> {
+        mismatches(built, &self.active, self.scale)
+    }
+
+    /// The largest mismatch over the build's own curvature (the final report's measure).
+    fn own(&self, built: &[Built]) -> f64 {
+        max_abs(&mismatches(built, &self.active, curvature_scale(built)))
+    }
+
+    /// The solver layer's limits for either stage.
+    fn newton(&self) -> crate::solve::systems::DampedNewton {
+        crate::solve::systems::DampedNewton {
+            max_iterations: self.opts.max_fairing_iterations,
+            halvings: 30,
+        }
+    }
+
+    /// `dirs` with each active joint turned by `lam` times its share of `step`.
+    fn turned(&self, dirs: &[Vec2], step: &[f64], lam: f64) -> Vec<Vec2> {
+        let mut trial = dirs.to_vec();
+        for (k, &j) in self.active.iter().enumerate() {
+            turn_joint(&mut trial, j, lam * step[k]);
+        }
+        trial
+    }
+
+    /// The mismatches with joint `j` turned by `h` in `slots` (the pieces on both sides
+    /// rebuilt), `None` where a side cannot be built.
+    fn joint_moved(
+        &self,
+        (dirs, slots, built): (&[Vec2], &[Slot], &[Built]),
+        j: usize,
+        h: f64,
+    ) -> Option<Vec<f64>> {
+        let mut trial = dirs.to_vec();
+        turn_joint(&mut trial, j, h);
+        let mut b2 = built.to_vec();
+        rebuild_joint(&mut b2, (slots, self.pts, &trial), j)?;
+        Some(self.mismatches(&b2))
+    }
+
+    /// Stage 1: Newton on the active joints' tangent angles (square system; the Jacobian
+    /// by central differences, one-sided where a side leaves the admissible set; its
+    /// columns, a joint's two pieces each, in parallel: the same numbers in any order).
+    /// Returns the directions, the pieces and the iterations.
+    fn tangents(
+        &self,
+        dirs: Vec<Vec2>,
+        built: Vec<Built>,
+    ) -> Result<(Vec<Vec2>, Vec<Built>, usize)> {
+        let na = self.active.len();
+        let direction = |(dirs, built): &Tangents, d: &[f64]| {
+            let column = |j: usize| {
+                let h = 1e-6;
+                let at = |h| self.joint_moved((dirs, self.slots, built), j, h);
+                difference_column(at(h), at(-h), d, h)
+            };
+            let columns: Vec<Option<Vec<f64>>> = if na >= 4 {
+                self.active.par_iter().map(|&j| column(j)).collect()
+            } else {
+                self.active.iter().map(|&j| column(j)).collect()
+            };
+            let mut jac = DMatrix::<f64>::zeros(na, na);
+            for (k, c) in columns.into_iter().enumerate() {
+                for (r, v) in c?.into_iter().enumerate() {
+                    jac[(r, k)] = v;
+                }
+            }
+            let step = jac
+                .lu()
+                .solve(&DVector::from_iterator(na, d.iter().map(|v| -v)))?;
+            let big = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let lam = if big > 0.3 { 0.3 / big } else { 1.0 };
+            Some((step.iter().copied().collect::<Vec<f64>>(), lam))
+        };
+        let trial = |(dirs, _): &Tangents, step: &[f64], lam: f64| {
+            let trial = self.turned(dirs, step, lam);
+            let b2 = build_all(self.slots, self.pts, &trial).ok()?;
+            let d2 = self.mismatches(&b2);
+            Some(((trial, b2), d2))
+        };
+        let converged =
+            |(_, built): &Tangents, _: &[f64]| self.own(built) <= self.opts.g2_tolerance;
+        let d = self.mismatches(&built);
+        let run = crate::solve::systems::damped_newton(
+            (dirs, built),
+            d,
+            direction,
+            trial,
+            converged,
+            &self.newton(),
+        )?;
+        let (dirs, built) = run.state;
+        Ok((dirs, built, run.iterations))
+    }
+
+    /// Stage 2, when the joint tangents alone leave a jump: the α of every LAC piece next
+    /// to a joint that still jumps joins the unknowns (a joint between an inflection-end
+    /// piece, whose end curvature its triangle fixes, and a short piece whose least-squares
+    /// α sits on its bound can have no tangent that matches). More unknowns than equations:
+    /// the minimum-norm Gauss–Newton step (α weighted by [`ALPHA_WEIGHT`]), α kept within
+    /// [`ALPHA_RANGE`], the same merit and line search as stage 1. Updates `dirs` and
+    /// `built`; returns the iterations.
+    fn alphas(&self, dirs: &mut [Vec2], built: &mut Vec<Built>) -> Result<usize> {
+        let free = self.free_pieces(built);
+        if free.is_empty() {
+            return Ok(0);
+        }
+        let (local, start) = self.alpha_start(&free, dirs, built);
+        if let Some(b2) = start {
+            *built = b2;
+        }
+        let d0 = self.mismatches(built);
+        let direction = |state: &WithAlphas, d: &[f64]| self.alpha_step(&free, state, d);
+        let trial = |(dirs, local, _): &WithAlphas, step: &[f64], lam: f64| {
+            let trial = self.turned(dirs, step, lam);
+            let na = self.active.len();
+            let mut tl = local.clone();
+            for (k, &i) in free.iter().enumerate() {
+                let a = tl[i].alpha.unwrap_or(1.0) + lam * step[na + k];
+                tl[i].alpha = Some(a.clamp(ALPHA_RANGE.0, ALPHA_RANGE.1));
+            }
+            let b2 = build_all(&tl, self.pts, &trial).ok()?;
+            let d2 = self.mismatches(&b2);
+            Some(((trial, tl, b2), d2))
+        };
+        let converged =
+            |(_, _, built): &WithAlphas, _: &[f64]| self.own(built) <= self.opts.g2_tolerance;
+        let run = crate::solve::systems::damped_newton(
+            (dirs.to_vec(), local, std::mem::take(built)),
+            d0,
+            direction,
+            trial,
+            converged,
+            &self.newton(),
+        )?;
+        let (new_dirs, _, new_built) = run.state;
+        dirs.copy_from_slice(&new_dirs);
+        *built = new_built;
+        Ok(run.iterations)
+    }
+
+    /// The LAC pieces (α free) next to an active joint that still jumps, in order.
+    fn free_pieces(&self, built: &[Built]) -> Vec<usize> {
+        let d = self.mismatches(built);
+        let mut free: Vec<usize> = Vec::new();
+        for (k, &j) in self.active.iter().enumerate() {
+            if d[k].abs() > self.opts.g2_tolerance {
+                let (a, b) = sides(j, built.len());
+                for i in [a, b] {
+                    if built[i].curve.alpha_is_free() && !free.contains(&i) {
+                        free.push(i);
+                    }
                 }
             }
         }
+        free.sort_unstable();
+        free
     }
-    if free.is_empty() {
-        return Ok(());
-    }
-    free.sort_unstable();
-    // α as built; an α that was outside its triangle's existence region and moved onto its
-    // edge (where an end curvature goes to 0 or infinity and no derivative helps) starts a
-    // tenth of the way from there to 0.5, which every triangle admits.
-    let mut local: Vec<Slot> = slots.to_vec();
-    for &i in &free {
-        let a = built[i].alpha;
-        let snapped = slots[i].alpha.is_some_and(|s| (s - a).abs() > 1e-9);
-        local[i].alpha = Some(if snapped { a + 0.1 * (0.5 - a) } else { a });
-    }
-    if free.iter().any(|&i| local[i].alpha != Some(built[i].alpha)) {
-        if let Ok(b2) = build_all(&local, pts, dirs) {
-            *built = b2;
-            d0 = mismatches(built, active, scale);
+
+    /// The slots with the free pieces' starting α: as built; an α that was outside its
+    /// triangle's existence region and moved onto its edge (where an end curvature goes to
+    /// 0 or infinity and no derivative helps) starts a tenth of the way from there to 0.5,
+    /// which every triangle admits. With the pieces rebuilt when any α changed.
+    fn alpha_start(
+        &self,
+        free: &[usize],
+        dirs: &[Vec2],
+        built: &[Built],
+    ) -> (Vec<Slot>, Option<Vec<Built>>) {
+        let mut local: Vec<Slot> = self.slots.to_vec();
+        for &i in free {
+            let a = built[i].alpha;
+            let snapped = self.slots[i].alpha.is_some_and(|s| (s - a).abs() > 1e-9);
+            local[i].alpha = Some(if snapped { a + 0.1 * (0.5 - a) } else { a });
         }
+        let changed = free.iter().any(|&i| local[i].alpha != Some(built[i].alpha));
+        let rebuilt = changed
+            .then(|| build_all(&local, self.pts, dirs).ok())
+            .flatten();
+        (local, rebuilt)
     }
-    let nx = na + free.len();
-    type State = (Vec<Vec2>, Vec<Slot>, Vec<Built>);
-    let direction = |(dirs, local, built): &State, d: &[f64]| {
-        // Columns: the active joints' tangent angles, then the free pieces' α.
+
+    /// The mismatches with free piece `i`'s α moved by `h`; `None` outside [`ALPHA_RANGE`]
+    /// or where the piece moves back inside its existence region (no derivative there).
+    fn alpha_moved(&self, (dirs, local, built): &WithAlphas, i: usize, h: f64) -> Option<Vec<f64>> {
+        let mut sl = local[i].clone();
+        let a = sl.alpha? + h;
+        if !(ALPHA_RANGE.0..=ALPHA_RANGE.1).contains(&a) {
+            return None;
+        }
+        sl.alpha = Some(a);
+        let mut b2 = built.clone();
+        b2[i] = build_piece(&sl, self.pts[i], dirs[i], self.pts[i + 1], dirs[i + 1]).ok()?;
+        if (b2[i].alpha - a).abs() > 1e-12 {
+            return None;
+        }
+        Some(self.mismatches(&b2))
+    }
+
+    /// Stage 2's step: the minimum-norm step in the weighted unknowns (the active joints'
+    /// angles, then the free pieces' α), `x = Jᵀ (J Jᵀ + μ I)⁻¹ (-d)`, and its first length
+    /// (angles by at most 0.3 rad, α by at most 1).
+    fn alpha_step(&self, free: &[usize], state: &WithAlphas, d: &[f64]) -> Option<(Vec<f64>, f64)> {
+        let na = self.active.len();
+        let nx = na + free.len();
+        let (dirs, local, built) = state;
         let column = |c: usize| -> Vec<f64> {
-            let at = |h: f64| -> Option<Vec<f64>> {
-                let mut b2 = built.clone();
+            let at = |h: f64| {
                 if c < na {
-                    let j = active[c];
-                    let mut trial = dirs.to_vec();
-                    turn_joint(&mut trial, j, h);
-                    rebuild_joint(&mut b2, (local, pts, &trial), j)?;
+                    self.joint_moved((dirs, local, built), self.active[c], h)
                 } else {
-                    let i = free[c - na];
-                    let mut sl = local[i].clone();
-                    let a = sl.alpha? + h;
-                    if !(ALPHA_RANGE.0..=ALPHA_RANGE.1).contains(&a) {
-                        return None;
-                    }
-                    sl.alpha = Some(a);
-                    b2[i] = build_piece(&sl, pts[i], dirs[i], pts[i + 1], dirs[i + 1]).ok()?;
-                    if (b2[i].alpha - a).abs() > 1e-12 {
-                        return None; // moved back inside the existence region: no derivative
-                    }
+                    self.alpha_moved(state, free[c - na], h)
                 }
-                Some(mismatches(&b2, active, scale))
             };
             let h = if c < na { 1e-6 } else { 1e-5 };
             // An unknown that can move neither way does not move.
@@ -293,7 +389,6 @@ pub(super) fn free_alphas(
                 jac[(r, c)] = v * w;
             }
         }
-        // Minimum-norm step in the weighted unknowns: x = Jᵀ (J Jᵀ + μ I)⁻¹ (-d).
         let jjt = &jac * jac.transpose();
         let mu = 1e-12 * jjt.trace().max(f64::MIN_POSITIVE);
         let y = (jjt + DMatrix::identity(na, na) * mu)
@@ -309,41 +404,7 @@ pub(super) fn free_alphas(
             .min(0.3 / big_angle.max(1e-300))
             .min(1.0 / big_alpha.max(1e-300));
         Some((step.iter().copied().collect::<Vec<f64>>(), lam))
-    };
-    let trial = |(dirs, local, _): &State, step: &[f64], lam: f64| {
-        let mut trial = dirs.to_vec();
-        for (k, &j) in active.iter().enumerate() {
-            turn_joint(&mut trial, j, lam * step[k]);
-        }
-        let mut tl = local.clone();
-        for (k, &i) in free.iter().enumerate() {
-            let a = tl[i].alpha.unwrap_or(1.0) + lam * step[na + k];
-            tl[i].alpha = Some(a.clamp(ALPHA_RANGE.0, ALPHA_RANGE.1));
-        }
-        let b2 = build_all(&tl, pts, &trial).ok()?;
-        let d2 = mismatches(&b2, active, scale);
-        Some(((trial, tl, b2), d2))
-    };
-    let own = |built: &[Built]| max_abs(&mismatches(built, active, curvature_scale(built)));
-    let converged = |(_, _, built): &State, _: &[f64]| own(built) <= tol;
-    let newton = crate::solve::systems::DampedNewton {
-        max_iterations: opts.max_fairing_iterations,
-        halvings: 30,
-    };
-    let run = crate::solve::systems::damped_newton(
-        (dirs.to_vec(), local, std::mem::take(built)),
-        d0,
-        direction,
-        trial,
-        converged,
-        &newton,
-    )?;
-    // The final jump and verdict are [`fair`]'s, over every joint of the result.
-    report.iterations += run.iterations;
-    let (new_dirs, _, new_built) = run.state;
-    dirs.copy_from_slice(&new_dirs);
-    *built = new_built;
-    Ok(())
+    }
 }
 
 #[cfg(test)]
