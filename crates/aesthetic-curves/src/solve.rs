@@ -11,9 +11,12 @@
 //!   points (block Gauss–Seidel sweeps).
 //! - [`least_squares`]: Levenberg–Marquardt for small nonlinear least-squares problems
 //!   (the rational-cubic fit and the single-LAC fit), with a [`least_squares::Stop`] reason.
+//! - [`linear`]: the linear systems of Newton steps along a chain of unknowns
+//!   ([`linear::Tridiagonal`], cyclic for a closed chain): O(n), a dense LU only as fallback.
 
 pub mod least_squares;
 pub mod line_search;
+pub mod linear;
 pub mod minimize;
 pub mod roots;
 pub mod systems;

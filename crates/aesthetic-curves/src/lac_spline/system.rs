@@ -1,7 +1,8 @@
 //! The G2 problem: unknown tangent angles at the smooth points, one equation per smooth
 //! point (the curvature coming in equals the curvature going out), solved by
 //! [`crate::solve::systems::damped_newton`] with a Jacobian of forward differences span by span
-//! (each span depends on the angles at its two ends only, so a column costs two spans).
+//! (each span depends on the angles at its two ends only, so a column costs two spans, and
+//! the Jacobian is tridiagonal, cyclic for a closed curve: [`Tridiagonal`], O(n) a step).
 //!
 //! A free end (an open curve's first or last point, a corner) has no unknown: its span
 //! leaves it as a circular arc (the deviation mirrored from the other end), and a span
@@ -9,9 +10,9 @@
 
 use super::span::{self, Solved};
 use crate::error::{Error, Result};
+use crate::solve::linear::Tridiagonal;
 use crate::solve::systems::{damped_newton, DampedNewton, SystemStop};
 use kurbo::Point;
-use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
 /// The spans' signed curvatures at their start and end.
@@ -121,9 +122,9 @@ impl Problem<'_> {
     /// spans at the unknown's point with its angle moved by [`STEP`] (forward differences:
     /// the residuals themselves are exact, so Newton still converges, by a factor of about
     /// 1e-7 a step once close; backward where a span cannot be built forward).
-    fn jacobian(&self, theta: &[f64], kappas: &[(f64, f64)]) -> Option<DMatrix<f64>> {
+    fn jacobian(&self, theta: &[f64], kappas: &[(f64, f64)]) -> Option<Tridiagonal> {
         let m = self.smooth.len();
-        let mut jac = DMatrix::zeros(m, m);
+        let mut jac = Tridiagonal::zeros(m);
         let mut moved = theta.to_vec();
         for (u, &p) in self.smooth.iter().enumerate() {
             let (i, o) = self.around(p);
@@ -143,10 +144,10 @@ impl Problem<'_> {
                 // κ at the span's end enters the residual at b (as κ in), its start at a
                 // (as minus κ out).
                 if let Some(r) = self.unknown[b] {
-                    jac[(r, u)] += d1 * self.length_at(b);
+                    jac.add(r, u, d1 * self.length_at(b));
                 }
                 if let Some(r) = self.unknown[a] {
-                    jac[(r, u)] -= d0 * self.length_at(a);
+                    jac.add(r, u, -d0 * self.length_at(a));
                 }
             }
         }
@@ -239,10 +240,8 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
         r0,
         |(theta, kappas), r| {
             let jac = problem.jacobian(theta, kappas)?;
-            let step = jac.lu().solve(&(-DVector::from_column_slice(r)))?;
-            step.iter()
-                .all(|x| x.is_finite())
-                .then(|| (step.as_slice().to_vec(), 1.0))
+            let minus: Vec<f64> = r.iter().map(|v| -v).collect();
+            Some((jac.solve(&minus)?, 1.0))
         },
         |(theta, _), step, len| {
             // A Newton step may not turn a tangent by more than a quarter turn.
