@@ -60,7 +60,7 @@ fn bench(c: &mut Criterion) {
     g.finish();
     // The G2 log-aesthetic spline at α = -1 solves Spiro's own equations (tests/spiro_oracle.rs:
     // the curvatures agree to 1e-10): its solve alone against libspiro's, and the whole spline
-    // (every piece's cubic fitted and proven monotone), on the sizes it takes (500 points).
+    // (every piece's cubic fitted and proven monotone), on the sizes it takes (up to 500 points).
     let circle100: Vec<aesthetic_curves::Point> = (0..100)
         .map(|i| {
             let a = std::f64::consts::TAU * i as f64 / 100.0;
@@ -70,6 +70,7 @@ fn bench(c: &mut Criterion) {
     let lac_sets = [
         ("open_15", wavy_points(15, 7), false),
         ("open_100", wavy_points(100, 7), false),
+        ("open_500", wavy_points(500, 7), false),
         ("circle_closed_100", circle100, true),
     ];
     let mut g = c.benchmark_group("lac_spline_vs_spiro");
