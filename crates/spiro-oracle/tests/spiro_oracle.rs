@@ -101,6 +101,20 @@ fn the_clothoid_spline_is_spiros() {
             false,
             vec![],
         ),
+        // S2's example points taken as a closed curve: a thin zig-zag whose closing chord
+        // the circles' tangents ask to turn 320° (refused before session 33).
+        (
+            vec![
+                p(0.0, 0.0),
+                p(2.0, 1.5),
+                p(4.0, 1.0),
+                p(6.0, 3.0),
+                p(8.0, 2.5),
+                p(10.0, 4.0),
+            ],
+            true,
+            vec![],
+        ),
         (
             vec![
                 p(0.0, 0.0),

@@ -187,15 +187,16 @@ impl Problem<'_> {
 
     /// Starting tangents, the first whose spans can all be built is taken: at each smooth
     /// point the tangent of the circle through it and its two neighbours (the chord-tangent
-    /// angle equals the inscribed angle), or the direction from its previous neighbour to
-    /// its next (where a circle's tangent makes a span turn too far: a long closing chord).
-    pub(super) fn guesses(&self) -> [Vec<f64>; 2] {
+    /// angle equals the inscribed angle); that guess mended where a span cannot be built
+    /// ([`Problem::mended`]); or the direction from its previous neighbour to its next
+    /// (where a circle's tangent makes a span turn too far: a long closing chord).
+    pub(super) fn guesses(&self) -> [Vec<f64>; 3] {
         let ang = |a: Point, b: Point| (b - a).y.atan2((b - a).x);
         let around = |p: usize| {
             let (i, o) = self.around(p);
             (self.ends[i].0, self.ends[o].1)
         };
-        let circle = self
+        let circle: Vec<f64> = self
             .smooth
             .iter()
             .map(|&p| {
@@ -213,7 +214,69 @@ impl Problem<'_> {
                 ang(self.points[prev], self.points[next])
             })
             .collect();
-        [circle, bisector]
+        let mended = self.mended(&circle);
+        [circle, mended, bisector]
+    }
+
+    /// `theta` with the tangent at each smooth end of a span that cannot be built taken
+    /// from its other span as if it were a free end there: that span a circular arc from
+    /// its other end's tangent. A long span across a thin shape (S2's zig-zag closed: its
+    /// closing chord) then starts as the S whose halves turn back along the short spans,
+    /// near the root libspiro finds, where the circles' tangents ask it to turn 320°.
+    fn mended(&self, theta: &[f64]) -> Vec<f64> {
+        let mut out = theta.to_vec();
+        let spans = self.ends.len();
+        for k in (0..spans).filter(|&k| self.span(k, theta).is_err()) {
+            let (i, j) = self.ends[k];
+            for p in [i, j] {
+                let Some(u) = self.unknown[p] else { continue };
+                // The other span at p, and whether p is its start.
+                let (before, after) = self.around(p);
+                let (other, p_starts) = if before == k {
+                    (after, true)
+                } else {
+                    (before, false)
+                };
+                if other == k {
+                    continue;
+                }
+                let (a, b) = self.deviations(other, theta);
+                let g = self.chord_angle(other);
+                out[u] = if p_starts { g - b } else { g - a };
+            }
+            self.shrink_to_build(k, &mut out);
+        }
+        out
+    }
+
+    /// Span `k`'s end tangents turned towards its chord, both by the same share of their
+    /// deviations, the least that builds it (bisection to 2⁻³⁰), if it cannot be built.
+    fn shrink_to_build(&self, k: usize, theta: &mut [f64]) {
+        if self.span(k, theta).is_ok() {
+            return;
+        }
+        let (i, j) = self.ends[k];
+        let g = self.chord_angle(k);
+        let (a, b) = self.deviations(k, theta);
+        let at = |share: f64, theta: &mut [f64]| {
+            if let Some(u) = self.unknown[i] {
+                theta[u] = g + share * a;
+            }
+            if let Some(u) = self.unknown[j] {
+                theta[u] = g + share * b;
+            }
+        };
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..30 {
+            let mid = 0.5 * (lo + hi);
+            at(mid, theta);
+            if self.span(k, theta).is_ok() {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        at(lo, theta);
     }
 }
 
