@@ -47,8 +47,12 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<LacInflectionSegment>()?;
     m.add_class::<PseudoSpline>()?;
     m.add_class::<LacSpline>()?;
+    m.add_class::<SplineSegment>()?;
     m.add_class::<LacFit>()?;
     m.add_class::<Sketch>()?;
+    m.add_class::<SketchSegment>()?;
+    m.add_class::<FairingReport>()?;
+    m.add_class::<BSpline>()?;
     m.add_class::<SketchContour>()?;
     m.add_function(wrap_pyfunction!(are_curvature_monotone, m)?)?;
     m.add_function(wrap_pyfunction!(pseudo_elastic, m)?)?;

@@ -4,7 +4,56 @@ use crate::args::*;
 use crate::curves::*;
 use crate::exports::*;
 use aesthetic_curves as ac;
+use numpy::PyArray2;
 use pyo3::prelude::*;
+
+/// One piece of a sketch, with the fields of the protocol's `segments` entries.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct SketchSegment {
+    /// "lac" or "lac_inflection".
+    pub(crate) kind: &'static str,
+    /// Its α.
+    pub(crate) alpha: f64,
+    /// α sits on the bound of its fit (the data do not pin it down).
+    pub(crate) alpha_at_bound: bool,
+    /// α estimated from the piece's curvature graph (None for inflection pieces and
+    /// pieces of nearly constant curvature).
+    pub(crate) alpha_estimate: Option<f64>,
+    /// Its control triangle in curve order, a (3, 2) array.
+    pub(crate) control: Py<PyArray2<f64>>,
+    /// Signed curvature at its start and end.
+    pub(crate) end_curvatures: (f64, f64),
+    /// Its rational cubic.
+    pub(crate) rational: RationalBezier,
+    /// Largest distance of the cubic from the segment.
+    pub(crate) rational_error: f64,
+    /// The cubic's curvature is proven monotone.
+    pub(crate) monotone: bool,
+}
+
+/// What the sketch's G2 fairing did (the protocol's `fairing`).
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct FairingReport {
+    /// It reached its target.
+    pub(crate) converged: bool,
+    /// Newton iterations.
+    pub(crate) iterations: usize,
+    /// Largest relative curvature jump before.
+    pub(crate) initial_jump: f64,
+    /// Largest relative curvature jump after.
+    pub(crate) final_jump: f64,
+}
+
+/// The smoothing B-spline a sketch's pieces were fitted to (the protocol's `bspline`).
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct BSpline {
+    /// Its degree.
+    pub(crate) degree: usize,
+    /// Its knots.
+    pub(crate) knots: Vec<f64>,
+    /// Its control points, an (n, 2) array.
+    pub(crate) control_points: Py<PyArray2<f64>>,
+}
 
 /// Pen input to a G2 curve of LAC pieces, each delivered as a rational cubic.
 #[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
@@ -15,6 +64,12 @@ pub(crate) struct Sketch {
     pub(crate) pieces: Vec<RationalBezier>,
     /// Each piece's α.
     pub(crate) alphas: Vec<f64>,
+    /// Each piece with the protocol's fields, in order.
+    pub(crate) segments: Vec<Py<SketchSegment>>,
+    /// The fairing's report.
+    pub(crate) fairing: Py<FairingReport>,
+    /// The intermediate smoothing B-spline.
+    pub(crate) bspline: Py<BSpline>,
     /// Largest distance from an input point to the delivered curve.
     pub(crate) max_deviation: f64,
     /// Root mean square of those distances.
@@ -36,24 +91,71 @@ pub(crate) struct Sketch {
 }
 
 /// Fit a pen stroke (`points`, in drawing order) with LAC pieces joined G2, within
-/// `tolerance` (input units).
+/// `tolerance` (input units; None: the default from the points, as the protocol's).
 #[pyfunction]
-#[pyo3(signature = (points, tolerance))]
+#[pyo3(signature = (points, tolerance=None))]
 pub(crate) fn fit_sketch(
     py: Python<'_>,
     points: &Bound<'_, PyAny>,
-    tolerance: f64,
+    tolerance: Option<f64>,
 ) -> PyResult<Sketch> {
     let p = points_arg("points", points)?;
+    let tolerance = match tolerance {
+        Some(t) => t,
+        None => ac::sketch::default_tolerance(&p),
+    };
     let opts = ac::sketch::SketchOptions::with_tolerance(tolerance);
     let s = py
         .detach(move || ac::sketch::fit_sketch(&p, &opts))
         .map_err(err)?;
     let (nurbs, pieces) = joined(s.as_curve())?;
+    let segments = s
+        .pieces
+        .iter()
+        .map(|q| {
+            Py::new(
+                py,
+                SketchSegment {
+                    kind: q.kind.as_str(),
+                    alpha: q.alpha,
+                    alpha_at_bound: q.alpha_at_bound,
+                    alpha_estimate: q.alpha_estimate,
+                    control: points_array(py, &q.control).unbind(),
+                    end_curvatures: q.end_curvatures,
+                    rational: RationalBezier {
+                        inner: q.rational.clone(),
+                    },
+                    rational_error: q.rational_error,
+                    monotone: q.monotone,
+                },
+            )
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let f = &s.fairing;
+    let fairing = Py::new(
+        py,
+        FairingReport {
+            converged: f.converged,
+            iterations: f.iterations,
+            initial_jump: f.initial_jump,
+            final_jump: f.final_jump,
+        },
+    )?;
+    let bspline = Py::new(
+        py,
+        BSpline {
+            degree: s.bspline.degree,
+            knots: s.bspline.knots.clone(),
+            control_points: points_array(py, &s.bspline.control_points).unbind(),
+        },
+    )?;
     Ok(Sketch {
         nurbs,
         pieces,
         alphas: s.pieces.iter().map(|p| p.alpha).collect(),
+        segments,
+        fairing,
+        bspline,
         max_deviation: s.max_deviation,
         rms_deviation: s.rms_deviation,
         max_curvature_jump: s.max_curvature_jump,

@@ -5,7 +5,7 @@ use crate::curves::*;
 use crate::exports::*;
 use ac::Curve;
 use aesthetic_curves as ac;
-use numpy::{IntoPyArray, PyArray1};
+use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
 
 /// The pseudo-elastic spline through points (Hermite cubics minimising the pseudo-energy).
@@ -106,6 +106,8 @@ pub(crate) struct LacSpline {
     pub(crate) nurbs: Nurbs,
     /// Each piece's rational cubic, in order.
     pub(crate) pieces: Vec<RationalBezier>,
+    /// Each piece with the protocol's fields, in order.
+    pub(crate) segments: Vec<Py<SplineSegment>>,
     /// Each piece's kind: "line", "lac" or "lac_inflection".
     pub(crate) kinds: Vec<&'static str>,
     /// Each piece's span (the index of the point it starts from).
@@ -138,6 +140,28 @@ pub(crate) struct LacSpline {
     pub(crate) curvature_extrema: usize,
 }
 
+/// One piece of the G2 spline, with the fields of the protocol's `segments` entries.
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct SplineSegment {
+    /// "line", "lac" or "lac_inflection".
+    pub(crate) kind: &'static str,
+    /// The span (from point `span` to the next) it belongs to.
+    pub(crate) span: usize,
+    /// Its α (None for a line).
+    pub(crate) alpha: Option<f64>,
+    /// Its control triangle in curve order, a (3, 2) array (a line's middle point is its
+    /// midpoint).
+    pub(crate) control: Py<PyArray2<f64>>,
+    /// Signed curvature at its start and end.
+    pub(crate) end_curvatures: (f64, f64),
+    /// Its rational cubic.
+    pub(crate) rational: RationalBezier,
+    /// Largest distance of the cubic from the piece.
+    pub(crate) rational_error: f64,
+    /// The cubic's curvature is proven monotone.
+    pub(crate) monotone: bool,
+}
+
 /// The G2 log-aesthetic spline through `points`: `alpha` for every span (-1: clothoids) or
 /// `alphas` one per span; `closed`; `corners` the indices of corner points.
 #[pyfunction]
@@ -162,9 +186,31 @@ pub(crate) fn lac_spline(
         .detach(move || ac::lac_spline::lac_spline(&p, &opts))
         .map_err(err)?;
     let (nurbs, pieces) = joined(s.rationals())?;
+    let segments = s
+        .pieces
+        .iter()
+        .map(|q| {
+            Py::new(
+                py,
+                SplineSegment {
+                    kind: q.kind.as_str(),
+                    span: q.span,
+                    alpha: q.alpha,
+                    control: points_array(py, &q.control).unbind(),
+                    end_curvatures: q.end_curvatures,
+                    rational: RationalBezier {
+                        inner: q.rational.clone(),
+                    },
+                    rational_error: q.rational_error,
+                    monotone: q.monotone,
+                },
+            )
+        })
+        .collect::<PyResult<Vec<_>>>()?;
     Ok(LacSpline {
         nurbs,
         pieces,
+        segments,
         kinds: s.pieces.iter().map(|p| p.kind.as_str()).collect(),
         spans: s.pieces.iter().map(|p| p.span).collect(),
         alphas: s.pieces.iter().map(|p| p.alpha).collect(),

@@ -45,21 +45,13 @@ PAIRS = {
             "mode": "the argument of pseudo_elastic",
         },
     ),
-    ac.LacSpline: (
-        "LacSplineResultDrawn",
-        {**DRAWING,
-            "segments": "one list per field of a segment: pieces, kinds, spans, alphas"},
-    ),
+    ac.LacSpline: ("LacSplineResultDrawn", DRAWING),
+    ac.SplineSegment: ("SplinePieceJson", {}),
     ac.LacFit: ("LacFitResult", {}),
-    ac.Sketch: (
-        "SketchResultDrawn",
-        {
-            **DRAWING,
-            "segments": "one list per field of a segment: pieces, alphas",
-            "bspline": "not exposed (an intermediate of the fit)",
-            "fairing": "converged (its iterations and jumps are not exposed)",
-        },
-    ),
+    ac.Sketch: ("SketchResultDrawn", DRAWING),
+    ac.SketchSegment: ("SketchPieceJson", {}),
+    ac.FairingReport: ("FairingJson", {}),
+    ac.BSpline: ("BSplineJson", {}),
     ac.SketchContour: (
         "ContourResultDrawn",
         DRAWING,
@@ -73,6 +65,13 @@ SHAPES_DIFFER = {
     ("SketchContour", "smooth_joins"): "Python: tuples; JSON: records",
     ("SketchContour", "pieces"): "Python: the cubics; JSON: their count",
     ("LacFit", "control"): "an array",
+    ("SketchSegment", "control"): "an array",
+    ("SketchSegment", "rational"): "a RationalBezier",
+    ("SketchSegment", "end_curvatures"): "a tuple",
+    ("SplineSegment", "control"): "an array",
+    ("SplineSegment", "rational"): "a RationalBezier",
+    ("SplineSegment", "end_curvatures"): "a tuple",
+    ("BSpline", "control_points"): "an array",
 }
 
 
@@ -113,3 +112,49 @@ def test_the_listed_shape_differences_are_real_fields(schema):
         name = PAIRS[getattr(ac, cls)][0]
         assert field in properties(schema, name), (cls, field)
         assert hasattr(getattr(ac, cls), field), (cls, field)
+
+
+@needs_aecurve
+def test_segments_hold_the_protocols_values(tmp_path):
+    """The same stroke and the same points through Python and through `aecurve --json`
+    (the protocol's types, printed to 10 digits): the segments' fields agree to 1e-8."""
+    import math
+
+    seed = [12345]
+
+    def jitter():
+        seed[0] = (seed[0] * 6364136223846793005 + 1442695040888963407) % 2**64
+        return (seed[0] >> 11) / 2**53 * 1.4 - 0.7
+
+    stroke = [(60 * math.cos(0.03 * i) + jitter(), 40 * math.sin(0.05 * i) + jitter())
+              for i in range(120)]
+    path = tmp_path / "stroke.csv"
+    path.write_text("\n".join(f"{x!r},{y!r}" for x, y in stroke))
+    out = subprocess.run([AECURVE, "sketch", str(path), "--json"], capture_output=True,
+                         text=True, check=True)
+    want = json.loads(out.stdout)
+    got = ac.fit_sketch(stroke)
+    assert got.tolerance == pytest.approx(want["tolerance"], rel=1e-12)
+    assert len(got.segments) == len(want["segments"])
+    for g, w in zip(got.segments, want["segments"]):
+        assert g.kind == w["kind"]
+        assert g.alpha == pytest.approx(w["alpha"], rel=1e-8, abs=1e-12)
+        assert g.alpha_at_bound == w["alpha_at_bound"]
+        flat = [v for q in w["control"] for v in q]
+        assert g.control.ravel().tolist() == pytest.approx(flat, rel=1e-8, abs=1e-9)
+        assert list(g.end_curvatures) == pytest.approx(w["end_curvatures"], rel=1e-8)
+        assert g.rational.weights.tolist() == pytest.approx(w["rational"]["weights"], rel=1e-8)
+    assert got.fairing.iterations == want["fairing"]["iterations"]
+    assert got.bspline.degree == want["bspline"]["degree"]
+
+    points = [(0, 0), (2, 1.5), (4, 1), (6, 3), (8, 2.5), (10, 4)]
+    ppath = tmp_path / "points.csv"
+    ppath.write_text("\n".join(f"{x},{y}" for x, y in points))
+    out = subprocess.run([AECURVE, "spline", str(ppath), "--json"], capture_output=True,
+                         text=True, check=True)
+    want = json.loads(out.stdout)
+    got = ac.lac_spline(points)
+    assert [s.kind for s in got.segments] == [w["kind"] for w in want["segments"]]
+    assert [s.span for s in got.segments] == [w["span"] for w in want["segments"]]
+    for g, w in zip(got.segments, want["segments"]):
+        assert list(g.end_curvatures) == pytest.approx(w["end_curvatures"], rel=1e-8, abs=1e-12)

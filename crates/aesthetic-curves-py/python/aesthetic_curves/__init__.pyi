@@ -13,10 +13,12 @@ _Array2 = npt.NDArray[np.float64]
 __all__ = [
     "AestheticCurvesError",
     "Bezier",
+    "BSpline",
     "CurveAt",
     "DeadlineError",
     "DegenerateError",
     "EndCurvature",
+    "FairingReport",
     "InvalidInputError",
     "LacFit",
     "LacSpline",
@@ -38,6 +40,8 @@ __all__ = [
     "fit_sketch",
     "fit_contour",
     "SketchContour",
+    "SketchSegment",
+    "SplineSegment",
     "harmonize",
     "index_contour",
     "lac_spline",
@@ -241,9 +245,21 @@ class PseudoSpline(_Exportable):
 def pseudo_elastic(points: _Points, closed: bool = False, mode: str = "table") -> PseudoSpline: ...
 
 @final
+class SplineSegment:
+    kind: str
+    span: int
+    alpha: Optional[float]
+    control: _Array2
+    end_curvatures: tuple[float, float]
+    rational: RationalBezier
+    rational_error: float
+    monotone: bool
+
+@final
 class LacSpline(_Exportable):
     nurbs: Nurbs
     pieces: list[RationalBezier]
+    segments: list[SplineSegment]
     kinds: list[str]
     spans: list[int]
     alphas: list[Optional[float]]
@@ -290,10 +306,38 @@ class LacFit:
 def fit_lac(points: _Points, alpha: Optional[float] = None, objective: str = "band", start: str = "scan") -> LacFit: ...
 
 @final
+class SketchSegment:
+    kind: str
+    alpha: float
+    alpha_at_bound: bool
+    alpha_estimate: Optional[float]
+    control: _Array2
+    end_curvatures: tuple[float, float]
+    rational: RationalBezier
+    rational_error: float
+    monotone: bool
+
+@final
+class FairingReport:
+    converged: bool
+    iterations: int
+    initial_jump: float
+    final_jump: float
+
+@final
+class BSpline:
+    degree: int
+    knots: list[float]
+    control_points: _Array2
+
+@final
 class Sketch(_Exportable):
     nurbs: Nurbs
     pieces: list[RationalBezier]
     alphas: list[float]
+    segments: list[SketchSegment]
+    fairing: FairingReport
+    bspline: BSpline
     max_deviation: float
     rms_deviation: float
     max_curvature_jump: float
@@ -307,7 +351,7 @@ class Sketch(_Exportable):
     def at(self, u: _Params) -> CurveAt:
         """Piece ``floor(u)`` at its own t = u - floor(u) (clamped into (0, n))."""
 
-def fit_sketch(points: _Points, tolerance: float) -> Sketch: ...
+def fit_sketch(points: _Points, tolerance: Optional[float] = None) -> Sketch: ...
 
 @final
 class SketchContour(_Exportable):
