@@ -100,13 +100,14 @@ pub(crate) fn fit_sketch(
     tolerance: Option<f64>,
 ) -> PyResult<Sketch> {
     let p = points_arg("points", points)?;
-    let tolerance = match tolerance {
-        Some(t) => t,
-        None => ac::sketch::default_tolerance(&p),
-    };
-    let opts = ac::sketch::SketchOptions::with_tolerance(tolerance);
-    let s = py
-        .detach(move || ac::sketch::fit_sketch(&p, &opts))
+    let (s, tolerance) = py
+        .detach(move || match tolerance {
+            Some(t) => ac::sketch::fit_sketch(&p, &ac::sketch::SketchOptions::with_tolerance(t))
+                .map(|s| (s, t)),
+            None => {
+                ac::sketch::fit_sketch_default(&p, &ac::sketch::SketchOptions::with_tolerance(1.0))
+            }
+        })
         .map_err(err)?;
     let (nurbs, pieces) = joined(s.as_curve())?;
     let segments = s

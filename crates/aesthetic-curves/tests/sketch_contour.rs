@@ -339,6 +339,50 @@ fn the_default_tolerance_clears_gaussian_extremes() {
     assert!(sk.g2 && sk.pieces.len() <= 7, "{} pieces", sk.pieces.len());
 }
 
+/// A hand's tremor regular enough to read as noise (0.7 px at a 6-point period on a 120-point
+/// stroke): the default tolerance sits inside it and the fit there fails ("no triangle"
+/// before session 33). Without a tolerance the sketch and the contour escalate it to the
+/// first G2 fit and on while that loses events: G2, at most one inflection (the stroke's
+/// own shape has one), every point within the tolerance reported, by an oracle of the
+/// test's own (the nearest of 2,001 samples per piece).
+#[test]
+fn a_tremor_read_as_noise_still_gets_a_fair_curve_by_default() {
+    use aesthetic_curves::sketch::{
+        default_tolerance, fit_sketch, fit_sketch_default, SketchOptions,
+    };
+    let stroke: Vec<Point> = (0..120)
+        .map(|i| {
+            let t = i as f64;
+            p(
+                60.0 * (0.03 * t).cos(),
+                40.0 * (0.05 * t).sin() + 0.7 * (7.3 * t).sin(),
+            )
+        })
+        .collect();
+    let default = default_tolerance(&stroke);
+    assert!(fit_sketch(&stroke, &SketchOptions::with_tolerance(default)).is_err());
+    let (sk, tol) = fit_sketch_default(&stroke, &SketchOptions::with_tolerance(1.0)).unwrap();
+    println!(
+        "tremor: default {default:.3}, used {tol:.3}, {} pieces, {} inflections, {} extrema",
+        sk.pieces.len(),
+        sk.inflections,
+        sk.curvature_extrema
+    );
+    assert!(tol > default && tol <= 2.0 * default, "{tol} {default}");
+    assert!(
+        sk.g2 && sk.inflections <= 1,
+        "{} inflections",
+        sk.inflections
+    );
+    let dense: Vec<Point> = (0..=sk.pieces.len() * 2000)
+        .map(|i| sk.eval(i as f64 / 2000.0))
+        .collect();
+    assert!(farthest(&stroke, &dense) <= tol);
+    let c = fit(&stroke);
+    assert_within_tolerance("tremor", &c);
+    assert!(c.runs.iter().all(|r| r.is_g2()), "contour not G2");
+}
+
 /// A tolerance typed inside the noise (below the default): either a fair curve within it
 /// (G2, no inflection or curvature extremum that the fit at the default tolerance does not
 /// have, every point within the typed tolerance by an oracle outside the fit: the nearest of

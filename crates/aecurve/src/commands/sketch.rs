@@ -13,16 +13,15 @@ pub(crate) fn sketch(
     tolerance: Option<f64>,
     out: &CurveOutput,
 ) -> Result<()> {
-    use aesthetic_curves::sketch::{fit_sketch, SketchOptions};
+    use aesthetic_curves::sketch::{fit_sketch, fit_sketch_default, SketchOptions};
     let pts = aecurve::read_points_file(input)?;
-    let tol = match tolerance {
+    let (sk, tol) = match tolerance {
         Some(t) => {
             anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance must be positive");
-            t
+            (fit_sketch(&pts, &SketchOptions::with_tolerance(t))?, t)
         }
-        None => aesthetic_curves::sketch::default_tolerance(&pts),
+        None => fit_sketch_default(&pts, &SketchOptions::with_tolerance(1.0))?,
     };
-    let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol))?;
     if out.json {
         println!("{}", aecurve::protocol::sketch_json(&sk, tol));
     } else {

@@ -37,6 +37,12 @@ pub(super) const EXTREME_FACTOR: f64 = 1.35;
 /// misses a sharp bend or a corner.
 pub(super) const EXTREME_CUT: f64 = 4.5;
 
+/// The default tolerance is an estimate: where the fit at it fails or is not G2, these
+/// multiples of it are tried in turn (a hand's tremor of a 6-point period and 0.7 px,
+/// which the noise estimate reads as noise: the fit failed at the default, 0.72, and met
+/// 0.9 and 1.0 G2).
+pub(super) const DEFAULT_ESCALATION: [f64; 4] = [1.0, 1.25, 1.5, 2.0];
+
 /// Strokes of more points get a larger factor than [`DEFAULT_NOISE_FACTOR`] (their noise's
 /// extremes lie further out).
 pub(super) const NOISE_FACTOR_POINTS: usize = 1000;

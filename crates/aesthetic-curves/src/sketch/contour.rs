@@ -108,6 +108,14 @@ impl Run {
         }
     }
 
+    /// A line, or a curve that is G2 at every joint.
+    pub fn is_g2(&self) -> bool {
+        match self {
+            Run::Line { .. } => true,
+            Run::Curve(s) => s.g2,
+        }
+    }
+
     /// Its first and last points.
     pub fn ends(&self) -> (Point, Point) {
         match self {
@@ -248,14 +256,37 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     // straight stretches' test all read it (a closed stroke's overlapping tail, dropped
     // below, is a few points of hundreds).
     let noise = Noise::of(points);
-    let tolerance = match opts.tolerance {
+    match opts.tolerance {
         Some(t) => {
             Error::check_positive("tolerance", t)?;
-            t
+            contour_at(points, opts, t, &noise)
         }
-        None if points.len() >= 4 => default_tolerance_of(points, &noise),
-        None => 0.005 * size,
-    };
+        None if points.len() >= 4 => super::at_default(
+            default_tolerance_of(points, &noise),
+            |t| contour_at(points, opts, t, &noise),
+            |c| {
+                let curves = c.runs.iter().filter_map(|r| match r {
+                    Run::Curve(s) => Some(s),
+                    Run::Line { .. } => None,
+                });
+                c.runs
+                    .iter()
+                    .all(Run::is_g2)
+                    .then(|| curves.map(|s| s.inflections + s.curvature_extrema).sum())
+            },
+        )
+        .map(|(c, _)| c),
+        None => contour_at(points, opts, 0.005 * size, &noise),
+    }
+}
+
+/// [`fit_contour`] at `tolerance`, the stroke's noise estimated.
+fn contour_at(
+    points: &[Point],
+    opts: &ContourOptions,
+    tolerance: f64,
+    noise: &Noise,
+) -> Result<SketchContour> {
     let (closed, kept) = closes(points, tolerance, opts.closed);
     let stroke = &points[..kept];
     let corners = corners_at(stroke, closed, tolerance, opts.corner_angle, noise.sigma);

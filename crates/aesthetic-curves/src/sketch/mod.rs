@@ -82,8 +82,8 @@ pub use types::{
 };
 
 use constants::{
-    DEFAULT_NOISE_FACTOR, EXTREME_FACTOR, NOISE_FACTOR_POINTS, NOISE_RUNG_STEP, NOISY_SIZE_SHARE,
-    PRECISE_SIZE_SHARE,
+    DEFAULT_ESCALATION, DEFAULT_NOISE_FACTOR, EXTREME_FACTOR, NOISE_FACTOR_POINTS, NOISE_RUNG_STEP,
+    NOISY_SIZE_SHARE, PRECISE_SIZE_SHARE,
 };
 use input::{bbox_diagonal, check_points, noise_level, Noise};
 use rounds::fit_at;
@@ -113,6 +113,62 @@ fn default_tolerance_of(points: &[Point], noise: &Noise) -> f64 {
         (noise_factor(points.len()) * noise.sigma)
             .max(EXTREME_FACTOR * noise.extreme)
             .max(NOISY_SIZE_SHARE * size)
+    }
+}
+
+/// [`fit_sketch`] at the points' [`default_tolerance`]: an estimate, which a stroke can
+/// defeat (a hand's tremor, regular enough to read as noise, with a fair curve only a
+/// little further out: the fit there fails or is not G2); then at 1.25, 1.5 and 2 times
+/// it, the first G2 result, or a looser one with fewer inflections and curvature extrema
+/// (`at_default`). Returns the sketch and the
+/// tolerance it was fitted to (its `max_deviation` is within it). The protocol's
+/// `sketch.fit`, the CLI and Python without a tolerance.
+pub fn fit_sketch_default(points: &[Point], opts: &SketchOptions) -> Result<(Sketch, f64)> {
+    check_points(points)?;
+    at_default(
+        default_tolerance(points),
+        |tolerance| {
+            let o = SketchOptions {
+                tolerance,
+                ..opts.clone()
+            };
+            fit_sketch(points, &o)
+        },
+        |s| s.g2.then_some(s.inflections + s.curvature_extrema),
+    )
+}
+
+/// `fit` at `default`, then at [`DEFAULT_ESCALATION`] times it where it fails or its result
+/// is not fair (`events` is `None`: not G2). Once a looser tolerance was needed, the next
+/// ones are tried while they are fair with fewer events (inflections and curvature
+/// extrema): events that a slightly looser fit does not have follow the noise. None fair:
+/// the first result (which says what it is), else the first error.
+fn at_default<T>(
+    default: f64,
+    fit: impl Fn(f64) -> Result<T>,
+    events: impl Fn(&T) -> Option<usize>,
+) -> Result<(T, f64)> {
+    let mut first: Option<Result<(T, f64)>> = None;
+    let mut best: Option<(T, f64, usize)> = None;
+    for (k, factor) in DEFAULT_ESCALATION.into_iter().enumerate() {
+        let tolerance = factor * default;
+        let got = fit(tolerance);
+        let fair = got.as_ref().ok().and_then(&events);
+        match (got, fair, &best) {
+            (Ok(s), Some(_), None) if k == 0 => return Ok((s, tolerance)),
+            (Ok(s), Some(n), None) => best = Some((s, tolerance, n)),
+            (Ok(s), Some(n), Some((_, _, m))) if n < *m => best = Some((s, tolerance, n)),
+            (_, _, Some(_)) => break,
+            (Ok(s), None, None) if !matches!(first, Some(Ok(_))) => {
+                first = Some(Ok((s, tolerance)))
+            }
+            (Err(e), _, None) if first.is_none() => first = Some(Err(e)),
+            _ => {}
+        }
+    }
+    match best {
+        Some((s, tolerance, _)) => Ok((s, tolerance)),
+        None => first.expect("DEFAULT_ESCALATION is not empty"),
     }
 }
 
