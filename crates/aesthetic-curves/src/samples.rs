@@ -77,6 +77,22 @@ pub fn random_rational_curves(degree: usize, count: usize, seed: u64) -> Vec<Rat
         .collect()
 }
 
+/// S2's example points (`examples/spline-points.csv`): a thin zig-zag of six points, open
+/// as the paper draws it, or closed (a closing span across the whole shape).
+pub fn s2_points() -> Vec<Point> {
+    [
+        (0.0, 0.0),
+        (2.0, 1.5),
+        (4.0, 1.0),
+        (6.0, 3.0),
+        (8.0, 2.5),
+        (10.0, 4.0),
+    ]
+    .into_iter()
+    .map(|(x, y)| Point::new(x, y))
+    .collect()
+}
+
 /// `n` points along a smooth wavy line (spacing about 1, irregular, chord turns up to about
 /// 40°): the input of the spline benchmarks and comparisons. Same seed, same points.
 pub fn wavy_points(n: usize, seed: u64) -> Vec<Point> {

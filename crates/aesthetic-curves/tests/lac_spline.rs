@@ -250,14 +250,7 @@ fn a_closed_curve_is_g2_at_its_seam() {
 /// scale), the same inflections.
 #[test]
 fn a_thin_closed_zigzag_is_solved() {
-    let pts = [
-        p(0.0, 0.0),
-        p(2.0, 1.5),
-        p(4.0, 1.0),
-        p(6.0, 3.0),
-        p(8.0, 2.5),
-        p(10.0, 4.0),
-    ];
+    let pts = aesthetic_curves::samples::s2_points();
     let opts = LacSplineOptions {
         closed: true,
         ..Default::default()

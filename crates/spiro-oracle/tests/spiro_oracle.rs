@@ -9,7 +9,7 @@
 //! spiro-oracle/libspiro --test spiro_oracle`
 
 use aesthetic_curves::lac_spline::{lac_spline, LacSplineOptions};
-use aesthetic_curves::samples::{random_walk, wavy_points, SplitMix64};
+use aesthetic_curves::samples::{random_walk, s2_points, wavy_points, SplitMix64};
 use aesthetic_curves::{Point, Vec2};
 
 use spiro_oracle::ffi::{control_points, run, SpiroSeg};
@@ -89,32 +89,10 @@ fn the_clothoid_spline_is_spiros() {
     let cases: Vec<(Vec<Point>, bool, Vec<usize>)> = vec![
         (wavy_points(8, 3), false, vec![]),
         (wavy_points(15, 7), false, vec![]),
-        (
-            vec![
-                p(0.0, 0.0),
-                p(2.0, 1.5),
-                p(4.0, 1.0),
-                p(6.0, 3.0),
-                p(8.0, 2.5),
-                p(10.0, 4.0),
-            ],
-            false,
-            vec![],
-        ),
+        (s2_points(), false, vec![]),
         // S2's example points taken as a closed curve: a thin zig-zag whose closing chord
         // the circles' tangents ask to turn 320° (refused before session 33).
-        (
-            vec![
-                p(0.0, 0.0),
-                p(2.0, 1.5),
-                p(4.0, 1.0),
-                p(6.0, 3.0),
-                p(8.0, 2.5),
-                p(10.0, 4.0),
-            ],
-            true,
-            vec![],
-        ),
+        (s2_points(), true, vec![]),
         (
             vec![
                 p(0.0, 0.0),

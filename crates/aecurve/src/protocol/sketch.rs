@@ -230,14 +230,14 @@ pub struct CornerJson {
     pub point: [f64; 2],
     /// The turn there (degrees).
     pub angle_degrees: f64,
-    /// The run that starts there.
+    /// The run that ends there (the next run, or a closed contour's first, starts there).
     pub run: usize,
 }
 
 /// A smooth join between two runs (a line and a curve).
 #[derive(Debug, Serialize, JsonSchema)]
 pub struct SmoothJoinJson {
-    /// The run that starts there.
+    /// The run that ends there (the next run, or a closed contour's first, starts there).
     pub run: usize,
     /// Where it is.
     pub point: [f64; 2],

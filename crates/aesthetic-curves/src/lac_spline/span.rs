@@ -18,7 +18,7 @@
 
 use crate::error::{Error, Result};
 use crate::lac::{LacInflectionSegment, LacSegment};
-use crate::solve::roots::illinois;
+use crate::solve::roots::{illinois, newton};
 use kurbo::Vec2;
 use std::f64::consts::PI;
 
@@ -196,6 +196,31 @@ impl PairGeometry {
         Ok(psi + v.y.atan2(v.x))
     }
 
+    /// [`Self::mismatch`] and its derivative in ψ. A half's chord moves with its turning t
+    /// as the standard segment's end does: `dW/dt = e^{it} / κ(t)` (its tangent over its
+    /// curvature there), and `t` moves by `-side` per unit of ψ.
+    fn mismatch_slope(&self, psi: f64) -> Result<(f64, f64)> {
+        let (t1, t2) = self.turns(psi);
+        let (w1, w2) = self.chords(psi)?;
+        let v = w1 + w2;
+        let moved = |t: f64| {
+            let k = LacInflectionSegment::standard_end_kappa(self.alpha, t);
+            Vec2::new(-self.side * t.cos(), -t.sin()) / k
+        };
+        let dv = moved(t1) + moved(t2);
+        Ok((psi + v.y.atan2(v.x), 1.0 + v.cross(dv) / v.hypot2()))
+    }
+
+    /// A start for the root: the inflection tangent of the S-shaped clothoid span of small
+    /// deviations (curvature linear in arc length, `κ₀ = -4a - 2b`, `κ₁ = 2a + 4b` over the
+    /// chord, zero at `s = (2a + b) / 3(a + b)`): `ψ = a - (2a + b)² / 3(a + b)`, where
+    /// that lies in `range`.
+    fn start(&self, (lo, hi): (f64, f64)) -> Option<f64> {
+        let (a, b) = (self.a, self.b);
+        let psi = a - (2.0 * a + b).powi(2) / (3.0 * (a + b));
+        (psi > lo && psi < hi).then_some(psi)
+    }
+
     /// The range of ψ where both halves turn by (0, π]: below both deviations for side +1,
     /// above both for side -1.
     fn range(&self) -> Option<(f64, f64)> {
@@ -212,18 +237,37 @@ impl PairGeometry {
 
     /// The root of the mismatch over the range, if any: the mismatch increases with ψ
     /// (the chord's angle moves slower than ψ, the base angle of a half turning t staying
-    /// below t/2; checked at 401 points of 4000 random families by a unit test), so a sign
-    /// change between the range's ends brackets the one root, refined by Illinois' method.
+    /// below t/2; checked at 401 points of 4000 random families by a unit test), so there is
+    /// at most one. Where the small-angle start ([`Self::start`]) lies in the range, Newton's
+    /// method with the exact slope from there (2 or 3 evaluations near the root, where the
+    /// halves turn little and their chords are cheap); a step that converges inside the
+    /// range is the root (a monotone function's Newton steps shrink only at its root).
+    /// Otherwise, or if that fails, a sign change between the range's ends (where a half
+    /// turns by π) brackets the root, found by Newton's method from the middle, by
+    /// Illinois' where that does not converge.
     fn root(&self) -> Result<Option<f64>> {
         let Some((lo, hi)) = self.range() else {
             return Ok(None);
         };
+        let slope = |x: f64| self.mismatch_slope(x).map(|(f, d)| (f, d, ()));
+        if let Some(x0) = self.start((lo, hi)) {
+            if let Ok(r) = newton(slope, x0, (lo, hi), true, 1e-15, 0.0, 12) {
+                let margin = 1e-9 * (hi - lo);
+                if r.converged && r.x > lo + margin && r.x < hi - margin {
+                    return Ok(Some(r.x));
+                }
+            }
+        }
         let (f0, f1) = (self.mismatch(lo)?, self.mismatch(hi)?);
         if f0 == 0.0 {
             return Ok(Some(lo));
         }
         if f0 * f1 >= 0.0 {
             return Ok((f1 == 0.0).then_some(hi));
+        }
+        let r = newton(slope, 0.5 * (lo + hi), (lo, hi), true, 1e-15, 0.0, 40)?;
+        if r.converged {
+            return Ok(Some(r.x));
         }
         illinois(|x| self.mismatch(x), (lo, f0), (hi, f1), 1e-15, 200).map(Some)
     }
@@ -357,5 +401,47 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The root's exact slope against central differences of the mismatch (an oracle that
+    /// does not use the slope's formula), over random families inside their ranges; and the
+    /// root found by Newton's method equal to Illinois' on the whole range.
+    #[test]
+    fn the_mismatch_slope_is_the_mismatch_derivative() {
+        let mut rng = crate::samples::SplitMix64::new(5);
+        let (mut checked, mut roots) = (0, 0);
+        for _ in 0..1500 {
+            let alpha = rng.range(-5.0, -0.05);
+            let (a, b) = (rng.range(-2.5, 2.5), rng.range(-2.5, 2.5));
+            for side in [1.0, -1.0] {
+                let g = PairGeometry { alpha, a, b, side };
+                let Some((lo, hi)) = g.range() else { continue };
+                for k in 1..8 {
+                    let x = lo + (hi - lo) * k as f64 / 8.0;
+                    let h = 1e-6 * (hi - lo);
+                    let (Ok(p), Ok(m), Ok((_, d))) =
+                        (g.mismatch(x + h), g.mismatch(x - h), g.mismatch_slope(x))
+                    else {
+                        continue;
+                    };
+                    let fd = (p - m) / (2.0 * h);
+                    assert!(
+                        (fd - d).abs() <= 1e-5 * d.abs().max(1.0),
+                        "alpha {alpha}, a {a}, b {b}, side {side}, psi {x}: {d} vs {fd}"
+                    );
+                    checked += 1;
+                }
+                let (Ok(f0), Ok(f1)) = (g.mismatch(lo), g.mismatch(hi)) else {
+                    continue;
+                };
+                if f0 * f1 < 0.0 {
+                    let want = illinois(|x| g.mismatch(x), (lo, f0), (hi, f1), 1e-15, 200).unwrap();
+                    let got = g.root().unwrap().unwrap();
+                    assert!((got - want).abs() <= 1e-12, "{got} vs {want}");
+                    roots += 1;
+                }
+            }
+        }
+        assert!(checked > 10_000 && roots > 500, "{checked} {roots}");
     }
 }
