@@ -366,6 +366,9 @@ await step('sketch: an L, a straight stroke, a closed loop and a rounded rectang
   assert.ok((await num('max_deviation')) <= Number(advised[1]), 'the advised tolerance is met');
   assert.equal(await text('n-g2'), 'yes');
   await shot('06-sketch-contour-advised-tolerance');
+  // No logarithmic curvature graph for a contour of pieces: its note, not an empty box.
+  assert.equal(await page.evaluate(() => document.getElementById('lcg').hidden), true);
+  assert.match(await text('lcg-note'), /one graph per piece/);
   await page.fill('#sketch-tolerance', '');
   await page.dispatchEvent('#sketch-tolerance', 'change');
   await idle();

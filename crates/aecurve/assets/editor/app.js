@@ -63,6 +63,8 @@ function show(f) {
   setNumbers(f.numbers);
   setVerdict(...f.verdict);
   drawLcg($('lcg'), f.lcg.fit);
+  // No graph (splines, sketches, outlines): the note alone, not an empty box above it.
+  $('lcg').hidden = !f.lcg.fit;
   $('lcg-note').textContent = f.lcg.note || '';
 }
 
