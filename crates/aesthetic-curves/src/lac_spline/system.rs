@@ -11,6 +11,7 @@
 use super::span::{self, Solved};
 use crate::error::{Error, Result};
 use crate::solve::linear::Tridiagonal;
+use crate::solve::roots::bisect_by;
 use crate::solve::systems::{damped_newton, DampedNewton, SystemStop};
 use kurbo::Point;
 use std::f64::consts::PI;
@@ -32,6 +33,11 @@ pub(super) struct Problem<'a> {
     pub(super) unknown: Vec<Option<usize>>,
     /// The points of the unknowns, in order.
     pub(super) smooth: Vec<usize>,
+}
+
+/// The direction angle from `a` to `b`.
+fn angle(a: Point, b: Point) -> f64 {
+    (b - a).y.atan2((b - a).x)
 }
 
 /// `x` wrapped into (-π, π].
@@ -185,37 +191,36 @@ impl Problem<'_> {
         Error::NoConvergence("the starting tangents give no spline".into())
     }
 
-    /// Starting tangents, the first whose spans can all be built is taken: at each smooth
-    /// point the tangent of the circle through it and its two neighbours (the chord-tangent
-    /// angle equals the inscribed angle); that guess mended where a span cannot be built
-    /// ([`Problem::mended`]); or the direction from its previous neighbour to its next
-    /// (where a circle's tangent makes a span turn too far: a long closing chord).
-    pub(super) fn guesses(&self) -> [Vec<f64>; 3] {
-        let ang = |a: Point, b: Point| (b - a).y.atan2((b - a).x);
-        let around = |p: usize| {
-            let (i, o) = self.around(p);
-            (self.ends[i].0, self.ends[o].1)
-        };
-        let circle: Vec<f64> = self
-            .smooth
+    /// Starting tangents at each smooth point: the tangent of the circle through it and its
+    /// two neighbours (the chord-tangent angle equals the inscribed angle).
+    fn circle_guess(&self) -> Vec<f64> {
+        self.smooth
             .iter()
             .map(|&p| {
-                let (prev, next) = around(p);
-                let gi = ang(self.points[prev], self.points[p]);
-                let go = ang(self.points[p], self.points[next]);
-                gi + wrap(go - gi) - wrap(ang(self.points[prev], self.points[next]) - gi)
+                let (prev, next) = self.neighbours(p);
+                let gi = angle(self.points[prev], self.points[p]);
+                let go = angle(self.points[p], self.points[next]);
+                gi + wrap(go - gi) - wrap(angle(self.points[prev], self.points[next]) - gi)
             })
-            .collect();
-        let bisector = self
-            .smooth
+            .collect()
+    }
+
+    /// Starting tangents at each smooth point: the direction from its previous neighbour to
+    /// its next (where a circle's tangent makes a span turn too far: a long closing chord).
+    fn bisector_guess(&self) -> Vec<f64> {
+        self.smooth
             .iter()
             .map(|&p| {
-                let (prev, next) = around(p);
-                ang(self.points[prev], self.points[next])
+                let (prev, next) = self.neighbours(p);
+                angle(self.points[prev], self.points[next])
             })
-            .collect();
-        let mended = self.mended(&circle);
-        [circle, mended, bisector]
+            .collect()
+    }
+
+    /// The points before and after point `p`.
+    fn neighbours(&self, p: usize) -> (usize, usize) {
+        let (i, o) = self.around(p);
+        (self.ends[i].0, self.ends[o].1)
     }
 
     /// `theta` with the tangent at each smooth end of a span that cannot be built taken
@@ -266,17 +271,20 @@ impl Problem<'_> {
                 theta[u] = g + share * b;
             }
         };
-        let (mut lo, mut hi) = (0.0, 1.0);
-        for _ in 0..30 {
-            let mid = 0.5 * (lo + hi);
-            at(mid, theta);
-            if self.span(k, theta).is_ok() {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        at(lo, theta);
+        let share = bisect_by(
+            |share| {
+                let mut trial = theta.to_vec();
+                at(share, &mut trial);
+                self.span(k, &trial).ok()
+            },
+            0.0,
+            1.0,
+            |a, b| 0.5 * (a + b),
+            |a, b| (a - b).abs() <= 2f64.powi(-30),
+            30,
+        )
+        .inside;
+        at(share, theta);
     }
 }
 
@@ -293,11 +301,14 @@ pub(super) struct Solution {
 /// Solve the G2 equations from the circle guess to `tol` (largest jump over the largest
 /// curvature).
 pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Result<Solution> {
-    let (theta0, (k0, r0)) = problem
-        .guesses()
-        .into_iter()
-        .find_map(|t| problem.state(&t).map(|r| (t, r)))
-        .ok_or_else(|| problem.first_failure(&problem.guesses()[0]))?;
+    // The first start whose spans all build: the circles' tangents, those mended where a
+    // span cannot be built (tried only then), the bisectors'.
+    let circle = problem.circle_guess();
+    let start = |t: Vec<f64>| problem.state(&t).map(|r| (t, r));
+    let (theta0, (k0, r0)) = start(circle.clone())
+        .or_else(|| start(problem.mended(&circle)))
+        .or_else(|| start(problem.bisector_guess()))
+        .ok_or_else(|| problem.first_failure(&circle))?;
     let run = damped_newton(
         (theta0, k0),
         r0,
