@@ -339,7 +339,7 @@ fn smoothing_spline(points: &[Point], tolerance: f64, sigma: f64) -> Result<(BSp
 /// A straight input refused: its absolute turning (summed over 256 steps) below
 /// `min_turn`.
 fn check_turning(track: &Track, min_turn: f64) -> Result<()> {
-    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    let (u0, u1) = track.domain();
     let nb = 256;
     let turns: f64 = (0..nb)
         .map(|k| {

@@ -14,7 +14,7 @@ use crate::lac::LacInflectionSegment;
 /// end, across a flat stretch), one maximum cut per interval, long pieces split.
 pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
     let (track, opts) = (&cx.track, cx.opts);
-    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    let (u0, u1) = track.domain();
     let (mut infl, maxima) = located_events(cx);
     drop_close_inflections(track, &mut infl, opts.min_turn);
     let total = track.angle_between(u0, u1).abs();
@@ -31,7 +31,7 @@ pub(super) fn segment(cx: &Context) -> Result<Vec<Slot>> {
 /// peak on a knot, that peak found by sampling.
 fn located_events(cx: &Context) -> (Vec<f64>, Vec<f64>) {
     let (track, shape) = (&cx.track, cx.shape());
-    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    let (u0, u1) = track.domain();
     let (mut infl, mut maxima) = shape.events();
     if std::ptr::eq(track, shape) {
         return (infl, maxima);
@@ -70,7 +70,7 @@ fn located_events(cx: &Context) -> (Vec<f64>, Vec<f64>) {
 /// Inflections that turn less than `min_turn` from an end dropped, then inflection pairs
 /// with less turning between them, until none is left to drop.
 fn drop_close_inflections(track: &Track, infl: &mut Vec<f64>, min_turn: f64) {
-    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    let (u0, u1) = track.domain();
     let turn = |a: f64, b: f64| track.angle_between(a, b).abs();
     loop {
         let before = infl.len();
@@ -94,7 +94,7 @@ fn drop_close_inflections(track: &Track, infl: &mut Vec<f64>, min_turn: f64) {
 /// stretch next to an inflection stays below [`FLAT_STRETCH_SHARE`] of the curve's largest
 /// |κ|.
 fn drop_flat_stretches(track: &Track, infl: &mut Vec<f64>) {
-    let (u0, u1) = (track.breaks[0], *track.breaks.last().unwrap());
+    let (u0, u1) = track.domain();
     let kappa_max_on = |a: f64, b: f64| {
         (0..=16)
             .map(|k| track.abs_kappa(a + (b - a) * k as f64 / 16.0))
@@ -139,9 +139,10 @@ fn cuts(cx: &Context, infl: &[f64], maxima: &[f64], total: f64) -> Vec<(f64, Cut
             Cut::End
         }
     };
-    let mut bounds: Vec<(f64, Cut)> = vec![(track.breaks[0], end_cut(opts.line_ends[0]))];
+    let (u0, u1) = track.domain();
+    let mut bounds: Vec<(f64, Cut)> = vec![(u0, end_cut(opts.line_ends[0]))];
     bounds.extend(infl.iter().map(|&u| (u, Cut::Inflection)));
-    bounds.push((*track.breaks.last().unwrap(), end_cut(opts.line_ends[1])));
+    bounds.push((u1, end_cut(opts.line_ends[1])));
     let mut cuts: Vec<(f64, Cut)> = vec![bounds[0]];
     for w in bounds.windows(2) {
         if let Some(u) = interval_cut(cx, maxima, (w[0], w[1]), total) {

@@ -34,7 +34,7 @@ impl Track {
     /// tangent at its last sign change instead of the spline's at the end, which leans the
     /// noise's way (a piece from there would turn both ways and form no triangle).
     pub(super) fn with_flat_ends(mut self) -> Self {
-        let (u0, u1) = (self.breaks[0], *self.breaks.last().unwrap());
+        let (u0, u1) = self.domain();
         let n = 256;
         let us: Vec<f64> = (0..=n)
             .map(|k| u0 + (u1 - u0) * k as f64 / n as f64)
@@ -62,6 +62,11 @@ impl Track {
             last_crossing(&mut (0..=n).rev()).map(|i| self.direction(us[i])),
         ];
         self
+    }
+
+    /// The parameter range: its first and last breaks.
+    pub(super) fn domain(&self) -> (f64, f64) {
+        (self.breaks[0], *self.breaks.last().unwrap())
     }
 
     pub(super) fn locate(&self, u: f64) -> (usize, f64) {
@@ -193,7 +198,7 @@ mod tests {
         )
         .unwrap();
         let plain = Track::new(&s.spline).unwrap();
-        let (u0, u1) = (plain.breaks[0], *plain.breaks.last().unwrap());
+        let (u0, u1) = plain.domain();
         let flat = Track::new(&s.spline).unwrap().with_flat_ends();
         assert!(plain.direction(u0).y > 1.5e-3);
         let d = flat.direction(u0);
