@@ -101,13 +101,7 @@ pub(crate) fn fit_sketch(
 ) -> PyResult<Sketch> {
     let p = points_arg("points", points)?;
     let (s, tolerance) = py
-        .detach(move || match tolerance {
-            Some(t) => ac::sketch::fit_sketch(&p, &ac::sketch::SketchOptions::with_tolerance(t))
-                .map(|s| (s, t)),
-            None => {
-                ac::sketch::fit_sketch_default(&p, &ac::sketch::SketchOptions::with_tolerance(1.0))
-            }
-        })
+        .detach(move || ac::sketch::fit_sketch_within(&p, tolerance))
         .map_err(err)?;
     let (nurbs, pieces) = joined(s.as_curve())?;
     let segments = s

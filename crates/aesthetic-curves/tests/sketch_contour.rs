@@ -348,7 +348,7 @@ fn the_default_tolerance_clears_gaussian_extremes() {
 #[test]
 fn a_tremor_read_as_noise_still_gets_a_fair_curve_by_default() {
     use aesthetic_curves::sketch::{
-        default_tolerance, fit_sketch, fit_sketch_default, SketchOptions,
+        default_tolerance, fit_sketch, fit_sketch_within, SketchOptions,
     };
     let stroke: Vec<Point> = (0..120)
         .map(|i| {
@@ -361,7 +361,7 @@ fn a_tremor_read_as_noise_still_gets_a_fair_curve_by_default() {
         .collect();
     let default = default_tolerance(&stroke);
     assert!(fit_sketch(&stroke, &SketchOptions::with_tolerance(default)).is_err());
-    let (sk, tol) = fit_sketch_default(&stroke, &SketchOptions::with_tolerance(1.0)).unwrap();
+    let (sk, tol) = fit_sketch_within(&stroke, None).unwrap();
     println!(
         "tremor: default {default:.3}, used {tol:.3}, {} pieces, {} inflections, {} extrema",
         sk.pieces.len(),

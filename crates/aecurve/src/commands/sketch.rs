@@ -13,15 +13,11 @@ pub(crate) fn sketch(
     tolerance: Option<f64>,
     out: &CurveOutput,
 ) -> Result<()> {
-    use aesthetic_curves::sketch::{fit_sketch, fit_sketch_default, SketchOptions};
     let pts = aecurve::read_points_file(input)?;
-    let (sk, tol) = match tolerance {
-        Some(t) => {
-            anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance must be positive");
-            (fit_sketch(&pts, &SketchOptions::with_tolerance(t))?, t)
-        }
-        None => fit_sketch_default(&pts, &SketchOptions::with_tolerance(1.0))?,
-    };
+    if let Some(t) = tolerance {
+        anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance must be positive");
+    }
+    let (sk, tol) = aesthetic_curves::sketch::fit_sketch_within(&pts, tolerance)?;
     if out.json {
         println!("{}", aecurve::protocol::sketch_json(&sk, tol));
     } else {

@@ -154,15 +154,9 @@ impl Op for SketchFit {
     type Response = WithDrawing<SketchResult>;
 
     fn answer(req: SketchFitRequest) -> Result<Self::Response, ProtoError> {
-        use aesthetic_curves::sketch::{fit_sketch, fit_sketch_default, SketchOptions};
         let points = req.points.0;
-        let (sk, tolerance) = match req.tolerance {
-            Some(t) => (
-                fit_sketch(&points, &SketchOptions::with_tolerance(t.0))?,
-                t.0,
-            ),
-            None => fit_sketch_default(&points, &SketchOptions::with_tolerance(1.0))?,
-        };
+        let (sk, tolerance) =
+            aesthetic_curves::sketch::fit_sketch_within(&points, req.tolerance.map(|t| t.0))?;
         let drawing = req
             .draw
             .map(|n| pieces_drawing(&sk.as_curve(), n.0 as usize))

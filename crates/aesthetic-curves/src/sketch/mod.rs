@@ -116,24 +116,23 @@ fn default_tolerance_of(points: &[Point], noise: &Noise) -> f64 {
     }
 }
 
-/// [`fit_sketch`] at the points' [`default_tolerance`]: an estimate, which a stroke can
-/// defeat (a hand's tremor, regular enough to read as noise, with a fair curve only a
-/// little further out: the fit there fails or is not G2); then at 1.25, 1.5 and 2 times
-/// it, the first G2 result, or a looser one with fewer inflections and curvature extrema
-/// (`at_default`). Returns the sketch and the
-/// tolerance it was fitted to (its `max_deviation` is within it). The protocol's
-/// `sketch.fit`, the CLI and Python without a tolerance.
-pub fn fit_sketch_default(points: &[Point], opts: &SketchOptions) -> Result<(Sketch, f64)> {
+/// [`fit_sketch`] with default options within `tolerance`, or, for `None`, at the points'
+/// [`default_tolerance`]: an estimate, which a stroke can defeat (a hand's tremor, regular
+/// enough to read as noise, with a fair curve only a little further out: the fit there
+/// fails or is not G2); then at 1.25, 1.5 and 2 times it, the first G2 result, or a looser
+/// one with fewer inflections and curvature extrema (`at_default`). Returns the sketch and
+/// the tolerance it was fitted to (its `max_deviation` is within it). The protocol's
+/// `sketch.fit`, the CLI and Python.
+pub fn fit_sketch_within(points: &[Point], tolerance: Option<f64>) -> Result<(Sketch, f64)> {
+    if let Some(t) = tolerance {
+        return Ok((fit_sketch(points, &SketchOptions::with_tolerance(t))?, t));
+    }
     check_points(points)?;
+    let noise = Noise::of(points);
+    // Every rung is at least the default: no ladder inside the noise, the rounds directly.
     at_default(
-        default_tolerance(points),
-        |tolerance| {
-            let o = SketchOptions {
-                tolerance,
-                ..opts.clone()
-            };
-            fit_sketch(points, &o)
-        },
+        default_tolerance_of(points, &noise),
+        |t| fit_at(points, &SketchOptions::with_tolerance(t), &noise),
         |s| s.g2.then_some(s.inflections + s.curvature_extrema),
     )
 }
