@@ -71,6 +71,12 @@ pub(super) const FAIR_SHARE_LAST: f64 = 0.95;
 /// Share of the tolerance within which two neighbouring pieces merge into one LAC segment.
 pub(super) const MERGE_SHARE: f64 = 0.95;
 
+/// The least share of a piece's parameter range left on either side of a split at its half
+/// turning (a piece with an inflection end that misses the points): over 240 jittery
+/// strokes 0.2 gave 8 % fewer pieces, 17 % fewer on their α bound and the same fairness as
+/// the unclamped half turning.
+pub(super) const MID_TURN_ROOM: f64 = 0.2;
+
 /// Splits for missed points made one per round before they are made all at once.
 pub(super) const BATCH_AFTER: usize = 4;
 

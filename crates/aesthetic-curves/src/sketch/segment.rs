@@ -1,5 +1,7 @@
 use super::alpha::{curve_distance, fit_slot_alpha, points_in};
-use super::constants::{FLAT_STRETCH_SHARE, LINE_END_SHARE, MERGE_SHARE, PEAK_PROMINENCE};
+use super::constants::{
+    FLAT_STRETCH_SHARE, LINE_END_SHARE, MERGE_SHARE, MID_TURN_ROOM, PEAK_PROMINENCE,
+};
 use super::input::Context;
 use super::slot::{slot, slot_ends, triangle, Cut, EndPoints, Slot};
 
@@ -263,9 +265,11 @@ fn drop_near_line_ends(
     }
 }
 
-/// The segment of a piece with end points and tangent angles given.
-/// Split where the curve misses the points most (kept off the piece's ends); a piece with an
-/// inflection end at its mid-turn, so the inflection piece left keeps a proper triangle.
+/// Split where the curve misses the points most, kept off the piece's ends; a piece with an
+/// inflection end at its half turning, so the inflection piece left keeps a proper triangle,
+/// but kept [`MID_TURN_ROOM`] of the parameter from either end: from a curvature peak to an
+/// inflection the turning gathers at the peak, and a cut at its half sits just past it,
+/// leaving a sliver whose curvature falls steeply (on its α bound, read as a step).
 pub(super) fn split_worst(
     track: &Track,
     slots: &mut Vec<Slot>,
@@ -273,12 +277,15 @@ pub(super) fn split_worst(
     u: f64,
 ) -> Result<()> {
     let s = &slots[piece];
-    if s.cut_a.zero() || s.cut_b.zero() {
-        split_at_mid_turn(track, slots, piece)
+    let (ua, ub) = (s.ua, s.ub);
+    let u = if s.cut_a.zero() || s.cut_b.zero() {
+        let mid = u_at_turn(track, ua, ub, 0.5 * track.angle_between(ua, ub).abs());
+        let room = MID_TURN_ROOM * (ub - ua);
+        mid.clamp(ua + room, ub - room)
     } else {
-        let u = u.clamp(s.ua + 0.25 * (s.ub - s.ua), s.ub - 0.25 * (s.ub - s.ua));
-        split_at(track, slots, piece, u)
-    }
+        u.clamp(ua + 0.25 * (ub - ua), ub - 0.25 * (ub - ua))
+    };
+    split_at(track, slots, piece, u)
 }
 
 /// Split `slots[i]` at its largest |κ| (sampled) when that lies inside it: an inflection
