@@ -29,6 +29,9 @@ pub struct LacSegment {
     map: Similarity,
 }
 
+/// A segment's standard curve, its parameter interval and its chord there.
+pub(crate) type SolvedStandard = (LacStandard, (f64, f64), Vec2);
+
 impl LacSegment {
     /// The standard-form curve (α and Λ >= 0).
     pub fn standard(&self) -> &LacStandard {
@@ -155,32 +158,55 @@ impl LacSegment {
     /// [`Self::solve_lambda`], with the standard chord over the segment's interval at the
     /// solution when the solve produced it (the Newton path).
     fn solve_lambda_chord(alpha: f64, theta_d: f64, phi: f64) -> Result<(f64, Option<Vec2>)> {
+        match Self::lambda_chord_in_region(alpha, theta_d, phi)? {
+            Some(found) => Ok(found),
+            None => Err(Self::outside_region(alpha, theta_d, phi)),
+        }
+    }
+
+    /// The error of a triangle outside the existence region, with the region's bounds.
+    fn outside_region(alpha: f64, theta_d: f64, phi: f64) -> Error {
+        let half = 0.5 * theta_d;
+        let lim = match Self::theta_lim(alpha, theta_d) {
+            Ok(lim) => lim,
+            Err(e) => return e,
+        };
+        Error::NoSegment(format!(
+            "the base angle at the high-curvature end is {:.9} rad ({:.6} deg); for alpha = \
+             {alpha} and turning angle {:.6} deg it must lie in [{:.9}, {:.9}) rad \
+             ([{:.6}, {:.6}) deg)",
+            phi,
+            phi.to_degrees(),
+            theta_d.to_degrees(),
+            half,
+            lim,
+            half.to_degrees(),
+            lim.to_degrees()
+        ))
+    }
+
+    /// [`Self::solve_lambda_chord`], `None` outside the existence region (no message is
+    /// built: a spline's solve probes outside it often).
+    fn lambda_chord_in_region(
+        alpha: f64,
+        theta_d: f64,
+        phi: f64,
+    ) -> Result<Option<(f64, Option<Vec2>)>> {
         let half = 0.5 * theta_d;
         if (phi - half).abs() <= 1e-15 * theta_d {
-            return Ok((0.0, None));
+            return Ok(Some((0.0, None)));
         }
         let guess = taylor_guess(alpha, theta_d, phi);
         let lmax = Self::lambda_max(alpha, theta_d);
         let newton = |start| Self::newton_lambda(alpha, theta_d, phi, start, 6);
         if phi > half && alpha != 1.0 && guess > 0.0 && guess < 0.7 * lmax {
             if let Some((l, chord, _)) = newton(NewtonStart::Lambda(guess)) {
-                return Ok((l, Some(chord)));
+                return Ok(Some((l, Some(chord))));
             }
         }
         let lim = Self::theta_lim(alpha, theta_d)?;
         if !(phi > half && phi < lim) {
-            return Err(Error::NoSegment(format!(
-                "the base angle at the high-curvature end is {:.9} rad ({:.6} deg); for alpha = \
-                 {alpha} and turning angle {:.6} deg it must lie in [{:.9}, {:.9}) rad \
-                 ([{:.6}, {:.6}) deg)",
-                phi,
-                phi.to_degrees(),
-                theta_d.to_degrees(),
-                half,
-                lim,
-                half.to_degrees(),
-                lim.to_degrees()
-            )));
+            return Ok(None);
         }
         // A Λ whose curve overflows f64 lies beyond the solution (φ increases with Λ and
         // overflow comes with large Λ): such probes count as "above", with the limit as value
@@ -198,7 +224,7 @@ impl LacSegment {
         let p1 = alpha / (alpha - 1.0);
         if lmax.is_finite() && p1 > 0.0 {
             if let Some((l, chord, _)) = newton(NewtonStart::Line((lim - phi) / (lim - half))) {
-                return Ok((l, Some(chord)));
+                return Ok(Some((l, Some(chord))));
             }
         }
         // The base angle is computed to a few units of 1e-16 of itself: a residual below
@@ -245,7 +271,7 @@ impl LacSegment {
                 f_tol,
                 100,
             )?;
-            return Ok((lambda_of(z), None));
+            return Ok(Some((lambda_of(z), None)));
         }
         let mut hi = lmax;
         if !hi.is_finite() {
@@ -289,7 +315,7 @@ impl LacSegment {
             f_tol,
             100,
         )?;
-        Ok((l, None))
+        Ok(Some((l, None)))
     }
 
     /// The fast path of the Λ solve: Newton's method ([`crate::solve::roots::newton`]) on the base
@@ -386,8 +412,20 @@ impl LacSegment {
         alpha: f64,
         theta_d: f64,
         phi: f64,
-    ) -> Result<(LacStandard, (f64, f64), Vec2)> {
-        let (lambda, chord) = Self::solve_lambda_chord(alpha, theta_d, phi)?;
+    ) -> Result<SolvedStandard> {
+        Self::solved_standard_in_region(alpha, theta_d, phi)?
+            .ok_or_else(|| Self::outside_region(alpha, theta_d, phi))
+    }
+
+    /// [`Self::solved_standard`], `None` outside the existence region.
+    fn solved_standard_in_region(
+        alpha: f64,
+        theta_d: f64,
+        phi: f64,
+    ) -> Result<Option<SolvedStandard>> {
+        let Some((lambda, chord)) = Self::lambda_chord_in_region(alpha, theta_d, phi)? else {
+            return Ok(None);
+        };
         let standard = LacStandard::new(alpha, lambda)?;
         let interval = Self::standard_interval(alpha, theta_d);
         let chord = match chord {
@@ -399,16 +437,24 @@ impl LacSegment {
                 ))
             })?,
         };
-        Ok((standard, interval, chord))
+        Ok(Some((standard, interval, chord)))
     }
 
     /// The curvatures at the high- and the low-curvature end of the segment of shape
     /// `alpha` turning `theta_d` with base angle `phi` at its high-curvature end, for a chord
     /// of length 1, without building it (a spline's solve needs only these): the Λ solve,
     /// the standard chord and two closed-form curvatures. Errors as [`LacSegment::new`]
-    /// (`NoSegment` outside the existence region).
-    pub(crate) fn unit_chord_curvatures(alpha: f64, theta_d: f64, phi: f64) -> Result<(f64, f64)> {
-        let (standard, (t0, t1), chord) = Self::solved_standard(alpha, theta_d, phi)?;
+    /// (`None` outside the existence region).
+    pub(crate) fn unit_chord_curvatures(
+        alpha: f64,
+        theta_d: f64,
+        phi: f64,
+    ) -> Result<Option<(f64, f64)>> {
+        let Some((standard, (t0, t1), chord)) =
+            Self::solved_standard_in_region(alpha, theta_d, phi)?
+        else {
+            return Ok(None);
+        };
         let len = chord.hypot();
         let (k0, k1) = (standard.kappa(t0)? * len, standard.kappa(t1)? * len);
         if !(k0.is_finite() && k1.is_finite()) {
@@ -416,7 +462,7 @@ impl LacSegment {
                 "the segment's end curvature overflows f64 (triangle too extreme)".into(),
             ));
         }
-        Ok((k0, k1))
+        Ok(Some((k0, k1)))
     }
 
     /// The turning angle θ_d and the larger base angle φ (the one at the high-curvature end)

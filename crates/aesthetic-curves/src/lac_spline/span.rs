@@ -116,38 +116,44 @@ pub(super) fn triangle(a: f64, b: f64) -> [kurbo::Point; 3] {
 fn one_segment(alpha: f64, a: f64, b: f64) -> Result<Option<Solved>> {
     let theta_d = a.abs() + b.abs();
     let phi = a.abs().max(b.abs());
-    let kappa = |alpha: f64| -> Result<(f64, f64)> {
-        // At the high-curvature end first; the sign of the turn (b > 0: counter-clockwise).
-        let (hi, lo) = LacSegment::unit_chord_curvatures(alpha, theta_d, phi)?;
+    // At the high-curvature end first; the sign of the turn (b > 0: counter-clockwise);
+    // `None` outside the existence region.
+    let kappa = |alpha: f64| -> Result<Option<(f64, f64)>> {
+        let found = LacSegment::unit_chord_curvatures(alpha, theta_d, phi)?;
         let s = b.signum();
-        Ok(if a.abs() >= b.abs() {
-            (s * hi, s * lo)
-        } else {
-            (s * lo, s * hi)
+        Ok(found.map(|(hi, lo)| {
+            if a.abs() >= b.abs() {
+                (s * hi, s * lo)
+            } else {
+                (s * lo, s * hi)
+            }
+        }))
+    };
+    let lac = |alpha: f64, kappa: (f64, f64)| {
+        Some(Solved {
+            shape: Shape::Lac { alpha },
+            kappa,
         })
     };
-    match kappa(alpha) {
-        Ok(k) => Ok(Some(Solved {
-            shape: Shape::Lac { alpha },
-            kappa: k,
-        })),
+    if let Some(k) = kappa(alpha)? {
+        return Ok(lac(alpha, k));
+    }
+    if phi - 0.5 * theta_d <= 1e-12 * theta_d {
         // Within rounding of the circle (a rounding below θ_d/2): the circle.
-        Err(Error::NoSegment(_)) if phi - 0.5 * theta_d <= 1e-12 * theta_d => {
-            let k = 2.0 * (0.5 * theta_d).sin() * b.signum();
-            Ok(Some(Solved {
-                shape: Shape::Lac { alpha },
-                kappa: (k, k),
-            }))
-        }
-        Err(Error::NoSegment(_)) if alpha < 0.0 => Ok(None),
-        Err(Error::NoSegment(_)) if alpha > 1.0 => {
-            let alpha = nearest_existing(alpha, theta_d, phi)?;
-            Ok(Some(Solved {
-                shape: Shape::Lac { alpha },
-                kappa: kappa(alpha)?,
-            }))
-        }
-        Err(e) => Err(e),
+        let k = 2.0 * (0.5 * theta_d).sin() * b.signum();
+        return Ok(lac(alpha, (k, k)));
+    }
+    if alpha < 0.0 {
+        return Ok(None);
+    }
+    // α > 1 (every triangle has a segment for α in [0, 1]): the nearest α that has one.
+    let alpha = nearest_existing(alpha, theta_d, phi)?;
+    match kappa(alpha)? {
+        Some(k) => Ok(lac(alpha, k)),
+        None => Err(Error::NoSegment(format!(
+            "no segment of alpha {alpha} in a triangle turning {:.1} deg",
+            theta_d.to_degrees()
+        ))),
     }
 }
 

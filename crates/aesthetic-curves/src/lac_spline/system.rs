@@ -298,6 +298,36 @@ pub(super) struct Solution {
     pub(super) jump: f64,
 }
 
+/// The Jacobian kept from one Newton step to the next while the steps converge fast (each
+/// residual norm at most [`FrozenJacobian::REUSE_BELOW`] of the one before: near the root,
+/// where Newton's steps are quadratic, the old Jacobian still contracts by orders of
+/// magnitude a step, and a step then costs one span solve each instead of three); formed
+/// anew otherwise (Shamanskii's variant of Newton's method).
+#[derive(Default)]
+struct FrozenJacobian {
+    jacobian: Option<Tridiagonal>,
+    last_norm: f64,
+}
+
+impl FrozenJacobian {
+    const REUSE_BELOW: f64 = 0.05;
+
+    /// The Jacobian for residuals `r`: the kept one, or `form()`'s.
+    fn at(
+        &mut self,
+        r: &[f64],
+        form: impl FnOnce() -> Option<Tridiagonal>,
+    ) -> Option<&Tridiagonal> {
+        let norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let fast = norm <= Self::REUSE_BELOW * self.last_norm;
+        self.last_norm = norm;
+        if !(fast && self.jacobian.is_some()) {
+            self.jacobian = Some(form()?);
+        }
+        self.jacobian.as_ref()
+    }
+}
+
 /// Solve the G2 equations from the circle guess to `tol` (largest jump over the largest
 /// curvature).
 pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Result<Solution> {
@@ -309,11 +339,12 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
         .or_else(|| start(problem.mended(&circle)))
         .or_else(|| start(problem.bisector_guess()))
         .ok_or_else(|| problem.first_failure(&circle))?;
+    let mut frozen = FrozenJacobian::default();
     let run = damped_newton(
         (theta0, k0),
         r0,
         |(theta, kappas), r| {
-            let jac = problem.jacobian(theta, kappas)?;
+            let jac = frozen.at(r, || problem.jacobian(theta, kappas))?;
             let minus: Vec<f64> = r.iter().map(|v| -v).collect();
             Some((jac.solve(&minus)?, 1.0))
         },
