@@ -54,6 +54,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<FairingReport>()?;
     m.add_class::<BSpline>()?;
     m.add_class::<SketchContour>()?;
+    m.add_class::<Corner>()?;
+    m.add_class::<SmoothJoin>()?;
+    m.add_class::<Seam>()?;
     m.add_function(wrap_pyfunction!(are_curvature_monotone, m)?)?;
     m.add_function(wrap_pyfunction!(pseudo_elastic, m)?)?;
     m.add_function(wrap_pyfunction!(lac_spline, m)?)?;

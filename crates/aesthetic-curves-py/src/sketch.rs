@@ -55,6 +55,72 @@ pub(crate) struct BSpline {
     pub(crate) control_points: Py<PyArray2<f64>>,
 }
 
+/// A corner of a contour (the protocol's `corners` entries).
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct Corner {
+    /// The stroke point at the corner.
+    pub(crate) index: usize,
+    /// Where it is, (x, y).
+    pub(crate) point: (f64, f64),
+    /// The turn there (degrees).
+    pub(crate) angle_degrees: f64,
+    /// The run that ends there (the next run, or a closed contour's first, starts there).
+    pub(crate) run: usize,
+}
+
+#[pymethods]
+impl Corner {
+    fn __repr__(&self) -> String {
+        format!(
+            "Corner(index={}, point=({}, {}), angle_degrees={}, run={})",
+            self.index, self.point.0, self.point.1, self.angle_degrees, self.run
+        )
+    }
+}
+
+/// A smooth join between a line and a curve of a contour (the protocol's `smooth_joins`
+/// entries).
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct SmoothJoin {
+    /// The run that ends there (the next run, or a closed contour's first, starts there).
+    pub(crate) run: usize,
+    /// Where it is, (x, y).
+    pub(crate) point: (f64, f64),
+    /// The tangent break (degrees).
+    pub(crate) angle_degrees: f64,
+    /// The relative curvature jump.
+    pub(crate) curvature_jump: f64,
+}
+
+#[pymethods]
+impl SmoothJoin {
+    fn __repr__(&self) -> String {
+        format!(
+            "SmoothJoin(run={}, point=({}, {}), angle_degrees={}, curvature_jump={})",
+            self.run, self.point.0, self.point.1, self.angle_degrees, self.curvature_jump
+        )
+    }
+}
+
+/// The seam of a closed contour that is one curve (the protocol's `seam`).
+#[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
+pub(crate) struct Seam {
+    /// The tangent break (degrees).
+    pub(crate) angle_degrees: f64,
+    /// The relative curvature jump.
+    pub(crate) curvature_jump: f64,
+}
+
+#[pymethods]
+impl Seam {
+    fn __repr__(&self) -> String {
+        format!(
+            "Seam(angle_degrees={}, curvature_jump={})",
+            self.angle_degrees, self.curvature_jump
+        )
+    }
+}
+
 /// Pen input to a G2 curve of LAC pieces, each delivered as a rational cubic.
 #[pyclass(module = "aesthetic_curves._native", frozen, get_all)]
 pub(crate) struct Sketch {
@@ -176,20 +242,16 @@ pub(crate) struct SketchContour {
     pub(crate) run_pieces: Vec<usize>,
     /// Each curve run's α per piece (a line: empty).
     pub(crate) alphas: Vec<Vec<f64>>,
-    /// The corners in order, as (x, y, turn in degrees, index of the input point).
-    pub(crate) corners: Vec<(f64, f64, f64, usize)>,
-    /// The run each corner follows (the next run starts there; closed: the last may follow
-    /// the last run).
-    pub(crate) corner_runs: Vec<usize>,
+    /// The corners in order.
+    pub(crate) corners: Vec<Py<Corner>>,
     /// The smooth joins in order, where a straight stretch inside a curved part of the
-    /// stroke meets a curve (G2: the curve leaves the line along it with zero curvature),
-    /// as (x, y, angle in degrees, relative curvature jump, the run it follows).
-    pub(crate) smooth_joins: Vec<(f64, f64, f64, f64, usize)>,
+    /// stroke meets a curve (G2: the curve leaves the line along it with zero curvature).
+    pub(crate) smooth_joins: Vec<Py<SmoothJoin>>,
     /// Closed.
     pub(crate) closed: bool,
-    /// A closed contour that is one curve (no corners, no straight stretch): (angle in
-    /// degrees, relative curvature jump) where its one run ends at its start.
-    pub(crate) seam: Option<(f64, f64)>,
+    /// A closed contour that is one curve (no corners, no straight stretch): where its one
+    /// run ends at its start.
+    pub(crate) seam: Option<Py<Seam>>,
     /// The tolerance used.
     pub(crate) tolerance: f64,
     /// Largest distance from an input point to the result.
@@ -253,19 +315,40 @@ pub(crate) fn fit_contour(
         corners: c
             .corners
             .iter()
-            .map(|k| (k.point.x, k.point.y, k.angle.to_degrees(), k.index))
-            .collect(),
-        corner_runs: c.corners.iter().map(|k| k.run).collect(),
+            .map(|k| {
+                let corner = Corner {
+                    index: k.index,
+                    point: (k.point.x, k.point.y),
+                    angle_degrees: k.angle.to_degrees(),
+                    run: k.run,
+                };
+                Py::new(py, corner)
+            })
+            .collect::<PyResult<_>>()?,
         smooth_joins: c
             .smooth_joins
             .iter()
             .map(|j| {
-                let (x, y) = (j.point.x, j.point.y);
-                (x, y, j.angle.to_degrees(), j.curvature_jump, j.run)
+                let join = SmoothJoin {
+                    run: j.run,
+                    point: (j.point.x, j.point.y),
+                    angle_degrees: j.angle.to_degrees(),
+                    curvature_jump: j.curvature_jump,
+                };
+                Py::new(py, join)
             })
-            .collect(),
+            .collect::<PyResult<_>>()?,
         closed: c.closed,
-        seam: c.seam.map(|s| (s.angle.to_degrees(), s.curvature_jump)),
+        seam: c
+            .seam
+            .map(|s| {
+                let seam = Seam {
+                    angle_degrees: s.angle.to_degrees(),
+                    curvature_jump: s.curvature_jump,
+                };
+                Py::new(py, seam)
+            })
+            .transpose()?,
         tolerance: c.tolerance,
         max_deviation: c.max_deviation,
         trimmed: c.trimmed,

@@ -596,8 +596,8 @@ def test_fit_contour_gives_a_rounded_rectangle_its_straight_sides():
     c = ac.fit_contour(stroke)
     assert c.closed and c.corners == [] and c.seam is None
     assert c.runs == ["line", "curve"] * 4, c.runs
-    assert len(c.smooth_joins) == 8 and [j[4] for j in c.smooth_joins] == list(range(8))
-    assert all(abs(j[2]) < 1e-6 and j[3] < 1e-9 for j in c.smooth_joins), c.smooth_joins
+    assert len(c.smooth_joins) == 8 and [j.run for j in c.smooth_joins] == list(range(8))
+    assert all(abs(j.angle_degrees) < 1e-6 and j.curvature_jump < 1e-9 for j in c.smooth_joins), c.smooth_joins
     assert c.g2 and c.all_monotone and c.max_deviation <= c.tolerance
     want = batch({"op": "sketch.contour", "points": stroke.tolist()})[0]
     assert [j["run"] for j in want["smooth_joins"]] == list(range(8))
@@ -610,13 +610,13 @@ def test_fit_contour_finds_the_corner_of_an_l_and_closes_a_square():
     l_pts = l_pts + rng.uniform(-1.5, 1.5, l_pts.shape)
     c = ac.fit_contour(l_pts)
     assert c.runs == ["line", "line"] and len(c.corners) == 1 and not c.closed
-    x, y, angle, index = c.corners[0]
+    (x, y), angle, index = c.corners[0].point, c.corners[0].angle_degrees, c.corners[0].index
     assert math.hypot(x - 50, y - 400) < 6 and abs(angle - 90) < 10
     assert c.max_deviation <= c.tolerance
     # The same answer as the protocol's sketch.contour.
     want = batch({"op": "sketch.contour", "points": l_pts.tolist()})[0]
     assert [k["index"] for k in want["corners"]] == [index]
-    assert [k["run"] for k in want["corners"]] == c.corner_runs == [0]
+    assert [k["run"] for k in want["corners"]] == [k.run for k in c.corners] == [0]
     assert want["tolerance"] == c.tolerance and want["max_deviation"] == c.max_deviation
     # A square drawn in one stroke, from the middle of a side back to it.
     corners = [(250, 50), (450, 50), (450, 450), (50, 450), (50, 50), (250, 50)]
@@ -624,7 +624,7 @@ def test_fit_contour_finds_the_corner_of_an_l_and_closes_a_square():
     sq = sq + rng.uniform(-1.5, 1.5, sq.shape)
     c = ac.fit_contour(sq)
     assert c.closed and len(c.corners) == 4 and c.runs == ["line"] * 4 and c.seam is None
-    assert c.corner_runs == [0, 1, 2, 3] and c.smooth_joins == []
+    assert [k.run for k in c.corners] == [0, 1, 2, 3] and c.smooth_joins == []
     # The whole contour as one NURBS, starting and ending at the first corner.
     lo, hi = c.nurbs.domain()
     assert np.allclose(c.nurbs.eval(lo), c.nurbs.eval(hi), atol=1e-9)

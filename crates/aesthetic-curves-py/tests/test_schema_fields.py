@@ -56,13 +56,16 @@ PAIRS = {
         "ContourResultDrawn",
         DRAWING,
     ),
+    ac.Corner: ("CornerJson", {}),
+    ac.SmoothJoin: ("SmoothJoinJson", {}),
+    ac.Seam: ("SeamJson", {}),
 }
 
 # Same name, another shape: Python holds objects or tuples where the JSON holds records.
 SHAPES_DIFFER = {
     ("SketchContour", "runs"): "Python: the runs' kinds; JSON: the runs as records",
-    ("SketchContour", "corners"): "Python: (x, y, degrees, index) tuples; JSON: records",
-    ("SketchContour", "smooth_joins"): "Python: tuples; JSON: records",
+    ("Corner", "point"): "a tuple",
+    ("SmoothJoin", "point"): "a tuple",
     ("SketchContour", "pieces"): "Python: the cubics; JSON: their count",
     ("LacFit", "control"): "an array",
     ("SketchSegment", "control"): "an array",

@@ -40,6 +40,9 @@ __all__ = [
     "fit_sketch",
     "fit_contour",
     "SketchContour",
+    "Corner",
+    "SmoothJoin",
+    "Seam",
     "SketchSegment",
     "SplineSegment",
     "harmonize",
@@ -354,17 +357,35 @@ class Sketch(_Exportable):
 def fit_sketch(points: _Points, tolerance: Optional[float] = None) -> Sketch: ...
 
 @final
+class Corner:
+    index: int
+    point: tuple[float, float]
+    angle_degrees: float
+    run: int
+
+@final
+class SmoothJoin:
+    run: int
+    point: tuple[float, float]
+    angle_degrees: float
+    curvature_jump: float
+
+@final
+class Seam:
+    angle_degrees: float
+    curvature_jump: float
+
+@final
 class SketchContour(_Exportable):
     nurbs: Nurbs
     pieces: list[RationalBezier]
     runs: list[str]
     run_pieces: list[int]
     alphas: list[list[float]]
-    corners: list[tuple[float, float, float, int]]
-    corner_runs: list[int]
-    smooth_joins: list[tuple[float, float, float, float, int]]
+    corners: list[Corner]
+    smooth_joins: list[SmoothJoin]
     closed: bool
-    seam: Optional[tuple[float, float]]
+    seam: Optional[Seam]
     tolerance: float
     max_deviation: float
     trimmed: int

@@ -408,11 +408,7 @@ impl LacSegment {
 
     /// The curve of the Λ solve for (α, θ_d, φ): its standard form, its standard interval
     /// and the chord over it (from the solve when it has it, else one integral; P(0) = 0).
-    pub(crate) fn solved_standard(
-        alpha: f64,
-        theta_d: f64,
-        phi: f64,
-    ) -> Result<SolvedStandard> {
+    pub(crate) fn solved_standard(alpha: f64, theta_d: f64, phi: f64) -> Result<SolvedStandard> {
         Self::solved_standard_in_region(alpha, theta_d, phi)?
             .ok_or_else(|| Self::outside_region(alpha, theta_d, phi))
     }
