@@ -10,7 +10,8 @@
 //   cargo build --release -p aecurve && (cd e2e && npm ci && node editor.test.mjs)
 
 import { chromium } from 'playwright-core';
-import { spawn } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
+import Ajv2020 from 'ajv/dist/2020.js';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import assert from 'node:assert/strict';
 
@@ -117,6 +118,45 @@ const browser = await chromium.launch({
 const page = await browser.newPage({ viewport: { width: 1300, height: 800 }, acceptDownloads: true });
 const pageErrors = [];
 page.on('pageerror', (e) => pageErrors.push(String(e)));
+
+// Every answer the page gets from POST /api, checked against the protocol's schema
+// (`aecurve schema`): the response line, and its result against its op's response type.
+const schema = JSON.parse(execFileSync(bin, ['schema'], { maxBuffer: 64 << 20 }));
+const ajv = new Ajv2020({ allErrors: true, strict: false });
+// schemars' number formats: integers of their range, finite doubles.
+const int = (lo, hi) => ({ type: 'number', validate: (x) => Number.isInteger(x) && x >= lo && x <= hi });
+ajv.addFormat('double', { type: 'number', validate: Number.isFinite });
+ajv.addFormat('uint', int(0, Number.MAX_SAFE_INTEGER));
+ajv.addFormat('int8', int(-128, 127));
+ajv.addFormat('uint8', int(0, 255));
+ajv.addSchema(schema, 'protocol');
+const lineValid = ajv.compile({ $ref: 'protocol#/$defs/Response' });
+const resultValid = {};
+for (const [op, pair] of Object.entries(schema['x-ops'])) {
+  resultValid[op] = ajv.compile({ $ref: `protocol${pair.response.$ref}` });
+}
+const schemaChecked = {};
+const schemaFailures = [];
+page.on('response', async (resp) => {
+  if (!resp.url().endsWith('/api') || resp.request().method() !== 'POST') return;
+  let req;
+  let body;
+  try {
+    req = JSON.parse(resp.request().postData());
+    body = await resp.json();
+  } catch (e) {
+    schemaFailures.push(`unreadable answer: ${e}`);
+    return;
+  }
+  const op = req.op;
+  if (!lineValid(body)) {
+    schemaFailures.push(`${op}: the response line: ${ajv.errorsText(lineValid.errors)}`);
+  } else if (body.ok && !(resultValid[op] && resultValid[op](body.result))) {
+    const errs = resultValid[op] ? ajv.errorsText(resultValid[op].errors) : 'no such op in the schema';
+    schemaFailures.push(`${op}: ${errs}`);
+  }
+  schemaChecked[op] = (schemaChecked[op] || 0) + 1;
+});
 
 const idle = async () => {
   await page.waitForFunction(() => window.__editor && window.__editor.idle() && window.__editor.updates() > 0, null, { timeout: 15000 });
@@ -749,6 +789,16 @@ await step('LAC: a point dragged out of the existence region is held at its edge
 
 await step('no script errors on the page', async () => {
   assert.deepEqual(pageErrors, []);
+});
+
+await step("every answer the page got matches the protocol's schema", async () => {
+  const total = Object.values(schemaChecked).reduce((a, b) => a + b, 0);
+  console.log(`     ${total} answers checked: ${JSON.stringify(schemaChecked)}`);
+  assert.deepEqual(schemaFailures.slice(0, 5), []);
+  // The page's modes ask at least these ops.
+  for (const op of ['lac.segment', 'spline.lac', 'sketch.contour', 'bezier.curvature_monotone']) {
+    assert.ok(schemaChecked[op] > 0, `no ${op} answer checked`);
+  }
 });
 
 await step('the HTML report of aecurve check (50 glyphs of a real font) opens with no script errors', async () => {

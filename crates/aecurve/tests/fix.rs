@@ -432,3 +432,80 @@ fn fix_report_draws_the_changed_glyphs_before_and_after() {
     assert!(!before.contains("#c2189b"), "nothing marked before");
     assert!(html.contains("1 shapes changed"));
 }
+
+/// `fix --json` prints the protocol's types (`x-cli.fix` of `aecurve schema`): on a UFO and
+/// an SVG file the `FixFileResult`, on a designspace the `FixDesignspaceResult`, each valid
+/// against the schema; its counts are the library's, and its joins say `harmonized` exactly
+/// when the jump after is under 1 %.
+#[test]
+fn fix_json_is_the_schemas_fix_result() {
+    use aecurve::protocol::fix_file::{FixDesignspaceResult, FixFileResult};
+    let dir = scratch("json");
+    let exe = env!("CARGO_BIN_EXE_aecurve");
+    let fix = |src: &Path, dst: &Path| -> serde_json::Value {
+        let out = std::process::Command::new(exe)
+            .args(["fix", src.to_str().unwrap(), "-o", dst.to_str().unwrap()])
+            .args(["--tolerance", "40", "--json"])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let ufo = fix(&source(&dir), &dir.join("out.ufo"));
+    crate::schema::valid_as::<FixFileResult>(&ufo);
+    let counts = &ufo["counts"];
+    assert!(counts["changed_segments"].as_u64().unwrap() > 0, "{counts}");
+    assert_eq!(counts["worse_joins"], 0);
+    let joins: Vec<&serde_json::Value> = ufo["contours"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|c| c["joins"].as_array().unwrap())
+        .collect();
+    assert!(!joins.is_empty());
+    for j in &joins {
+        let after = j["jump"][1].as_f64();
+        let harmonized = j["outcome"] == "harmonized";
+        assert_eq!(
+            harmonized,
+            harmonized && after.is_some_and(|a| a < 0.01),
+            "{j}"
+        );
+    }
+    // An SVG with a path fix cannot read: listed with its reason.
+    let svg = dir.join("in.svg");
+    std::fs::write(
+        &svg,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M 0 0 C 0 265 -270 400 -600 400 \
+         C -890 400 -1200 200 -1200 0\"/><path d=\"M 0 0 A 50 50 0 0 1 100 0\"/></svg>",
+    )
+    .unwrap();
+    let v = fix(&svg, &dir.join("out.svg"));
+    crate::schema::valid_as::<FixFileResult>(&v);
+    assert!(
+        v["contours"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|c| c["skipped"].is_string()),
+        "{v}"
+    );
+    // A designspace of one master.
+    let ds = dir.join("o.designspace");
+    std::fs::rename(dir.join("out.ufo"), dir.join("m.ufo")).unwrap();
+    std::fs::write(
+        &ds,
+        "<?xml version='1.0' encoding='UTF-8'?>\n<designspace format=\"5.0\"><axes><axis \
+         tag=\"wght\" name=\"weight\" minimum=\"100\" maximum=\"800\" default=\"100\"/></axes>\
+         <sources><source filename=\"m.ufo\" name=\"m\"><location><dimension name=\"weight\" \
+         xvalue=\"100\"/></location></source></sources></designspace>\n",
+    )
+    .unwrap();
+    let v = fix(&ds, &dir.join("out/o.designspace"));
+    crate::schema::valid_as::<FixDesignspaceResult>(&v);
+    assert_eq!(v["masters"][0]["source"], "m.ufo", "{v}");
+}

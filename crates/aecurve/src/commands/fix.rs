@@ -4,7 +4,10 @@
 
 use crate::commands::Command;
 use aecurve::fix::masters::fix_designspace;
-use aecurve::fix::{figures, fix_json, fix_ufo, ContourFix, FixCounts, FixOptions};
+use aecurve::fix::{figures, fix_ufo, ContourFix, FixCounts, FixOptions};
+use aecurve::protocol::fix_file::{
+    ContourFixJson, FixDesignspaceResult, FixFileResult, FixHead, MasterFixJson,
+};
 use anyhow::Result;
 use std::path::Path;
 use std::path::PathBuf;
@@ -39,10 +42,7 @@ pub(crate) fn fix(
         std::fs::create_dir_all(parent)
             .map_err(|e| anyhow::anyhow!("creating {}: {e}", parent.display()))?;
     }
-    let head = serde_json::json!({
-        "input": input.display().to_string(), "output": output.display().to_string(),
-        "tolerance": tolerance, "grid": grid, "move_points": opts.move_points,
-    });
+    let head = FixHead::new(input, output, &opts);
     if kind == Kind::Designspace {
         let d = fix_designspace(input, output, &opts)?;
         if let Some(page) = report {
@@ -56,19 +56,20 @@ pub(crate) fn fix(
             write_report(page, input, true, &all, total)?;
         }
         if json {
-            let masters: Vec<_> = d
-                .masters
-                .iter()
-                .map(|m| {
-                    serde_json::json!({"source": m.filename, "counts": counts_json(&m.counts),
-                        "contours": m.fixes.iter().map(fix_json).collect::<Vec<_>>()})
+            let masters = (d.masters.iter())
+                .map(|m| MasterFixJson {
+                    source: m.filename.clone(),
+                    counts: (&m.counts).into(),
+                    contours: m.fixes.iter().map(ContourFixJson::from).collect(),
                 })
                 .collect();
-            let mut out = head;
-            out["masters"] = masters.into();
-            out["compatible_contours"] = d.compatible_contours.into();
-            out["restored_segments"] = d.restored_segments.into();
-            println!("{out}");
+            let out = FixDesignspaceResult {
+                head,
+                masters,
+                compatible_contours: d.compatible_contours,
+                restored_segments: d.restored_segments,
+            };
+            println!("{}", serde_json::to_string(&out)?);
             return Ok(());
         }
         println!(
@@ -98,11 +99,8 @@ pub(crate) fn fix(
         write_report(page, input, kind != Kind::Svg, &f, n)?;
     }
     if json {
-        let changes: Vec<_> = fixes.iter().map(fix_json).collect();
-        let mut out = head;
-        out["counts"] = counts_json(&c);
-        out["contours"] = changes.into();
-        println!("{out}");
+        let out = FixFileResult::new(head, &fixes, &c);
+        println!("{}", serde_json::to_string(&out)?);
         return Ok(());
     }
     println!("wrote {}", output.display());
@@ -149,18 +147,6 @@ impl Kind {
             )
         }
     }
-}
-
-fn counts_json(c: &FixCounts) -> serde_json::Value {
-    serde_json::json!({
-        "smooth_cubic_joins": c.smooth_cubic_joins,
-        "under_1_percent_before": c.under_1_percent.0,
-        "under_1_percent_after": c.under_1_percent.1,
-        "worse_joins": c.worse, "cubics_with_more_extrema": c.gained_extrema,
-        "changed_segments": c.changed_segments, "max_moved": c.max_moved,
-        "skipped_contours": c.skipped_contours,
-        "bumps_before": c.bumps.0, "bumps_after": c.bumps.1,
-    })
 }
 
 /// The summary of one file's (or master's) fix.

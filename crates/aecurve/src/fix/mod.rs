@@ -11,14 +11,13 @@
 //! on cubic outlines (convert a TrueType source to cubics first).
 
 use aesthetic_curves::harmonize::{
-    has_bump, repair, repair_holding, HarmonizeOptions, Harmonized, JoinOutcome, Repairs,
+    has_bump, repair, repair_holding, HarmonizeOptions, Harmonized, Repairs,
 };
 use aesthetic_curves::Point;
 
 pub mod masters;
 pub mod report;
 use anyhow::{Context, Result};
-use serde_json::{json, Value};
 use std::path::Path;
 
 pub use aesthetic_curves::contour_points::IndexedContour;
@@ -271,39 +270,6 @@ fn write_back(points: &mut [norad::ContourPoint], c: &IndexedContour, h: &Harmon
             points[i].x = p.x;
             points[i].y = p.y;
         }
-    }
-}
-
-/// A contour's changes as JSON: per changed segment its old and new control points, what
-/// moved and the verdict after; per join before and after.
-pub fn fix_json(f: &ContourFix) -> Value {
-    let pts = |v: &[Point]| v.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>();
-    match (&f.result, &f.input) {
-        (Err(why), _) => json!({"glyph": f.glyph, "contour": f.contour, "skipped": why}),
-        (Ok(h), Some(c)) => {
-            let segments: Vec<Value> = h
-                .segments
-                .iter()
-                .enumerate()
-                .filter(|(i, s)| **s != c.segments[*i])
-                .map(|(i, s)| {
-                    json!({"segment": i, "before": pts(&c.segments[i]), "after": pts(s),
-                        "moved": h.moved[i], "extrema": [h.extrema[i].0, h.extrema[i].1]})
-                })
-                .collect();
-            let joins: Vec<Value> = h
-                .joins
-                .iter()
-                .filter(|j| !matches!(j.outcome, JoinOutcome::Corner))
-                .map(|j| {
-                    json!({"after_segment": j.after_segment, "outcome": format!("{:?}", j.outcome),
-                        "jump": [crate::json_out::finite_or_null(j.jump.0), crate::json_out::finite_or_null(j.jump.1)],
-                        "angle_degrees": [j.angle.0.to_degrees(), j.angle.1.to_degrees()]})
-                })
-                .collect();
-            json!({"glyph": f.glyph, "contour": f.contour, "segments": segments, "joins": joins})
-        }
-        (Ok(_), None) => json!({"glyph": f.glyph, "contour": f.contour}),
     }
 }
 

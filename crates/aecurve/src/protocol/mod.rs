@@ -15,6 +15,7 @@
 pub mod bezier;
 pub mod drawing;
 pub mod fields;
+pub mod fix_file;
 pub mod lac;
 pub mod lcg;
 pub mod outline;
@@ -267,6 +268,13 @@ pub fn schema() -> Value {
         .for_serialize()
         .into_generator();
     let ops = all_op_schemas(&mut requests, &mut responses);
+    // What the CLI prints beyond the ops' answers (`aecurve fix --json`).
+    let x_cli = json!({
+        "fix": {
+            "file": responses.subschema_for::<fix_file::FixFileResult>().to_value(),
+            "designspace": responses.subschema_for::<fix_file::FixDesignspaceResult>().to_value(),
+        }
+    });
     let mut defs = requests.take_definitions(true);
     for (k, v) in responses.take_definitions(true) {
         match defs.get(&k) {
@@ -304,6 +312,7 @@ pub fn schema() -> Value {
         "description": "Requests of `aecurve batch` and the editor's /api; see docs/protocol.md.",
         "oneOf": ops.iter().map(|(_, q, _)| q.clone()).collect::<Vec<_>>(),
         "x-ops": x_ops,
+        "x-cli": x_cli,
         "$defs": defs,
     })
 }

@@ -429,6 +429,48 @@ impl Request for OutlineFixRequest {
     }
 }
 
+/// What the repair did at a join (the library's `JoinOutcome`, in lower case).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum FixOutcome {
+    /// Not a smooth join: left alone.
+    Corner,
+    /// A line (or a retracted handle) on one side: G2 needs zero curvature on the other.
+    NotBetweenCubics,
+    /// The curvature changes sign at the join: no handle lengths make it continuous.
+    SignChange,
+    /// Already G2 within rounding, or zero curvature on both sides.
+    AlreadyG2,
+    /// Made G2: the jump under 1 % (on the grid).
+    Harmonized,
+    /// G2 needs more than the tolerance: moved as far towards it as allowed.
+    Limited,
+    /// Moved part of the way (the whole move would add an extremum or worsen a join, or
+    /// the grid allows no closer).
+    Partly,
+    /// Moved, then given back its handles because the result was worse.
+    Reverted,
+    /// Held as it was (a designspace's masters held together).
+    Held,
+}
+
+impl From<aesthetic_curves::harmonize::JoinOutcome> for FixOutcome {
+    fn from(o: aesthetic_curves::harmonize::JoinOutcome) -> Self {
+        use aesthetic_curves::harmonize::JoinOutcome as J;
+        match o {
+            J::Corner => FixOutcome::Corner,
+            J::NotBetweenCubics => FixOutcome::NotBetweenCubics,
+            J::SignChange => FixOutcome::SignChange,
+            J::AlreadyG2 => FixOutcome::AlreadyG2,
+            J::Harmonized => FixOutcome::Harmonized,
+            J::Limited => FixOutcome::Limited,
+            J::Partly => FixOutcome::Partly,
+            J::Reverted => FixOutcome::Reverted,
+            J::Held => FixOutcome::Held,
+        }
+    }
+}
+
 /// One join after the repair.
 #[derive(Debug, Serialize, JsonSchema)]
 pub struct FixJoinJson {
@@ -436,8 +478,8 @@ pub struct FixJoinJson {
     pub after_segment: usize,
     /// Whether it is a smooth join (G1 within 0.5°).
     pub smooth: bool,
-    /// What was done: `harmonized`, `corner`, ... (lower case).
-    pub outcome: String,
+    /// What was done.
+    pub outcome: FixOutcome,
     /// The tangent break before and after (degrees).
     pub angle_degrees: [f64; 2],
     /// The relative curvature jump before and after (absent at a retracted handle).
@@ -501,7 +543,7 @@ impl Op for OutlineFix {
             .map(|j| FixJoinJson {
                 after_segment: j.after_segment,
                 smooth: smooth[j.after_segment],
-                outcome: format!("{:?}", j.outcome).to_lowercase(),
+                outcome: FixOutcome::from(j.outcome),
                 angle_degrees: [j.angle.0.to_degrees(), j.angle.1.to_degrees()],
                 // Undefined at a retracted handle: left out rather than null.
                 jump: (j.jump.0.is_finite() && j.jump.1.is_finite())
