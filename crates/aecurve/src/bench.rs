@@ -10,12 +10,20 @@ use aesthetic_curves::monotone::CurvatureMonotone;
 use aesthetic_curves::samples::random_curves;
 use aesthetic_curves::Bezier;
 use indicatif::{ProgressBar, ProgressStyle};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
+/// What `aecurve bench monotone --json` prints (`x-cli.bench` of the schema).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct BenchMonotoneResult {
+    /// One row per method and degree.
+    pub results: Vec<BenchRow>,
+}
+
 /// One row of the comparison.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct BenchRow {
     /// Curve degree.
     pub degree: usize,

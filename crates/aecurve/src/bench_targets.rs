@@ -15,6 +15,7 @@ use aesthetic_curves::pseudo_spline::{pseudo_elastic, Mode};
 use aesthetic_curves::samples::{random_rational_curves, wavy_points};
 use aesthetic_curves::Point;
 use indicatif::{ProgressBar, ProgressStyle};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -41,8 +42,17 @@ impl Group {
     }
 }
 
+/// What `aecurve bench lac | approx | spline --json` prints (`x-cli.bench` of the schema).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct BenchTargetsResult {
+    /// The group run.
+    pub group: &'static str,
+    /// One row per piece of work.
+    pub results: Vec<TargetRow>,
+}
+
 /// One measured piece of work.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, JsonSchema)]
 pub struct TargetRow {
     /// The group.
     pub group: &'static str,

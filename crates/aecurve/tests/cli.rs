@@ -129,6 +129,7 @@ fn bench_json_has_the_promised_shape() {
             .args(["--json", "-o"])
             .arg(&svg),
     );
+    valid_as::<aecurve::bench::BenchMonotoneResult>(&v);
     let rows = v["results"].as_array().unwrap();
     assert_eq!(rows.len(), 12);
     for r in rows {
@@ -157,6 +158,7 @@ fn bench_targets_report_every_hot_path() {
             "1",
             "--json",
         ]));
+        valid_as::<aecurve::bench_targets::BenchTargetsResult>(&v);
         assert_eq!(v["group"], group);
         let rows = v["results"].as_array().unwrap();
         assert!(rows.len() >= least, "{group}: {rows:?}");

@@ -102,14 +102,15 @@ fn monotone(
         ..Default::default()
     };
     let rows = bench::run(&cfg);
-    if json {
-        println!("{}", serde_json::json!({ "results": rows }));
-    } else {
-        print!("{}", bench::table(&rows));
-    }
     if let Some(path) = output {
         plot::write_picture(path, &bench::chart(&rows, &bench::conditions(&cfg)))?;
         eprintln!("wrote {}", path.display());
+    }
+    if json {
+        let out = bench::BenchMonotoneResult { results: rows };
+        println!("{}", serde_json::to_string(&out)?);
+    } else {
+        print!("{}", bench::table(&rows));
     }
     Ok(())
 }
@@ -119,9 +120,13 @@ fn targets(group: aecurve::bench_targets::Group, args: &TargetArgs) {
     let rows =
         aecurve::bench_targets::run(group, args.rounds, Duration::from_millis(args.round_ms));
     if args.json {
+        let out = aecurve::bench_targets::BenchTargetsResult {
+            group: group.name(),
+            results: rows,
+        };
         println!(
             "{}",
-            serde_json::json!({ "group": group.name(), "results": rows })
+            serde_json::to_string(&out).expect("plain numbers and names")
         );
     } else {
         print!("{}", aecurve::bench_targets::table(&rows));
