@@ -9,7 +9,7 @@ fn aecurve() -> Command {
 }
 
 /// Run a command that must succeed and print one JSON value.
-fn json_output(cmd: &mut Command) -> serde_json::Value {
+pub(crate) fn json_output(cmd: &mut Command) -> serde_json::Value {
     let out = cmd.output().unwrap();
     assert!(
         out.status.success(),

@@ -443,17 +443,11 @@ fn fix_json_is_the_schemas_fix_result() {
     let dir = scratch("json");
     let exe = env!("CARGO_BIN_EXE_aecurve");
     let fix = |src: &Path, dst: &Path| -> serde_json::Value {
-        let out = std::process::Command::new(exe)
-            .args(["fix", src.to_str().unwrap(), "-o", dst.to_str().unwrap()])
-            .args(["--tolerance", "40", "--json"])
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        serde_json::from_slice(&out.stdout).unwrap()
+        crate::cli::json_output(
+            std::process::Command::new(exe)
+                .args(["fix", src.to_str().unwrap(), "-o", dst.to_str().unwrap()])
+                .args(["--tolerance", "40", "--json"]),
+        )
     };
     let ufo = fix(&source(&dir), &dir.join("out.ufo"));
     crate::schema::valid_as::<FixFileResult>(&ufo);
