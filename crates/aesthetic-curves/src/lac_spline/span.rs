@@ -143,17 +143,24 @@ fn one_segment(alpha: f64, a: f64, b: f64) -> Result<Option<Solved>> {
         let k = 2.0 * (0.5 * theta_d).sin() * b.signum();
         return Ok(lac(alpha, (k, k)));
     }
+    let none = |alpha: f64| {
+        Error::NoSegment(format!(
+            "no segment of alpha {alpha} in a triangle turning {:.1} deg",
+            theta_d.to_degrees()
+        ))
+    };
     if alpha < 0.0 {
         return Ok(None);
     }
-    // α > 1 (every triangle has a segment for α in [0, 1]): the nearest α that has one.
+    if alpha <= 1.0 {
+        // Every triangle has a segment for α in [0, 1]: only rounding at the region's edge.
+        return Err(none(alpha));
+    }
+    // α > 1: the nearest α that has one.
     let alpha = nearest_existing(alpha, theta_d, phi)?;
     match kappa(alpha)? {
         Some(k) => Ok(lac(alpha, k)),
-        None => Err(Error::NoSegment(format!(
-            "no segment of alpha {alpha} in a triangle turning {:.1} deg",
-            theta_d.to_degrees()
-        ))),
+        None => Err(none(alpha)),
     }
 }
 

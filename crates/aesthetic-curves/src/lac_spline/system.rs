@@ -2,7 +2,8 @@
 //! point (the curvature coming in equals the curvature going out), solved by
 //! [`crate::solve::systems::damped_newton`] with a Jacobian of forward differences span by span
 //! (each span depends on the angles at its two ends only, so a column costs two spans, and
-//! the Jacobian is tridiagonal, cyclic for a closed curve: [`Tridiagonal`], O(n) a step).
+//! the Jacobian is tridiagonal, cyclic for a closed curve: [`Tridiagonal`], O(n) a step),
+//! kept from step to step while the steps converge fast (`FrozenJacobian`).
 //!
 //! A free end (an open curve's first or last point, a corner) has no unknown: its span
 //! leaves it as a circular arc (the deviation mirrored from the other end), and a span
@@ -12,7 +13,7 @@ use super::span::{self, Solved};
 use crate::error::{Error, Result};
 use crate::solve::linear::Tridiagonal;
 use crate::solve::roots::bisect_by;
-use crate::solve::systems::{damped_newton, DampedNewton, SystemStop};
+use crate::solve::systems::{damped_newton, DampedNewton, System, SystemStop};
 use kurbo::Point;
 use std::f64::consts::PI;
 
@@ -303,10 +304,24 @@ pub(super) struct Solution {
 /// where Newton's steps are quadratic, the old Jacobian still contracts by orders of
 /// magnitude a step, and a step then costs one span solve each instead of three); formed
 /// anew otherwise (Shamanskii's variant of Newton's method).
-#[derive(Default)]
 struct FrozenJacobian {
     jacobian: Option<Tridiagonal>,
     last_norm: f64,
+    /// Whether a Jacobian may be kept at all.
+    keep: bool,
+    /// Steps that kept one.
+    reused: usize,
+}
+
+impl Default for FrozenJacobian {
+    fn default() -> Self {
+        FrozenJacobian {
+            jacobian: None,
+            last_norm: 0.0,
+            keep: true,
+            reused: 0,
+        }
+    }
 }
 
 impl FrozenJacobian {
@@ -319,9 +334,11 @@ impl FrozenJacobian {
         form: impl FnOnce() -> Option<Tridiagonal>,
     ) -> Option<&Tridiagonal> {
         let norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let fast = norm <= Self::REUSE_BELOW * self.last_norm;
+        let fast = self.keep && norm <= Self::REUSE_BELOW * self.last_norm;
         self.last_norm = norm;
-        if !(fast && self.jacobian.is_some()) {
+        if fast && self.jacobian.is_some() {
+            self.reused += 1;
+        } else {
             self.jacobian = Some(form()?);
         }
         self.jacobian.as_ref()
@@ -340,11 +357,47 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
         .or_else(|| start(problem.bisector_guess()))
         .ok_or_else(|| problem.first_failure(&circle))?;
     let mut frozen = FrozenJacobian::default();
-    let run = damped_newton(
-        (theta0, k0),
-        r0,
+    let mut run = newton(
+        problem,
+        ((theta0, k0), r0),
+        &mut frozen,
+        tol,
+        max_iterations,
+    )?;
+    if run.stop != SystemStop::Converged && frozen.reused > 0 {
+        // A kept Jacobian that led nowhere: on from there with a fresh one every step.
+        let mut fresh = FrozenJacobian {
+            keep: false,
+            ..Default::default()
+        };
+        let left = max_iterations.saturating_sub(run.iterations);
+        let done = run.iterations;
+        run = newton(problem, (run.state, run.residuals), &mut fresh, tol, left)?;
+        run.iterations += done;
+    }
+    let (theta, kappas) = run.state;
+    Ok(Solution {
+        jump: problem.jump(&kappas),
+        theta,
+        iterations: run.iterations,
+        stop: run.stop,
+    })
+}
+
+/// Damped Newton on the G2 equations from `state` (tangents and end curvatures, with their
+/// residuals), its Jacobian from `jacobians`.
+fn newton(
+    problem: &Problem,
+    (state, residuals): ((Vec<f64>, EndCurvatures), Vec<f64>),
+    jacobians: &mut FrozenJacobian,
+    tol: f64,
+    max_iterations: usize,
+) -> Result<System<(Vec<f64>, EndCurvatures)>> {
+    damped_newton(
+        state,
+        residuals,
         |(theta, kappas), r| {
-            let jac = frozen.at(r, || problem.jacobian(theta, kappas))?;
+            let jac = jacobians.at(r, || problem.jacobian(theta, kappas))?;
             let minus: Vec<f64> = r.iter().map(|v| -v).collect();
             Some((jac.solve(&minus)?, 1.0))
         },
@@ -360,12 +413,5 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
             max_iterations,
             halvings: 30,
         },
-    )?;
-    let (theta, kappas) = run.state;
-    Ok(Solution {
-        jump: problem.jump(&kappas),
-        theta,
-        iterations: run.iterations,
-        stop: run.stop,
-    })
+    )
 }
