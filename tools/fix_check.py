@@ -15,7 +15,7 @@ For UFOs that ufo-extractor makes from TeX Gyre fonts (OpenType/CFF: cubic outli
   extrema after, no smooth join between cubics has a larger curvature jump or angle after;
   the share of those joins under a 1 % jump is printed before and after.
 - `fix --json`'s counts agree with that check: 0 joins worse, 0 cubics with more extrema;
-  its join labels agree with its jumps (`Harmonized` exactly when under 1 %).
+  its join outcomes agree with its jumps (`harmonized` exactly when under 1 %).
 - The hooked cubics (an extremum within 5 % of an end) fall at least by half, counted in all
   glyphs and counted once per distinct input cubic; in both modes at least 80 % of the G1
   joins between two curves end under a 1 % curvature jump.
