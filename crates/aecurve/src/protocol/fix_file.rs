@@ -2,7 +2,7 @@
 //! protocol's types (its joins are `outline.fix`'s [`FixJoinJson`]), so that the schema
 //! (`aecurve schema`, `$defs`) describes it and a client reads both the same way.
 
-use super::outline::{FixJoinJson, FixOutcome};
+use super::outline::FixJoinJson;
 use crate::fix::{ContourFix, FixCounts, FixOptions};
 use aesthetic_curves::harmonize::JoinOutcome;
 use aesthetic_curves::Point;
@@ -141,15 +141,9 @@ impl From<&ContourFix> for ContourFixJson {
             })
             .collect();
         out.joins = (h.joins.iter())
+            // A corner is the one outcome of a join the input did not mark smooth.
             .filter(|j| !matches!(j.outcome, JoinOutcome::Corner))
-            .map(|j| FixJoinJson {
-                after_segment: j.after_segment,
-                smooth: true,
-                outcome: FixOutcome::from(j.outcome),
-                angle_degrees: [j.angle.0.to_degrees(), j.angle.1.to_degrees()],
-                jump: (j.jump.0.is_finite() && j.jump.1.is_finite())
-                    .then_some([j.jump.0, j.jump.1]),
-            })
+            .map(|j| FixJoinJson::of(j, true))
             .collect();
         out
     }

@@ -487,6 +487,20 @@ pub struct FixJoinJson {
     pub jump: Option<[f64; 2]>,
 }
 
+impl FixJoinJson {
+    /// A join of the repair's result, `smooth` as the input marked it.
+    pub fn of(j: &aesthetic_curves::harmonize::JoinReport, smooth: bool) -> Self {
+        FixJoinJson {
+            after_segment: j.after_segment,
+            smooth,
+            outcome: FixOutcome::from(j.outcome),
+            angle_degrees: [j.angle.0.to_degrees(), j.angle.1.to_degrees()],
+            // Undefined at a retracted handle: left out rather than null.
+            jump: (j.jump.0.is_finite() && j.jump.1.is_finite()).then_some([j.jump.0, j.jump.1]),
+        }
+    }
+}
+
 /// A moved segment.
 #[derive(Debug, Serialize, JsonSchema)]
 pub struct FixedSegment {
@@ -540,15 +554,7 @@ impl Op for OutlineFix {
         let joins = h
             .joins
             .iter()
-            .map(|j| FixJoinJson {
-                after_segment: j.after_segment,
-                smooth: smooth[j.after_segment],
-                outcome: FixOutcome::from(j.outcome),
-                angle_degrees: [j.angle.0.to_degrees(), j.angle.1.to_degrees()],
-                // Undefined at a retracted handle: left out rather than null.
-                jump: (j.jump.0.is_finite() && j.jump.1.is_finite())
-                    .then_some([j.jump.0, j.jump.1]),
-            })
+            .map(|j| FixJoinJson::of(j, smooth[j.after_segment]))
             .collect();
         Ok(OutlineFixResult {
             changed_segments: h

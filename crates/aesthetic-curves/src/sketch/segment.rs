@@ -279,8 +279,8 @@ pub(super) fn split_worst(
     let s = &slots[piece];
     let (ua, ub) = (s.ua, s.ub);
     let u = if s.cut_a.zero() || s.cut_b.zero() {
-        let mid = u_at_turn(track, ua, ub, 0.5 * track.angle_between(ua, ub).abs());
         let room = MID_TURN_ROOM * (ub - ua);
+        let mid = mid_turn(track, ua, ub);
         mid.clamp(ua + room, ub - room)
     } else {
         u.clamp(ua + 0.25 * (ub - ua), ub - 0.25 * (ub - ua))
@@ -371,9 +371,13 @@ pub(super) fn split_at(track: &Track, slots: &mut Vec<Slot>, i: usize, u: f64) -
 
 /// Split `slots[i]` where it has turned half its turning, then any S-shaped results.
 pub(super) fn split_at_mid_turn(track: &Track, slots: &mut Vec<Slot>, i: usize) -> Result<()> {
-    let (ua, ub) = (slots[i].ua, slots[i].ub);
-    let mid = u_at_turn(track, ua, ub, 0.5 * track.angle_between(ua, ub).abs());
+    let mid = mid_turn(track, slots[i].ua, slots[i].ub);
     split_at(track, slots, i, mid)
+}
+
+/// The parameter where the track between `ua` and `ub` has turned half its turning.
+fn mid_turn(track: &Track, ua: f64, ub: f64) -> f64 {
+    u_at_turn(track, ua, ub, 0.5 * track.angle_between(ua, ub).abs())
 }
 
 /// Merge neighbouring pieces (across curvature-extremum cuts, never across inflections or
