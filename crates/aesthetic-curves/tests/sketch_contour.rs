@@ -486,8 +486,8 @@ fn a_tolerance_inside_the_noise_gets_a_fair_curve_or_the_tolerance_that_does() {
 /// it), the tolerance clears the noise's largest deviation on every stroke, and stays within
 /// 2.4 amplitudes of a hand's jitter wherever the jitter, not the local cubics' own error on
 /// a tight crest, is what the estimate sees (the wave at ±0.3 px: 3.0). A result is unfair
-/// when its inflections are not the curve's or it is not G2: 15 of the 240 (the wave, whose
-/// quarter sines no LAC piece follows, and two arcs), against 108 with the default of 3σ
+/// when its inflections are not the curve's or it is not G2: 7 of the 240 (six waves, whose
+/// quarter sines no LAC piece follows, and an S; none fails), against 108 with the default of 3σ
 /// and the fit that delivered non-G2 results. Slow in debug: run with `--release`.
 #[test]
 #[ignore]
@@ -527,7 +527,7 @@ fn the_default_tolerance_over_240_strokes() {
             Box::new(|t| p(400.0 * t, 120.0 * (3.0 * PI * t).sin())),
         ),
     ];
-    let (mut unfair, mut pieces, mut on_bound) = (0, 0, 0);
+    let (mut unfair, mut failed, mut pieces, mut on_bound) = (0, 0, 0, 0);
     for (name, n, inflections, curve) in &shapes {
         let dense: Vec<Point> = (0..=20_000).map(|i| curve(i as f64 / 20_000.0)).collect();
         for gaussian in [false, true] {
@@ -558,17 +558,30 @@ fn the_default_tolerance_over_240_strokes() {
                     }
                     match got {
                         Ok(sk) if sk.g2 && sk.inflections == *inflections => {}
-                        _ => {
+                        Ok(sk) => {
                             unfair += 1;
-                            println!("unfair: {case}");
+                            println!(
+                                "unfair: {case}: G2 {}, {} inflections, {} pieces",
+                                sk.g2,
+                                sk.inflections,
+                                sk.pieces.len()
+                            );
+                        }
+                        Err(e) => {
+                            failed += 1;
+                            println!("failed: {case}: {e}");
                         }
                     }
                 }
             }
         }
     }
-    println!("{unfair} of 240 strokes unfair; {pieces} pieces, {on_bound} on their α bound");
-    assert!(unfair <= 20, "{unfair} of 240 strokes unfair");
+    println!(
+        "{unfair} of 240 strokes unfair, {failed} failed; {pieces} pieces, {on_bound} on their α \
+         bound"
+    );
+    assert!(failed == 0, "{failed} of 240 strokes failed");
+    assert!(unfair <= 10, "{unfair} of 240 strokes unfair");
 }
 
 #[test]
@@ -989,7 +1002,10 @@ fn straight_runs_next_to_curved_ones_share_their_corners() {
 /// The jittery S the editor's end-to-end test draws (its stroke as the page sent it, in
 /// world units): the piece after the upper turn's curvature peak was a sliver on its α
 /// bound (-5) whose curvature fell from 3.3 to 1.2 within 2 % of the length, a step on the
-/// curvature plot. No piece on its α bound may now fall by half the largest |κ|.
+/// curvature plot. No piece on its α bound may now fall by half the largest |κ|, and a
+/// piece that falls by half from the largest |κ| does so with |α| at most 1.5 (it was
+/// -2.11, falling 3.17 → 0.48 over 4 % of the length, at a split at the clamped half
+/// turning: still a shoulder on the plot).
 #[test]
 fn a_jittery_s_has_no_step_after_its_peak() {
     let stroke: Vec<Point> = include_str!("data/jittery-s-stroke.csv")
@@ -1022,5 +1038,57 @@ fn a_jittery_s_has_no_step_after_its_peak() {
             q.alpha,
             q.end_curvatures
         );
+        let (ka, kb) = (q.end_curvatures.0.abs(), q.end_curvatures.1.abs());
+        if ka.max(kb) > 0.99 * big && (ka - kb).abs() > 0.5 * big {
+            assert!(
+                q.alpha.abs() <= 1.5,
+                "the fall from the peak {:?} has α {}",
+                q.end_curvatures,
+                q.alpha
+            );
+        }
     }
+}
+
+/// The wave of the 240-stroke test (ending at inflections, in flat stretches) at ±1 px:
+/// three of its seeds failed with "a piece of the curve has end tangents that form no
+/// triangle". The curve's end had the tangent of the flat stretch's last sign change, and a
+/// piece cut at that sign change had the same tangent at both ends; splitting it ran into
+/// the end. Now each is fitted, G2.
+#[test]
+fn a_wave_that_ends_flat_is_fitted() {
+    use aesthetic_curves::sketch::{default_tolerance, fit_sketch, SketchOptions};
+    let wave = |t: f64| p(400.0 * t, 120.0 * (3.0 * PI * t).sin());
+    for seed in [0, 2, 5] {
+        let mut j = Jitter(1000 + seed);
+        let pts = sampled(&wave, 160, |a| j.next(a), 1.0);
+        let tol = default_tolerance(&pts);
+        let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol))
+            .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        assert!(sk.g2 && sk.max_deviation <= tol, "seed {seed}");
+        assert!(sk.inflections >= 2, "seed {seed}: {}", sk.inflections);
+    }
+}
+
+/// An arc (radius 400, 300 points) with Gaussian noise of σ 1 at its default tolerance
+/// (3.82, its largest deviation 2.83): the fair spline at 3/4 of the tolerance had to pass
+/// within 2.87 of that point and followed the noise: 21 pieces, 6 inflections. With room
+/// left above the noise's extremes: no inflection, a few pieces.
+#[test]
+fn an_arc_with_gaussian_noise_has_no_inflection() {
+    use aesthetic_curves::sketch::{default_tolerance, fit_sketch, SketchOptions};
+    let arc = |t: f64| {
+        let a = PI * (0.1 + 0.8 * t);
+        p(400.0 * a.cos(), 400.0 * a.sin())
+    };
+    let mut j = Jitter(1004);
+    let pts = sampled(&arc, 300, |a| j.gaussian(a), 1.0);
+    let tol = default_tolerance(&pts);
+    let sk = fit_sketch(&pts, &SketchOptions::with_tolerance(tol)).unwrap();
+    assert!(
+        sk.g2 && sk.inflections == 0 && sk.pieces.len() <= 4,
+        "{} pieces, {} inflections",
+        sk.pieces.len(),
+        sk.inflections
+    );
 }

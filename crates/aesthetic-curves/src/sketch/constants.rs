@@ -77,6 +77,15 @@ pub(super) const MERGE_SHARE: f64 = 0.95;
 /// the unclamped half turning.
 pub(super) const MID_TURN_ROOM: f64 = 0.2;
 
+/// Where a piece from a curvature peak to an inflection is split when its turning gathers
+/// at the peak: where the curvature has fallen to this share of the peak's. The jittery S
+/// drawn in the editor: the piece after its peak fell 3.17 → 0.48 with α -2.11 at the
+/// clamped half turning, 3.30 → 0.47 with α -0.93 here; over 240 jittery strokes 7
+/// unfair (9 at the half turning), 1647 pieces (1684) and 460 on their α bound (457); the
+/// wave of the default-tolerance test 5 curvature extrema (7). A fifth split that wave
+/// into 28 pieces (19 here and before).
+pub(super) const PEAK_FALL_SPLIT: f64 = 0.25;
+
 /// Splits for missed points made one per round before they are made all at once.
 pub(super) const BATCH_AFTER: usize = 4;
 

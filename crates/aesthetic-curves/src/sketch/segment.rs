@@ -1,6 +1,7 @@
 use super::alpha::{curve_distance, fit_slot_alpha, points_in};
 use super::constants::{
-    FLAT_STRETCH_SHARE, LINE_END_SHARE, MERGE_SHARE, MID_TURN_ROOM, PEAK_PROMINENCE,
+    FLAT_STRETCH_SHARE, LINE_END_SHARE, MERGE_SHARE, MID_TURN_ROOM, PEAK_FALL_SPLIT,
+    PEAK_PROMINENCE,
 };
 use super::input::Context;
 use super::slot::{slot, slot_ends, triangle, Cut, EndPoints, Slot};
@@ -267,9 +268,11 @@ fn drop_near_line_ends(
 
 /// Split where the curve misses the points most, kept off the piece's ends; a piece with an
 /// inflection end at its half turning, so the inflection piece left keeps a proper triangle,
-/// but kept [`MID_TURN_ROOM`] of the parameter from either end: from a curvature peak to an
+/// kept [`MID_TURN_ROOM`] of the parameter from either end. From a curvature peak to an
 /// inflection the turning gathers at the peak, and a cut at its half sits just past it,
-/// leaving a sliver whose curvature falls steeply (on its α bound, read as a step).
+/// leaving a sliver whose curvature falls steeply (read as a step): when the half turning
+/// lies within that room of an end, the cut goes where the curvature has fallen to
+/// [`PEAK_FALL_SPLIT`] of its larger end's, so the fall stays in one piece.
 pub(super) fn split_worst(
     track: &Track,
     slots: &mut Vec<Slot>,
@@ -281,7 +284,13 @@ pub(super) fn split_worst(
     let u = if s.cut_a.zero() || s.cut_b.zero() {
         let room = MID_TURN_ROOM * (ub - ua);
         let mid = mid_turn(track, ua, ub);
-        mid.clamp(ua + room, ub - room)
+        let gathered = mid < ua + room || mid > ub - room;
+        let cut = if gathered {
+            fallen_to(track, ua, ub, PEAK_FALL_SPLIT)
+        } else {
+            mid
+        };
+        cut.clamp(ua + room, ub - room)
     } else {
         u.clamp(ua + 0.25 * (ub - ua), ub - 0.25 * (ub - ua))
     };
@@ -335,6 +344,13 @@ pub(super) fn split_s_shapes(track: &Track, slots: &mut Vec<Slot>) -> Result<()>
             i += 1;
             continue;
         }
+        // A curve end fitted with the tangent of a flat end stretch's last sign change
+        // (`Track::with_flat_ends`) forms no triangle with a piece cut inside that stretch:
+        // its own tangent again, rather than splits that run into the end.
+        let at_end = |u: f64, cut: Cut| cut == Cut::End && track.release_end(u);
+        if at_end(s.ua, s.cut_a) || at_end(s.ub, s.cut_b) {
+            continue;
+        }
         guard += 1;
         if guard > 200 || (s.ub - s.ua) < 1e-9 {
             return Err(Error::Degenerate(
@@ -373,6 +389,19 @@ pub(super) fn split_at(track: &Track, slots: &mut Vec<Slot>, i: usize, u: f64) -
 pub(super) fn split_at_mid_turn(track: &Track, slots: &mut Vec<Slot>, i: usize) -> Result<()> {
     let mid = mid_turn(track, slots[i].ua, slots[i].ub);
     split_at(track, slots, i, mid)
+}
+
+/// The first parameter (of 64 steps from the end with the larger |κ| towards the other)
+/// where the track's |κ| has fallen to `share` of that end's; the middle if it never does.
+fn fallen_to(track: &Track, ua: f64, ub: f64, share: f64) -> f64 {
+    let (ka, kb) = (track.abs_kappa(ua), track.abs_kappa(ub));
+    let (from, to) = if ka >= kb { (ua, ub) } else { (ub, ua) };
+    let target = share * ka.max(kb);
+    let n = 64;
+    (1..n)
+        .map(|k| from + (to - from) * k as f64 / n as f64)
+        .find(|&u| track.abs_kappa(u) <= target)
+        .unwrap_or(0.5 * (ua + ub))
 }
 
 /// The parameter where the track between `ua` and `ub` has turned half its turning.

@@ -4,14 +4,18 @@ use crate::bezier::{Bezier, PlanarCurve};
 use crate::bspline::BSpline;
 use crate::error::Result;
 use kurbo::{Point, Vec2};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The B-spline as Bézier spans over its knot intervals, for derivatives at any u.
 pub(super) struct Track {
     pub(super) spans: Vec<Bezier>,
     pub(super) breaks: Vec<f64>,
     /// The tangent each end of the curve is fitted with, where it is not the spline's own
-    /// there ([`Track::with_flat_ends`]).
+    /// there ([`Track::with_flat_ends`]); released when no piece forms a triangle with it
+    /// ([`Track::release_end`]).
     end_dirs: [Option<Vec2>; 2],
+    /// Which of `end_dirs` were released (the track is shared by the fit's threads).
+    released: [AtomicBool; 2],
 }
 
 impl Track {
@@ -24,6 +28,7 @@ impl Track {
             spans,
             breaks,
             end_dirs: [None, None],
+            released: [AtomicBool::new(false), AtomicBool::new(false)],
         })
     }
 
@@ -64,6 +69,25 @@ impl Track {
         self
     }
 
+    /// Give the end at `u` (the curve's start or end) back its spline tangent; whether it
+    /// had another ([`Track::with_flat_ends`]). A piece from a split inside the flat
+    /// stretch to that end has the same tangent at both ends and forms no triangle.
+    pub(super) fn release_end(&self, u: f64) -> bool {
+        let side = if u <= self.breaks[0] {
+            0
+        } else if u >= *self.breaks.last().unwrap() {
+            1
+        } else {
+            return false;
+        };
+        self.end_dirs[side].is_some() && !self.released[side].swap(true, Ordering::Relaxed)
+    }
+
+    /// The tangent the curve's start (0) or end (1) is fitted with, if not the spline's.
+    fn end_dir(&self, side: usize) -> Option<Vec2> {
+        self.end_dirs[side].filter(|_| !self.released[side].load(Ordering::Relaxed))
+    }
+
     /// The parameter range: its first and last breaks.
     pub(super) fn domain(&self) -> (f64, f64) {
         (self.breaks[0], *self.breaks.last().unwrap())
@@ -92,9 +116,9 @@ impl Track {
     /// The unit tangent at `u`; at an end of the curve the one it is fitted with.
     pub(super) fn direction(&self, u: f64) -> Vec2 {
         let end = if u <= self.breaks[0] {
-            self.end_dirs[0]
+            self.end_dir(0)
         } else if u >= *self.breaks.last().unwrap() {
-            self.end_dirs[1]
+            self.end_dir(1)
         } else {
             None
         };
