@@ -605,3 +605,38 @@ fn many_more_weights_fourth_quarter() {
 fn unused() -> BigRational {
     BigRational::one()
 }
+
+/// The oracle's Sturm chain by subresultants (divisions known in advance) is the chain by
+/// primitive pseudo-remainders up to positive factors: element by element equal primitive
+/// parts, signs included, on random integer polynomials of degree 2 to 14 with coefficients
+/// up to 2^70, square-free or with a repeated factor.
+#[test]
+fn the_oracles_subresultant_sturm_chain_is_the_primitive_one() {
+    use common::exact::{IPoly, Sturm};
+    use num_bigint::BigInt;
+    let mut rng = ChaCha8Rng::seed_from_u64(77);
+    let mut random = |deg: usize| {
+        IPoly(
+            (0..=deg)
+                .map(|_| {
+                    let hi: i64 = rng.gen_range(-(1 << 40)..(1 << 40));
+                    let lo: i64 = rng.gen_range(0..(1 << 30));
+                    (BigInt::from(hi) << 30usize) + lo
+                })
+                .collect(),
+        )
+    };
+    for case in 0..300 {
+        let deg = 2 + case % 13;
+        let mut p = random(deg);
+        if case % 5 == 0 {
+            let f = random(1 + case % 3);
+            p = p.mul(&f).mul(&f);
+        }
+        let (fast, slow) = (Sturm::new(&p), Sturm::new_primitive(&p));
+        assert_eq!(fast.chain.len(), slow.chain.len(), "case {case}");
+        for (a, b) in fast.chain.iter().zip(&slow.chain) {
+            assert_eq!(a.clone().primitive().0, b.clone().primitive().0, "case {case}");
+        }
+    }
+}
