@@ -619,8 +619,8 @@ fn the_oracles_subresultant_sturm_chain_is_the_primitive_one() {
         IPoly(
             (0..=deg)
                 .map(|_| {
-                    let hi: i64 = rng.gen_range(-(1 << 40)..(1 << 40));
-                    let lo: i64 = rng.gen_range(0..(1 << 30));
+                    let hi: i64 = rng.random_range(-(1 << 40)..(1 << 40));
+                    let lo: i64 = rng.random_range(0..(1 << 30));
                     (BigInt::from(hi) << 30usize) + lo
                 })
                 .collect(),
@@ -636,7 +636,11 @@ fn the_oracles_subresultant_sturm_chain_is_the_primitive_one() {
         let (fast, slow) = (Sturm::new(&p), Sturm::new_primitive(&p));
         assert_eq!(fast.chain.len(), slow.chain.len(), "case {case}");
         for (a, b) in fast.chain.iter().zip(&slow.chain) {
-            assert_eq!(a.clone().primitive().0, b.clone().primitive().0, "case {case}");
+            assert_eq!(
+                a.clone().primitive().0,
+                b.clone().primitive().0,
+                "case {case}"
+            );
         }
     }
 }

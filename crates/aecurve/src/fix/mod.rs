@@ -163,15 +163,28 @@ pub fn fix_font(font: &norad::Font, opts: &FixOptions) -> Vec<ContourFix> {
 /// Per (glyph, contour): the joins to keep as they are ([`repair_holding`]).
 pub type Held = std::collections::HashMap<(String, usize), Vec<bool>>;
 
-/// [`fix_font`], keeping the joins `held` names as they are.
+/// [`fix_font`], keeping the joins `held` names as they are. The contours are repaired in
+/// parallel (each on its own: rayon's threads), the results in glyph and contour order.
 pub fn fix_font_holding(font: &norad::Font, opts: &FixOptions, held: &Held) -> Vec<ContourFix> {
+    use rayon::prelude::*;
     let hopts = harmonize_options(opts);
-    let mut fixes = Vec::new();
-    for glyph in font.default_layer().iter() {
-        let name = glyph.name().to_string();
-        for (ci, contour) in glyph.contours.iter().enumerate() {
+    let contours: Vec<(&str, usize, &norad::Contour)> = font
+        .default_layer()
+        .iter()
+        .flat_map(|glyph| {
+            let name = glyph.name().as_str();
+            glyph
+                .contours
+                .iter()
+                .enumerate()
+                .map(move |(ci, c)| (name, ci, c))
+        })
+        .collect();
+    contours
+        .par_iter()
+        .map(|&(name, ci, contour)| {
             let indexed = index_contour(&contour.points);
-            let hold = held.get(&(name.clone(), ci));
+            let hold = held.get(&(name.to_string(), ci));
             let result = indexed.as_ref().map_err(Clone::clone).and_then(|c| {
                 let none = vec![false; c.smooth.len()];
                 let hold = hold.filter(|h| h.len() == none.len()).unwrap_or(&none);
@@ -184,15 +197,14 @@ pub fn fix_font_holding(font: &norad::Font, opts: &FixOptions, held: &Held) -> V
                 )
                 .map_err(|e| e.to_string())
             });
-            fixes.push(ContourFix {
-                glyph: name.clone(),
+            ContourFix {
+                glyph: name.to_string(),
                 contour: ci,
                 input: indexed.ok(),
                 result,
-            });
-        }
-    }
-    fixes
+            }
+        })
+        .collect()
 }
 
 /// The results of [`fix_font`] written into the font's points; the counts.

@@ -322,12 +322,7 @@ fn best_states(
             if !firsts.contains(&0) {
                 firsts.push(0);
             }
-            firsts
-                .into_iter()
-                .map(|f| chain.solve(&order, Some(f)))
-                .min_by(|x, y| x.0.total_cmp(&y.0))
-                .map(|x| x.1)
-                .unwrap_or_else(|| vec![0; n])
+            chain.best_cycle(&order, &firsts)
         }
     }
 }
@@ -338,6 +333,8 @@ struct Chain<'a> {
     states: &'a [Vec<Vec<Point>>],
     /// Every state's [`Ends`], once.
     ends: Vec<Vec<Ends>>,
+    /// Every state's [`Chain::unary`], once.
+    unaries: Vec<Vec<f64>>,
     tol: f64,
     /// A jump under this is G2 ([`HarmonizeOptions::g2_jump`]).
     g2: f64,
@@ -359,10 +356,14 @@ impl<'a> Chain<'a> {
             ends: (states.iter())
                 .map(|s| s.iter().map(|q| Ends::of(q)).collect())
                 .collect(),
+            unaries: Vec::new(),
             tol: opts.tolerance,
             g2: opts.g2_jump,
             pairs: Vec::new(),
         };
+        chain.unaries = (0..states.len())
+            .map(|i| (0..states[i].len()).map(|s| chain.unary(i, s)).collect())
+            .collect();
         chain.pairs = super::joins(states.len(), contour.closed)
             .map(|join| {
                 let (na, nb) = (states[join.1].len(), states[join.2].len());
@@ -415,23 +416,26 @@ impl<'a> Chain<'a> {
         let mut cost: Vec<f64> = (0..self.states[order[0]].len())
             .map(|s| match first {
                 Some(f) if f != s => f64::INFINITY,
-                _ => self.unary(order[0], s),
+                _ => self.unaries[order[0]][s],
             })
             .collect();
         let mut back: Vec<Vec<usize>> = Vec::with_capacity(n);
         for k in 1..n {
             let (a, b) = (order[k - 1], order[k]);
-            let mut next = vec![f64::INFINITY; self.states[b].len()];
-            let mut from = vec![0usize; self.states[b].len()];
-            for (sb, slot) in next.iter_mut().enumerate() {
-                let own = self.unary(b, sb);
-                for (sa, &ca) in cost.iter().enumerate() {
-                    if !ca.is_finite() {
-                        continue;
-                    }
-                    let c = ca + self.pair_of(a, sa, sb) + own;
-                    if c < *slot {
-                        *slot = c;
+            let nb = self.states[b].len();
+            let own = &self.unaries[b];
+            let mut next = vec![f64::INFINITY; nb];
+            let mut from = vec![0usize; nb];
+            // Row by row of the pair table (sa ascending: the first of equal costs kept).
+            for (sa, &ca) in cost.iter().enumerate() {
+                if !ca.is_finite() {
+                    continue;
+                }
+                let row = &self.pairs[a][sa * nb..(sa + 1) * nb];
+                for sb in 0..nb {
+                    let c = ca + row[sb] + own[sb];
+                    if c < next[sb] {
+                        next[sb] = c;
                         from[sb] = sa;
                     }
                 }
@@ -463,6 +467,64 @@ impl<'a> Chain<'a> {
             return (total, vec![0; n]);
         }
         (total, pick)
+    }
+
+    /// The cheapest cycle over the cut cubic's states `firsts` (in the order whose first
+    /// of equal costs wins): each start's open chain (the closing join left out: a lower
+    /// bound of its cycle, as no cost is negative) from one backward pass, the starts
+    /// solved cheapest bound first, and none whose bound exceeds the best cycle found
+    /// (beyond rounding) is solved: the same answer as solving every start.
+    fn best_cycle(&self, order: &[usize], firsts: &[usize]) -> Vec<usize> {
+        let bounds = self.open_chain_costs(order, firsts);
+        let mut by_bound: Vec<usize> = (0..firsts.len()).collect();
+        by_bound.sort_by(|&x, &y| bounds[x].total_cmp(&bounds[y]));
+        let mut best: Option<(f64, usize, Vec<usize>)> = None;
+        for i in by_bound {
+            if let Some((b, ..)) = &best {
+                if bounds[i] > b + 1e-12 * (1.0 + b.abs()) {
+                    break;
+                }
+            }
+            let (c, pick) = self.solve(order, Some(firsts[i]));
+            let better = match &best {
+                None => true,
+                Some((b, j, _)) => c.total_cmp(b).is_lt() || (c.total_cmp(b).is_eq() && i < *j),
+            };
+            if better {
+                best = Some((c, i, pick));
+            }
+        }
+        best.map_or_else(|| vec![0; order.len()], |x| x.2)
+    }
+
+    /// For each of `firsts` (a state of `order[0]`), the cost of the best open chain along
+    /// `order` starting there: a backward pass of the chain's costs.
+    fn open_chain_costs(&self, order: &[usize], firsts: &[usize]) -> Vec<f64> {
+        let n = order.len();
+        let last = order[n - 1];
+        // The best cost from position k to the end, per state at k.
+        let mut to_go: Vec<f64> = self.unaries[last].clone();
+        for k in (0..n - 1).rev() {
+            let (a, b) = (order[k], order[k + 1]);
+            let nb = self.states[b].len();
+            let states: Vec<usize> = if k == 0 {
+                firsts.to_vec()
+            } else {
+                (0..self.states[a].len()).collect()
+            };
+            let mut here = vec![f64::INFINITY; self.states[a].len()];
+            for sa in states {
+                let row = &self.pairs[a][sa * nb..(sa + 1) * nb];
+                let rest = row
+                    .iter()
+                    .zip(&to_go)
+                    .map(|(p, g)| p + g)
+                    .fold(f64::INFINITY, f64::min);
+                here[sa] = self.unaries[a][sa] + rest;
+            }
+            to_go = here;
+        }
+        firsts.iter().map(|&f| to_go[f]).collect()
     }
 }
 
