@@ -687,6 +687,27 @@ await step('G2 spline: a closed contour with two corners, insert and delete, und
   await idle();
   assert.equal(await num('points'), 6);
   assert.equal(await text('n-g2'), 'yes');
+  // The span from point 4 takes its own α, typed for the selected point: its pieces have
+  // it, the others the curve's; still G2.
+  const [x4, y4] = await page.evaluate(() => window.__editor.screenOf(4));
+  await page.mouse.click(x4, y4);
+  await idle();
+  await page.fill('#point-alpha', '0.5');
+  await page.press('#point-alpha', 'Enter');
+  await idle();
+  assert.deepEqual(await page.evaluate(() => window.__editor.state.g2.spanAlphas), [[4, 0.5]]);
+  assert.match(await text('n-alpha'), /1 span their own/);
+  const bySpan = await page.evaluate(() => {
+    const e = window.__editor;
+    return e.spans().map((s, k) => [s, e.alphas()[k]]);
+  });
+  // (A line or a circular arc has no α: span 0 runs between the two corners, a line.)
+  assert.ok(bySpan.some(([s]) => s === 4), 'no piece of span 4');
+  for (const [s, a] of bySpan) {
+    if (s === 4) assert.equal(a, 0.5, `span 4: alpha ${a}`);
+    else assert.ok(a === undefined || a === -1, `span ${s}: alpha ${a}`);
+  }
+  assert.equal(await text('n-g2'), 'yes');
   await shot('11-g2-inserted');
   // Each G2 answer (6 points, closed, two corners, every cubic proven) well inside a frame.
   const g2ms = (await page.evaluate(() => window.__editor.serverMs()))['spline.lac'];

@@ -236,6 +236,17 @@ function syncPoint() {
   $('point-x').value = q ? String(+q[0].toPrecision(10)) : '';
   $('point-y').value = q ? String(+q[1].toPrecision(10)) : '';
   $('point-corner').checked = !!q && st.corners.includes(st.selected);
+  // The last point of an open curve starts no span.
+  const starts = !!q && (st.closed || st.selected < st.p.length - 1);
+  $('point-alpha').disabled = !starts;
+  const own = (st.spanAlphas || []).find(([i]) => i === st.selected);
+  $('point-alpha').value = starts && own ? String(own[1]) : '';
+}
+// The span from point i takes α `v` (null: the curve's again).
+function setSpanAlpha(i, v) {
+  const st = state.g2;
+  st.spanAlphas = (st.spanAlphas || []).filter(([k]) => k !== i);
+  if (v !== null) st.spanAlphas = st.spanAlphas.concat([[i, v]]).sort((a, b) => a[0] - b[0]);
 }
 function select(i) {
   const st = edited();
@@ -253,11 +264,15 @@ function toggleCorner(i) {
   syncPoint();
   requestUpdate();
 }
-// Insert a point at index i (corners after it move up by one).
+// Insert a point at index i (corners after it move up by one; both halves of the span it
+// splits keep that span's α).
 function insertPoint(i, w) {
   const st = state.g2;
   st.p.splice(i, 0, w);
   st.corners = st.corners.map((k) => (k >= i ? k + 1 : k));
+  const split = (st.spanAlphas || []).find(([k]) => k === i - 1);
+  st.spanAlphas = (st.spanAlphas || []).map(([k, a]) => [k >= i ? k + 1 : k, a]);
+  if (split) setSpanAlpha(i, split[1]);
   st.selected = i;
 }
 function removePoint() {
@@ -268,6 +283,8 @@ function removePoint() {
     if (i < 0) return;
     st.p.splice(i, 1);
     st.corners = st.corners.filter((k) => k !== i).map((k) => (k > i ? k - 1 : k));
+    // The two spans at the point become one, with the first one's α.
+    st.spanAlphas = (st.spanAlphas || []).filter(([k]) => k !== i).map(([k, a]) => [k > i ? k - 1 : k, a]);
     st.selected = Math.min(i, st.p.length - 1);
     syncPoint();
   } else {
@@ -305,6 +322,17 @@ for (const id of ['point-x', 'point-y']) {
   });
 }
 $('point-corner').addEventListener('change', () => toggleCorner(state.g2.selected));
+$('point-alpha').addEventListener('change', () => {
+  const st = state.g2;
+  if (!(st.selected >= 0 && st.selected < st.p.length)) return;
+  const typed = $('point-alpha').value.trim();
+  const v = parseFloat(typed);
+  if (typed !== '' && !Number.isFinite(v)) return;
+  remember();
+  setSpanAlpha(st.selected, typed === '' ? null : Math.max(-5, Math.min(5, v)));
+  syncPoint();
+  requestUpdate();
+});
 const setG2Alpha = (v) => {
   if (!Number.isFinite(v)) return;
   state.g2.alpha = Math.max(-5, Math.min(5, v));
@@ -878,6 +906,8 @@ window.__editor = {
   // The G2 spline's answer on screen: its pieces' spans, and the page coordinates of the
   // middle sample of piece k.
   spans: () => (frame && frame.shown.spans ? frame.shown.spans.slice() : null),
+  // ... and each piece's α.
+  alphas: () => (frame && frame.shown.alphas ? frame.shown.alphas.slice() : null),
   pieceMiddle: (k) => {
     const pc = frame.shown.pieces[k];
     return vp.pageOf(pc[Math.floor(pc.length / 2)]);

@@ -39,10 +39,10 @@ const rationalVerdict = (ra) => [ra.monotone ? 'rational cubic: curvature monoto
 export const MODES = {
   g2: {
     box: { x0: 0, y0: 0, x1: 14, y1: 10 },
-    hint: 'Click to add a point, click on the curve to insert one, drag to move (Shift: snap the move, or the segment to the previous point, to horizontal or vertical). Select a point: Delete removes it, C (or Alt+click) makes it a corner or smooth again, x and y take typed coordinates. Ctrl+Z undo, Ctrl+Shift+Z redo.',
+    hint: 'Click to add a point, click on the curve to insert one, drag to move (Shift: snap the move, or the segment to the previous point, to horizontal or vertical). Select a point: Delete removes it, C (or Alt+click) makes it a corner or smooth again, x and y take typed coordinates, span α the α of the span from it (empty: that of the curve). Ctrl+Z undo, Ctrl+Shift+Z redo.',
     controls: ['closed-box', 'g2-alpha-box', 'point-box', 'remove-point', 'clear'],
     addsPoints: true,
-    initial: () => ({ p: [[1.5, 2], [4.5, 6.5], [8, 4], [12, 7.5]], corners: [], closed: false, alpha: -1, selected: -1 }),
+    initial: () => ({ p: [[1.5, 2], [4.5, 6.5], [8, 4], [12, 7.5]], corners: [], spanAlphas: [], closed: false, alpha: -1, selected: -1 }),
     handles: (st) => st.p,
     async update(st) {
       const { p, closed, alpha } = st;
@@ -51,18 +51,25 @@ export const MODES = {
       if (p.length < (closed ? 3 : 2)) {
         return { shown: base, nurbs: null, numbers: [['points', 'points', p.length]], verdict: ['add points by clicking'], lcg: { fit: null, note: 'add points' } };
       }
-      const r = await api({ op: 'spline.lac', points: p, closed, corners, alpha, draw: DRAW.g2 });
+      // The spans whose α the user set ([start point, α] pairs); the others take the curve's.
+      const spans = closed ? p.length : p.length - 1;
+      const own = (st.spanAlphas || []).filter(([i]) => i < spans);
+      const req = { op: 'spline.lac', points: p, closed, corners, alpha, draw: DRAW.g2 };
+      if (own.length) {
+        req.alphas = Array.from({ length: spans }, (_, k) => (own.find(([i]) => i === k) || [k, alpha])[1]);
+      }
+      const r = await api(req);
       const pieces = piecesOf(r.drawing);
       // Where each piece starts: joints inside a span (an inflection) are marked.
       const inner = r.segments.slice(1).filter((g, i) => g.span === r.segments[i].span).map((g) => g.control[0]);
       return {
-        shown: Object.assign(curveOf(r.drawing), base, { pieces, marks: inner, spans: r.segments.map((g) => g.span) }),
+        shown: Object.assign(curveOf(r.drawing), base, { pieces, marks: inner, spans: r.segments.map((g) => g.span), alphas: r.segments.map((g) => g.alpha) }),
         nurbs: r.drawing.nurbs,
         numbers: [
           ['points', 'points', p.length],
           ['pieces', 'pieces (inflection halves)', `${r.segments.length} (${r.segments.filter((g) => g.kind === 'lac_inflection').length})`],
           ['corners', 'corners', corners.length],
-          ['alpha', 'alpha', alpha],
+          ['alpha', 'alpha', own.length ? `${alpha} (${own.length} span${own.length > 1 ? 's' : ''} their own)` : alpha],
           ['g2', 'G2 at every smooth point', r.g2 ? 'yes' : 'no'],
           ['max_curvature_jump', 'largest curvature jump (cubics)', r.max_cubic_jump],
           ['inflections', 'inflections', r.inflections],
@@ -70,7 +77,7 @@ export const MODES = {
           ['iterations', 'Newton steps', r.iterations],
         ],
         verdict: [r.all_monotone ? 'every piece: curvature monotone (proven)' : 'some piece is NOT proven monotone', r.all_monotone],
-        lcg: { fit: null, note: 'one log-aesthetic α for every piece: the graph of each is a line of that slope' },
+        lcg: { fit: null, note: own.length ? "each piece has its span's log-aesthetic α (the curve's, or the span's own): the graph of each is a line of that slope" : 'one log-aesthetic α for every piece: the graph of each is a line of that slope' },
       };
     },
     region: () => null,
