@@ -164,7 +164,8 @@ pub fn fix_font(font: &norad::Font, opts: &FixOptions) -> Vec<ContourFix> {
 pub type Held = std::collections::HashMap<(String, usize), Vec<bool>>;
 
 /// [`fix_font`], keeping the joins `held` names as they are. The contours are repaired in
-/// parallel (each on its own: rayon's threads), the results in glyph and contour order.
+/// parallel (each on its own: rayon's threads), the results in glyph and contour order; a
+/// font of many contours shows a progress bar on a terminal (a font takes seconds).
 pub fn fix_font_holding(font: &norad::Font, opts: &FixOptions, held: &Held) -> Vec<ContourFix> {
     use rayon::prelude::*;
     let hopts = harmonize_options(opts);
@@ -180,9 +181,18 @@ pub fn fix_font_holding(font: &norad::Font, opts: &FixOptions, held: &Held) -> V
                 .map(move |(ci, c)| (name, ci, c))
         })
         .collect();
-    contours
+    let bar = indicatif::ProgressBar::new(contours.len() as u64);
+    if contours.len() < PROGRESS_FROM {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("repairing {bar:40} {pos}/{len} contours")
+            .expect("template"),
+    );
+    let fixes = contours
         .par_iter()
         .map(|&(name, ci, contour)| {
+            bar.inc(1);
             let indexed = index_contour(&contour.points);
             let hold = held.get(&(name.to_string(), ci));
             let result = indexed.as_ref().map_err(Clone::clone).and_then(|c| {
@@ -204,8 +214,13 @@ pub fn fix_font_holding(font: &norad::Font, opts: &FixOptions, held: &Held) -> V
                 result,
             }
         })
-        .collect()
+        .collect();
+    bar.finish_and_clear();
+    fixes
 }
+
+/// Fonts of at least this many contours show their repair's progress.
+const PROGRESS_FROM: usize = 200;
 
 /// The results of [`fix_font`] written into the font's points; the counts.
 pub fn write_font_back(font: &mut norad::Font, fixes: &[ContourFix]) -> FixCounts {
