@@ -239,13 +239,13 @@ function syncPoint() {
   // The last point of an open curve starts no span.
   const starts = !!q && (st.closed || st.selected < st.p.length - 1);
   $('point-alpha').disabled = !starts;
-  const own = (st.spanAlphas || []).find(([i]) => i === st.selected);
+  const own = st.spanAlphas.find(([i]) => i === st.selected);
   $('point-alpha').value = starts && own ? String(own[1]) : '';
 }
 // The span from point i takes α `v` (null: the curve's again).
 function setSpanAlpha(i, v) {
   const st = state.g2;
-  st.spanAlphas = (st.spanAlphas || []).filter(([k]) => k !== i);
+  st.spanAlphas = st.spanAlphas.filter(([k]) => k !== i);
   if (v !== null) st.spanAlphas = st.spanAlphas.concat([[i, v]]).sort((a, b) => a[0] - b[0]);
 }
 function select(i) {
@@ -270,8 +270,8 @@ function insertPoint(i, w) {
   const st = state.g2;
   st.p.splice(i, 0, w);
   st.corners = st.corners.map((k) => (k >= i ? k + 1 : k));
-  const split = (st.spanAlphas || []).find(([k]) => k === i - 1);
-  st.spanAlphas = (st.spanAlphas || []).map(([k, a]) => [k >= i ? k + 1 : k, a]);
+  const split = st.spanAlphas.find(([k]) => k === i - 1);
+  st.spanAlphas = st.spanAlphas.map(([k, a]) => [k >= i ? k + 1 : k, a]);
   if (split) setSpanAlpha(i, split[1]);
   st.selected = i;
 }
@@ -284,7 +284,7 @@ function removePoint() {
     st.p.splice(i, 1);
     st.corners = st.corners.filter((k) => k !== i).map((k) => (k > i ? k - 1 : k));
     // The two spans at the point become one, with the first one's α.
-    st.spanAlphas = (st.spanAlphas || []).filter(([k]) => k !== i).map(([k, a]) => [k > i ? k - 1 : k, a]);
+    st.spanAlphas = st.spanAlphas.filter(([k]) => k !== i).map(([k, a]) => [k > i ? k - 1 : k, a]);
     st.selected = Math.min(i, st.p.length - 1);
     syncPoint();
   } else {

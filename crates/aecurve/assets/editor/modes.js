@@ -53,7 +53,7 @@ export const MODES = {
       }
       // The spans whose α the user set ([start point, α] pairs); the others take the curve's.
       const spans = closed ? p.length : p.length - 1;
-      const own = (st.spanAlphas || []).filter(([i]) => i < spans);
+      const own = st.spanAlphas.filter(([i]) => i < spans);
       const req = { op: 'spline.lac', points: p, closed, corners, alpha, draw: DRAW.g2 };
       if (own.length) {
         req.alphas = Array.from({ length: spans }, (_, k) => (own.find(([i]) => i === k) || [k, alpha])[1]);

@@ -317,7 +317,8 @@ fn best_states(
             let first = (0..n).min_by_key(|&i| states[i].len()).unwrap_or(0);
             let order = order_from(first);
             let mut firsts: Vec<usize> = (0..states[first].len()).collect();
-            firsts.sort_by(|&x, &y| chain.unary(first, x).total_cmp(&chain.unary(first, y)));
+            let own = &chain.unaries[first];
+            firsts.sort_by(|&x, &y| own[x].total_cmp(&own[y]));
             firsts.truncate(CYCLE_STARTS);
             if !firsts.contains(&0) {
                 firsts.push(0);
@@ -377,8 +378,14 @@ impl<'a> Chain<'a> {
 
     /// [`Chain::pair`] of the join after segment `a`, from the table.
     fn pair_of(&self, a: usize, sa: usize, sb: usize) -> f64 {
+        self.pair_row(a, sa)[sb]
+    }
+
+    /// The row of the join after segment `a` for its state `sa`: [`Chain::pair`] with
+    /// every state of the next segment.
+    fn pair_row(&self, a: usize, sa: usize) -> &[f64] {
         let nb = self.states[(a + 1) % self.states.len()].len();
-        self.pairs[a][sa * nb + sb]
+        &self.pairs[a][sa * nb..(sa + 1) * nb]
     }
 
     /// A state's own cost: a tie-break towards less movement (far below any jump that
@@ -431,7 +438,7 @@ impl<'a> Chain<'a> {
                 if !ca.is_finite() {
                     continue;
                 }
-                let row = &self.pairs[a][sa * nb..(sa + 1) * nb];
+                let row = self.pair_row(a, sa);
                 for sb in 0..nb {
                     let c = ca + row[sb] + own[sb];
                     if c < next[sb] {
@@ -505,8 +512,7 @@ impl<'a> Chain<'a> {
         // The best cost from position k to the end, per state at k.
         let mut to_go: Vec<f64> = self.unaries[last].clone();
         for k in (0..n - 1).rev() {
-            let (a, b) = (order[k], order[k + 1]);
-            let nb = self.states[b].len();
+            let a = order[k];
             let states: Vec<usize> = if k == 0 {
                 firsts.to_vec()
             } else {
@@ -514,9 +520,7 @@ impl<'a> Chain<'a> {
             };
             let mut here = vec![f64::INFINITY; self.states[a].len()];
             for sa in states {
-                let row = &self.pairs[a][sa * nb..(sa + 1) * nb];
-                let rest = row
-                    .iter()
+                let rest = (self.pair_row(a, sa).iter())
                     .zip(&to_go)
                     .map(|(p, g)| p + g)
                     .fold(f64::INFINITY, f64::min);

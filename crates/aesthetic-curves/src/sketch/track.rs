@@ -73,14 +73,20 @@ impl Track {
     /// had another ([`Track::with_flat_ends`]). A piece from a split inside the flat
     /// stretch to that end has the same tangent at both ends and forms no triangle.
     pub(super) fn release_end(&self, u: f64) -> bool {
-        let side = if u <= self.breaks[0] {
-            0
+        self.end_side(u).is_some_and(|side| {
+            self.end_dirs[side].is_some() && !self.released[side].swap(true, Ordering::Relaxed)
+        })
+    }
+
+    /// Which end of the curve `u` is (0: the start, 1: the end), if either.
+    fn end_side(&self, u: f64) -> Option<usize> {
+        if u <= self.breaks[0] {
+            Some(0)
         } else if u >= *self.breaks.last().unwrap() {
-            1
+            Some(1)
         } else {
-            return false;
-        };
-        self.end_dirs[side].is_some() && !self.released[side].swap(true, Ordering::Relaxed)
+            None
+        }
     }
 
     /// The tangent the curve's start (0) or end (1) is fitted with, if not the spline's.
@@ -115,13 +121,7 @@ impl Track {
 
     /// The unit tangent at `u`; at an end of the curve the one it is fitted with.
     pub(super) fn direction(&self, u: f64) -> Vec2 {
-        let end = if u <= self.breaks[0] {
-            self.end_dir(0)
-        } else if u >= *self.breaks.last().unwrap() {
-            self.end_dir(1)
-        } else {
-            None
-        };
+        let end = self.end_side(u).and_then(|side| self.end_dir(side));
         end.unwrap_or_else(|| {
             let d = self.derivs(u).d1;
             d / d.hypot()

@@ -166,16 +166,9 @@ impl IPoly {
     }
     pub fn primitive(self) -> IPoly {
         let s = self.trim();
-        // The content: the gcd from the smallest coefficient up, stopped at 1 (a gcd with 1
-        // still costs a pass of the binary algorithm per bit of the other number).
-        let mut by_size: Vec<&BigInt> = s.0.iter().filter(|v| !v.is_zero()).collect();
-        by_size.sort_by_key(|v| v.bits());
         let mut g = BigInt::zero();
-        for v in by_size {
+        for v in &s.0 {
             g = gcd(&g, v);
-            if g.is_one() {
-                return s;
-            }
         }
         if g.is_zero() || g.is_one() {
             return s;
