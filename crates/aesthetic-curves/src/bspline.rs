@@ -168,12 +168,14 @@ pub fn chord_parameters(points: &[Point]) -> Result<Vec<f64>> {
     Ok(s.iter().map(|v| v / total).collect())
 }
 
-/// The four non-zero cubic basis values at u in span s.
-fn basis(knots: &[f64], s: usize, u: f64, p: usize) -> Vec<f64> {
-    let mut n = vec![0.0; p + 1];
+/// The four non-zero cubic basis values at u in span s (`p` = 3; no allocation: the fits
+/// call it once per point per solve).
+fn basis(knots: &[f64], s: usize, u: f64, p: usize) -> [f64; 4] {
+    debug_assert_eq!(p, 3);
+    let mut n = [0.0; 4];
     n[0] = 1.0;
-    let mut left = vec![0.0; p + 1];
-    let mut right = vec![0.0; p + 1];
+    let mut left = [0.0; 4];
+    let mut right = [0.0; 4];
     for j in 1..=p {
         left[j] = u - knots[s + 1 - j];
         right[j] = knots[s + j] - u;
@@ -371,10 +373,13 @@ impl Spans {
 
 /// Distances and foot parameters of `pts` on `s`, starting from `params`.
 fn project_all(s: &BSpline, pts: &[Point], params: &[f64]) -> Result<Vec<(f64, f64)>> {
+    use rayon::prelude::*;
     let sp = Spans::new(s)?;
+    // In parallel, in order (each point's projection is its own).
     Ok(pts
-        .iter()
+        .par_iter()
         .zip(params)
+        .with_min_len(64)
         .map(|(q, u)| sp.project_near(*q, *u))
         .collect())
 }
@@ -582,9 +587,8 @@ fn smoothing_fit_spans(
     for s in p..p + spans {
         let (a, b) = (knots[s], knots[s + 1]);
         let h = b - a;
-        let vals: Vec<Vec<f64>> = (0..4)
-            .map(|k| basis(&knots, s, a + h * (0.2 + 0.2 * k as f64), p))
-            .collect();
+        let vals: [[f64; 4]; 4] =
+            std::array::from_fn(|k| basis(&knots, s, a + h * (0.2 + 0.2 * k as f64), p));
         let dt = 0.2 * h;
         let d3: Vec<f64> = (0..4)
             .map(|r| (vals[3][r] - 3.0 * vals[2][r] + 3.0 * vals[1][r] - vals[0][r]) / dt.powi(3))

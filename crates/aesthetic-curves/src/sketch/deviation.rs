@@ -6,6 +6,7 @@ use super::types::SketchPiece;
 use crate::bezier::{PlanarCurve, RationalBezier};
 use crate::bspline::BSplineFit;
 use kurbo::{Point, Rect};
+use rayon::prelude::*;
 
 /// The input's distances to the delivered cubics.
 pub(super) struct Deviation {
@@ -24,36 +25,19 @@ pub(super) struct Deviation {
 /// so it is skipped (the distance stays the true nearest one; the piece around the point's
 /// parameter is tried first).
 pub(super) fn measure(pieces: &[SketchPiece], fit: &BSplineFit) -> Deviation {
-    let samples: Vec<Vec<(f64, Point)>> = pieces
-        .iter()
-        .map(|p| {
-            (0..=64)
-                .map(|i| {
-                    let t = i as f64 / 64.0;
-                    (t, p.rational.eval(t))
-                })
-                .collect()
-        })
+    let sampled: Vec<Sampled> = pieces.iter().map(Sampled::new).collect();
+    // Each point's nearest distance and piece, in parallel (in order: the sums below are
+    // the same in any run).
+    let nearest: Vec<(f64, usize)> = fit
+        .points
+        .par_iter()
+        .zip(&fit.params)
+        .with_min_len(32)
+        .map(|(q, &u)| nearest_piece(pieces, &sampled, *q, u))
         .collect();
-    let boxes: Vec<(Rect, f64)> = samples.iter().map(|sm| grown_box(sm)).collect();
     let (mut worst, mut sum) = (0.0f64, 0.0);
     let mut piece_worst = vec![(0.0f64, 0.0f64); pieces.len()];
-    for (q, &u) in fit.points.iter().zip(&fit.params) {
-        let home = pieces
-            .iter()
-            .position(|p| u <= p.u_range.1)
-            .unwrap_or(pieces.len() - 1);
-        let mut best = (project(&pieces[home].rational, *q, &samples[home]).0, home);
-        for (i, p) in pieces.iter().enumerate() {
-            if i == home || box_distance(&boxes[i].0, *q) > best.0 + boxes[i].1 {
-                continue;
-            }
-            let d = project(&p.rational, *q, &samples[i]).0;
-            if d < best.0 {
-                best = (d, i);
-            }
-        }
-        let (d, i) = best;
+    for (&(d, i), &u) in nearest.iter().zip(&fit.params) {
         sum += d * d;
         worst = worst.max(d);
         if d > piece_worst[i].0 {
@@ -65,6 +49,50 @@ pub(super) fn measure(pieces: &[SketchPiece], fit: &BSplineFit) -> Deviation {
         rms: (sum / fit.points.len() as f64).sqrt(),
         piece_worst,
     }
+}
+
+/// A piece's rational cubic at 65 even parameters, their box and its longest step.
+struct Sampled {
+    samples: Vec<(f64, Point)>,
+    bounds: (Rect, f64),
+}
+
+impl Sampled {
+    fn new(p: &SketchPiece) -> Sampled {
+        let samples: Vec<(f64, Point)> = (0..=64)
+            .map(|i| {
+                let t = i as f64 / 64.0;
+                (t, p.rational.eval(t))
+            })
+            .collect();
+        let bounds = grown_box(&samples);
+        Sampled { samples, bounds }
+    }
+}
+
+/// The distance from `q` (spline parameter `u`) to the nearest piece, and that piece: the
+/// piece around `u` first, then every piece whose box, grown by its longest sample step,
+/// lies nearer than the best distance so far.
+fn nearest_piece(pieces: &[SketchPiece], sampled: &[Sampled], q: Point, u: f64) -> (f64, usize) {
+    let home = pieces
+        .iter()
+        .position(|p| u <= p.u_range.1)
+        .unwrap_or(pieces.len() - 1);
+    let mut best = (
+        project(&pieces[home].rational, q, &sampled[home].samples).0,
+        home,
+    );
+    for (i, (p, sm)) in pieces.iter().zip(sampled).enumerate() {
+        let (bx, step) = sm.bounds;
+        if i == home || box_distance(&bx, q) > best.0 + step {
+            continue;
+        }
+        let d = project(&p.rational, q, &sm.samples).0;
+        if d < best.0 {
+            best = (d, i);
+        }
+    }
+    best
 }
 
 /// The box of a piece's samples and its longest sample step.

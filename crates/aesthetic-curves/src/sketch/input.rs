@@ -343,24 +343,18 @@ fn smoothing_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(
     }
 }
 
-/// A straight input refused: its absolute turning (summed over 256 steps) below
-/// `min_turn`.
+/// A straight input refused: its absolute turning (summed over 256 intervals, each
+/// signed turning over 8 steps) below `min_turn`.
 fn check_turning(track: &Track, min_turn: f64) -> Result<()> {
     let (u0, u1) = track.domain();
-    let nb = 256;
-    let turns: f64 = (0..nb)
-        .map(|k| {
-            let a = u0 + (u1 - u0) * k as f64 / nb as f64;
-            let b = u0 + (u1 - u0) * (k + 1) as f64 / nb as f64;
-            track.angle_between(a, b).abs()
-        })
-        .sum();
+    let steps = track.turns(u0, u1, 256 * 8);
+    let turns: f64 = steps.chunks(8).map(|c| c.iter().sum::<f64>().abs()).sum();
     if turns < min_turn {
         return Err(Error::Degenerate(format!(
             "the points lie on a straight line (total turning {:.3e} rad, total {:.3e}): \
              no log-aesthetic curve turns along them",
             turns,
-            track.angle_between(u0, u1)
+            steps.iter().sum::<f64>()
         )));
     }
     Ok(())

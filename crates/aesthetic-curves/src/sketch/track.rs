@@ -100,11 +100,9 @@ impl Track {
     }
 
     pub(super) fn locate(&self, u: f64) -> (usize, f64) {
+        // The last span whose start is at or before u (the first span before the domain).
         let n = self.spans.len();
-        let mut i = 0;
-        while i + 1 < n && self.breaks[i + 1] <= u {
-            i += 1;
-        }
+        let i = self.breaks[1..n].partition_point(|b| *b <= u);
         let (a, b) = (self.breaks[i], self.breaks[i + 1]);
         (i, ((u - a) / (b - a)).clamp(0.0, 1.0))
     }
@@ -159,20 +157,24 @@ impl Track {
         (infl, maxima)
     }
 
-    /// Unwrapped tangent angle at `u`, continuing from `prev` at `u_prev` (steps small enough
-    /// that the tangent turns less than π between them).
+    /// Signed turning of the tangent from `ua` to `ub`, accumulated over 64 steps (each
+    /// taken to turn less than π).
     pub(super) fn angle_between(&self, ua: f64, ub: f64) -> f64 {
-        // Signed turning from ua to ub, accumulated over small steps.
-        let n = 64;
-        let mut total = 0.0;
+        self.turns(ua, ub, 64).iter().sum()
+    }
+
+    /// The signed turning of each of `n` equal steps from `ua` to `ub` (each taken to turn
+    /// less than π, so that their sum is the unwrapped turning).
+    pub(super) fn turns(&self, ua: f64, ub: f64, n: usize) -> Vec<f64> {
         let mut prev = self.direction(ua);
-        for k in 1..=n {
-            let u = ua + (ub - ua) * k as f64 / n as f64;
-            let d = self.direction(u);
-            total += prev.cross(d).atan2(prev.dot(d));
-            prev = d;
-        }
-        total
+        (1..=n)
+            .map(|k| {
+                let d = self.direction(ua + (ub - ua) * k as f64 / n as f64);
+                let t = turn(prev, d);
+                prev = d;
+                t
+            })
+            .collect()
     }
 
     /// |κ| at u.
@@ -181,14 +183,31 @@ impl Track {
     }
 }
 
-/// Parameters where the curve turns by `turn` (in [0, total]) from `ua`, by bisection.
+/// Signed angle from the unit vector `a` to `b`, in (-π, π].
+fn turn(a: Vec2, b: Vec2) -> f64 {
+    a.cross(b).atan2(a.dot(b))
+}
+
+/// The parameter where the curve has turned by `target` (in [0, total]) from `ua`: the
+/// step of 64 from `ua` to `ub` where the turning passes `target`, then bisection inside
+/// it (the turning there: the steps before it and the angle from the step's start).
 pub(super) fn u_at_turn(track: &Track, ua: f64, ub: f64, target: f64) -> f64 {
-    let total = track.angle_between(ua, ub);
-    let sgn = total.signum();
+    let n = 64;
+    let at = |k: usize| ua + (ub - ua) * k as f64 / n as f64;
+    let steps = track.turns(ua, ub, n);
+    let sgn = steps.iter().sum::<f64>().signum();
+    // The last step start still short of the target.
+    let mut before = 0.0;
+    let mut k = 0;
+    while k + 1 < n && sgn * (before + steps[k]) < target {
+        before += steps[k];
+        k += 1;
+    }
+    let start = track.direction(at(k));
     let b = crate::solve::roots::bisect_by(
-        |mid| (sgn * track.angle_between(ua, mid) < target).then_some(()),
-        ua,
-        ub,
+        |mid| (sgn * (before + turn(start, track.direction(mid))) < target).then_some(()),
+        at(k),
+        at(k + 1),
         |a, b| 0.5 * (a + b),
         |_, _| false,
         60,
@@ -200,6 +219,44 @@ pub(super) fn u_at_turn(track: &Track, ua: f64, ub: f64, target: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::bspline::{fit, FitOptions};
+
+    /// An arc of 5 rad (more than π: the turning must be unwrapped) fitted by a spline:
+    /// the parameter `u_at_turn` returns for a target has the tangent turned by that
+    /// target from the start, measured independently (the angle of the tangent, unwrapped
+    /// over 20,000 steps); `angle_between` over the whole arc is its turning, to the fit's
+    /// accuracy (a fit within 1e-3 of the radius 30 leans its end tangents by 1e-3).
+    #[test]
+    fn u_at_turn_finds_the_turning_asked_for_beyond_pi() {
+        let pts: Vec<Point> = (0..=400)
+            .map(|i| {
+                let a = 5.0 * i as f64 / 400.0;
+                Point::new(30.0 * a.cos(), 30.0 * a.sin())
+            })
+            .collect();
+        let opts = FitOptions {
+            tolerance: 1e-3,
+            max_segments: 100,
+        };
+        let track = Track::new(&fit(&pts, opts).unwrap().spline).unwrap();
+        let (u0, u1) = track.domain();
+        let total = track.angle_between(u0, u1);
+        assert!((total - 5.0).abs() < 5e-3, "{total}");
+        let unwrapped = |u: f64| {
+            let n = 20_000;
+            let mut prev = track.direction(u0);
+            let mut total = 0.0;
+            for k in 1..=n {
+                let d = track.direction(u0 + (u - u0) * k as f64 / n as f64);
+                total += prev.cross(d).atan2(prev.dot(d));
+                prev = d;
+            }
+            total
+        };
+        for target in [0.01, 1.0, 3.3, 4.9] {
+            let u = u_at_turn(&track, u0, u1, target);
+            assert!((unwrapped(u) - target).abs() < 1e-9, "{target}: {}", unwrapped(u));
+        }
+    }
 
     /// y = x³ from x = -0.025: its curvature changes sign at x = 0, and before it stays
     /// below 9 % of its largest (about 1.76 at x = 0.45), so the start is a flat stretch
