@@ -291,12 +291,21 @@ mod tests {
 /// by Newton's method on the Legendre polynomial from the usual Chebyshev-like guesses;
 /// rules of up to 64 points are computed once and copied afterwards.
 pub fn gauss_legendre_01(n: usize) -> (Vec<f64>, Vec<f64>) {
-    static CACHE: [std::sync::OnceLock<(Vec<f64>, Vec<f64>)>; 65] =
-        [const { std::sync::OnceLock::new() }; 65];
-    match CACHE.get(n) {
-        Some(cell) => cell.get_or_init(|| gauss_legendre_rule(n)).clone(),
-        None => gauss_legendre_rule(n),
+    if n <= MAX_CACHED_RULE {
+        gauss_legendre_01_ref(n).clone()
+    } else {
+        gauss_legendre_rule(n)
     }
+}
+
+/// The largest rule [`gauss_legendre_01`] keeps.
+pub(crate) const MAX_CACHED_RULE: usize = 64;
+
+/// The kept `n`-point rule itself (no copy), `n` at most [`MAX_CACHED_RULE`].
+pub(crate) fn gauss_legendre_01_ref(n: usize) -> &'static (Vec<f64>, Vec<f64>) {
+    static CACHE: [std::sync::OnceLock<(Vec<f64>, Vec<f64>)>; MAX_CACHED_RULE + 1] =
+        [const { std::sync::OnceLock::new() }; MAX_CACHED_RULE + 1];
+    CACHE[n].get_or_init(|| gauss_legendre_rule(n))
 }
 
 fn gauss_legendre_rule(n: usize) -> (Vec<f64>, Vec<f64>) {

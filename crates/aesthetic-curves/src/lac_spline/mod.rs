@@ -16,6 +16,7 @@
 //! - `pieces`: the solved spans as segments in input coordinates and their cubics;
 //! - here: the options, the result and the driver.
 
+mod clothoid;
 mod pieces;
 mod span;
 mod system;
@@ -214,6 +215,9 @@ fn problem_of<'a>(points: &'a [Point], opts: &LacSplineOptions) -> Result<system
     Ok(system::Problem {
         points,
         alphas,
+        roots: (0..spans)
+            .map(|_| std::sync::atomic::AtomicU64::new(f64::NAN.to_bits()))
+            .collect(),
         ends,
         unknown,
         smooth,

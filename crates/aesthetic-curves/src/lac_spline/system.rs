@@ -9,6 +9,7 @@
 //! leaves it as a circular arc (the deviation mirrored from the other end), and a span
 //! with two free ends is a line.
 
+use super::clothoid;
 use super::span::{self, Solved};
 use crate::error::{Error, Result};
 use crate::solve::linear::Tridiagonal;
@@ -16,9 +17,24 @@ use crate::solve::roots::bisect_by;
 use crate::solve::systems::{damped_newton, DampedNewton, System, SystemStop};
 use kurbo::Point;
 use std::f64::consts::PI;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// The spans' signed curvatures at their start and end.
-type EndCurvatures = Vec<(f64, f64)>;
+/// The spans' signed curvatures at their start and end (input units), and where the
+/// clothoid's fast path gave them, their derivatives in the span's deviations (`[∂/∂a,
+/// ∂/∂b]`, chord units): the Jacobian then needs no span solved again.
+#[derive(Clone, Debug, Default)]
+struct EndCurvatures {
+    kappa: Vec<(f64, f64)>,
+    slopes: Vec<Option<Slopes>>,
+}
+
+/// A span's end curvatures' derivatives in its start and end deviations (`[∂/∂a, ∂/∂b]`,
+/// each the pair at its start and end).
+type Slopes = [(f64, f64); 2];
+
+/// A column of the Jacobian that a span adds to: the unknown and the derivatives of the
+/// span's end curvatures in it.
+type Column = Option<(usize, (f64, f64))>;
 
 /// Step of the forward differences, radians.
 const STEP: f64 = 1e-7;
@@ -34,6 +50,9 @@ pub(super) struct Problem<'a> {
     pub(super) unknown: Vec<Option<usize>>,
     /// The points of the unknowns, in order.
     pub(super) smooth: Vec<usize>,
+    /// Per span, the clothoid's last root A (f64 bits; NaN: none yet): the next solve of
+    /// that span, at tangents a Newton step away, starts there.
+    pub(super) roots: Vec<AtomicU64>,
 }
 
 /// The direction angle from `a` to `b`.
@@ -85,11 +104,42 @@ impl Problem<'_> {
         Ok(s)
     }
 
+    /// Span `k`'s end curvatures at `theta` (input units) and their slopes: at α = -1 the
+    /// clothoid's fast path where it answers ([`clothoid::span`]), else the general span's
+    /// (no slopes).
+    fn kappa(&self, k: usize, theta: &[f64]) -> Result<((f64, f64), Option<Slopes>)> {
+        if let Some(c) = self.clothoid(k, theta) {
+            let l = self.chord_length(k);
+            return Ok(((c.kappa.0 / l, c.kappa.1 / l), Some(c.d)));
+        }
+        self.span(k, theta).map(|s| (s.kappa, None))
+    }
+
+    /// Span `k` at `theta` by the clothoid's fast path, where its α is -1 and its tangents
+    /// leave the chord by less than a half turn (the general path's own limit).
+    fn clothoid(&self, k: usize, theta: &[f64]) -> Option<clothoid::Clothoid> {
+        if self.alphas[k] != -1.0 {
+            return None;
+        }
+        let (a, b) = self.deviations(k, theta);
+        if !(a.abs() < PI && b.abs() < PI) {
+            return None;
+        }
+        let warm = f64::from_bits(self.roots[k].load(Ordering::Relaxed));
+        let c = clothoid::span(a, b, Some(warm))?;
+        self.roots[k].store(c.root.to_bits(), Ordering::Relaxed);
+        Some(c)
+    }
+
     /// The spans' end curvatures at `theta`.
-    fn kappas(&self, theta: &[f64]) -> Result<Vec<(f64, f64)>> {
-        (0..self.ends.len())
-            .map(|k| self.span(k, theta).map(|s| s.kappa))
-            .collect()
+    fn kappas(&self, theta: &[f64]) -> Result<EndCurvatures> {
+        let mut out = EndCurvatures::default();
+        for k in 0..self.ends.len() {
+            let (kappa, slopes) = self.kappa(k, theta)?;
+            out.kappa.push(kappa);
+            out.slopes.push(slopes);
+        }
+        Ok(out)
     }
 
     /// The span ending at point `p` and the one starting there (both exist at a smooth
@@ -121,44 +171,87 @@ impl Problem<'_> {
     /// cannot be built.
     fn state(&self, theta: &[f64]) -> Option<(EndCurvatures, Vec<f64>)> {
         let k = self.kappas(theta).ok()?;
-        let r = self.residuals(&k);
+        let r = self.residuals(&k.kappa);
         Some((k, r))
     }
 
-    /// The Jacobian at `theta` (end curvatures `kappas` there): column `u` from the two
-    /// spans at the unknown's point with its angle moved by [`STEP`] (forward differences:
-    /// the residuals themselves are exact, so Newton still converges, by a factor of about
-    /// 1e-7 a step once close; backward where a span cannot be built forward).
-    fn jacobian(&self, theta: &[f64], kappas: &[(f64, f64)]) -> Option<Tridiagonal> {
-        let m = self.smooth.len();
-        let mut jac = Tridiagonal::zeros(m);
-        let mut moved = theta.to_vec();
-        for (u, &p) in self.smooth.iter().enumerate() {
-            let (i, o) = self.around(p);
-            for k in if i == o { vec![i] } else { vec![i, o] } {
-                moved[u] = theta[u] + STEP;
-                let (kp, h) = match self.span(k, &moved) {
-                    Ok(s) => (s.kappa, STEP),
-                    Err(_) => {
-                        moved[u] = theta[u] - STEP;
-                        (self.span(k, &moved).ok()?.kappa, -STEP)
-                    }
-                };
-                moved[u] = theta[u];
-                let d0 = (kp.0 - kappas[k].0) / h;
-                let d1 = (kp.1 - kappas[k].1) / h;
-                let (a, b) = self.ends[k];
+    /// The Jacobian at `theta` (end curvatures `kappas` there), span by span: each span's
+    /// end curvatures move with the tangent angles at its two ends only, and enter the
+    /// residuals at those two points.
+    fn jacobian(&self, theta: &[f64], spans: &EndCurvatures) -> Option<Tridiagonal> {
+        let mut jac = Tridiagonal::zeros(self.smooth.len());
+        for k in 0..self.ends.len() {
+            let (a, b) = self.ends[k];
+            for (u, d) in self.slopes(k, theta, spans)?.into_iter().flatten() {
                 // κ at the span's end enters the residual at b (as κ in), its start at a
                 // (as minus κ out).
                 if let Some(r) = self.unknown[b] {
-                    jac.add(r, u, d1 * self.length_at(b));
+                    jac.add(r, u, d.1 * self.length_at(b));
                 }
                 if let Some(r) = self.unknown[a] {
-                    jac.add(r, u, -d0 * self.length_at(a));
+                    jac.add(r, u, -d.0 * self.length_at(a));
                 }
             }
         }
         Some(jac)
+    }
+
+    /// The derivatives of span `k`'s end curvatures (`kappa` at `theta`) in the unknown
+    /// angle at its start and at its end (where those are unknowns): the clothoid's own
+    /// at α = -1 (its deviations move with the angles, a free end's mirrored one against
+    /// them), else forward differences of [`STEP`] (the residuals themselves are exact, so
+    /// Newton still converges, by a factor of about 1e-7 a step once close; backward where
+    /// a span cannot be built forward).
+    fn slopes(&self, k: usize, theta: &[f64], spans: &EndCurvatures) -> Option<[Column; 2]> {
+        let (i, j) = self.ends[k];
+        let (ui, uj) = (self.unknown[i], self.unknown[j]);
+        let l = self.chord_length(k);
+        let kappa = spans.kappa[k];
+        if let Some(d) = spans.slopes[k] {
+            // (∂a, ∂b) per unit of the angle at the start and at the end.
+            let (da_i, db_i) = if uj.is_some() {
+                (1.0, 0.0)
+            } else {
+                (1.0, -1.0)
+            };
+            let (da_j, db_j) = if ui.is_some() {
+                (0.0, 1.0)
+            } else {
+                (-1.0, 1.0)
+            };
+            let along = |da: f64, db: f64| {
+                (
+                    (d[0].0 * da + d[1].0 * db) / l,
+                    (d[0].1 * da + d[1].1 * db) / l,
+                )
+            };
+            return Some([
+                ui.map(|u| (u, along(da_i, db_i))),
+                uj.map(|u| (u, along(da_j, db_j))),
+            ]);
+        }
+        let mut moved = theta.to_vec();
+        let mut column = |u: usize| -> Column {
+            moved[u] = theta[u] + STEP;
+            let (kp, h) = match self.span(k, &moved) {
+                Ok(s) => (s.kappa, STEP),
+                Err(_) => {
+                    moved[u] = theta[u] - STEP;
+                    (self.span(k, &moved).ok()?.kappa, -STEP)
+                }
+            };
+            moved[u] = theta[u];
+            Some((u, ((kp.0 - kappa.0) / h, (kp.1 - kappa.1) / h)))
+        };
+        let start = match ui {
+            Some(u) => Some(column(u)?),
+            None => None,
+        };
+        let end = match uj {
+            Some(u) => Some(column(u)?),
+            None => None,
+        };
+        Some([start, end])
     }
 
     /// The largest |κ in - κ out| at a smooth point over the largest |κ| of the spans' ends.
@@ -377,7 +470,7 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
     }
     let (theta, kappas) = run.state;
     Ok(Solution {
-        jump: problem.jump(&kappas),
+        jump: problem.jump(&kappas.kappa),
         theta,
         iterations: run.iterations,
         stop: run.stop,
@@ -408,7 +501,7 @@ fn newton(
             let t: Vec<f64> = theta.iter().zip(step).map(|(t, s)| t + len * s).collect();
             problem.state(&t).map(|(k, r)| ((t, k), r))
         },
-        |(_, kappas), _| problem.jump(kappas) <= tol,
+        |(_, kappas), _| problem.jump(&kappas.kappa) <= tol,
         &DampedNewton {
             max_iterations,
             halvings: 30,

@@ -254,7 +254,11 @@ mod tests {
         };
         for target in [0.01, 1.0, 3.3, 4.9] {
             let u = u_at_turn(&track, u0, u1, target);
-            assert!((unwrapped(u) - target).abs() < 1e-9, "{target}: {}", unwrapped(u));
+            assert!(
+                (unwrapped(u) - target).abs() < 1e-9,
+                "{target}: {}",
+                unwrapped(u)
+            );
         }
     }
 
