@@ -13,8 +13,10 @@ when |x'|² has a root in (0, 1). Exits 1 on any disagreement (verdict, degenera
 number of extrema, an extremum more than 1e-9 away), and prints one line per font.
 """
 import json
+import multiprocessing
 import subprocess
 import sys
+import threading
 from fractions import Fraction
 from math import comb, gcd
 
@@ -90,15 +92,22 @@ def bernstein_to_power(c):
     return trim(out)
 
 
-def evaluate(p, x):  # x a Fraction
-    acc = Fraction(0)
-    for c in reversed(p):
-        acc = acc * x + c
-    return acc
-
-
 def sign(v):
     return (v > 0) - (v < 0)
+
+
+def sign_at(p, x):
+    """The sign of the integer polynomial p at the Fraction x = n/d (d > 0), in integers:
+    p(x) d^deg = sum c_k n^k d^(deg-k) (Horner in n, powers of d alongside)."""
+    if not p:
+        return 0
+    n, d = x.numerator, x.denominator
+    acc = p[-1]
+    dk = 1
+    for c in reversed(p[:-1]):
+        dk *= d
+        acc = acc * n + c * dk
+    return sign(acc)
 
 
 def polydivmod(a, b):
@@ -138,12 +147,13 @@ def sturm_chain(p):
         _, r = polydivmod(chain[-2], chain[-1])
         if not r:
             break
-        chain.append([-x for x in r])
+        # Scaled to integers by a positive factor: still a Sturm sequence.
+        chain.append(primitive([-x for x in r]))
     return chain
 
 
 def variations(chain, x):
-    signs = [sign(evaluate(p, x)) for p in chain]
+    signs = [sign_at(p, x) for p in chain]
     signs = [s for s in signs if s]
     return sum(1 for a, b in zip(signs, signs[1:]) if a != b)
 
@@ -173,7 +183,7 @@ def roots_in_unit(p):
             continue
         m = (a + b) / 2
         k = 3
-        while evaluate(s, m) == 0:
+        while sign_at(s, m) == 0:
             m = a + (b - a) * Fraction(2 ** (k - 1) + 1, 2 ** k)
             k += 1
         stack += [(a, m), (m, b)]
@@ -207,12 +217,12 @@ def oracle(points):
     p, intervals = roots_in_unit(k)
     changes = []
     for a, b in intervals:
-        if sign(evaluate(p, a)) != sign(evaluate(p, b)):
+        if sign_at(p, a) != sign_at(p, b):
             # refine by bisection on the square-free part's sign (p changes sign here)
-            sa = sign(evaluate(p, a))
+            sa = sign_at(p, a)
             for _ in range(40):
                 m = (a + b) / 2
-                sm = sign(evaluate(p, m))
+                sm = sign_at(p, m)
                 if sm == 0:
                     a = b = m
                     break
@@ -251,8 +261,19 @@ def main():
             lines.append(json.dumps({"id": 2 * i, "op": "bezier.curvature_monotone", "control_points": pts}))
             lines.append(json.dumps({"id": 2 * i + 1, "op": "bezier.curvature_monotone", "control_points": pts,
                                      "weights": [1.0] * len(pts)}))
-        out = subprocess.run([aecurve, "batch"], input="\n".join(lines) + "\n", capture_output=True, text=True,
-                             check=True).stdout.splitlines()
+        # aecurve answers while the oracle decides the same segments in worker processes
+        # (one per core: exact arithmetic in Python is the slow half).
+        batch = subprocess.Popen([aecurve, "batch"], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        sent = []
+        feeder = threading.Thread(target=lambda: sent.append(batch.communicate("\n".join(lines) + "\n")[0]))
+        feeder.start()
+        with multiprocessing.Pool() as pool:
+            verdicts = pool.map(oracle, [pts for _, pts in segs], chunksize=256)
+        feeder.join()
+        if batch.returncode != 0:
+            print(f"font oracle: aecurve batch exited with {batch.returncode}")
+            sys.exit(1)
+        out = sent[0].splitlines()
         answers = {}
         for line in out:
             r = json.loads(line)
@@ -260,8 +281,7 @@ def main():
         wrong = 0
         exact = 0
         nonmono = 0
-        for i, (name, pts) in enumerate(segs):
-            kind, changes = oracle(pts)
+        for i, ((name, pts), (kind, changes)) in enumerate(zip(segs, verdicts)):
             if kind == "ok" and changes:
                 nonmono += 1
             for rid in (2 * i, 2 * i + 1):
