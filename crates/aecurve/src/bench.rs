@@ -9,7 +9,6 @@
 use aesthetic_curves::monotone::CurvatureMonotone;
 use aesthetic_curves::samples::random_curves;
 use aesthetic_curves::Bezier;
-use indicatif::{ProgressBar, ProgressStyle};
 use schemars::JsonSchema;
 use serde::Serialize;
 use std::hint::black_box;
@@ -103,11 +102,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 pub fn run(cfg: &BenchConfig) -> Vec<BenchRow> {
     let rounds = cfg.rounds.max(1);
     let tasks = cfg.degrees.len() * rounds;
-    let pb = ProgressBar::new(tasks as u64);
-    pb.set_style(
-        ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let pb = crate::progress::bar(tasks as u64, "", true);
     let mut rows = Vec::new();
     for &degree in &cfg.degrees {
         let all = random_curves(degree, cfg.curves, cfg.seed);

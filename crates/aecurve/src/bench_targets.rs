@@ -14,7 +14,6 @@ use aesthetic_curves::monotone::CurvatureMonotone;
 use aesthetic_curves::pseudo_spline::{pseudo_elastic, Mode};
 use aesthetic_curves::samples::{random_rational_curves, wavy_points};
 use aesthetic_curves::Point;
-use indicatif::{ProgressBar, ProgressStyle};
 use schemars::JsonSchema;
 use serde::Serialize;
 use std::hint::black_box;
@@ -249,11 +248,7 @@ fn round_ns(work: &Work, round_time: Duration) -> f64 {
 pub fn run(group: Group, rounds: usize, round_time: Duration) -> Vec<TargetRow> {
     let works = works(group);
     let rounds = rounds.max(1);
-    let pb = ProgressBar::new(rounds as u64);
-    pb.set_style(
-        ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let pb = crate::progress::bar(rounds as u64, "", true);
     // One call each first: lazily built tables (the spline's) are not timed.
     for w in &works {
         black_box((w.run)());

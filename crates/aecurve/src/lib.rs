@@ -13,6 +13,7 @@ pub mod fix;
 pub mod json_out;
 pub mod outline_io;
 pub mod plot;
+pub mod progress;
 pub mod protocol;
 pub mod report;
 pub mod summary;

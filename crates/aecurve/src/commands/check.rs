@@ -54,19 +54,9 @@ pub(crate) fn check(
         grid: outline_io::options_for(&outlines).grid,
         ..thresholds
     };
-    let bar = (shapes.len() > 2000 && !json_out).then(|| {
-        let b = indicatif::ProgressBar::new(shapes.len() as u64);
-        b.set_style(
-            indicatif::ProgressStyle::with_template("checking {bar:40} {pos}/{len} shapes")
-                .expect("template"),
-        );
-        b
-    });
-    let tick = || {
-        if let Some(b) = &bar {
-            b.inc(1);
-        }
-    };
+    let shown = shapes.len() > 2000 && !json_out;
+    let bar = aecurve::progress::bar(shapes.len() as u64, "checking shapes", shown);
+    let tick = || bar.inc(1);
     let out = std::io::stdout();
     let mut json = json_out.then(|| std::io::BufWriter::new(out.lock()));
     if let Some(w) = &mut json {
@@ -79,9 +69,7 @@ pub(crate) fn check(
         .map_err(json_error)?;
     }
     let folded = fold_checks(&shapes, &opts, &tick, json.as_mut())?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    bar.finish_and_clear();
     if let Some(r) = report {
         let title = format!(
             "aecurve check: {}",

@@ -39,11 +39,7 @@ pub(crate) fn class_a_polygon(degree: usize, scale: f64, turn: f64) -> Vec<(f64,
 
 pub(crate) fn demo(out: &std::path::Path, quick: bool) -> Result<()> {
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
-    let pb = indicatif::ProgressBar::new(6);
-    pb.set_style(
-        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
+    let pb = aecurve::progress::bar(6, "", true);
     pb.set_message("curvature monotonicity examples");
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let examples = vec![

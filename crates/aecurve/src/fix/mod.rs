@@ -181,14 +181,8 @@ pub fn fix_font_holding(font: &norad::Font, opts: &FixOptions, held: &Held) -> V
                 .map(move |(ci, c)| (name, ci, c))
         })
         .collect();
-    let bar = indicatif::ProgressBar::new(contours.len() as u64);
-    if contours.len() < PROGRESS_FROM {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("repairing {bar:40} {pos}/{len} contours")
-            .expect("template"),
-    );
+    let shown = contours.len() >= PROGRESS_FROM;
+    let bar = crate::progress::bar(contours.len() as u64, "repairing contours", shown);
     let fixes = contours
         .par_iter()
         .map(|&(name, ci, contour)| {

@@ -347,7 +347,7 @@ fn smoothing_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(
 /// signed turning over 8 steps) below `min_turn`.
 fn check_turning(track: &Track, min_turn: f64) -> Result<()> {
     let (u0, u1) = track.domain();
-    let steps = track.turns(u0, u1, 256 * 8);
+    let steps: Vec<f64> = track.turns(u0, u1, 256 * 8).collect();
     let turns: f64 = steps.chunks(8).map(|c| c.iter().sum::<f64>().abs()).sum();
     if turns < min_turn {
         return Err(Error::Degenerate(format!(

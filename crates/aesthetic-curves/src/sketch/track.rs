@@ -160,21 +160,19 @@ impl Track {
     /// Signed turning of the tangent from `ua` to `ub`, accumulated over 64 steps (each
     /// taken to turn less than π).
     pub(super) fn angle_between(&self, ua: f64, ub: f64) -> f64 {
-        self.turns(ua, ub, 64).iter().sum()
+        self.turns(ua, ub, 64).sum()
     }
 
     /// The signed turning of each of `n` equal steps from `ua` to `ub` (each taken to turn
     /// less than π, so that their sum is the unwrapped turning).
-    pub(super) fn turns(&self, ua: f64, ub: f64, n: usize) -> Vec<f64> {
+    pub(super) fn turns(&self, ua: f64, ub: f64, n: usize) -> impl Iterator<Item = f64> + '_ {
         let mut prev = self.direction(ua);
-        (1..=n)
-            .map(|k| {
-                let d = self.direction(ua + (ub - ua) * k as f64 / n as f64);
-                let t = turn(prev, d);
-                prev = d;
-                t
-            })
-            .collect()
+        (1..=n).map(move |k| {
+            let d = self.direction(ua + (ub - ua) * k as f64 / n as f64);
+            let t = turn(prev, d);
+            prev = d;
+            t
+        })
     }
 
     /// |κ| at u.
@@ -194,7 +192,7 @@ fn turn(a: Vec2, b: Vec2) -> f64 {
 pub(super) fn u_at_turn(track: &Track, ua: f64, ub: f64, target: f64) -> f64 {
     let n = 64;
     let at = |k: usize| ua + (ub - ua) * k as f64 / n as f64;
-    let steps = track.turns(ua, ub, n);
+    let steps: Vec<f64> = track.turns(ua, ub, n).collect();
     let sgn = steps.iter().sum::<f64>().signum();
     // The last step start still short of the target.
     let mut before = 0.0;
