@@ -168,15 +168,15 @@ pub fn chord_parameters(points: &[Point]) -> Result<Vec<f64>> {
     Ok(s.iter().map(|v| v / total).collect())
 }
 
-/// The four non-zero cubic basis values at u in span s (`p` = 3; no allocation: the fits
-/// call it once per point per solve).
-fn basis(knots: &[f64], s: usize, u: f64, p: usize) -> [f64; 4] {
-    debug_assert_eq!(p, 3);
+/// The four non-zero cubic basis values at u in span s (no allocation: the fits call it
+/// once per point per solve).
+fn basis(knots: &[f64], s: usize, u: f64) -> [f64; 4] {
+    const P: usize = 3;
     let mut n = [0.0; 4];
     n[0] = 1.0;
     let mut left = [0.0; 4];
     let mut right = [0.0; 4];
-    for j in 1..=p {
+    for j in 1..=P {
         left[j] = u - knots[s + 1 - j];
         right[j] = knots[s + j] - u;
         let mut saved = 0.0;
@@ -224,7 +224,7 @@ pub fn fit_knots(points: &[Point], params: &[f64], interior: &[f64]) -> Result<B
     let mut rows: Vec<(usize, [f64; 4], usize, Vec2)> = Vec::with_capacity(m);
     for (&u, q) in params.iter().zip(points) {
         let s = proto.span(u);
-        let nb = basis(&knots, s, u, p);
+        let nb = basis(&knots, s, u);
         let mut rhs = q.to_vec2();
         let mut vals = [0.0; 4];
         let mut cnt = 0;
@@ -588,7 +588,7 @@ fn smoothing_fit_spans(
         let (a, b) = (knots[s], knots[s + 1]);
         let h = b - a;
         let vals: [[f64; 4]; 4] =
-            std::array::from_fn(|k| basis(&knots, s, a + h * (0.2 + 0.2 * k as f64), p));
+            std::array::from_fn(|k| basis(&knots, s, a + h * (0.2 + 0.2 * k as f64)));
         let dt = 0.2 * h;
         let d3: Vec<f64> = (0..4)
             .map(|r| (vals[3][r] - 3.0 * vals[2][r] + 3.0 * vals[1][r] - vals[0][r]) / dt.powi(3))
@@ -606,7 +606,7 @@ fn smoothing_fit_spans(
         let mut atb = DMatrix::<f64>::zeros(n, 2);
         for (&u, q) in params.iter().zip(&pts) {
             let s = proto.span(u);
-            let nb = basis(&knots, s, u, p);
+            let nb = basis(&knots, s, u);
             for x in 0..4 {
                 for y in 0..4 {
                     ata[(s - p + x, s - p + y)] += nb[x] * nb[y];

@@ -55,6 +55,18 @@ struct Moments {
     sin: [f64; 3],
 }
 
+impl Moments {
+    /// S(A) = ∫ sin φ.
+    fn s(&self) -> f64 {
+        self.sin[0]
+    }
+
+    /// ∂S/∂A = ∫ (t² - t) cos φ.
+    fn s_a(&self) -> f64 {
+        self.cos[2] - self.cos[1]
+    }
+}
+
 /// The moments of the phase `φ(t) = a + (δ - A) t + A t²` by the rule `(x, w)`.
 fn moments((x, w): (&[f64], &[f64]), a: f64, delta: f64, big_a: f64) -> Moments {
     let mut m = Moments {
@@ -130,9 +142,7 @@ fn newton(a: f64, b: f64, mut big_a: f64) -> Option<Clothoid> {
     for _ in 0..MAX_STEPS {
         let r = rule(delta, big_a)?;
         let m = moments(r, a, delta, big_a);
-        // S(A) and its slope ∫ (t² - t) cos φ.
-        let s = m.sin[0];
-        let s_a = m.cos[2] - m.cos[1];
+        let (s, s_a) = (m.s(), m.s_a());
         if !(s_a.is_finite() && s_a != 0.0) {
             return None;
         }
@@ -155,7 +165,7 @@ fn newton(a: f64, b: f64, mut big_a: f64) -> Option<Clothoid> {
 fn finish(m: &Moments, (a, b, big_a): (f64, f64, f64), step: f64) -> Option<Clothoid> {
     let delta = b - a;
     // ∂S/∂A, ∂S/∂a, ∂S/∂b and ∂C/∂(A, a, b): ∂φ/∂A = t² - t, ∂φ/∂a = 1 - t, ∂φ/∂b = t.
-    let s_a = m.cos[2] - m.cos[1];
+    let s_a = m.s_a();
     let s_da = m.cos[0] - m.cos[1];
     let s_db = m.cos[1];
     let c_a = -(m.sin[2] - m.sin[1]);
