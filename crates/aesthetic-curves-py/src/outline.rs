@@ -128,10 +128,11 @@ pub(crate) fn check_outline<'py>(
 /// `smooth[j]` says whether the join after segment j is meant smooth; with `bumps`, cubics
 /// with a curvature hook near an end or several extrema get monotone handle lengths first
 /// where some exist within the tolerance. Returns `{"segments": [...], "joins": [...],
-/// "moved": [...], "bumps": [...]}`: the new control points (only handles move, along their
-/// tangents, at most `tolerance`, on the `grid`), per join `after_segment`, `outcome`,
-/// `jump` and `angle_degrees` (each a (before, after) pair), and the segments whose bump
-/// was removed.
+/// "moved": [...], "bumps": [...], "bumps_undecided": [...]}`: the new control points (only
+/// handles move, along their tangents, at most `tolerance`, on the `grid`), per join
+/// `after_segment`, `outcome`, `jump` and `angle_degrees` (each a (before, after) pair), the
+/// segments whose bump was removed, and those whose repair search ran out of its budget for
+/// exact arithmetic (coordinates spanning hundreds of orders of magnitude).
 #[pyfunction]
 #[pyo3(signature = (segments, closed, smooth, tolerance = 2.0, grid = 0.0, bumps = true))]
 pub(crate) fn harmonize<'py>(
@@ -182,6 +183,7 @@ pub(crate) fn harmonize<'py>(
     out.set_item("joins", joins)?;
     let fixed: Vec<usize> = h.bumps.iter().map(|b| b.segment).collect();
     out.set_item("bumps", fixed)?;
+    out.set_item("bumps_undecided", h.bumps_undecided.clone())?;
     Ok(out)
 }
 

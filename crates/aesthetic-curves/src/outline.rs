@@ -176,7 +176,9 @@ pub struct HandleSuggestion {
 /// `3(1-t)²t (a-1) h₁ + 3(1-t)t² (b-1) h₂`, its largest length bounded from above by
 /// [`crate::bezier::outline_move`] (within 10⁻⁴ of the true maximum).
 /// None for a curve already monotone, not a cubic, with a zero handle, or with nothing
-/// monotone within the tolerance.
+/// monotone within the tolerance; or with nothing proven monotone before the search's budget
+/// for exact arithmetic ran out ([`crate::monotone::with_exact_budget`]; only where the
+/// coordinates span hundreds of orders of magnitude).
 pub fn suggest_handles(c: &crate::Bezier, tolerance: f64) -> Option<HandleSuggestion> {
     let p = c.points();
     if p.len() != 4 || tolerance.is_nan() || tolerance <= 0.0 {
@@ -193,6 +195,19 @@ pub fn suggest_handles(c: &crate::Bezier, tolerance: f64) -> Option<HandleSugges
     if monotone(1.0, 1.0) {
         return None;
     }
+    // The search's verdicts under one budget for exact work (a caller's, if smaller).
+    crate::monotone::with_exact_budget(crate::monotone::SEARCH_EXACT_BUDGET, || {
+        search_handles(p, (h1, h2), tolerance)
+    })
+    .0
+}
+
+/// [`suggest_handles`]' search, for a cubic `p` with handles `h1`, `h2`, not monotone.
+fn search_handles(p: &[Point], (h1, h2): (Vec2, Vec2), tolerance: f64) -> Option<HandleSuggestion> {
+    let make =
+        |a: f64, b: f64| crate::Bezier::new(vec![p[0], p[0] + h1 * a, p[3] + h2 * b, p[3]]).ok();
+    let monotone =
+        |a: f64, b: f64| make(a, b).is_some_and(|c| c.is_curvature_monotone().unwrap_or(false));
     // The sound bound of the move (convex hull, split until tight), not samples of it.
     let deviation = |a: f64, b: f64| {
         crate::bezier::outline_move(p, &[p[0], p[0] + h1 * a, p[3] + h2 * b, p[3]])
@@ -200,19 +215,15 @@ pub fn suggest_handles(c: &crate::Bezier, tolerance: f64) -> Option<HandleSugges
     let n = 33;
     let (lo, hi) = (0.2f64.ln(), 5f64.ln());
     let at = |i: usize| (lo + (hi - lo) * i as f64 / (n - 1) as f64).exp();
-    let mut best: Option<(f64, f64, f64)> = None;
-    for i in 0..n {
-        for j in 0..n {
-            let (a, b) = (at(i), at(j));
-            let d = deviation(a, b);
-            if d > tolerance || best.is_some_and(|x| d >= x.2) {
-                continue;
-            }
-            if monotone(a, b) {
-                best = Some((a, b, d));
-            }
-        }
-    }
+    // The candidates within the tolerance by their move, smallest first (ties in grid
+    // order): the first monotone one is the best, and no larger move is proven.
+    let mut candidates: Vec<(f64, f64, f64)> = (0..n * n)
+        .map(|k| (at(k / n), at(k % n)))
+        .map(|(a, b)| (a, b, deviation(a, b)))
+        .filter(|c| c.2 <= tolerance)
+        .collect();
+    candidates.sort_by(|x, y| x.2.total_cmp(&y.2));
+    let best = candidates.into_iter().find(|c| monotone(c.0, c.1));
     let (a, b, _) = best?;
     // Towards the current handles in (ln a, ln b) while it stays monotone.
     // (`inside`: the fraction of the way from (1, 1).)

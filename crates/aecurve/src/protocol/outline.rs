@@ -523,6 +523,9 @@ pub struct OutlineFixResult {
     pub max_moved: f64,
     /// Curvature bumps removed.
     pub bumps_removed: usize,
+    /// Segments with a curvature bump whose repair search stopped at its budget for exact
+    /// arithmetic (coordinates spanning hundreds of orders of magnitude): left as they are.
+    pub bumps_undecided: Vec<usize>,
 }
 
 /// `outline.fix`.
@@ -574,6 +577,7 @@ impl Op for OutlineFix {
             joins,
             max_moved: h.moved.iter().copied().fold(0.0, f64::max),
             bumps_removed: h.bumps.len(),
+            bumps_undecided: h.bumps_undecided.clone(),
         })
     }
 }

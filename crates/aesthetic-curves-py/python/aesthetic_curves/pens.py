@@ -100,8 +100,10 @@ def fix_glyph(glyph, tolerance=2.0, grid=1.0, bumps=True):
     ``contours`` hold ``points`` with ``x``, ``y``, ``type`` (or ``segmentType``) and
     ``smooth`` (ufoLib2, defcon). Returns one dict per contour: its index and either
     ``joins`` (``after_segment``, ``outcome``, ``jump`` and ``angle_degrees`` before and
-    after), ``moved`` and ``bumps`` (the segments whose bump was removed), or ``skipped``
-    with the reason."""
+    after), ``moved``, ``bumps`` (the segments whose bump was removed) and
+    ``bumps_undecided`` (those whose repair search ran out of its budget for exact
+    arithmetic: coordinates spanning hundreds of orders of magnitude), or ``skipped`` with
+    the reason."""
     out = []
     for ci, contour in enumerate(glyph.contours):
         points = list(contour.points)
@@ -114,5 +116,13 @@ def fix_glyph(glyph, tolerance=2.0, grid=1.0, bumps=True):
         for idx, pts in zip(indices, h["segments"]):
             for i, (x, y) in zip(idx, pts):
                 points[i].x, points[i].y = x, y
-        out.append({"contour": ci, "joins": h["joins"], "moved": h["moved"], "bumps": h["bumps"]})
+        out.append(
+            {
+                "contour": ci,
+                "joins": h["joins"],
+                "moved": h["moved"],
+                "bumps": h["bumps"],
+                "bumps_undecided": h["bumps_undecided"],
+            }
+        )
     return out

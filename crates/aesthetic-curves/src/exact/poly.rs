@@ -85,21 +85,9 @@ impl IntPoly {
         if self.is_zero() {
             return self.clone();
         }
-        // Smallest coefficients first, and each one reduced modulo the gcd so far before
-        // the binary gcd (whose steps remove a bit or so each: on a small and a large
-        // number it would take as many steps as the large one has bits).
-        let mut by_size: Vec<&BigInt> = self.c.iter().filter(|v| !v.is_zero()).collect();
-        by_size.sort_by_key(|v| v.bits());
-        let mut g = BigInt::zero();
-        for v in by_size {
-            g = if g.is_zero() {
-                v.abs()
-            } else {
-                g.gcd(&(v % &g))
-            };
-            if g.is_one() {
-                return self.clone();
-            }
+        let g = content(&self.c);
+        if g.is_one() {
+            return self.clone();
         }
         IntPoly::new(self.c.iter().map(|v| v / &g).collect())
     }
@@ -191,6 +179,42 @@ impl IntPoly {
     fn sign_at_one(&self) -> i32 {
         self.c.last().map_or(0, sign_of)
     }
+}
+
+/// The gcd of the coefficients' absolute values (not all zero). The smallest first, and
+/// each one reduced modulo the gcd so far: the running gcd is soon small, and each step with
+/// it cheap.
+fn content(c: &[BigInt]) -> BigInt {
+    let mut by_size: Vec<&BigInt> = c.iter().filter(|v| !v.is_zero()).collect();
+    by_size.sort_by_key(|v| v.bits());
+    let mut g = BigInt::zero();
+    for v in by_size {
+        g = if g.is_zero() {
+            v.abs()
+        } else {
+            gcd(&g, &(v % &g))
+        };
+        if g.is_one() {
+            break;
+        }
+    }
+    g
+}
+
+/// The gcd of two integers. num-bigint's binary gcd removes about a bit a step: fine on a
+/// few words, but the sequences of a curve whose coordinates span 1e-300 to 1e300 have
+/// 21,000-bit coefficients (3.5 ms a gcd); dashu's Lehmer gcd takes 0.3 ms there.
+fn gcd(a: &BigInt, b: &BigInt) -> BigInt {
+    if a.bits().max(b.bits()) <= 1024 {
+        return a.gcd(b);
+    }
+    use dashu_int::{ops::Gcd, UBig};
+    let big = |v: &BigInt| UBig::from_le_bytes(&v.magnitude().to_bytes_le());
+    let g = big(a).gcd(big(b));
+    BigInt::from_biguint(
+        num_bigint::Sign::Plus,
+        num_bigint::BigUint::from_bytes_le(&g.to_le_bytes()),
+    )
 }
 
 /// The exact sign of `Σ c_i u^i` at the f64 parameter `t`: at `t <= 0` the sign just right

@@ -224,6 +224,10 @@ pub struct Harmonized {
     /// The cubics whose curvature defects [`repair`] removed first (none from
     /// [`harmonize`] alone).
     pub bumps: Vec<BumpFix>,
+    /// The cubics with a curvature defect whose repair search stopped at its budget for
+    /// exact arithmetic ([`crate::monotone::SEARCH_EXACT_BUDGET`]: coordinates spanning
+    /// hundreds of orders of magnitude), left as they are although a repair may exist.
+    pub bumps_undecided: Vec<usize>,
 }
 
 /// The handle lengths of the cubics and their tangent directions.
@@ -780,6 +784,7 @@ impl Stage<'_> {
             extrema,
             sweeps,
             bumps: Vec::new(),
+            bumps_undecided: Vec::new(),
         }
     }
 }
@@ -1431,7 +1436,7 @@ pub fn repair_holding(
     let (start, bumps) = if what.bumps {
         remove_bumps_except(segments, closed, opts, what.hook_zone, &at_held)
     } else {
-        (segments.to_vec(), Vec::new())
+        (segments.to_vec(), Bumps::default())
     };
     let rest = HarmonizeOptions {
         // No join harmonized when not asked, G1 or not.
@@ -1455,7 +1460,8 @@ pub fn repair_holding(
     for (i, s) in segments.iter().enumerate() {
         h.extrema[i].0 = extrema(s);
     }
-    h.bumps = bumps;
+    h.bumps = bumps.fixed;
+    h.bumps_undecided = bumps.undecided;
     Ok(h)
 }
 
@@ -1506,7 +1512,16 @@ pub fn remove_bumps(
     opts: &HarmonizeOptions,
     zone: f64,
 ) -> (Vec<Vec<Point>>, Vec<BumpFix>) {
-    remove_bumps_except(segments, closed, opts, zone, &|_| false)
+    let (pts, bumps) = remove_bumps_except(segments, closed, opts, zone, &|_| false);
+    (pts, bumps.fixed)
+}
+
+/// What [`remove_bumps_except`] did: the cubics fixed, and those whose search stopped at
+/// its budget for exact arithmetic.
+#[derive(Default)]
+struct Bumps {
+    fixed: Vec<BumpFix>,
+    undecided: Vec<usize>,
 }
 
 /// [`remove_bumps`], leaving the segments where `skip` says so.
@@ -1516,10 +1531,10 @@ fn remove_bumps_except(
     opts: &HarmonizeOptions,
     zone: f64,
     skip: &dyn Fn(usize) -> bool,
-) -> (Vec<Vec<Point>>, Vec<BumpFix>) {
+) -> (Vec<Vec<Point>>, Bumps) {
     let mut pts = segments.to_vec();
     let before = states(segments, closed);
-    let mut fixes = Vec::new();
+    let mut bumps = Bumps::default();
     for i in (0..pts.len()).filter(|&i| !skip(i)) {
         let Some(ts) = extrema_at(&segments[i]) else {
             continue;
@@ -1527,29 +1542,35 @@ fn remove_bumps_except(
         if !is_bump(&ts, zone) {
             continue;
         }
-        // The monotone handle lengths nearest to the cubic's own first, then the nearest
-        // lengths that at least leave fewer extrema and no hook.
         let Ok(b) = Bezier::new(segments[i].clone()) else {
             continue;
         };
-        let monotone =
-            crate::outline::suggest_handles(&b, opts.tolerance).map(|s| s.curve.points().to_vec());
-        let ctx = ((segments, &before[..]), (closed, opts));
-        let found = monotone
-            .into_iter()
-            .chain(relieving_lengths(&segments[i], opts.tolerance))
-            .find_map(|aim| best_rounding(&mut pts, i, &aim, ctx.0, ctx.1, ts.len(), zone));
+        // Each cubic's search (hundreds of candidates) under one budget for exact work.
+        let (found, refused) =
+            crate::monotone::with_exact_budget(crate::monotone::SEARCH_EXACT_BUDGET, || {
+                // The monotone handle lengths nearest to the cubic's own first, then the
+                // nearest lengths that at least leave fewer extrema and no hook.
+                let monotone = crate::outline::suggest_handles(&b, opts.tolerance)
+                    .map(|s| s.curve.points().to_vec());
+                let ctx = ((segments, &before[..]), (closed, opts));
+                monotone
+                    .into_iter()
+                    .chain(relieving_lengths(&segments[i], opts.tolerance))
+                    .find_map(|aim| best_rounding(&mut pts, i, &aim, ctx.0, ctx.1, ts.len(), zone))
+            });
         if let Some((q, after)) = found {
             let moved = outline_move(&segments[i], &q);
             pts[i] = q;
-            fixes.push(BumpFix {
+            bumps.fixed.push(BumpFix {
                 segment: i,
                 extrema: (ts.len(), after),
                 moved,
             });
+        } else if refused {
+            bumps.undecided.push(i);
         }
     }
-    (pts, fixes)
+    (pts, bumps)
 }
 
 /// Cubics with the handles of `p` scaled (factors 0.5 to 2, log-spaced, 21 × 21), the
@@ -1846,6 +1867,46 @@ mod tests {
             "off the handles' line"
         );
         assert!((a[3] - segs[0][3]).hypot() <= 5.0);
+    }
+
+    /// A cubic whose coordinates span 600 orders of magnitude, with three curvature extrema:
+    /// the floating-point filter decides none of the repair's candidates and each exact
+    /// stage works on 21,000-bit coefficients (20 s for the whole search before the budget).
+    /// The search stops at its budget, says so, and leaves the cubic as it was; the verdict
+    /// on the cubic alone, outside any search, is still exact.
+    #[test]
+    fn a_search_the_filter_cannot_decide_stops_at_its_budget_and_says_so() {
+        let wide = vec![
+            p(-1.0, 1e-300),
+            p(1.0, -1.0),
+            p(1e300, 0.33530130125527186),
+            p(1e-300, -1e300),
+        ];
+        let ts = extrema_at(&wide).expect("decided exactly alone");
+        assert_eq!(ts.len(), 3, "{ts:?}");
+        let opts = HarmonizeOptions {
+            tolerance: 1e300,
+            ..Default::default()
+        };
+        let h = repair(
+            std::slice::from_ref(&wide),
+            false,
+            &[],
+            &opts,
+            &Repairs::default(),
+        )
+        .unwrap();
+        assert_eq!(h.bumps_undecided, [0]);
+        assert!(h.bumps.is_empty());
+        assert_eq!(h.segments[0], wide);
+        // A font's hooked cubic is not near the budget.
+        let hooked = vec![p(0.0, 0.0), p(0.5, 2.0), p(6.0, 1.0), p(10.0, 0.0)];
+        let opts = HarmonizeOptions {
+            tolerance: 3.0,
+            ..Default::default()
+        };
+        let h = repair(&[hooked], false, &[], &opts, &Repairs::default()).unwrap();
+        assert_eq!((h.bumps.len(), h.bumps_undecided.len()), (1, 0));
     }
 
     /// A cubic with a curvature hook at its start (an extremum at t ≈ 0.04) loses it to

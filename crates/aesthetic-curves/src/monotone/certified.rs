@@ -264,6 +264,41 @@ fn bounded(inp: &Input) -> Lifted<Bounded> {
     }
 }
 
+/// `x = m · 2^e` with `1 <= |m| < 2` (subnormals included); zero and non-finite `x` as
+/// they are, with `e = 0`.
+fn split_pow2(x: f64) -> (f64, i64) {
+    if x == 0.0 || !x.is_finite() {
+        return (x, 0);
+    }
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i64;
+    if biased == 0 {
+        let (m, e) = split_pow2(x * 2f64.powi(64));
+        return (m, e - 64);
+    }
+    let m = f64::from_bits((bits & !(0x7ff << 52)) | (1023 << 52));
+    (m, biased - 1023)
+}
+
+/// `x · 2^e` for any `e`, rounded once: ±inf or 0 only where the true value is out of range.
+fn times_pow2_wide(mut x: f64, mut e: i64) -> f64 {
+    while e > 1000 && x.is_finite() && x != 0.0 {
+        x *= 2f64.powi(1000);
+        e -= 1000;
+    }
+    while e < -1000 && x != 0.0 {
+        // Down to the smallest normal first, then the rest in one rounding.
+        let step = e.max(-1000);
+        let normal = split_pow2(x).1 + step >= -1022;
+        if !normal {
+            break;
+        }
+        x *= 2f64.powi(step as i32);
+        e -= step;
+    }
+    x * 2f64.powi(e.clamp(-1100, 1100) as i32)
+}
+
 /// The power of two that brings `big` near 1 when it is far from it (0 between 2^-20 and
 /// 2^40, where nothing can overflow or underflow; 0 for zero or non-finite values).
 fn pow2_normaliser(big: f64) -> i32 {
@@ -399,8 +434,24 @@ fn end_curvature(
     };
     let first = ordered.iter().position(|&i| signs[i] != 0);
     // κ from the scaled inputs is the true one divided by the length scale.
-    let value =
-        |i: usize| w_end * w_end * d[i].v / (m as f64 * n as f64 * z2 * z2 * z2) * b.length_scale;
+    // In mantissas and binary exponents: on a curve spanning hundreds of orders of
+    // magnitude, z2³ alone over- or underflows where κ does not.
+    let value = |i: usize| {
+        let parts = [
+            w_end,
+            w_end,
+            d[i].v,
+            b.length_scale,
+            1.0 / (m as f64 * n as f64),
+        ];
+        let (mut mant, mut exp) = (1.0, 0i64);
+        for (f, e) in parts.into_iter().map(split_pow2) {
+            mant *= f;
+            exp += e;
+        }
+        let (z, ze) = split_pow2(z2);
+        times_pow2_wide(mant / (z * z * z), exp - 3 * ze)
+    };
     match first {
         None => {
             if order == 0 {
@@ -444,11 +495,15 @@ fn decide(
     want: Want,
 ) -> Result<crate::exact::Signs> {
     let degree = p.len() - 1;
-    let affordable = predicted_cost(inp, degree) <= crate::exact::signs::EXACT_BUDGET;
+    let cost = predicted_cost(inp, degree);
+    let affordable = cost <= crate::exact::signs::EXACT_BUDGET;
+    let mut refused = false;
     let s = certified_signs(
         p,
         || {
-            if affordable {
+            // Spent only when the filter cannot decide; a search's budget may refuse it.
+            refused = affordable && !super::budget::spend(cost);
+            if affordable && !refused {
                 exact_p().to_vec()
             } else {
                 Vec::new()
@@ -458,6 +513,13 @@ fn decide(
     );
     if s.exact {
         super::note_exact_fallback();
+    }
+    if refused {
+        return Err(Error::NoConvergence(
+            "the floating-point filter could not decide this curve and the search it belongs \
+             to has spent its budget for exact arithmetic"
+                .into(),
+        ));
     }
     over_budget(s.over_budget, degree)?;
     Ok(s)
@@ -478,7 +540,7 @@ pub(super) fn inflections(inp: &Input) -> Result<Vec<f64>> {
 /// The exact stage's cost (`exact::signs::exact_cost`) predicted from the inputs before any
 /// big integer is made: the coordinates' binary exponents span `span` bits (plus 53 of
 /// mantissa), K̃ is of degree 4 in them (8 for a rational curve, with 9 weight factors).
-fn predicted_cost(inp: &Input, degree: usize) -> f64 {
+pub(super) fn predicted_cost(inp: &Input, degree: usize) -> f64 {
     let span = |v: &mut dyn Iterator<Item = f64>| {
         let (mut lo, mut hi) = (i32::MAX, i32::MIN);
         for x in v.filter(|x| *x != 0.0 && x.is_finite()) {

@@ -56,6 +56,7 @@
 //! degree), so a non-monotone curve costs as much as a monotone one. It can miss extrema
 //! between samples: it exists to reproduce S1's comparison.
 
+mod budget;
 mod certified;
 
 use crate::bernstein::{binomial, Bernstein, Coeffs};
@@ -167,6 +168,8 @@ impl EndCurvature {
         }
     }
 }
+
+pub use budget::{with_exact_budget, SEARCH_EXACT_BUDGET};
 
 static EXACT_FALLBACKS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
@@ -1449,6 +1452,50 @@ mod tests {
         let r = spiral.curvature_monotone().unwrap();
         assert!(r.monotone && r.trend == Some(Trend::Increasing), "{r:?}");
         assert!(spiral.curvature_monotone_sampled(2000).unwrap().monotone);
+    }
+
+    /// A cubic spanning 600 orders of magnitude: its start curvature (6e298) was reported
+    /// as null, from z2³ overflowing in the scaled frame. Against the end formula
+    /// `κ(0) = (2/3) (p1 - p0) × (p2 - p1) / |p1 - p0|³`, in f64 with no overflow at this
+    /// size; and a unit cubic scaled by 2^±1000 has its end curvatures scaled by 2^∓1000.
+    #[test]
+    fn end_curvatures_of_curves_spanning_hundreds_of_orders_are_finite() {
+        let c = bez(&[
+            (-1.0, 1e-300),
+            (1.0, -1.0),
+            (1e300, 0.33530130125527186),
+            (1e-300, -1e300),
+        ]);
+        let r = c.curvature_monotone().unwrap();
+        let p = c.points();
+        let (a, b) = (p[1] - p[0], p[2] - p[1]);
+        let want = 2.0 / 3.0 * a.cross(b) / a.hypot().powi(3);
+        let got = r.ends[0].value().unwrap();
+        assert!((got - want).abs() <= 1e-12 * want.abs(), "{got} vs {want}");
+        assert!(r.ends[1].value().unwrap().is_finite());
+        let unit = bez(&[(0.0, 0.0), (1.0, 0.2), (2.0, 1.5), (2.5, 3.0)]);
+        let ends = |c: &Bezier| {
+            let r = c.curvature_monotone().unwrap();
+            [r.ends[0].value().unwrap(), r.ends[1].value().unwrap()]
+        };
+        let base = ends(&unit);
+        for k in [1000, -1000] {
+            let s = 2f64.powi(k);
+            let scaled = Bezier::new(
+                unit.points()
+                    .iter()
+                    .map(|q| Point::new(q.x * s, q.y * s))
+                    .collect(),
+            )
+            .unwrap();
+            for (got, b) in ends(&scaled).into_iter().zip(base) {
+                let want = b / s;
+                assert!(
+                    got.is_finite() && (got - want).abs() <= 1e-12 * want.abs(),
+                    "2^{k}: {got} vs {want}"
+                );
+            }
+        }
     }
 
     #[test]
