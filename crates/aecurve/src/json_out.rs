@@ -30,14 +30,16 @@ pub fn finite_or_null(v: f64) -> Value {
 pub struct EndCurvatureJson {
     /// `regular`, `finite` (at retracted handles) or `unbounded`.
     pub kind: &'static str,
-    /// The curvature there; null where it grows without bound.
+    /// The curvature there; null where it grows without bound, or where it is finite but
+    /// beyond what an f64 holds (a curve spanning hundreds of orders of magnitude: `sign`
+    /// then says its sign).
     pub curvature: Option<f64>,
     /// How many handles at this end are retracted onto their point.
     pub retracted_handles: usize,
     /// How fast an unbounded curvature grows (`1/t`, `1/t^2`, ...).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub growth: Option<String>,
-    /// The sign of an unbounded curvature.
+    /// The sign of an unbounded curvature, or of one beyond the f64 range.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sign: Option<i8>,
 }
@@ -59,6 +61,10 @@ impl From<&aesthetic_curves::monotone::EndCurvature> for EndCurvatureJson {
                 }),
                 Some(if positive { 1 } else { -1 }),
             ),
+            // Finite, but beyond f64: its sign, the value null.
+            E::Regular(k) | E::Finite { curvature: k, .. } if k.is_infinite() => {
+                (None, Some(if k > 0.0 { 1 } else { -1 }))
+            }
             _ => (None, None),
         };
         EndCurvatureJson {

@@ -172,6 +172,9 @@ fn arb_lac_request() -> impl Strategy<Value = Value> {
                 0 => json!({"id": 1, "op": "lac.point", "alpha": alpha, "lambda": lambda, "theta": theta}),
                 1 => json!({"id": 2, "op": "lac.segment", "alpha": alpha, "control": control[..3]}),
                 2 => json!({"id": 3, "op": "lac.inflection_segment", "control": control[..3]}),
+                // Coordinates from 1e-300 to 1e300 in one curve: its end curvatures too.
+                3 => json!({"id": 12, "op": "bezier.curvature_monotone",
+                    "control_points": control[..control.len().min(5)]}),
                 4 => json!({"id": 5, "op": "lac.rational_approx", "alpha": alpha, "control": control[..3], "tolerance": lambda}),
                 5 => json!({"id": 6, "op": "sketch.fit", "points": control, "tolerance": lambda}),
                 6 => json!({"id": 7, "op": "spline.pseudo_elastic", "points": control}),
@@ -217,8 +220,21 @@ proptest! {
         prop_assert_eq!(r.len(), reqs.len());
         for a in &r {
             well_formed(a);
-            // serde_json writes a non-finite number as null: results must have none.
-            prop_assert!(!has_null(&a["result"]) || a["ok"] == false, "{}", a);
+            // serde_json writes a non-finite number as null: results must have none (the
+            // monotone test's report has two fields that are null by design).
+            let mut result = a["result"].clone();
+            if a["id"] == 12 && a["ok"] == true {
+                for e in result["ends"].as_array_mut().unwrap() {
+                    // Null where unbounded, or beyond f64 (then with its sign).
+                    if e["kind"] == "unbounded" || e["sign"].is_i64() {
+                        e["curvature"] = json!(0.0);
+                    }
+                }
+                if result["monotone"] == false || result["trend"].is_null() {
+                    result["trend"] = json!("none");
+                }
+            }
+            prop_assert!(!has_null(&result) || a["ok"] == false, "{}", a);
         }
     }
 }

@@ -179,7 +179,16 @@ impl Ring for Bounded {
         if self.e == 0.0 && o.e == 0.0 && product_is_exact(self.v, o.v, v) {
             return Bounded::exact(v);
         }
-        let e = self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e;
+        // Each of the bound's three products may underflow (to zero included) where both
+        // its factors are nonzero: ETA each then, or a tiny uncertain value times another
+        // would come out as a known zero.
+        let lost = |a: f64, b: f64| if a != 0.0 && b != 0.0 { ETA } else { 0.0 };
+        let e = self.v.abs() * o.e
+            + o.v.abs() * self.e
+            + self.e * o.e
+            + lost(self.v, o.e)
+            + lost(o.v, self.e)
+            + lost(self.e, o.e);
         let round = if v == 0.0 && (self.v == 0.0 || o.v == 0.0) {
             0.0
         } else {
@@ -202,9 +211,11 @@ impl Ring for Bounded {
         } else {
             U * v.abs() + ETA
         };
+        // The bound's product may underflow too.
+        let lost = if self.e != 0.0 && k != 0 { ETA } else { 0.0 };
         Bounded {
             v,
-            e: (kf.abs() * self.e + round) * INFLATE,
+            e: (kf.abs() * self.e + lost + round) * INFLATE,
         }
     }
 }
@@ -330,5 +341,27 @@ mod tests {
         assert!(b.e > 0.0);
         assert_eq!(Bounded::diff(5.0, 3.0).e, 0.0);
         assert!(Bounded::diff(1.0, 1e-30).e > 0.0);
+    }
+
+    /// Products near the bottom of the range: a value known only to within a subnormal
+    /// bound, times another, is not a known zero (its bound's products underflowed to 0 and
+    /// the filter once proved a curve monotone that is not); a known zero times anything
+    /// stays a known zero.
+    #[test]
+    fn underflowing_bounds_are_never_a_known_zero() {
+        let tiny = Bounded { v: 0.0, e: 1e-323 };
+        let small = Bounded {
+            v: 1e-300,
+            e: 4e-315,
+        };
+        for (a, b) in [(tiny, tiny), (tiny, small), (small, small)] {
+            let p = a.mul(&b);
+            assert_eq!(p.sign(), None, "{a:?} * {b:?} = {p:?}");
+        }
+        assert_eq!(tiny.mul_int(3).sign(), None);
+        assert_eq!(Bounded::exact(0.0).mul(&tiny).sign(), Some(0));
+        assert_eq!(Bounded::exact(0.0).mul_int(5).sign(), Some(0));
+        // Ordinary bounds are not widened: a product of exact normal values stays exact.
+        assert_eq!(Bounded::exact(3.0).mul(&Bounded::exact(0.25)).e, 0.0);
     }
 }

@@ -264,6 +264,57 @@ fn bounded(inp: &Input) -> Lifted<Bounded> {
     }
 }
 
+/// The curvature at a regular end from the closed form
+/// `κ(0) = (n-1)/n · w0 w2 / w1² · (b1 - b0) × (b2 - b1) / |b1 - b0|³` (at t = 1 the same
+/// with the last three points, `(b_{n-1} - b_{n-2}) × (b_n - b_{n-1})`), the cross product
+/// and the squared length in exact integers, rounded to f64 once each.
+fn regular_end_exactly(inp: &Input, start: bool) -> f64 {
+    let (p, n) = (inp.points, inp.points.len() - 1);
+    let idx = if start { [0, 1, 2] } else { [n - 2, n - 1, n] };
+    let coords: Vec<f64> = idx.iter().flat_map(|&i| [p[i].x, p[i].y]).collect();
+    let (c, e) = crate::exact::dyadic_integers(&coords);
+    let (ux, uy) = (&c[2] - &c[0], &c[3] - &c[1]);
+    let (vx, vy) = (&c[4] - &c[2], &c[5] - &c[3]);
+    let cross = &ux * &vy - &uy * &vx;
+    // The end's handle: b1 - b0 at the start, b_n - b_{n-1} at the end.
+    let len2 = if start {
+        &ux * &ux + &uy * &uy
+    } else {
+        &vx * &vx + &vy * &vy
+    };
+    let (cm, ce) = big_split_pow2(&cross);
+    let (mut lm, mut le) = big_split_pow2(&len2);
+    if le % 2 != 0 {
+        lm *= 2.0;
+        le -= 1;
+    }
+    let w = inp
+        .weights
+        .map_or([1.0; 3], |w| [w[idx[0]], w[idx[1]], w[idx[2]]]);
+    let mut mant = (n - 1) as f64 / n as f64 * cm / (lm * lm.sqrt());
+    // cross and len2 are in units of 2^(2e): κ is in units of 2^(-e).
+    let mut exp = ce - 3 * le / 2 - e as i64;
+    for (f, sign) in [(w[0], 1), (w[2], 1), (w[1], -2)] {
+        let (m, x) = split_pow2(f);
+        mant *= if sign > 0 { m } else { 1.0 / (m * m) };
+        exp += sign * x;
+    }
+    times_pow2_wide(mant, exp)
+}
+
+/// A big integer as `m · 2^e` with `1 <= |m| < 2`, `m` rounded to 53 bits (0 as (0, 0)).
+fn big_split_pow2(v: &BigInt) -> (f64, i64) {
+    use num_traits::ToPrimitive;
+    let bits = v.bits() as i64;
+    if bits == 0 {
+        return (0.0, 0);
+    }
+    let drop = (bits - 64).max(0);
+    let top = (v >> drop as usize).to_f64().unwrap_or(0.0);
+    let (m, e) = split_pow2(top);
+    (m, e + drop)
+}
+
 /// `x = m · 2^e` with `1 <= |m| < 2` (subnormals included); zero and non-finite `x` as
 /// they are, with `e = 0`.
 fn split_pow2(x: f64) -> (f64, i64) {
@@ -282,6 +333,9 @@ fn split_pow2(x: f64) -> (f64, i64) {
 
 /// `x · 2^e` for any `e`, rounded once: ±inf or 0 only where the true value is out of range.
 fn times_pow2_wide(mut x: f64, mut e: i64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
     while e > 1000 && x.is_finite() && x != 0.0 {
         x *= 2f64.powi(1000);
         e -= 1000;
@@ -311,16 +365,16 @@ fn pow2_normaliser(big: f64) -> i32 {
 
 fn times_pow2(b: Bounded, k: i32) -> Bounded {
     let f = 2f64.powi(k.clamp(-1000, 1000));
-    let v = b.v * f;
-    let tiny = if v != 0.0 && v.abs() < f64::MIN_POSITIVE {
-        f64::from_bits(1)
+    let (v, e) = (b.v * f, b.e * f);
+    // Exact unless a result lands below the normal range: rounded there by at most 2^-1075,
+    // to zero included (a nonzero value that underflows to 0 is not a known zero).
+    let rounded = |x: f64, was: f64| was != 0.0 && x.abs() < f64::MIN_POSITIVE;
+    let tiny = if rounded(v, b.v) || rounded(e, b.e) {
+        2.0 * f64::from_bits(1)
     } else {
         0.0
     };
-    Bounded {
-        v,
-        e: b.e * f + tiny,
-    }
+    Bounded { v, e: e + tiny }
 }
 
 /// The inputs as exact integers (all coordinates share one power of two, the weights
@@ -463,9 +517,13 @@ fn end_curvature(
                 }
             }
         }
-        Some(o) if order == 0 => {
-            EndCurvature::Regular(if o == 0 { value(ordered[0]) } else { 0.0 })
-        }
+        Some(o) if order == 0 => EndCurvature::Regular(match o {
+            0 if d[ordered[0]].sign().is_some() => value(ordered[0]),
+            // The scaled δ lost this coefficient (coordinates spanning hundreds of orders of
+            // magnitude): from the exact control points instead.
+            0 => regular_end_exactly(inp, start),
+            _ => 0.0,
+        }),
         Some(o) if o < order => EndCurvature::Unbounded {
             positive: signs[ordered[o]] > 0,
             order,

@@ -1473,6 +1473,21 @@ mod tests {
         let got = r.ends[0].value().unwrap();
         assert!((got - want).abs() <= 1e-12 * want.abs(), "{got} vs {want}");
         assert!(r.ends[1].value().unwrap().is_finite());
+        // Found by the protocol's fuzz: δ's first coefficient underflows in the scaled frame
+        // (κ(0) = 2.2e-303) and came back null; κ(1) = 3e-898 is 0 in f64.
+        let c = bez(&[
+            (0.0, 0.0),
+            (29.85647403695823, 0.0),
+            (0.0, 1e-300),
+            (1e300, -11.21044018764352),
+        ]);
+        let r = c.curvature_monotone().unwrap();
+        let p = c.points();
+        let (a, b) = (p[1] - p[0], p[2] - p[1]);
+        let want = 2.0 / 3.0 * (a.x * b.y) / a.hypot().powi(3);
+        let got = r.ends[0].value().unwrap();
+        assert!((got - want).abs() <= 1e-12 * want.abs(), "{got} vs {want}");
+        assert_eq!(r.ends[1].value(), Some(0.0));
         let unit = bez(&[(0.0, 0.0), (1.0, 0.2), (2.0, 1.5), (2.5, 3.0)]);
         let ends = |c: &Bezier| {
             let r = c.curvature_monotone().unwrap();

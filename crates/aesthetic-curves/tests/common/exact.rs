@@ -409,8 +409,9 @@ impl Sturm {
 }
 
 /// Roots in (0, 1) of an integer polynomial at which it changes sign, isolated exactly
-/// (Sturm sequence; it counts distinct roots even when some are multiple) and refined by
-/// exact bisection to width 2^-bits; also all distinct roots in (0, 1), sign change or not.
+/// (Sturm sequence; it counts distinct roots even when some are multiple) to depth `bits`
+/// and refined by exact bisection to width 2^-min(bits, 64); also all distinct roots in
+/// (0, 1), sign change or not.
 pub fn sign_change_roots_int(ip: &IPoly, bits: u32) -> (Vec<f64>, Vec<f64>) {
     if ip.degree().unwrap_or(0) == 0 {
         return (vec![], vec![]);
@@ -457,7 +458,8 @@ pub fn sign_change_roots_int(ip: &IPoly, bits: u32) -> (Vec<f64>, Vec<f64>) {
             exact = Some((hi_n.clone(), kk));
         } else {
             let by_sign = slo * shi < 0;
-            while kk < bits {
+            // Isolation may go as deep as `bits`; the position is wanted to 2^-64 at most.
+            while kk < bits.min(64) {
                 lo_n <<= 1usize;
                 hi_n <<= 1usize;
                 kk += 1;
@@ -479,11 +481,12 @@ pub fn sign_change_roots_int(ip: &IPoly, bits: u32) -> (Vec<f64>, Vec<f64>) {
                 }
             }
         }
-        let (t, l, r) = match exact {
+        let (t, l, r) = match &exact {
             Some((n, k)) => {
-                let n20 = &n << 20usize;
+                let (n, k) = (n, *k);
+                let n20 = n << 20usize;
                 (
-                    dyadic(&n, k),
+                    dyadic(n, k),
                     sign_at(ip, &(&n20 - &one), k + 20),
                     sign_at(ip, &(&n20 + &one), k + 20),
                 )
@@ -494,7 +497,13 @@ pub fn sign_change_roots_int(ip: &IPoly, bits: u32) -> (Vec<f64>, Vec<f64>) {
                 sign_at(ip, &hi_n, kk),
             ),
         };
-        if t <= 0.0 || t >= 1.0 {
+        // A root exactly at an end is not inside; one strictly inside its interval is, even
+        // where its f64 rounds to 0 or 1 (within 1e-300 of an end, on a curve whose
+        // coordinates span hundreds of orders of magnitude).
+        let at_end = exact
+            .as_ref()
+            .is_some_and(|(n, k)| n.is_zero() || *n == (BigInt::one() << (*k as usize)));
+        if at_end || !(0.0..=1.0).contains(&t) {
             continue;
         }
         all.push(t);
