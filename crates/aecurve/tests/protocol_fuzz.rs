@@ -173,8 +173,19 @@ fn arb_lac_request() -> impl Strategy<Value = Value> {
                 1 => json!({"id": 2, "op": "lac.segment", "alpha": alpha, "control": control[..3]}),
                 2 => json!({"id": 3, "op": "lac.inflection_segment", "control": control[..3]}),
                 // Coordinates from 1e-300 to 1e300 in one curve: its end curvatures too.
-                3 => json!({"id": 12, "op": "bezier.curvature_monotone",
-                    "control_points": control[..control.len().min(5)]}),
+                3 => {
+                    let pts = &control[..control.len().min(5)];
+                    let mut r = json!({"id": 12, "op": "bezier.curvature_monotone",
+                        "control_points": pts});
+                    // A rational one now and then: weights from the θ values, made positive.
+                    if theta.len() >= pts.len() {
+                        r["weights"] = json!(theta[..pts.len()]
+                            .iter()
+                            .map(|w| w.abs().max(1e-3))
+                            .collect::<Vec<_>>());
+                    }
+                    r
+                }
                 4 => json!({"id": 5, "op": "lac.rational_approx", "alpha": alpha, "control": control[..3], "tolerance": lambda}),
                 5 => json!({"id": 6, "op": "sketch.fit", "points": control, "tolerance": lambda}),
                 6 => json!({"id": 7, "op": "spline.pseudo_elastic", "points": control}),
@@ -198,6 +209,17 @@ fn arb_lac_request() -> impl Strategy<Value = Value> {
                     "corner_angle_degrees": theta.first().copied().unwrap_or(35.0)}),
                 10 => json!({"id": 11, "op": "spline.lac", "points": control, "alpha": alpha,
                     "closed": lambda > 0.0, "corners": [0, 2]}),
+                11 if alpha > 0.0 => {
+                    // The exact check of a contour, with suggestions (the handle search).
+                    let segs: Vec<Value> = control
+                        .windows(4)
+                        .step_by(3)
+                        .map(|w| json!({"control_points": w}))
+                        .collect();
+                    json!({"id": 13, "op": "outline.check", "closed": lambda > 0.0,
+                        "segments": if segs.is_empty() { json!([{"control_points": control[..2]}]) } else { json!(segs) },
+                        "suggest": theta.first().copied().unwrap_or(1.0)})
+                }
                 _ => json!({"id": 4, "op": "lcg.estimate", "points": control}),
             };
             if let Some(s) = samples {
@@ -232,6 +254,31 @@ proptest! {
                 }
                 if result["monotone"] == false || result["trend"].is_null() {
                     result["trend"] = json!("none");
+                }
+            }
+            if a["id"] == 13 && a["ok"] == true {
+                for seg in result["shapes"][0]["contours"]
+                    .as_array_mut()
+                    .unwrap()
+                    .iter_mut()
+                    .flat_map(|c| c["segments"].as_array_mut().unwrap().iter_mut())
+                {
+                    let mut any = false;
+                    for i in 0..2 {
+                        let e = &seg["ends"][i];
+                        if e["kind"] == "unbounded" || e["sign"].is_i64() {
+                            any = true;
+                            seg["ends"][i]["curvature"] = json!(0.0);
+                            seg["end_curvatures"][i] = json!(0.0);
+                        }
+                    }
+                    // The largest |κ| is null where an end's is unbounded or beyond f64.
+                    if any {
+                        seg["max_abs_curvature"] = json!(0.0);
+                    }
+                    if seg["monotone"] == false || seg["trend"].is_null() {
+                        seg["trend"] = json!("none");
+                    }
                 }
             }
             prop_assert!(!has_null(&result) || a["ok"] == false, "{}", a);
