@@ -264,6 +264,12 @@ fn bounded(inp: &Input) -> Lifted<Bounded> {
     }
 }
 
+/// Whether a bounded coefficient carries the digits of a curvature reported to about
+/// 1e-12: a normal value whose bound is that small beside it.
+fn accurate(c: &Bounded) -> bool {
+    c.v.abs() >= f64::MIN_POSITIVE && c.e <= 1e-13 * c.v.abs()
+}
+
 /// The curvature at a regular end from the closed form
 /// `κ(0) = (n-1)/n · w0 w2 / w1² · (b1 - b0) × (b2 - b1) / |b1 - b0|³` (at t = 1 the same
 /// with the last three points, `(b_{n-1} - b_{n-2}) × (b_n - b_{n-1})`), the cross product
@@ -518,9 +524,9 @@ fn end_curvature(
             }
         }
         Some(o) if order == 0 => EndCurvature::Regular(match o {
-            0 if d[ordered[0]].sign().is_some() => value(ordered[0]),
-            // The scaled δ lost this coefficient (coordinates spanning hundreds of orders of
-            // magnitude): from the exact control points instead.
+            0 if accurate(&d[ordered[0]]) => value(ordered[0]),
+            // The scaled δ lost this coefficient or most of its digits (coordinates spanning
+            // hundreds of orders of magnitude): from the exact control points instead.
             0 => regular_end_exactly(inp, start),
             _ => 0.0,
         }),

@@ -1488,6 +1488,13 @@ mod tests {
         let got = r.ends[0].value().unwrap();
         assert!((got - want).abs() <= 1e-12 * want.abs(), "{got} vs {want}");
         assert_eq!(r.ends[1].value(), Some(0.0));
+        // δ(0) = 1e-320 in the scaled frame, a subnormal with a known sign and a few digits:
+        // κ(0) = (2/3) b.y / a.x² = 6.7e159, to 1e-12.
+        let c = bez(&[(0.0, 0.0), (1e-160, 0.0), (1.0, 1e-160), (2.0, 1.0)]);
+        let r = c.curvature_monotone().unwrap();
+        let want = 2.0 / 3.0 * (1e-160 / 1e-160) / 1e-160;
+        let got = r.ends[0].value().unwrap();
+        assert!((got - want).abs() <= 1e-12 * want, "{got} vs {want}");
         let unit = bez(&[(0.0, 0.0), (1.0, 0.2), (2.0, 1.5), (2.5, 3.0)]);
         let ends = |c: &Bezier| {
             let r = c.curvature_monotone().unwrap();
