@@ -188,30 +188,46 @@ pub fn suggest_handles(c: &crate::Bezier, tolerance: f64) -> Option<HandleSugges
     if h1.hypot() == 0.0 || h2.hypot() == 0.0 {
         return None;
     }
-    let make =
-        |a: f64, b: f64| crate::Bezier::new(vec![p[0], p[0] + h1 * a, p[3] + h2 * b, p[3]]).ok();
-    let monotone =
-        |a: f64, b: f64| make(a, b).is_some_and(|c| c.is_curvature_monotone().unwrap_or(false));
-    if monotone(1.0, 1.0) {
+    let scaled = Scaled { p, h1, h2 };
+    if scaled.monotone(1.0, 1.0) {
         return None;
     }
     // The search's verdicts under one budget for exact work (a caller's, if smaller).
     crate::monotone::with_exact_budget(crate::monotone::SEARCH_EXACT_BUDGET, || {
-        search_handles(p, (h1, h2), tolerance)
+        search_handles(&scaled, tolerance)
     })
     .0
 }
 
-/// [`suggest_handles`]' search, for a cubic `p` with handles `h1`, `h2`, not monotone.
-fn search_handles(p: &[Point], (h1, h2): (Vec2, Vec2), tolerance: f64) -> Option<HandleSuggestion> {
-    let make =
-        |a: f64, b: f64| crate::Bezier::new(vec![p[0], p[0] + h1 * a, p[3] + h2 * b, p[3]]).ok();
-    let monotone =
-        |a: f64, b: f64| make(a, b).is_some_and(|c| c.is_curvature_monotone().unwrap_or(false));
-    // The sound bound of the move (convex hull, split until tight), not samples of it.
-    let deviation = |a: f64, b: f64| {
-        crate::bezier::outline_move(p, &[p[0], p[0] + h1 * a, p[3] + h2 * b, p[3]])
-    };
+/// A cubic `p` with its handles `h1`, `h2` scaled by factors (a, b), its ends and tangent
+/// directions kept.
+struct Scaled<'a> {
+    p: &'a [Point],
+    h1: Vec2,
+    h2: Vec2,
+}
+
+impl Scaled<'_> {
+    fn points(&self, a: f64, b: f64) -> [Point; 4] {
+        let p = self.p;
+        [p[0], p[0] + self.h1 * a, p[3] + self.h2 * b, p[3]]
+    }
+    fn curve(&self, a: f64, b: f64) -> Option<crate::Bezier> {
+        crate::Bezier::new(self.points(a, b).to_vec()).ok()
+    }
+    /// Proven monotone by the exact test (false where it gives no verdict).
+    fn monotone(&self, a: f64, b: f64) -> bool {
+        self.curve(a, b)
+            .is_some_and(|c| c.is_curvature_monotone().unwrap_or(false))
+    }
+    /// The sound bound of the move (convex hull, split until tight), not samples of it.
+    fn deviation(&self, a: f64, b: f64) -> f64 {
+        crate::bezier::outline_move(self.p, &self.points(a, b))
+    }
+}
+
+/// [`suggest_handles`]' search, for a cubic that is not monotone.
+fn search_handles(s: &Scaled, tolerance: f64) -> Option<HandleSuggestion> {
     let n = 33;
     let (lo, hi) = (0.2f64.ln(), 5f64.ln());
     let at = |i: usize| (lo + (hi - lo) * i as f64 / (n - 1) as f64).exp();
@@ -219,16 +235,16 @@ fn search_handles(p: &[Point], (h1, h2): (Vec2, Vec2), tolerance: f64) -> Option
     // order): the first monotone one is the best, and no larger move is proven.
     let mut candidates: Vec<(f64, f64, f64)> = (0..n * n)
         .map(|k| (at(k / n), at(k % n)))
-        .map(|(a, b)| (a, b, deviation(a, b)))
+        .map(|(a, b)| (a, b, s.deviation(a, b)))
         .filter(|c| c.2 <= tolerance)
         .collect();
     candidates.sort_by(|x, y| x.2.total_cmp(&y.2));
-    let best = candidates.into_iter().find(|c| monotone(c.0, c.1));
+    let best = candidates.into_iter().find(|c| s.monotone(c.0, c.1));
     let (a, b, _) = best?;
     // Towards the current handles in (ln a, ln b) while it stays monotone.
     // (`inside`: the fraction of the way from (1, 1).)
     let inside = crate::solve::roots::bisect_by(
-        |m| monotone(a.powf(m), b.powf(m)).then_some(()),
+        |m| s.monotone(a.powf(m), b.powf(m)).then_some(()),
         1.0,
         0.0,
         |x, y| 0.5 * (x + y),
@@ -237,14 +253,14 @@ fn search_handles(p: &[Point], (h1, h2): (Vec2, Vec2), tolerance: f64) -> Option
     )
     .inside;
     let (a, b) = (a.powf(inside), b.powf(inside));
-    let curve = make(a, b)?;
+    let curve = s.curve(a, b)?;
     if !curve.is_curvature_monotone().unwrap_or(false) {
         return None;
     }
     Some(HandleSuggestion {
         scale: (a, b),
         curve,
-        deviation: deviation(a, b),
+        deviation: s.deviation(a, b),
     })
 }
 
