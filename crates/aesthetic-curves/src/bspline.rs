@@ -409,6 +409,26 @@ fn distinct_points(points: &[Point], tolerance: f64) -> Result<Vec<Point>> {
 /// Most parameter corrections per segment count.
 const CORRECTIONS: usize = 40;
 
+/// A parameter correction may lengthen the control polygon (which bounds the spline's arc
+/// length) by at most this factor...
+const SWING_GROWTH: f64 = 1.5;
+
+/// ... beyond this many times the length of the points' polyline.
+const SWING_POLYLINE: f64 = 2.0;
+
+/// The length of a polygon through `pts`.
+fn polygon_length(pts: &[Point]) -> f64 {
+    pts.windows(2).map(|w| (w[1] - w[0]).hypot()).sum()
+}
+
+/// Whether `candidate` swings out from `current`: its control polygon more than
+/// [`SWING_GROWTH`] times as long, and more than [`SWING_POLYLINE`] times the points'
+/// `polyline` (a spline near the points is about as long as their polyline).
+fn swings_out(candidate: &BSpline, current: &BSpline, polyline: f64) -> bool {
+    let len = polygon_length(&candidate.control_points);
+    len > SWING_GROWTH * polygon_length(&current.control_points) && len > SWING_POLYLINE * polyline
+}
+
 /// Fit a cubic B-spline to an ordered point sequence within `opts.tolerance` (see the
 /// module documentation). Consecutive duplicate points are dropped; at least 4 distinct
 /// points are needed. Errors with [`Error::NoConvergence`] when `max_segments` are not
@@ -417,6 +437,7 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
     let pts = distinct_points(points, opts.tolerance)?;
     let chord = chord_parameters(&pts)?;
     let max_seg = opts.max_segments.clamp(1, pts.len() - 3);
+    let polyline = polygon_length(&pts);
     // Grow the segment count geometrically until a fit is within tolerance, then bisect
     // back to the fewest segments that are (deviation falls with the count, nearly always).
     let attempt = |interior: &[f64], start: &[f64]| -> Result<BSplineFit> {
@@ -444,6 +465,13 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
             np[0] = 0.0;
             np[last_i] = 1.0;
             let candidate = fit_knots(&pts, &np, interior)?;
+            // A correction that swings the spline out (sparse points far apart: the feet
+            // of a wavy fit gather where it passes several points, and the next fit through
+            // them loops 1,000 times the points' size away to pass near every one) is not
+            // one: the fit stays where it was.
+            if swings_out(&candidate, &spline, polyline) {
+                break;
+            }
             let cproj = project_all(&candidate, &pts, &np)?;
             let cmax = cproj.iter().map(|x| x.0).fold(0.0, f64::max);
             // Stop when a correction no longer gains 1%.
@@ -756,6 +784,34 @@ pub(crate) fn de_boor(
 mod tests {
     use super::*;
     use crate::PlanarCurve;
+
+    #[test]
+    fn sparse_points_do_not_swing_the_spline_out() {
+        // Five points of a zigzag, 100 apart: the foot parameters on the first fit gather
+        // at its middle, and the fit through them looped 256,000 away (session 38).
+        let pts: Vec<Point> = [(0., 0.), (100., 5.), (0., 10.), (100., 15.), (0., 20.)]
+            .iter()
+            .map(|&(x, y)| Point::new(x, y))
+            .collect();
+        for tolerance in [0.5, 2.0] {
+            let f = fit(
+                &pts,
+                FitOptions {
+                    tolerance,
+                    max_segments: 200,
+                },
+            )
+            .unwrap();
+            assert!(f.max_deviation <= tolerance);
+            let far = f
+                .spline
+                .control_points
+                .iter()
+                .map(|p| p.x.abs().max(p.y.abs()));
+            let far = far.fold(0.0, f64::max);
+            assert!(far < 400.0, "control point {far} from the origin");
+        }
+    }
 
     #[test]
     fn a_cubic_is_fitted_within_tolerance() {

@@ -615,6 +615,86 @@ fn a_sharp_v_and_a_zigzag_have_their_corners() {
     }
 }
 
+/// Strokes of a few points each (clicked, or a pen sampled far apart: every step longer
+/// than the corner window), at the default tolerance: a polygon's turns of 80° and more
+/// are corners, points along an arc or a wave turn less and stay one curve; every point
+/// within the tolerance. Before session 38 the zigzag came back as one curve looping
+/// 114,000 units away, the three-point L as one line 70 units from its corner, and 13
+/// points around a circle as an error.
+#[test]
+fn sparse_strokes_are_polygons_or_curves_within_the_tolerance() {
+    let ring = |n: usize, to: usize, turn: f64| -> Vec<Point> {
+        (0..=to)
+            .map(|k| {
+                let a = turn * k as f64 / n as f64;
+                p(100.0 * a.cos(), 100.0 * a.sin())
+            })
+            .collect()
+    };
+    let wave: Vec<Point> = (0..13)
+        .map(|t| p(100.0 * (0.5 * t as f64).sin(), 30.0 * t as f64))
+        .collect();
+    let zigzag = [(0., 0.), (100., 5.), (0., 10.), (100., 15.), (0., 20.)].map(|(x, y)| p(x, y));
+    let rect = [(0., 0.), (100., 0.), (100., 50.), (0., 50.), (0., 0.)].map(|(x, y)| p(x, y));
+    let tri = [(0., 0.), (100., 0.), (50., 80.), (0., 0.)].map(|(x, y)| p(x, y));
+    let l3 = [(0., 0.), (0., 100.), (100., 100.)].map(|(x, y)| p(x, y));
+    // (name, points, closed, corners; None: one curve)
+    let cases: Vec<(&str, Vec<Point>, bool, Option<usize>)> = vec![
+        ("zigzag", zigzag.to_vec(), false, Some(3)),
+        ("L of 3 points", l3.to_vec(), false, Some(1)),
+        ("rectangle of 5 points", rect.to_vec(), true, Some(4)),
+        ("triangle of 4 points", tri.to_vec(), true, Some(3)),
+        ("half circle of 6 points", ring(5, 5, PI), false, None),
+        ("wave of 13 points", wave, false, None),
+        ("circle of 7 points", ring(6, 6, 2.0 * PI), true, None),
+        ("circle of 9 points", ring(8, 8, 2.0 * PI), true, None),
+        ("circle of 13 points", ring(12, 12, 2.0 * PI), true, None),
+    ];
+    for (name, pts, closed, corners) in cases {
+        let c = fit(&pts);
+        assert_eq!(c.closed, closed, "{name}");
+        assert_within_tolerance(name, &c);
+        assert_connected(name, &c);
+        match corners {
+            Some(want) => {
+                assert_eq!(c.corners.len(), want, "{name}: {:?}", c.corners);
+                assert!(kinds(&c).iter().all(|k| *k == "line"), "{name}");
+            }
+            None => {
+                assert!(c.corners.is_empty(), "{name}: {:?}", c.corners);
+                assert_eq!(kinds(&c), ["curve"], "{name}");
+                let Run::Curve(s) = &c.runs[0] else {
+                    unreachable!()
+                };
+                assert!(s.g2 && s.all_monotone, "{name}");
+                // The curve stays by its points: within a third of the points' spread
+                // of their bounding box (the zigzag's loop went 1,000 times out).
+                let (lo, hi) = pts.iter().fold(
+                    (p(f64::MAX, f64::MAX), p(f64::MIN, f64::MIN)),
+                    |(lo, hi), q| {
+                        (
+                            p(lo.x.min(q.x), lo.y.min(q.y)),
+                            p(hi.x.max(q.x), hi.y.max(q.y)),
+                        )
+                    },
+                );
+                let margin = 0.35 * (hi - lo).hypot();
+                for piece in &s.pieces {
+                    for q in piece.rational.points() {
+                        assert!(
+                            q.x > lo.x - margin
+                                && q.x < hi.x + margin
+                                && q.y > lo.y - margin
+                                && q.y < hi.y + margin,
+                            "{name}: control point {q:?} far from the points"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn a_square_and_a_triangle_in_one_stroke_come_back_closed_with_their_corners() {
     // Started in the middle of a side, ended back there with a small overshoot.

@@ -180,7 +180,8 @@ pub struct SketchContourRequest {
     /// Closed (true), open (false), or decided from the stroke (absent or null).
     #[serde(default)]
     pub closed: Option<bool>,
-    /// The smallest turn that is a corner, in degrees, in (0, 180).
+    /// The smallest turn that is a corner, in degrees, in (0, 180) (at a point of a sparse
+    /// stroke, between its two chords, at least 80).
     #[serde(default)]
     pub corner_angle_degrees: Option<f64>,
     /// Points per piece of a `drawing`.

@@ -217,6 +217,39 @@ mod tests {
         ((a.x - re).powi(2) + (a.y - im).powi(2)).sqrt() / (re * re + im * im).sqrt()
     }
 
+    /// α = 1 is the logarithmic spiral ρ = e^{Λθ}: its chord over [0, θ_d] is
+    /// (e^{(Λ+i)θ_d} - 1)/(Λ+i) in closed form, so the base angle at the high-curvature
+    /// end is that chord's argument. The solve recovers Λ from it on pieces that turn
+    /// nearly nothing (a sketch's sliver turned 1.2e-8 rad and needed Λ = 3e7: the old
+    /// bracket stopped at 1e6) as on ordinary ones.
+    #[test]
+    fn the_alpha_one_solve_meets_the_spirals_closed_form_at_every_turning() {
+        let base_angle = |lambda: f64, theta_d: f64| {
+            // e^{(Λ+i)θ} - 1 = (e^{Λθ} - 1) + e^{Λθ}(e^{iθ} - 1), without cancellation.
+            let g = (lambda * theta_d).exp_m1();
+            let e = (lambda * theta_d).exp();
+            let (s, c1) = (theta_d.sin(), -2.0 * (0.5 * theta_d).sin().powi(2));
+            let (re, im) = (g + e * c1, e * s);
+            // Divided by Λ + i: times (Λ - i).
+            let (x, y) = (re * lambda + im, im * lambda - re);
+            y.atan2(x)
+        };
+        for theta_d in [1.2e-8, 1e-5, 0.3, 2.0] {
+            for log_ratio in [0.01, 0.3, 2.0, 30.0] {
+                let lambda = log_ratio / theta_d;
+                let phi = base_angle(lambda, theta_d);
+                let got = LacSegment::solve_lambda(1.0, theta_d, phi).unwrap();
+                // φ is flat in Λ near the limit: compare the log ratios, to the base angle's
+                // resolution there.
+                let tol = if log_ratio > 10.0 { 1e-6 } else { 1e-7 };
+                assert!(
+                    ((got - lambda) / lambda).abs() < tol,
+                    "theta_d {theta_d:e}, ratio e^{log_ratio}: lambda {got:e} vs {lambda:e}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn theta_at_arc_length_inverts_the_arc_length() {
         for alpha in [-3.0, -1.0, 0.0, 1e-9, 0.5, 1.0 - 1e-9, 1.0, 2.0, 5.0] {

@@ -32,6 +32,10 @@ pub struct LacSegment {
 /// A segment's standard curve, its parameter interval and its chord there.
 pub(crate) type SolvedStandard = (LacStandard, (f64, f64), Vec2);
 
+/// The largest log curvature ratio (Λ θ_d) the α = 1 solve brackets: far past e^700, where
+/// the curve overflows f64 and its probes count as above the root.
+const ALPHA_ONE_LOG_RATIO: f64 = 1e4;
+
 impl LacSegment {
     /// The standard-form curve (α and Λ >= 0).
     pub fn standard(&self) -> &LacStandard {
@@ -275,13 +279,19 @@ impl LacSegment {
         }
         let mut hi = lmax;
         if !hi.is_finite() {
-            hi = 1.0;
+            // α = 1: Λ θ_d is the log of the curvature ratio between the ends, so the
+            // bracket grows in that, not in Λ (a piece turning 1e-8 rad needs Λ = 3e7 for a
+            // ratio of 1.35). A ratio past e^700 overflows and counts as above the root.
+            hi = 1.0 / theta_d;
             while f_at(hi)? < 0.0 {
                 hi *= 2.0;
-                if hi > 1e6 {
-                    return Err(Error::NoConvergence(
-                        "lambda bracket for alpha = 1 exceeded 1e6".into(),
-                    ));
+                if hi * theta_d > ALPHA_ONE_LOG_RATIO {
+                    return Err(Error::NoConvergence(format!(
+                        "the alpha = 1 segment for this triangle (base angle {phi:.6e} rad, \
+                         {:.3e} below its limit {lim:.6e}) has a curvature ratio beyond \
+                         e^{ALPHA_ONE_LOG_RATIO}: too extreme to evaluate",
+                        lim - phi
+                    )));
                 }
             }
         }

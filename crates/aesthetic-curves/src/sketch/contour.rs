@@ -16,9 +16,12 @@
 //!    θ_w ≈ w / R at every scale. `w` is [`WINDOW_TOLERANCES`] tolerances (at most a sixth
 //!    of the stroke) and at least [`WINDOW_NOISE`] times the noise. The largest turns are
 //!    kept first, none within `w` of another, each then put where it splits the stroke
-//!    into the two straightest stretches around it;
+//!    into the two straightest stretches around it. At a point of a sparse stroke (both
+//!    steps longer than `w` and [`SPARSE_STEP`] of its size) the chords alone turn, and a
+//!    turn of [`SPARSE_CORNER`] or more is a corner;
 //! 3. **runs**: the points from one corner to the next (both included, so the runs meet at
-//!    the corner exactly); a closed contour with corners starts at its first corner, one
+//!    the corner exactly; a run of fewer than 4 points that is not straight is a polygon,
+//!    its inner points corners too); a closed contour with corners starts at its first corner, one
 //!    without is one run from its first point around to it again;
 //! 4. **straight runs** (`line_ends`): a run whose points lie within the tolerance of
 //!    their least-squares line is a line (a straight stroke is the limit of every LAC:
@@ -47,6 +50,20 @@ use super::types::{Sketch, SketchOptions};
 use super::{default_tolerance_of, fit_sketch};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
+
+/// The least turn of a corner at a point of a sparse stroke (both its steps longer than
+/// the corner window and [`SPARSE_STEP`] of its size): such points turn at every point of a sampled arc, as a polygon's
+/// do, so the turn alone decides: 80° (a rectangle's 90° and a triangle's corners are
+/// corners; a regular pentagon's 72°, a wave sampled at 13 points turning up to 76°, are
+/// smooth).
+pub const SPARSE_CORNER: f64 = 80.0 * std::f64::consts::PI / 180.0;
+
+/// ... where both steps are also longer than this share of the stroke's size (the
+/// diagonal of its points' bounding box): a stroke of some 50 points or fewer.
+pub const SPARSE_STEP: f64 = 0.02;
+
+/// Points closer than this share of a stroke's size are one point (rounding).
+const COINCIDENT: f64 = 1e-9;
 
 /// Window length of the corner test, in tolerances...
 pub const WINDOW_TOLERANCES: f64 = 6.0;
@@ -289,7 +306,8 @@ fn contour_at(
 ) -> Result<SketchContour> {
     let (closed, kept) = closes(points, tolerance, opts.closed);
     let stroke = &points[..kept];
-    let corners = corners_at(stroke, closed, tolerance, opts.corner_angle, noise.sigma);
+    let found = corners_at(stroke, closed, tolerance, opts.corner_angle, noise.sigma);
+    let corners = with_polygon_corners(stroke, closed, found, tolerance);
     let runs = runs_of(stroke, closed, &corners);
     // A closed contour without corners is one run whose seam is faired G2, unless it has
     // straight stretches: then it starts with the first and every join is smooth.
@@ -524,7 +542,8 @@ fn fit_part(part: straight::Part, tolerance: f64) -> Result<(Run, f64)> {
 /// Whether the stroke is closed (`given`, else: it ends within 3 tolerances or 5 % of its
 /// size of its start, and is at least twice as long as its size), and how many of its
 /// points to keep: a closed stroke's overshoot past its start (the points after the one
-/// nearest the start in its last tenth) is trimmed, and a last point on the first dropped.
+/// nearest the start in its last tenth) is trimmed, and a last point on the first (to
+/// rounding) dropped.
 pub fn closes(points: &[Point], tolerance: f64, given: Option<bool>) -> (bool, usize) {
     let n = points.len();
     let size = bbox_diagonal(points);
@@ -540,13 +559,15 @@ pub fn closes(points: &[Point], tolerance: f64, given: Option<bool>) -> (bool, u
                 .total_cmp(&(points[b] - start).hypot())
         })
         .unwrap_or(n - 1);
-    let auto = n >= 8 && (points[back] - start).hypot() <= near && length >= 2.0 * size;
+    let auto = n >= 4 && (points[back] - start).hypot() <= near && length >= 2.0 * size;
     let closed = given.unwrap_or(auto);
     if !closed || n < 4 {
         return (closed, n);
     }
     let mut keep = if auto { back + 1 } else { n };
-    while keep > 3 && points[keep - 1] == start {
+    // A last point on the first, to rounding (points computed around a circle end at
+    // (100, -2.4e-14)), is the first: kept, it would be a step of nothing at the seam.
+    while keep > 3 && (points[keep - 1] - start).hypot() <= COINCIDENT * size {
         keep -= 1;
     }
     (true, keep)
@@ -571,19 +592,29 @@ fn corners_at(
     sigma: f64,
 ) -> Vec<(usize, f64)> {
     let n = points.len();
-    if n < 5 {
+    if n < 3 {
         return Vec::new();
     }
     let arc = ArcLength::of(points, closed);
     let w = (WINDOW_TOLERANCES * tolerance)
         .max(WINDOW_NOISE * sigma)
         .min(arc.total / 6.0);
+    // A step is sparse beyond the window and a share of the stroke's size: a dense
+    // measured line whose samples step back and forth (the Prius lines, 3 mm back in 900
+    // at a 0.3 mm tolerance) turns by 180° between steps longer than its window.
+    let sparse_step = w.max(SPARSE_STEP * bbox_diagonal(points));
     let mut found: Vec<(usize, f64)> = (0..n)
         .filter_map(|i| {
             // Whole windows: a turn nearer an open stroke's end than w is its end's own
             // business (a pen's flick), not a corner between two runs.
-            let near = arc.turn(points, i, w, 0.9)?;
-            (near >= min_angle && arc.concentrated(points, i, w, near)).then_some((i, near))
+            let corner = if arc.sparse_at(i, sparse_step) {
+                let near = arc.turn(points, i, (w, 2), 0.9)?;
+                (near >= min_angle.max(SPARSE_CORNER)).then_some(near)
+            } else {
+                let near = arc.turn(points, i, (w, 3), 0.9)?;
+                (near >= min_angle && arc.concentrated(points, i, w, near)).then_some(near)
+            };
+            corner.map(|near| (i, near))
         })
         .collect();
     found.sort_by(|a, b| b.1.total_cmp(&a.1));
@@ -632,9 +663,15 @@ impl ArcLength {
     }
 
     /// The points within arc length `w` before (`dir` -1) or after (+1) point `i`, `i`
-    /// included, in stroke order (at least three), and their arc length; None where the
-    /// stroke ends (or comes round) before `fill` of `w`.
-    fn window(&self, i: usize, w: f64, dir: i64, fill: f64) -> Option<(Vec<usize>, f64)> {
+    /// included, in stroke order (at least `least`, 2 or 3), and their arc length; None
+    /// where the stroke ends (or comes round) before `fill` of `w`.
+    fn window(
+        &self,
+        i: usize,
+        w: f64,
+        (dir, least): (i64, usize),
+        fill: f64,
+    ) -> Option<(Vec<usize>, f64)> {
         let n = self.s.len() as i64;
         let mut out = vec![i];
         let mut k = i as i64;
@@ -654,16 +691,16 @@ impl ArcLength {
                 ended = true;
                 break;
             }
-            // At least three points however sparse the stroke (a line needs them).
+            // At least `least` points however sparse the stroke.
             let step = self.between(k as usize, j as usize);
-            if run + step > w && out.len() >= 3 {
+            if run + step > w && out.len() >= least {
                 break;
             }
             run += step;
             out.push(j as usize);
             k = j;
         }
-        if (ended && run < fill * w) || out.len() < 3 {
+        if (ended && run < fill * w) || out.len() < least {
             return None;
         }
         if dir < 0 {
@@ -672,16 +709,30 @@ impl ArcLength {
         Some((out, run))
     }
 
+    /// Whether the steps on both sides of point `i` are longer than `w` (a sparse stroke
+    /// where `w` is at least the corner window: its windows there are the chords alone).
+    fn sparse_at(&self, i: usize, w: f64) -> bool {
+        let n = self.s.len();
+        let step = |j: Option<usize>| j.is_none_or(|j| self.between(i, j) > w);
+        let (prev, next) = if self.closed {
+            (Some((i + n - 1) % n), Some((i + 1) % n))
+        } else {
+            (i.checked_sub(1), (i + 1 < n).then_some(i + 1))
+        };
+        step(prev) && step(next)
+    }
+
     /// Whether the turn `near` over windows `w` at point `i` happens in a short stretch:
     /// over windows a third as long it is nearly as large (on an arc a third), and over
     /// windows twice as long hardly larger (on an arc twice); a window that does not fit
-    /// (the stroke's end, too few points) leaves the decision to the others.
+    /// (the stroke's end, too few points) leaves the decision to the others. Each window
+    /// holds at least three points (two steps).
     fn concentrated(&self, points: &[Point], i: usize, w: f64, near: f64) -> bool {
         let short = self
-            .turn(points, i, w / 3.0, 0.9)
+            .turn(points, i, (w / 3.0, 3), 0.9)
             .is_none_or(|t| t >= SHORT_SHARE * near);
         let long = self
-            .turn(points, i, 2.0 * w, 0.5)
+            .turn(points, i, (2.0 * w, 3), 0.5)
             .is_none_or(|t| t < CONCENTRATION * near);
         short && long
     }
@@ -691,8 +742,8 @@ impl ArcLength {
     /// from their least-squares lines, each piece at least three points).
     fn apex(&self, points: &[Point], i: usize, w: f64) -> usize {
         let (Some((before, _)), Some((after, _))) = (
-            self.window(i, 1.5 * w, -1, 0.0),
-            self.window(i, 1.5 * w, 1, 0.0),
+            self.window(i, 1.5 * w, (-1, 3), 0.0),
+            self.window(i, 1.5 * w, (1, 3), 0.0),
         ) else {
             return i;
         };
@@ -710,9 +761,14 @@ impl ArcLength {
 
     /// The turn at point `i` between the least-squares directions of the stretches of
     /// length `w` before and after it (each at least `fill` of `w` long: near an open
-    /// stroke's ends they are cut short); None where one does not fit.
-    fn turn(&self, points: &[Point], i: usize, w: f64, fill: f64) -> Option<f64> {
-        let (a, b) = (self.window(i, w, -1, fill)?, self.window(i, w, 1, fill)?);
+    /// stroke's ends they are cut short, and at least `least` points: 2 where one step of
+    /// a sparse stroke is longer than `w`, its chord then the stretch); None where one does
+    /// not fit.
+    fn turn(&self, points: &[Point], i: usize, (w, least): (f64, usize), fill: f64) -> Option<f64> {
+        let (a, b) = (
+            self.window(i, w, (-1, least), fill)?,
+            self.window(i, w, (1, least), fill)?,
+        );
         // A stretch that goes back and forth (samples out of order, a scribble) has no
         // direction to turn from.
         let goes = |(idx, along): &(Vec<usize>, f64)| {
@@ -746,6 +802,48 @@ fn line_residual(points: &[Point], idx: &[usize]) -> f64 {
 /// pointing from the first towards the last.
 fn direction(points: &[Point], idx: &[usize]) -> Option<Vec2> {
     straight::line_through(picked(points, idx)).map(|(_, d)| d)
+}
+
+/// `corners` and the points inside every run of fewer than 4 points (too few for a curve:
+/// a sparse stroke) that is not straight within the tolerance, each with its turn: such a
+/// run is a polygon, its every point a corner. A closed stroke without corners is one run.
+fn with_polygon_corners(
+    points: &[Point],
+    closed: bool,
+    mut corners: Vec<(usize, f64)>,
+    tolerance: f64,
+) -> Vec<(usize, f64)> {
+    let n = points.len();
+    let mut bounds: Vec<usize> = corners.iter().map(|c| c.0).collect();
+    if !closed {
+        bounds.retain(|&c| c > 0 && c < n - 1);
+        bounds.insert(0, 0);
+        bounds.push(n - 1);
+    } else if bounds.is_empty() {
+        bounds = vec![0, n];
+    } else {
+        bounds.push(bounds[0] + n);
+    }
+    let turn = |i: usize| -> Option<f64> {
+        let (prev, next) = (points[(i + n - 1) % n], points[(i + 1) % n]);
+        let (a, b) = (points[i] - prev, next - points[i]);
+        (a.hypot() > 0.0 && b.hypot() > 0.0).then(|| a.cross(b).atan2(a.dot(b)).abs())
+    };
+    for w in bounds.windows(2) {
+        let run: Vec<Point> = (w[0]..=w[1]).map(|j| points[j % n]).collect();
+        if run.len() >= 4 || chord_deviation(&run) <= tolerance {
+            continue;
+        }
+        let inside = (w[0] + 1..w[1]).map(|j| j % n);
+        corners.extend(inside.filter_map(|j| Some((j, turn(j)?))));
+    }
+    if closed && corners.len() < n && bounds == [0, n] && n < 4 {
+        // A closed stroke of three points: a triangle.
+        corners = (0..n).filter_map(|j| Some((j, turn(j)?))).collect();
+    }
+    corners.sort_by_key(|c| c.0);
+    corners.dedup_by_key(|c| c.0);
+    corners
 }
 
 /// The runs' points: from corner to corner, both included (closed with corners: from the

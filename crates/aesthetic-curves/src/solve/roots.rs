@@ -100,6 +100,13 @@ pub fn brent(
     f_tol: f64,
     max_iter: usize,
 ) -> Result<f64> {
+    // An end that is a root is the answer (f(a0) = 0 and f(b0) < 0 straddle nothing).
+    if fa0 == 0.0 {
+        return Ok(a0);
+    }
+    if fb0 == 0.0 {
+        return Ok(b0);
+    }
     if (fa0 > 0.0) == (fb0 > 0.0) || fa0.is_nan() || fb0.is_nan() {
         return Err(Error::NoConvergence(format!(
             "root bracket [{a0}, {b0}] does not straddle a sign change ({fa0}, {fb0})"
