@@ -153,6 +153,16 @@ pub struct BSplineFit {
     pub rms_deviation: f64,
 }
 
+impl BSplineFit {
+    /// Whether the spline swings out from its points: its control polygon (which bounds
+    /// its arc length) more than [`SWING_POLYLINE`] times as long as the points' polyline.
+    /// A tight fit through a few sparse points can (knots where the points do not pin
+    /// the control points): passing near every point, it loops far away between them.
+    pub fn swings_out(&self) -> bool {
+        polygon_length(&self.spline.control_points) > SWING_POLYLINE * polygon_length(&self.points)
+    }
+}
+
 /// Cumulative chord-length parameters on [0, 1] of points without consecutive duplicates.
 pub fn chord_parameters(points: &[Point]) -> Result<Vec<f64>> {
     let mut s = vec![0.0; points.len()];
@@ -414,7 +424,7 @@ const CORRECTIONS: usize = 40;
 const SWING_GROWTH: f64 = 1.5;
 
 /// ... beyond this many times the length of the points' polyline.
-const SWING_POLYLINE: f64 = 2.0;
+pub const SWING_POLYLINE: f64 = 2.0;
 
 /// The length of a polygon through `pts`.
 fn polygon_length(pts: &[Point]) -> f64 {
@@ -714,6 +724,10 @@ fn smoothing_fit_spans(
         let mut accepted = false;
         for _ in 0..8 {
             let s = solve(&eqs, 10f64.powf(l)).ok_or_else(singular)?;
+            // A correction that swings the spline out is none (see `fit`).
+            if swings_out(&s, &best, polygon_length(&pts)) {
+                break;
+            }
             let (d, pr) = worst(&s, &np)?;
             if d <= max_deviation {
                 best = s;

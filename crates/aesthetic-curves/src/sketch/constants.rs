@@ -10,6 +10,11 @@ pub(super) const PRECISE_NOISE: f64 = 1e-6;
 /// fall as the window's fourth power (to 0.012).
 pub(super) const PRECISE_SCALING: f64 = 0.1;
 
+/// A stroke whose steps at a point are longer than this share of its size (the diagonal
+/// of its bounding box: some 50 points or fewer along it) is sparse there: clicked
+/// points, or a pen sampled far apart ([`super::contour`]'s corners).
+pub const SPARSE_STEP: f64 = 0.02;
+
 /// The tight spline of precise input stays within this share of the size (or 4 times the
 /// noise, if more): the joints and tangents the pieces take from it are that accurate.
 /// Points close to a circle barely tell the alphas apart (a shallow bump's α = -1.86 fits

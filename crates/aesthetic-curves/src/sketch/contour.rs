@@ -43,6 +43,7 @@
 //! with rounded turns) or next to an open end is fitted with the run's pieces, not as a
 //! line: the flank of an S or a wave looks the same.
 
+pub use super::constants::SPARSE_STEP;
 use super::input::{bbox_diagonal, check_points, noise_level, Noise};
 use super::slot::segment_distance;
 use super::straight;
@@ -52,15 +53,12 @@ use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 
 /// The least turn of a corner at a point of a sparse stroke (both its steps longer than
-/// the corner window and [`SPARSE_STEP`] of its size): such points turn at every point of a sampled arc, as a polygon's
+/// the corner window and [`SPARSE_STEP`] of its size: a stroke of some 50 points or
+/// fewer): such points turn at every point of a sampled arc, as a polygon's
 /// do, so the turn alone decides: 80° (a rectangle's 90° and a triangle's corners are
 /// corners; a regular pentagon's 72°, a wave sampled at 13 points turning up to 76°, are
 /// smooth).
 pub const SPARSE_CORNER: f64 = 80.0 * std::f64::consts::PI / 180.0;
-
-/// ... where both steps are also longer than this share of the stroke's size (the
-/// diagonal of its points' bounding box): a stroke of some 50 points or fewer.
-pub const SPARSE_STEP: f64 = 0.02;
 
 /// Points closer than this share of a stroke's size are one point (rounding).
 const COINCIDENT: f64 = 1e-9;
@@ -314,6 +312,7 @@ fn contour_at(
     let one_loop = closed && corners.is_empty();
     let lines = line_ends(&runs, closed && !one_loop, tolerance);
     let sigma = noise.sigma;
+    let size = bbox_diagonal(stroke);
     let mut out = Assembly::default();
     for (k, (r, line)) in runs.iter().zip(&lines).enumerate() {
         let parts = fit_parts(r, *line, tolerance, one_loop, sigma).map_err(|e| match e {
@@ -324,7 +323,11 @@ fn contour_at(
             }
             other => other,
         })?;
-        out.push_run(parts);
+        out.push_run(parts, size);
+    }
+    if closed || one_loop {
+        let start = out.runs[0].ends().0;
+        out.bridge(start, size);
     }
     let looped = one_loop && out.runs.len() == 1;
     let seam = looped.then(|| seam(&out.runs[0]));
@@ -372,7 +375,10 @@ struct Assembly {
 
 impl Assembly {
     /// The parts of one run (with their deviations), smooth joins between them.
-    fn push_run(&mut self, parts: Vec<(Run, f64)>) {
+    fn push_run(&mut self, parts: Vec<(Run, f64)>, size: f64) {
+        if let Some((run, _)) = parts.first() {
+            self.bridge(run.ends().0, size);
+        }
         let first = self.runs.len();
         for (i, (run, dev)) in parts.into_iter().enumerate() {
             self.deviation = self.deviation.max(dev);
@@ -382,6 +388,28 @@ impl Assembly {
             }
         }
         self.run_ends.push(self.runs.len() - 1);
+    }
+
+    /// A straight bridge where the previous part ends short of where the next starts
+    /// (by more than 1e-9 of the stroke's `size`), as the previous run's last part: a
+    /// curve's end piece whose end tangents form no triangle at the corner's point ends on
+    /// the fair spline instead, within the tolerance of that point (a wave's crest read as
+    /// a corner at ±3 px of jitter left 2.96 px between its runs, and no drawing or export
+    /// could join them).
+    fn bridge(&mut self, to: Point, size: f64) {
+        let Some(last) = self.runs.last() else {
+            return;
+        };
+        let from = last.ends().1;
+        if (to - from).hypot() > 1e-9 * size {
+            self.runs.push(Run::Line {
+                start: from,
+                end: to,
+            });
+            if let Some(e) = self.run_ends.last_mut() {
+                *e += 1;
+            }
+        }
     }
 
     /// A smooth join after run `k` (the next run, or the first after the last).
@@ -909,7 +937,7 @@ fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(P
             None => foot(line, sample),
         }
     };
-    (0..n)
+    let ends: Vec<Option<(Point, Point)>> = (0..n)
         .map(|k| {
             let line = fits[k]?;
             let r = &runs[k];
@@ -925,7 +953,49 @@ fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(P
             };
             Some((start, meet(k, line, r[r.len() - 1])))
         })
-        .collect()
+        .collect();
+    held_together(runs, closed, tolerance, ends)
+}
+
+/// The line ends with every run's ends moved back to its samples where its line between
+/// the moved ends is farther than the tolerance from its points (a coarse stroke: lines
+/// that meet far from its samples) or has no length, and its neighbours' ends there with them, until every
+/// line holds: the runs then still meet (that run is fitted from its samples).
+fn held_together(
+    runs: &[Vec<Point>],
+    closed: bool,
+    tolerance: f64,
+    mut ends: Vec<Option<(Point, Point)>>,
+) -> Vec<Option<(Point, Point)>> {
+    let n = runs.len();
+    // A line of no length does not hold either (a closed contour of two lines: both
+    // corners where the same two lines meet).
+    let holds = |r: &[Point], (a, b): (Point, Point)| {
+        let chord = (r[r.len() - 1] - r[0]).hypot().max(tolerance);
+        (b - a).hypot() > COINCIDENT * chord
+            && r.iter().all(|&q| segment_distance(q, a, b) <= tolerance)
+    };
+    loop {
+        let Some(k) = (0..n).find(|&k| {
+            let r = &runs[k];
+            ends[k].is_some_and(|e| !holds(r, e) && e != (r[0], r[r.len() - 1]))
+        }) else {
+            return ends;
+        };
+        let r = &runs[k];
+        ends[k] = Some((r[0], r[r.len() - 1]));
+        let (prev, next) = if closed {
+            (Some((k + n - 1) % n), Some((k + 1) % n))
+        } else {
+            (k.checked_sub(1), (k + 1 < n).then_some(k + 1))
+        };
+        if let Some(e) = prev.and_then(|j| ends[j].as_mut()) {
+            e.1 = r[0];
+        }
+        if let Some(e) = next.and_then(|j| ends[j].as_mut()) {
+            e.0 = r[r.len() - 1];
+        }
+    }
 }
 
 /// Where the lines through `a.0` along `a.1` and through `b.0` along `b.1` meet; None for
@@ -947,7 +1017,11 @@ fn fit_run(
     tolerance: f64,
     closed: bool,
 ) -> Result<Run> {
-    if let Some((start, end)) = line.filter(|_| !closed) {
+    // A line has a length: a closed stroke's one corner starts and ends its one run (a
+    // teardrop), which no line is, however loose the tolerance.
+    let size = bbox_diagonal(points);
+    let long = |a: Point, b: Point| (b - a).hypot() > COINCIDENT * size;
+    if let Some((start, end)) = line.filter(|(a, b)| !closed && long(*a, *b)) {
         let l = Run::Line { start, end };
         if deviation(points, &l) <= tolerance {
             return Ok(l);
@@ -955,7 +1029,7 @@ fn fit_run(
     }
     let (start, end) = (points[0], points[points.len() - 1]);
     let line = Run::Line { start, end };
-    if !closed && (points.len() < 4 || chord_deviation(points) <= tolerance) {
+    if !closed && long(start, end) && (points.len() < 4 || chord_deviation(points) <= tolerance) {
         return Ok(line);
     }
     let opts = SketchOptions {

@@ -1,6 +1,6 @@
 use super::constants::{
     EXTREME_CUT, EXTREME_FACTOR, FAIR_SHARE, FAIR_SHARE_LAST, NEAR_NOISE, NEAR_NOISE_SHARE,
-    PRECISE_NOISE, PRECISE_SCALING, TIGHT_SHARE,
+    PRECISE_NOISE, PRECISE_SCALING, SPARSE_STEP, TIGHT_SHARE,
 };
 use super::slot::EndPoints;
 use super::track::Track;
@@ -308,12 +308,42 @@ fn fair_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(BSpli
     if noisy {
         return smoothing_spline(points, tolerance, noise);
     }
-    match tight(fit_tol) {
+    let fit = match tight(fit_tol) {
         Err(Error::NoConvergence(_)) if fit_tol < 0.5 * tolerance => {
-            Ok((tight(0.5 * tolerance)?, 0.5 * tolerance))
+            (tight(0.5 * tolerance)?, 0.5 * tolerance)
         }
-        other => Ok((other?, fit_tol)),
+        other => (other?, fit_tol),
+    };
+    // Sparse points (a dozen clicks) can leave the tight fit's knots where no point pins
+    // the control points: it passes near every point and loops thousands of units away
+    // between them. The smoothest spline within the tolerance does not.
+    if !(sparse(points) || fit.0.swings_out()) {
+        return Ok(fit);
     }
+    let smooth = smoothing_spline(points, tolerance, noise)?;
+    if smooth.0.swings_out() {
+        // Too few points for a spline that stays near them within the tolerance: an
+        // answer that loops far out between them would only look like one.
+        return Err(Error::NoConvergence(format!(
+            "no spline within {:.3e} of these {} points stays near them between them (its \
+             control polygon is more than {} times as long as theirs): too few points for \
+             this tolerance; a looser one, or more points",
+            smooth.1,
+            points.len(),
+            bspline::SWING_POLYLINE
+        )));
+    }
+    Ok(smooth)
+}
+
+/// Whether the points are sparse: their median step longer than [`SPARSE_STEP`] of their
+/// size (some 50 points or fewer along the stroke).
+fn sparse(points: &[Point]) -> bool {
+    let mut steps: Vec<f64> = points.windows(2).map(|w| (w[1] - w[0]).hypot()).collect();
+    let mid = steps.len() / 2;
+    !steps.is_empty()
+        && *steps.select_nth_unstable_by(mid, f64::total_cmp).1
+            > SPARSE_STEP * bbox_diagonal(points)
 }
 
 /// The smoothest spline within [`FAIR_SHARE`] of the tolerance ([`NEAR_NOISE_SHARE`] where
