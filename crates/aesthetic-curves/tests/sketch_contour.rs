@@ -653,6 +653,12 @@ fn sparse_strokes_are_polygons_or_curves_within_the_tolerance() {
         ("circle of 9 points", ring(8, 8, 2.0 * PI), true, None),
         ("circle of 13 points", ring(12, 12, 2.0 * PI), true, None),
     ];
+    // As one G2 curve (`sketch.fit`) the zigzag turns back at every point: a typed error
+    // that names the place and points to the contour fit, not a curve 114,000 units out.
+    match aesthetic_curves::sketch::fit_sketch_within(&zigzag, None) {
+        Err(aesthetic_curves::Error::Degenerate(m)) => assert!(m.contains("sketch.contour"), "{m}"),
+        other => panic!("zigzag as one curve: {other:?}"),
+    }
     for (name, pts, closed, corners) in cases {
         let c = fit(&pts);
         assert_eq!(c.closed, closed, "{name}");

@@ -353,9 +353,14 @@ pub(super) fn split_s_shapes(track: &Track, slots: &mut Vec<Slot>) -> Result<()>
         }
         guard += 1;
         if guard > 200 || (s.ub - s.ua) < 1e-9 {
-            return Err(Error::Degenerate(
-                "a piece of the curve has end tangents that form no triangle".into(),
-            ));
+            let (a, b) = (track.point(s.ua), track.point(s.ub));
+            return Err(Error::Degenerate(format!(
+                "a piece of the curve, from ({:.6}, {:.6}) to ({:.6}, {:.6}), has end \
+                 tangents that form no triangle however it is cut: the stroke turns back \
+                 there (a corner? a contour fit, `sketch.contour`, splits a stroke at its \
+                 corners)",
+                a.x, a.y, b.x, b.y
+            )));
         }
         let n = 64;
         let us: Vec<f64> = (1..n)
