@@ -431,10 +431,11 @@ fn polygon_length(pts: &[Point]) -> f64 {
     pts.windows(2).map(|w| (w[1] - w[0]).hypot()).sum()
 }
 
-/// Whether `candidate` swings out from `current`: its control polygon more than
-/// [`SWING_GROWTH`] times as long, and more than [`SWING_POLYLINE`] times the points'
-/// `polyline` (a spline near the points is about as long as their polyline).
-fn swings_out(candidate: &BSpline, current: &BSpline, polyline: f64) -> bool {
+/// Whether a parameter correction's `candidate` swings further out than `current`: its
+/// control polygon more than [`SWING_GROWTH`] times as long, and more than
+/// [`SWING_POLYLINE`] times the points' `polyline` (a spline near the points is about as
+/// long as their polyline; [`BSplineFit::swings_out`] is the second test alone).
+fn swings_further(candidate: &BSpline, current: &BSpline, polyline: f64) -> bool {
     let len = polygon_length(&candidate.control_points);
     len > SWING_GROWTH * polygon_length(&current.control_points) && len > SWING_POLYLINE * polyline
 }
@@ -479,7 +480,7 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
             // of a wavy fit gather where it passes several points, and the next fit through
             // them loops 1,000 times the points' size away to pass near every one) is not
             // one: the fit stays where it was.
-            if swings_out(&candidate, &spline, polyline) {
+            if swings_further(&candidate, &spline, polyline) {
                 break;
             }
             let cproj = project_all(&candidate, &pts, &np)?;
@@ -609,6 +610,7 @@ fn smoothing_fit_spans(
 ) -> Result<std::result::Result<BSplineFit, f64>> {
     let pts = pts.to_vec();
     let mut params = chord_parameters(&pts)?;
+    let polyline = polygon_length(&pts);
     let p = 3;
     let n = spans + p;
     let mut knots = vec![0.0; p + 1];
@@ -725,7 +727,7 @@ fn smoothing_fit_spans(
         for _ in 0..8 {
             let s = solve(&eqs, 10f64.powf(l)).ok_or_else(singular)?;
             // A correction that swings the spline out is none (see `fit`).
-            if swings_out(&s, &best, polygon_length(&pts)) {
+            if swings_further(&s, &best, polyline) {
                 break;
             }
             let (d, pr) = worst(&s, &np)?;

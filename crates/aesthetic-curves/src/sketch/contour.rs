@@ -325,7 +325,7 @@ fn contour_at(
         })?;
         out.push_run(parts, size);
     }
-    if closed || one_loop {
+    if closed {
         let start = out.runs[0].ends().0;
         out.bridge(start, size);
     }
@@ -391,7 +391,7 @@ impl Assembly {
     }
 
     /// A straight bridge where the previous part ends short of where the next starts
-    /// (by more than 1e-9 of the stroke's `size`), as the previous run's last part: a
+    /// (by more than [`COINCIDENT`] of the stroke's `size`), as the previous run's last part: a
     /// curve's end piece whose end tangents form no triangle at the corner's point ends on
     /// the fair spline instead, within the tolerance of that point (a wave's crest read as
     /// a corner at ±3 px of jitter left 2.96 px between its runs, and no drawing or export
@@ -401,7 +401,7 @@ impl Assembly {
             return;
         };
         let from = last.ends().1;
-        if (to - from).hypot() > 1e-9 * size {
+        if (to - from).hypot() > COINCIDENT * size {
             self.runs.push(Run::Line {
                 start: from,
                 end: to,
@@ -740,13 +740,8 @@ impl ArcLength {
     /// Whether the steps on both sides of point `i` are longer than `w` (a sparse stroke
     /// where `w` is at least the corner window: its windows there are the chords alone).
     fn sparse_at(&self, i: usize, w: f64) -> bool {
-        let n = self.s.len();
         let step = |j: Option<usize>| j.is_none_or(|j| self.between(i, j) > w);
-        let (prev, next) = if self.closed {
-            (Some((i + n - 1) % n), Some((i + 1) % n))
-        } else {
-            (i.checked_sub(1), (i + 1 < n).then_some(i + 1))
-        };
+        let (prev, next) = neighbours(i, self.s.len(), self.closed);
         step(prev) && step(next)
     }
 
@@ -842,30 +837,21 @@ fn with_polygon_corners(
     tolerance: f64,
 ) -> Vec<(usize, f64)> {
     let n = points.len();
-    let mut bounds: Vec<usize> = corners.iter().map(|c| c.0).collect();
-    if !closed {
-        bounds.retain(|&c| c > 0 && c < n - 1);
-        bounds.insert(0, 0);
-        bounds.push(n - 1);
-    } else if bounds.is_empty() {
-        bounds = vec![0, n];
-    } else {
-        bounds.push(bounds[0] + n);
-    }
+    let bounds = run_bounds(n, closed, &corners);
     let turn = |i: usize| -> Option<f64> {
         let (prev, next) = (points[(i + n - 1) % n], points[(i + 1) % n]);
         let (a, b) = (points[i] - prev, next - points[i]);
         (a.hypot() > 0.0 && b.hypot() > 0.0).then(|| a.cross(b).atan2(a.dot(b)).abs())
     };
-    for w in bounds.windows(2) {
-        let run: Vec<Point> = (w[0]..=w[1]).map(|j| points[j % n]).collect();
+    for &(a, b) in &bounds {
+        let run: Vec<Point> = (a..=b).map(|j| points[j % n]).collect();
         if run.len() >= 4 || chord_deviation(&run) <= tolerance {
             continue;
         }
-        let inside = (w[0] + 1..w[1]).map(|j| j % n);
+        let inside = (a + 1..b).map(|j| j % n);
         corners.extend(inside.filter_map(|j| Some((j, turn(j)?))));
     }
-    if closed && corners.len() < n && bounds == [0, n] && n < 4 {
+    if closed && bounds == [(0, n)] && n < 4 {
         // A closed stroke of three points: a triangle.
         corners = (0..n).filter_map(|j| Some((j, turn(j)?))).collect();
     }
@@ -874,32 +860,41 @@ fn with_polygon_corners(
     corners
 }
 
+/// The indices before and after `k` of `n` in order (closed: around; open: none past
+/// an end).
+fn neighbours(k: usize, n: usize, closed: bool) -> (Option<usize>, Option<usize>) {
+    if closed {
+        (Some((k + n - 1) % n), Some((k + 1) % n))
+    } else {
+        (k.checked_sub(1), (k + 1 < n).then_some(k + 1))
+    }
+}
+
 /// The runs' points: from corner to corner, both included (closed with corners: from the
 /// first corner around to it; closed without: from the first point around to it).
 fn runs_of(points: &[Point], closed: bool, corners: &[(usize, f64)]) -> Vec<Vec<Point>> {
     let n = points.len();
-    let cuts: Vec<usize> = corners.iter().map(|c| c.0).collect();
-    if !closed {
-        let mut bounds = vec![0];
-        bounds.extend(cuts.iter().copied().filter(|&c| c > 0 && c < n - 1));
-        bounds.push(n - 1);
-        return bounds
-            .windows(2)
-            .map(|w| points[w[0]..=w[1]].to_vec())
-            .collect();
-    }
-    if cuts.is_empty() {
-        let mut run = points.to_vec();
-        run.push(points[0]);
-        return vec![run];
-    }
-    (0..cuts.len())
-        .map(|k| {
-            let (a, b) = (cuts[k], cuts[(k + 1) % cuts.len()]);
-            let len = if b > a { b - a } else { b + n - a };
-            (0..=len).map(|j| points[(a + j) % n]).collect()
-        })
+    run_bounds(n, closed, corners)
+        .into_iter()
+        .map(|(a, b)| (a..=b).map(|j| points[j % n]).collect())
         .collect()
+}
+
+/// Each run's first and last point index, both included, for `n` points cut at the
+/// `corners` (in order): a closed stroke's last run counts on past `n` (index `j` is point
+/// `j % n`), one without corners is `(0, n)`, its first point again at its end.
+fn run_bounds(n: usize, closed: bool, corners: &[(usize, f64)]) -> Vec<(usize, usize)> {
+    let mut cuts: Vec<usize> = corners.iter().map(|c| c.0).collect();
+    if !closed {
+        cuts.retain(|&c| c > 0 && c < n - 1);
+        cuts.insert(0, 0);
+        cuts.push(n - 1);
+    } else if cuts.is_empty() {
+        cuts = vec![0, n];
+    } else {
+        cuts.push(cuts[0] + n);
+    }
+    cuts.windows(2).map(|w| (w[0], w[1])).collect()
 }
 
 /// Where each straight run's line starts and ends (None for a run that is not straight:
@@ -924,12 +919,7 @@ fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(P
     let foot = |(c, d): (Point, Vec2), q: Point| c + d * (q - c).dot(d);
     // The place of the corner after run k (between it and the next), seen from run k.
     let meet = |k: usize, line: (Point, Vec2), sample: Point| -> Point {
-        let next = if k + 1 < n {
-            Some(k + 1)
-        } else {
-            closed.then_some(0)
-        };
-        match next.map(|j| fits[j]) {
+        match neighbours(k, n, closed).1.map(|j| fits[j]) {
             Some(Some(other)) => intersection(line, other)
                 .filter(|x| (*x - sample).hypot() <= 3.0 * tolerance)
                 .unwrap_or(sample),
@@ -941,12 +931,7 @@ fn line_ends(runs: &[Vec<Point>], closed: bool, tolerance: f64) -> Vec<Option<(P
         .map(|k| {
             let line = fits[k]?;
             let r = &runs[k];
-            let prev = if k > 0 {
-                Some(k - 1)
-            } else {
-                closed.then(|| n - 1)
-            };
-            let start = match prev.map(|j| (j, fits[j])) {
+            let start = match neighbours(k, n, closed).0.map(|j| (j, fits[j])) {
                 Some((j, Some(other))) => meet(j, other, r[0]),
                 Some((_, None)) => r[0],
                 None => foot(line, r[0]),
@@ -984,11 +969,7 @@ fn held_together(
         };
         let r = &runs[k];
         ends[k] = Some((r[0], r[r.len() - 1]));
-        let (prev, next) = if closed {
-            (Some((k + n - 1) % n), Some((k + 1) % n))
-        } else {
-            (k.checked_sub(1), (k + 1 < n).then_some(k + 1))
-        };
+        let (prev, next) = neighbours(k, n, closed);
         if let Some(e) = prev.and_then(|j| ends[j].as_mut()) {
             e.1 = r[0];
         }
