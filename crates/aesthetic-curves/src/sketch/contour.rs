@@ -278,6 +278,7 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
         }
         None if points.len() >= 4 => super::at_default(
             default_tolerance_of(points, &noise),
+            super::escalation(&noise),
             |t| contour_at(points, opts, t, &noise),
             |c| {
                 let curves = c.runs.iter().filter_map(|r| match r {

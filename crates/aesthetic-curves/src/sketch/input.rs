@@ -124,6 +124,9 @@ pub(super) struct Noise {
     /// one at 2.8σ, above the 2.55σ its fair spline had at a tolerance of 3σ: 18 false
     /// inflections).
     pub(super) extreme: f64,
+    /// Whether the stroke has enough points (15) for an estimate: fewer leave every field 0,
+    /// and the stroke is taken as precise (a few clicked points), whether it is or not.
+    pub(super) known: bool,
 }
 
 impl Noise {
@@ -144,6 +147,7 @@ impl Noise {
             fine: sigma.min(median).min(narrow),
             scaling: if median > 0.0 { narrow / median } else { 0.0 },
             extreme,
+            known: !wide.is_empty(),
         }
     }
 
@@ -308,11 +312,21 @@ fn fair_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(BSpli
     if noisy {
         return smoothing_spline(points, tolerance, noise);
     }
+    // The tight spline's own error quotes its own tolerance, a share of the one asked for.
+    let named = |e: Error, share: f64| match e {
+        Error::NoConvergence(m) => Error::NoConvergence(format!(
+            "the spline through the points, within {share:.3e} (part of the tolerance \
+             {tolerance:.3e}, the rest left to the pieces): {m}; the points carry more noise \
+             than this tolerance allows: a looser one"
+        )),
+        other => other,
+    };
     let fit = match tight(fit_tol) {
-        Err(Error::NoConvergence(_)) if fit_tol < 0.5 * tolerance => {
-            (tight(0.5 * tolerance)?, 0.5 * tolerance)
-        }
-        other => (other?, fit_tol),
+        Err(Error::NoConvergence(_)) if fit_tol < 0.5 * tolerance => (
+            tight(0.5 * tolerance).map_err(|e| named(e, 0.5 * tolerance))?,
+            0.5 * tolerance,
+        ),
+        other => (other.map_err(|e| named(e, fit_tol))?, fit_tol),
     };
     // Sparse points (a dozen clicks) can leave the tight fit's knots where no point pins
     // the control points: it passes near every point and loops thousands of units away

@@ -83,7 +83,7 @@ pub use types::{
 
 use constants::{
     DEFAULT_ESCALATION, DEFAULT_NOISE_FACTOR, EXTREME_FACTOR, NOISE_FACTOR_POINTS, NOISE_RUNG_STEP,
-    NOISY_SIZE_SHARE, PRECISE_SIZE_SHARE,
+    NOISY_SIZE_SHARE, PRECISE_SIZE_SHARE, UNKNOWN_NOISE_ESCALATION,
 };
 use input::{bbox_diagonal, check_points, noise_level, Noise};
 use rounds::fit_at;
@@ -132,26 +132,45 @@ pub fn fit_sketch_within(points: &[Point], tolerance: Option<f64>) -> Result<(Sk
     // Every rung is at least the default: no ladder inside the noise, the rounds directly.
     at_default(
         default_tolerance_of(points, &noise),
+        escalation(&noise),
         |t| fit_at(points, &SketchOptions::with_tolerance(t), &noise),
         |s| s.g2.then_some(s.inflections + s.curvature_extrema),
     )
 }
 
-/// `fit` at `default`, then at [`DEFAULT_ESCALATION`] times it where it fails or its result
+/// The multiples of the default tolerance [`at_default`] tries for a stroke of this noise.
+fn escalation(noise: &Noise) -> &'static [f64] {
+    if noise.known {
+        &DEFAULT_ESCALATION
+    } else {
+        &UNKNOWN_NOISE_ESCALATION
+    }
+}
+
+/// `fit` at `default`, then at the `ladder`'s multiples of it where it fails or its result
 /// is not fair (`events` is `None`: not G2). Once a looser tolerance was needed, the next
 /// ones are tried while they are fair with fewer events (inflections and curvature
-/// extrema): events that a slightly looser fit does not have follow the noise. None fair:
-/// the first result (which says what it is), else the first error.
+/// extrema): events that a slightly looser fit does not have follow the noise. Rungs
+/// beyond [`DEFAULT_ESCALATION`]'s are tried only while nothing was fair and the last rung
+/// did not fail as degenerate (a stroke that turns back, which fails the same way at most
+/// tolerances: each failed rung of a 12-point scribble costs seconds). None fair: the
+/// first result (which says what it is), else the first error.
 fn at_default<T>(
     default: f64,
+    ladder: &[f64],
     fit: impl Fn(f64) -> Result<T>,
     events: impl Fn(&T) -> Option<usize>,
 ) -> Result<(T, f64)> {
     let mut first: Option<Result<(T, f64)>> = None;
     let mut best: Option<(T, f64, usize)> = None;
-    for (k, factor) in DEFAULT_ESCALATION.into_iter().enumerate() {
+    let mut turned_back = false;
+    for (k, &factor) in ladder.iter().enumerate() {
+        if k >= DEFAULT_ESCALATION.len() && (best.is_some() || turned_back) {
+            break;
+        }
         let tolerance = factor * default;
         let got = fit(tolerance);
+        turned_back = matches!(got, Err(Error::Degenerate(_)));
         let fair = got.as_ref().ok().and_then(&events);
         match (got, fair, &best) {
             (Ok(s), Some(_), None) if k == 0 => return Ok((s, tolerance)),
@@ -167,7 +186,7 @@ fn at_default<T>(
     }
     match best {
         Some((s, tolerance, _)) => Ok((s, tolerance)),
-        None => first.expect("DEFAULT_ESCALATION is not empty"),
+        None => first.expect("the ladder is not empty"),
     }
 }
 
