@@ -577,12 +577,31 @@ pub fn fit(points: &[Point], opts: FitOptions) -> Result<BSplineFit> {
 /// for fewer than 4 distinct points, `no_convergence` when even the least-smoothed member of
 /// the family (λ → 0, a least-squares fit) is not within `max_deviation`.
 pub fn smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit> {
+    smoothing_fit_from(points, max_deviation, false)
+}
+
+/// [`smoothing_fit`] for sparse points (a few dozen clicks along a shape): two spans per
+/// point, the most [`smoothing_fit`] would try, from the start. Few spans leave the
+/// penalty no room: the one member of four spans that meets the deviation through 12
+/// points of a smooth walk bulged 54 units out between two points 80 apart, where the
+/// smoothest of 24 spans stays within 8; over 40 such walks the largest bulge fell from
+/// 0.63 of a step to 0.21. The cost is a system of `2n + 3` unknowns, small for such `n`.
+pub fn sparse_smoothing_fit(points: &[Point], max_deviation: f64) -> Result<BSplineFit> {
+    smoothing_fit_from(points, max_deviation, true)
+}
+
+/// [`smoothing_fit`], from the most spans when `finest`.
+fn smoothing_fit_from(points: &[Point], max_deviation: f64, finest: bool) -> Result<BSplineFit> {
     let pts = distinct_points(points, max_deviation)?;
     // Few points per span are too coarse for a tight deviation on a curve that turns a lot
     // (a spiral of 52 points turning 7.9 rad at 6e-4): the spans double until the
     // least-smoothed member comes within the deviation.
     let most = (2 * pts.len()).clamp(4, MAX_SMOOTHING_SPANS);
-    let mut spans = (pts.len() / 4).clamp(4, 64).min(most);
+    let mut spans = if finest {
+        most
+    } else {
+        (pts.len() / 4).clamp(4, 64).min(most)
+    };
     loop {
         crate::deadline::check()?;
         match smoothing_fit_spans(&pts, max_deviation, spans)? {

@@ -3,7 +3,7 @@
 //! warm starts for inflection-end pieces of a nearby shape.
 
 use super::pieces::Built;
-use super::slot::Slot;
+use super::slot::{segment_distance, Slot};
 
 use super::types::{PieceCurve, PieceKind, PieceShape, SketchPiece};
 use crate::approx::{
@@ -185,18 +185,36 @@ fn memo_key(kind: u64, alpha: u64, c: &[Point; 3]) -> [u64; 8] {
     ]
 }
 
-/// The inflection-family cubic at (f0, w0) = (0.5, 1), measured like a fit.
+/// Points of an inflection piece its fallback cubic is measured against.
+const FALLBACK_SAMPLES: usize = 2000;
+
+/// The inflection-family cubic at (f0, w0) = (0.5, 1), measured like a fit: its distance
+/// from the segment over the segment's arc length (the fit's measure), here to a polyline
+/// of [`FALLBACK_SAMPLES`] of the segment's points.
 fn inflection_fallback(seg: &LacInflectionSegment) -> Result<crate::approx::RationalCubicFit> {
+    use crate::bezier::PlanarCurve;
     use crate::monotone::CurvatureMonotone;
     let curve = crate::approx::inflection_cubic(seg, 0.5, 1.0)
         .ok_or_else(|| Error::NoConvergence("no G2 cubic for an inflection piece".into()))?;
     let monotone = curve.is_curvature_monotone().unwrap_or(false);
+    let exact = seg.sample(FALLBACK_SAMPLES)?.points;
+    let len = seg.arc_length();
+    let d: Vec<f64> = (0..=FALLBACK_SAMPLES / 4)
+        .map(|i| {
+            let q = curve.eval(i as f64 / (FALLBACK_SAMPLES / 4) as f64);
+            exact
+                .windows(2)
+                .map(|w| segment_distance(q, w[0], w[1]))
+                .fold(f64::MAX, f64::min)
+                / len
+        })
+        .collect();
     Ok(crate::approx::RationalCubicFit {
         curve,
         f0: 0.5,
         f1: 1.0,
-        rms: f64::NAN,
-        max_error: f64::NAN,
+        rms: (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt(),
+        max_error: d.iter().copied().fold(0.0, f64::max),
         monotone,
         evaluations: 1,
         // A fixed cubic, not an optimum.

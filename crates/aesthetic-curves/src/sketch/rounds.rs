@@ -3,7 +3,7 @@
 //! round starts, a round that meets it delivers the [`Sketch`].
 
 use super::alpha::fit_slot_alpha;
-use super::constants::{BATCH_AFTER, MAX_JUMP_SPLITS};
+use super::constants::{BATCH_AFTER, MAX_JUMP_SPLITS, PIECES_OVER_POINTS};
 use super::cubics::{CubicCache, Cubics};
 use super::deviation::{measure, polyline_deviation, Deviation};
 use super::fairing::fair;
@@ -21,13 +21,28 @@ use rayon::prelude::*;
 /// The fit at `opts.tolerance` (steps 1-7), the points checked and their noise estimated:
 /// the context, the first pieces, then rounds until one delivers.
 pub(super) fn fit_at(points: &[Point], opts: &SketchOptions, noise: &Noise) -> Result<Sketch> {
-    let cx = Context::with_noise(points, opts, noise)?;
+    let budget = opts.max_pieces.min(points.len() + PIECES_OVER_POINTS);
+    let capped = SketchOptions {
+        max_pieces: budget,
+        ..opts.clone()
+    };
+    let cx = Context::with_noise(points, &capped, noise)?;
     let mut slots = initial_slots(&cx)?;
     let mut rounds = Rounds::default();
     loop {
         crate::deadline::check()?;
-        if let Round::Done(sketch) = rounds.run(&cx, &mut slots)? {
-            return Ok(*sketch);
+        match rounds.run(&cx, &mut slots) {
+            Ok(Round::Done(sketch)) => return Ok(*sketch),
+            Ok(Round::Again) => {}
+            Err(e) if budget < opts.max_pieces && slots.len() >= budget => {
+                return Err(Error::Degenerate(format!(
+                    "these {} points need more than {budget} pieces as one G2 curve (last: \
+                     {e}): the stroke turns back or wiggles between its points; a contour fit \
+                     (`sketch.contour`) splits it at its corners, a looser tolerance smooths it",
+                    points.len()
+                )))
+            }
+            Err(e) => return Err(e),
         }
     }
 }
