@@ -12,7 +12,9 @@ use kurbo::{Point, Vec2};
 pub struct SketchOptions {
     /// Largest allowed distance from an input point to the result (input units, > 0).
     pub tolerance: f64,
-    /// Most pieces before giving up on the tolerance.
+    /// Most pieces before giving up on the tolerance; never more than the points and 4
+    /// (a stroke that needs more turns back or wiggles between its points, and is refused
+    /// as degenerate).
     pub max_pieces: usize,
     /// Pieces turning more than this (radians) are split.
     pub max_turn: f64,
