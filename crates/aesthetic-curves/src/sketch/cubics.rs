@@ -3,7 +3,7 @@
 //! warm starts for inflection-end pieces of a nearby shape.
 
 use super::pieces::Built;
-use super::slot::{segment_distance, Slot};
+use super::slot::Slot;
 
 use super::types::{PieceCurve, PieceKind, PieceShape, SketchPiece};
 use crate::approx::{
@@ -198,16 +198,12 @@ fn inflection_fallback(seg: &LacInflectionSegment) -> Result<crate::approx::Rati
         .ok_or_else(|| Error::NoConvergence("no G2 cubic for an inflection piece".into()))?;
     let monotone = curve.is_curvature_monotone().unwrap_or(false);
     let exact = seg.sample(FALLBACK_SAMPLES)?.points;
+    let m = FALLBACK_SAMPLES / 4;
+    let on_cubic: Vec<Point> = (0..=m).map(|i| curve.eval(i as f64 / m as f64)).collect();
     let len = seg.arc_length();
-    let d: Vec<f64> = (0..=FALLBACK_SAMPLES / 4)
-        .map(|i| {
-            let q = curve.eval(i as f64 / (FALLBACK_SAMPLES / 4) as f64);
-            exact
-                .windows(2)
-                .map(|w| segment_distance(q, w[0], w[1]))
-                .fold(f64::MAX, f64::min)
-                / len
-        })
+    let d: Vec<f64> = crate::lac_fit::nearest_distances(&exact, &on_cubic)
+        .into_iter()
+        .map(|x| x / len)
         .collect();
     Ok(crate::approx::RationalCubicFit {
         curve,

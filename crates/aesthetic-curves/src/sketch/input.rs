@@ -379,8 +379,9 @@ fn smoothing_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(
     } else {
         FAIR_SHARE
     };
+    let sparse = sparse(points);
     let smoothest = |tol: f64| {
-        if sparse(points) {
+        if sparse {
             fairer(
                 bspline::smoothing_fit(points, tol),
                 bspline::sparse_smoothing_fit(points, tol),
