@@ -1335,3 +1335,53 @@ fn a_few_noisy_points_get_a_fair_curve_by_default() {
     }
     assert!(failed.is_empty(), "{failed:#?}");
 }
+
+/// Issue 35: no piece outside the bound α shares with every fit. An inflection piece takes
+/// its α from its control triangle, and a base angle near half the piece's turning asks for
+/// α towards -∞: sparse smooth walks (6 to 24 points 20 to 80 apart, turning up to 57° a
+/// step) came back with inflection pieces of α -7.5 to -7,024, one not proven monotone.
+/// 200 such walks through `fit_sketch_within` and `fit_contour`: every delivered piece's α
+/// within [`ALPHA_RANGE`](aesthetic_curves::lac::ALPHA_RANGE).
+#[test]
+fn no_piece_is_returned_with_alpha_beyond_the_bound() {
+    use aesthetic_curves::lac::ALPHA_RANGE;
+    use aesthetic_curves::sketch::{fit_sketch_within, SketchPiece};
+    let mut rng = Jitter(3500);
+    let (mut pieces, mut fitted) = (0usize, 0usize);
+    let mut beyond = Vec::new();
+    let mut check = |name: String, ps: &[SketchPiece]| {
+        pieces += ps.len();
+        for q in ps {
+            if !(ALPHA_RANGE.0..=ALPHA_RANGE.1).contains(&q.alpha) {
+                beyond.push(format!("{name}: {:?} piece with alpha {}", q.kind, q.alpha));
+            }
+        }
+    };
+    for k in 0..200 {
+        let n = 6 + ((rng.next(0.5) + 0.5) * 19.0) as usize;
+        let (mut a, mut pts) = (rng.next(PI), vec![p(0.0, 0.0)]);
+        for _ in 1..n {
+            a += rng.next(1.0);
+            let l = 50.0 + rng.next(30.0);
+            let q = *pts.last().unwrap();
+            pts.push(p(q.x + l * a.cos(), q.y + l * a.sin()));
+        }
+        if let Ok((s, _)) = fit_sketch_within(&pts, None) {
+            fitted += 1;
+            check(format!("walk {k}"), &s.pieces);
+        }
+        if let Ok(c) = fit_contour(&pts, &ContourOptions::default()) {
+            for run in &c.runs {
+                if let Run::Curve(s) = run {
+                    check(format!("walk {k}, contour"), &s.pieces);
+                }
+            }
+        }
+    }
+    println!(
+        "alpha bound: {fitted} of 200 walks fitted, {pieces} pieces, {} beyond",
+        beyond.len()
+    );
+    assert!(fitted >= 180, "only {fitted} of 200 walks fitted");
+    assert!(beyond.is_empty(), "{beyond:#?}");
+}

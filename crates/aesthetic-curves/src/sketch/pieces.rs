@@ -2,7 +2,7 @@ use super::constants::tame_curvatures;
 use super::slot::{rotate, triangle, Cut, Slot};
 use super::types::{PieceCurve, PieceKind, PieceShape};
 use crate::error::{Error, Result};
-use crate::lac::{LacInflectionSegment, LacSegment};
+use crate::lac::{LacInflectionSegment, LacSegment, ALPHA_RANGE};
 use crate::solve::roots::bisect_by;
 use kurbo::{Point, Vec2};
 
@@ -27,7 +27,7 @@ pub(super) fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2)
         } else {
             [tri[2], tri[1], tri[0]]
         };
-        if let Ok(segment) = LacInflectionSegment::new(ctrl) {
+        if let Ok(segment) = bounded_inflection(ctrl) {
             let k = segment.end_curvature();
             let alpha = segment.alpha;
             // In curve order; a reversed segment's signed curvature changes sign.
@@ -61,6 +61,21 @@ pub(super) fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2)
         alpha,
         kappa: ends,
     })
+}
+
+/// The inflection-end segment in `ctrl` (`ctrl[0]` = inflection end) whose α, fixed by
+/// the triangle, lies within [`ALPHA_RANGE`]: a base angle near half the turning asks for
+/// α towards -∞ (a curvature graph too steep for any fit to mean), and such a piece is not
+/// built, as if the triangle held none (issue 35: no piece outside the bound).
+pub(super) fn bounded_inflection(ctrl: [Point; 3]) -> Result<LacInflectionSegment> {
+    let segment = LacInflectionSegment::new(ctrl)?;
+    if segment.alpha < ALPHA_RANGE.0 {
+        return Err(Error::NoSegment(format!(
+            "the inflection-end segment in this triangle has alpha {:.3}, beyond the bound {}",
+            segment.alpha, ALPHA_RANGE.0
+        )));
+    }
+    Ok(segment)
 }
 
 /// The pieces for joint tangents `dirs` (one unit vector per joint, ends included).

@@ -10,7 +10,6 @@ use super::track::{u_at_turn, Track};
 use super::types::SketchOptions;
 use crate::bspline;
 use crate::error::{Error, Result};
-use crate::lac::LacInflectionSegment;
 
 /// Step 2: the cuts of the B-spline, in stages: the events located on the tight spline,
 /// inflections that are noise dropped (too close to an end or to each other, near a line's
@@ -461,7 +460,7 @@ pub(super) fn merge_slots(
             } else {
                 [tri[2], tri[1], tri[0]]
             };
-            let seg = LacInflectionSegment::new(ctrl).ok()?;
+            let seg = super::pieces::bounded_inflection(ctrl).ok()?;
             let poly = seg.sample(129).ok()?.points;
             let d = points_in(fit, m.ua, m.ub)
                 .iter()

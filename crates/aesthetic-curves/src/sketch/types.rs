@@ -166,8 +166,8 @@ pub struct SketchPiece {
     pub monotone: bool,
     /// α sits on a bound of its least-squares fit ([`ALPHA_RANGE`](crate::lac::ALPHA_RANGE)): the data do not pin
     /// it down (a shallow piece) or want a steeper curvature graph than allowed; for an
-    /// inflection piece, whose α its control triangle fixes, α on or beyond the range (a
-    /// known limit: such a piece is still returned).
+    /// inflection piece, whose α its control triangle fixes, α on the range's lower end (no
+    /// piece beyond it is built: the fit turns the tangents or splits the piece instead).
     pub alpha_at_bound: bool,
     /// Parameter range on the intermediate B-spline.
     pub u_range: (f64, f64),
