@@ -50,10 +50,11 @@ pub(super) const DEFAULT_ESCALATION: [f64; 4] = [1.0, 1.25, 1.5, 2.0];
 
 /// The multiples of the default tolerance tried for a stroke too short for a noise estimate
 /// (fewer than 15 points), whose default takes it as precise: where that fails, its points
-/// carry noise the default does not know of, and the ladder goes on to 4 times it, 2 % of
+/// carry noise the default does not know of, and the ladder goes on to 8 times it, 4 % of
 /// the size (13 points of an arc of radius 12 with noise of σ 0.12 failed at every rung of
-/// [`DEFAULT_ESCALATION`] and met 3 times the default).
-pub(super) const UNKNOWN_NOISE_ESCALATION: [f64; 6] = [1.0, 1.25, 1.5, 2.0, 3.0, 4.0];
+/// [`DEFAULT_ESCALATION`] and met 3 times the default; 9 points of arcs with noise of 2 to
+/// 3 % of the radius failed up to 4 times and met 6 or 8).
+pub(super) const UNKNOWN_NOISE_ESCALATION: [f64; 8] = [1.0, 1.25, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0];
 
 /// Strokes of more points get a larger factor than [`DEFAULT_NOISE_FACTOR`] (their noise's
 /// extremes lie further out).
