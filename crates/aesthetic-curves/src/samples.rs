@@ -121,6 +121,21 @@ pub fn random_walk(rng: &mut SplitMix64, turn: f64) -> Vec<Point> {
     pts
 }
 
+/// A harsher random polyline (issue 36's sweep against libspiro, `tests/spiro_oracle.rs`,
+/// and `tests/lac_spline.rs`): 5 to 16 points, chords log-uniform in 0.1 to 3 (a
+/// thirtyfold spread), each turning from the last by up to ±`turn` radians.
+pub fn harsh_walk(rng: &mut SplitMix64, turn: f64) -> Vec<Point> {
+    let n = 5 + (rng.next_u64() % 12) as usize;
+    let mut pts = vec![Point::new(0.0, 0.0)];
+    let mut dir = 0.0f64;
+    for _ in 1..n {
+        dir += rng.range(-turn, turn);
+        let last = *pts.last().expect("one point at least");
+        pts.push(last + kurbo::Vec2::from_angle(dir) * rng.range(0.1f64.ln(), 3f64.ln()).exp());
+    }
+    pts
+}
+
 /// `count` LAC segments of random shape, the distribution of the rational-cubic sweep
 /// (`tests/approx_sweep.rs`): α uniform in [-5, 5], turning uniform in 5° to 120°, the base
 /// angle at the high-curvature end uniform between the circle's and 0.98 of θ_lim; start

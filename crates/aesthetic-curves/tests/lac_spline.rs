@@ -507,3 +507,42 @@ fn random_point_sets_converge() {
     eprintln!("random point sets: {failed} of {total} failed");
     assert!(failed * 20 <= total, "{failed} of {total} failed");
 }
+
+/// Issue 36's harsh sets (5 to 16 points, chords 30 times apart, turns to ±149°), open
+/// and closed. Where the spans' own family (each side of an S-span turning less than a
+/// half turn) holds no solution from the circles' start, the solve goes on in the wider
+/// family (a side up to 1.8 half turns, built as an inflection-end piece and a segment)
+/// and by continuation from the points on a line or a circle. Before (session 39's solve),
+/// 11 of 150 open and 40 of 150 closed sets failed; now 2 and 11. Every
+/// result reported G2 (`g2()`, as the sweep against libspiro counts) now passes every check: the points hit, the segments G2 to 1e-10 and their
+/// cubics to 1e-8 (their own G2 as delivered: chords 30 times apart put the cubics' jumps
+/// near 1e-10), every cubic proven monotone.
+#[test]
+fn harsh_point_sets_converge_in_the_wider_family() {
+    use aesthetic_curves::samples::harsh_walk;
+    let mut over = Vec::new();
+    for (closed, seed, most) in [(false, 8, 3), (true, 10, 12)] {
+        let mut rng = SplitMix64::new(seed);
+        let opts = LacSplineOptions {
+            closed,
+            ..Default::default()
+        };
+        let mut failed = 0;
+        for _ in 0..150 {
+            let pts = harsh_walk(&mut rng, 2.6);
+            match lac_spline(&pts, &opts) {
+                Ok(s) if s.g2() => {
+                    let (jump, angle) = check(&pts, &opts, &s);
+                    assert!(s.max_curvature_jump <= 1e-10, "{pts:?}");
+                    assert!(jump < 1e-8 && angle < 1e-9, "{pts:?}: {jump:e} {angle:e}");
+                }
+                _ => failed += 1,
+            }
+        }
+        eprintln!("harsh sets, closed {closed}: {failed} of 150 failed");
+        if failed > most {
+            over.push(format!("closed {closed}: {failed} of 150 failed"));
+        }
+    }
+    assert!(over.is_empty(), "{over:?}");
+}

@@ -262,7 +262,7 @@ mod tests {
         for i in -25..=25 {
             for j in -25..=25 {
                 let (a, b) = (0.1 * i as f64 + 0.013, 0.1 * j as f64 - 0.007);
-                let Ok(general) = span::solve(-1.0, a, b) else {
+                let Ok(general) = span::solve(-1.0, a, b, span::HALF_TURN) else {
                     continue;
                 };
                 let fast = span(a, b, None);
@@ -298,7 +298,7 @@ mod tests {
             (-0.01, 0.02),
         ] {
             let fast = span(a, b, None).unwrap();
-            let k = |a: f64, b: f64| span::solve(-1.0, a, b).unwrap().kappa;
+            let k = |a: f64, b: f64| span::solve(-1.0, a, b, span::HALF_TURN).unwrap().kappa;
             let (pa, ma) = (k(a + h, b), k(a - h, b));
             let (pb, mb) = (k(a, b + h), k(a, b - h));
             let fd = [

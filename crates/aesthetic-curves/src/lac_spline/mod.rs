@@ -13,10 +13,13 @@
 //!
 //! - `span`: one span from its tangents (a line, one segment, or an inflection pair);
 //! - `system`: the G2 equations in the tangent angles and their Newton solve;
+//! - `continuation`: where Newton stops short, the walk from an easy version of the
+//!   problem (points on a line or a circle) to the points;
 //! - `pieces`: the solved spans as segments in input coordinates and their cubics;
 //! - here: the options, the result and the driver.
 
 mod clothoid;
+mod continuation;
 mod pieces;
 mod span;
 mod system;
@@ -129,6 +132,7 @@ pub fn lac_spline(points: &[Point], opts: &LacSplineOptions) -> Result<LacSpline
             sol.stop, sol.iterations, sol.jump
         )));
     }
+    let problem = if sol.wide { problem.widened() } else { problem };
     let built = pieces::build(&problem, &sol.theta, &opts.approx)?;
     Ok(pieces::result(built, &problem, &sol, opts.closed))
 }
@@ -215,6 +219,7 @@ fn problem_of<'a>(points: &'a [Point], opts: &LacSplineOptions) -> Result<system
     Ok(system::Problem {
         points,
         alphas,
+        half: span::HALF_TURN,
         roots: (0..spans)
             .map(|_| std::sync::atomic::AtomicU64::new(f64::NAN.to_bits()))
             .collect(),

@@ -117,15 +117,28 @@ fn span_pieces(
             fit(k, Part::Lac(seg, true), approx, 0)
         }
         Shape::Pair {
-            psi, inflection, ..
+            alpha,
+            psi,
+            side,
+            scale,
+            inflection,
         } => {
-            let m = frame.point(inflection);
-            let dm = frame.direction(psi);
-            let (ta, tb) = (frame.direction(da), frame.direction(db));
-            let first = inflection_segment(m, dm, frame.a, ta)?;
-            let second = inflection_segment(m, dm, frame.b, tb)?;
-            let mut out = fit(k, Part::Inflection(first, false), approx, 0)?;
-            out.extend(fit(k, Part::Inflection(second, true), approx, 0)?);
+            let pair = PairHalves {
+                frame: &frame,
+                alpha,
+                psi,
+                side,
+                scale,
+                inflection,
+            };
+            let mut out = Vec::new();
+            for part in pair
+                .half(da, true)?
+                .into_iter()
+                .chain(pair.half(db, false)?)
+            {
+                out.extend(fit(k, part, approx, 0)?);
+            }
             Ok(out)
         }
     }
@@ -209,6 +222,56 @@ impl Frame {
         let c = self.b - self.a;
         let g = c.y.atan2(c.x);
         Vec2::from_angle(g + x)
+    }
+}
+
+/// An S-span's two inflection-end halves in input coordinates (`Shape::Pair`'s fields).
+struct PairHalves<'a> {
+    frame: &'a Frame,
+    alpha: f64,
+    psi: f64,
+    side: f64,
+    scale: f64,
+    inflection: Vec2,
+}
+
+impl PairHalves<'_> {
+    /// The half from the inflection to the span's start (`first`, tangent deviation `d`
+    /// there) or its end, as parts in curve order: one inflection-end segment where it
+    /// turns less than a half turn (its control triangle), else (the wider family,
+    /// [`super::span::WIDE_HALF`]) the inflection-end segment of its first half of turning
+    /// and the segment of the same α that continues it, each from its own triangle on the
+    /// curve's points and tangents there (as [`LacInflectionSegment::split`] makes them).
+    fn half(&self, d: f64, first: bool) -> Result<Vec<Part>> {
+        let f = self.frame;
+        let (m, dm) = (f.point(self.inflection), f.direction(self.psi));
+        let (end, de) = (if first { f.a } else { f.b }, f.direction(d));
+        let turn = self.side * (d - self.psi);
+        if turn < std::f64::consts::PI {
+            let seg = inflection_segment(m, dm, end, de)?;
+            return Ok(vec![Part::Inflection(seg, !first)]);
+        }
+        // The point at turning τ from the inflection, in the chord frame: the standard
+        // segment's, turned to ψ, mirrored for side -1, scaled, backwards for the first.
+        let tau = 0.5 * turn;
+        let w = LacInflectionSegment::standard_chord(self.alpha, tau)?;
+        let w = cmul(Vec2::from_angle(self.psi), Vec2::new(w.x, self.side * w.y)) * self.scale;
+        let q = f.point(if first {
+            self.inflection - w
+        } else {
+            self.inflection + w
+        });
+        let dq = f.direction(self.psi + self.side * tau);
+        let head = inflection_segment(m, dm, q, dq)?;
+        let apex = tangents_meet(q, dq, end, de)
+            .ok_or_else(|| Error::Degenerate("a half's tangents are parallel".into()))?;
+        Ok(if first {
+            let tail = LacSegment::new(self.alpha, [end, apex, q])?;
+            vec![Part::Lac(tail, true), Part::Inflection(head, false)]
+        } else {
+            let tail = LacSegment::new(self.alpha, [q, apex, end])?;
+            vec![Part::Inflection(head, true), Part::Lac(tail, true)]
+        })
     }
 }
 

@@ -26,6 +26,17 @@ use std::f64::consts::PI;
 /// halves of its turning (pieces.rs).
 pub(super) const MAX_TURN: f64 = 1.8 * PI;
 
+/// The most each inflection-end half of an S-span may turn (radians): a half turn in the
+/// spline's own family (where the pair is unique), up to [`WIDE_HALF`] in the wider family
+/// the solve falls back on (`system::solve`).
+pub(super) const HALF_TURN: f64 = PI;
+
+/// The most a half may turn in the wider family: libspiro's clothoid splines through sharp
+/// turns have S-spans whose one side winds past a half turn (issue 36's harsh sets: 130
+/// of the 138 it solved and the narrow family did not), which a half of this family
+/// holds as an inflection-end piece and a segment (pieces.rs).
+pub(super) const WIDE_HALF: f64 = 1.8 * PI;
+
 /// Deviations below this (radians, summed) make a span a line.
 const LINE_TURN: f64 = 2e-9;
 
@@ -68,8 +79,9 @@ pub(super) struct Solved {
 }
 
 /// The span whose tangents leave the chord by `a` at the start and `b` at the end (radians,
-/// counter-clockwise positive), for the requested `alpha`.
-pub(super) fn solve(alpha: f64, a: f64, b: f64) -> Result<Solved> {
+/// counter-clockwise positive), for the requested `alpha`, an S-span's halves turning less
+/// than `half` each ([`HALF_TURN`] or [`WIDE_HALF`]).
+pub(super) fn solve(alpha: f64, a: f64, b: f64, half: f64) -> Result<Solved> {
     if !(a.abs() < PI && b.abs() < PI) {
         return Err(Error::NoSegment(format!(
             "a span's tangent turns {:.1} deg from its chord: no fair curve between them",
@@ -96,7 +108,7 @@ pub(super) fn solve(alpha: f64, a: f64, b: f64) -> Result<Solved> {
             return Ok(s);
         }
     }
-    pair(pair_alpha(alpha), a, b)
+    pair(pair_alpha(alpha), a, b, half)
 }
 
 /// The control triangle of the chord frame for deviations `a`, `b` of opposite signs.
@@ -186,6 +198,8 @@ struct PairGeometry {
     a: f64,
     b: f64,
     side: f64,
+    /// The most a half may turn.
+    half: f64,
 }
 
 impl PairGeometry {
@@ -234,17 +248,17 @@ impl PairGeometry {
         (psi > lo && psi < hi).then_some(psi)
     }
 
-    /// The range of ψ where both halves turn by (0, π]: below both deviations for side +1,
-    /// above both for side -1.
+    /// The range of ψ where both halves turn by (0, `half`]: below both deviations for
+    /// side +1, above both for side -1.
     fn range(&self) -> Option<(f64, f64)> {
         let (lo, hi) = (self.a.min(self.b), self.a.max(self.b));
-        if hi - lo >= PI {
+        if hi - lo >= self.half {
             return None;
         }
         Some(if self.side > 0.0 {
-            (hi - PI, lo)
+            (hi - self.half, lo)
         } else {
-            (hi, lo + PI)
+            (hi, lo + self.half)
         })
     }
 
@@ -289,7 +303,7 @@ impl PairGeometry {
     /// one segment at the region's edge, which `solve` builds instead).
     fn solved(&self, psi: f64) -> Result<Option<Solved>> {
         let (t1, t2) = self.turns(psi);
-        if !(t1 > 0.0 && t2 > 0.0 && t1 < PI && t2 < PI) {
+        if !(t1 > 0.0 && t2 > 0.0 && t1 < self.half && t2 < self.half) {
             return Ok(None);
         }
         let (w1, w2) = self.chords(psi)?;
@@ -315,10 +329,16 @@ impl PairGeometry {
 
 /// The S-span (or the continuation of a lopsided bend): of the roots of both families, the
 /// pair that turns least in all.
-fn pair(alpha: f64, a: f64, b: f64) -> Result<Solved> {
+fn pair(alpha: f64, a: f64, b: f64, half: f64) -> Result<Solved> {
     let mut best: Option<(f64, Solved)> = None;
     for side in [1.0, -1.0] {
-        let g = PairGeometry { alpha, a, b, side };
+        let g = PairGeometry {
+            alpha,
+            a,
+            b,
+            side,
+            half,
+        };
         if let Some(psi) = g.root()? {
             if let Some(s) = g.solved(psi)? {
                 let (t1, t2) = g.turns(psi);
@@ -346,20 +366,20 @@ mod tests {
     fn a_symmetric_bend_is_a_circle_and_a_straight_span_a_line() {
         // Deviations -φ and φ: an arc of radius 1/(2 sin φ) through 0 and 1.
         for alpha in [-2.0, -1.0, 0.0, 1.0, 2.0] {
-            let s = solve(alpha, -0.4, 0.4).unwrap();
+            let s = solve(alpha, -0.4, 0.4, HALF_TURN).unwrap();
             let k = 2.0 * 0.4f64.sin();
             assert!((s.kappa.0 - k).abs() < 1e-12 && (s.kappa.1 - k).abs() < 1e-12);
             // The same from the segment of a triangle a rounding away from isosceles.
-            let s = solve(alpha, -0.4 * (1.0 + 1e-11), 0.4).unwrap();
+            let s = solve(alpha, -0.4 * (1.0 + 1e-11), 0.4, HALF_TURN).unwrap();
             assert!((s.kappa.0 - k).abs() < 1e-9 && (s.kappa.1 - k).abs() < 1e-9);
         }
-        assert_eq!(solve(-1.0, 0.0, 0.0).unwrap().shape, Shape::Line);
+        assert_eq!(solve(-1.0, 0.0, 0.0, HALF_TURN).unwrap().shape, Shape::Line);
     }
 
     #[test]
     fn an_s_span_is_a_point_symmetric_pair_when_its_deviations_are_equal() {
         // a = b: the S is symmetric about the chord's midpoint; the inflection sits there.
-        let s = solve(-1.0, 0.3, 0.3).unwrap();
+        let s = solve(-1.0, 0.3, 0.3, HALF_TURN).unwrap();
         let Shape::Pair { inflection, .. } = s.shape else {
             panic!("{s:?}")
         };
@@ -379,7 +399,7 @@ mod tests {
         let mut kinds = Vec::new();
         for k in 0..=400 {
             let a = -0.3 + 0.6 * k as f64 / 400.0;
-            let s = solve(-1.0, a, b).unwrap();
+            let s = solve(-1.0, a, b, HALF_TURN).unwrap();
             kinds.push(matches!(s.shape, Shape::Lac { .. }));
             if let Some(l) = last {
                 assert!(
@@ -401,7 +421,13 @@ mod tests {
             let alpha = rng.range(-5.0, -0.01);
             let (a, b) = (rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
             for side in [1.0, -1.0] {
-                let g = PairGeometry { alpha, a, b, side };
+                let g = PairGeometry {
+                    alpha,
+                    a,
+                    b,
+                    side,
+                    half: PI,
+                };
                 let Some((lo, hi)) = g.range() else { continue };
                 let mut last = f64::NEG_INFINITY;
                 for k in 0..=400 {
@@ -427,7 +453,13 @@ mod tests {
             let alpha = rng.range(-5.0, -0.05);
             let (a, b) = (rng.range(-2.5, 2.5), rng.range(-2.5, 2.5));
             for side in [1.0, -1.0] {
-                let g = PairGeometry { alpha, a, b, side };
+                let g = PairGeometry {
+                    alpha,
+                    a,
+                    b,
+                    side,
+                    half: PI,
+                };
                 let Some((lo, hi)) = g.range() else { continue };
                 for k in 1..8 {
                     let x = lo + (hi - lo) * k as f64 / 8.0;

@@ -50,6 +50,9 @@ pub(super) struct Problem<'a> {
     pub(super) unknown: Vec<Option<usize>>,
     /// The points of the unknowns, in order.
     pub(super) smooth: Vec<usize>,
+    /// The most each half of an S-span may turn ([`span::HALF_TURN`], or
+    /// [`span::WIDE_HALF`] in the wider family the solve falls back on).
+    pub(super) half: f64,
     /// Per span, the clothoid's last root A (f64 bits; NaN: none yet): the next solve of
     /// that span, at tangents a Newton step away, starts there.
     pub(super) roots: Vec<AtomicU64>,
@@ -71,6 +74,46 @@ pub(super) fn wrap(x: f64) -> f64 {
 }
 
 impl Problem<'_> {
+    /// Whether the curve is closed (a span from the last point back to the first).
+    pub(super) fn is_closed(&self) -> bool {
+        self.ends.len() == self.points.len()
+    }
+
+    /// The same problem (α, corners, unknowns) through other points.
+    pub(super) fn with_points<'b>(&self, points: &'b [Point]) -> Problem<'b> {
+        Problem {
+            points,
+            half: self.half,
+            alphas: self.alphas.clone(),
+            ends: self.ends.clone(),
+            unknown: self.unknown.clone(),
+            smooth: self.smooth.clone(),
+            roots: self
+                .roots
+                .iter()
+                .map(|_| AtomicU64::new(f64::NAN.to_bits()))
+                .collect(),
+        }
+    }
+
+    /// The same problem in the wider family of spans ([`span::WIDE_HALF`]).
+    pub(super) fn widened(&self) -> Problem<'_> {
+        Problem {
+            half: span::WIDE_HALF,
+            ..self.with_points(self.points)
+        }
+    }
+
+    /// The solution where it is known: points on a line (every tangent along it) or, for
+    /// a closed curve, on a circle (the circle's tangents).
+    pub(super) fn known_solution(&self, closed: bool) -> Vec<f64> {
+        if closed {
+            return self.circle_guess();
+        }
+        let line = angle(self.points[0], self.points[self.points.len() - 1]);
+        vec![line; self.smooth.len()]
+    }
+
     fn chord_angle(&self, k: usize) -> f64 {
         let (i, j) = self.ends[k];
         let c = self.points[j] - self.points[i];
@@ -98,7 +141,7 @@ impl Problem<'_> {
     /// Span `k` solved at tangent angles `theta`, its curvatures in input units.
     pub(super) fn span(&self, k: usize, theta: &[f64]) -> Result<Solved> {
         let (a, b) = self.deviations(k, theta);
-        let mut s = span::solve(self.alphas[k], a, b)?;
+        let mut s = span::solve(self.alphas[k], a, b, self.half)?;
         let l = self.chord_length(k);
         s.kappa = (s.kappa.0 / l, s.kappa.1 / l);
         Ok(s)
@@ -118,7 +161,9 @@ impl Problem<'_> {
     /// Span `k` at `theta` by the clothoid's fast path, where its α is -1 and its tangents
     /// leave the chord by less than a half turn (the general path's own limit).
     fn clothoid(&self, k: usize, theta: &[f64]) -> Option<clothoid::Clothoid> {
-        if self.alphas[k] != -1.0 {
+        // The wider family may hold two spans for one pair of tangents; the fast path's
+        // root need not be the general path's choice, which builds the pieces.
+        if self.alphas[k] != -1.0 || self.half != span::HALF_TURN {
             return None;
         }
         let (a, b) = self.deviations(k, theta);
@@ -390,6 +435,9 @@ pub(super) struct Solution {
     pub(super) stop: SystemStop,
     /// Largest |κ in - κ out| over the largest |κ| at any span end.
     pub(super) jump: f64,
+    /// Solved in the wider family of spans ([`span::WIDE_HALF`]): the pieces are built
+    /// in it too.
+    pub(super) wide: bool,
 }
 
 /// The Jacobian kept from one Newton step to the next while the steps converge fast (each
@@ -439,24 +487,62 @@ impl FrozenJacobian {
 }
 
 /// Solve the G2 equations from the circle guess to `tol` (largest jump over the largest
-/// curvature).
+/// curvature); where Newton stops short from there, or no start builds, by continuation
+/// from an easy version of the problem ([`super::continuation`]).
 pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Result<Solution> {
     // The first start whose spans all build: the circles' tangents, those mended where a
     // span cannot be built (tried only then), the bisectors'.
     let circle = problem.circle_guess();
-    let start = |t: Vec<f64>| problem.state(&t).map(|r| (t, r));
-    let (theta0, (k0, r0)) = start(circle.clone())
-        .or_else(|| start(problem.mended(&circle)))
-        .or_else(|| start(problem.bisector_guess()))
+    let builds = |t: &Vec<f64>| problem.state(t).is_some();
+    let Some(theta0) = Some(circle.clone())
+        .filter(builds)
+        .or_else(|| Some(problem.mended(&circle)).filter(builds))
+        .or_else(|| Some(problem.bisector_guess()).filter(builds))
+    else {
+        return super::continuation::solve(&problem.widened(), tol, max_iterations)
+            .map(|s| Solution { wide: true, ..s })
+            .ok_or_else(|| problem.first_failure(&circle));
+    };
+    let direct = newton_from(problem, theta0.clone(), tol, max_iterations)
         .ok_or_else(|| problem.first_failure(&circle))?;
+    if direct.stop == SystemStop::Converged {
+        return Ok(direct);
+    }
+    // The wider family of spans, from the same start, then by continuation.
+    let wide = problem.widened();
+    let mut spent = direct.iterations;
+    if let Some(w) = newton_from(&wide, theta0, tol, max_iterations) {
+        spent += w.iterations;
+        if w.stop == SystemStop::Converged {
+            return Ok(Solution {
+                iterations: spent,
+                wide: true,
+                ..w
+            });
+        }
+    }
+    match super::continuation::solve(&wide, tol, max_iterations) {
+        Some(walked) if walked.stop == SystemStop::Converged => Ok(Solution {
+            iterations: walked.iterations + spent,
+            wide: true,
+            ..walked
+        }),
+        _ => Ok(direct),
+    }
+}
+
+/// Newton on the G2 equations from the tangents `theta` (`None` where a span cannot be
+/// built there): with the Jacobian kept while the steps converge fast, then, where that
+/// stops short, on with a fresh one every step.
+pub(super) fn newton_from(
+    problem: &Problem,
+    theta: Vec<f64>,
+    tol: f64,
+    max_iterations: usize,
+) -> Option<Solution> {
+    let (k0, r0) = problem.state(&theta)?;
     let mut frozen = FrozenJacobian::default();
-    let mut run = newton(
-        problem,
-        ((theta0, k0), r0),
-        &mut frozen,
-        tol,
-        max_iterations,
-    )?;
+    let mut run = newton(problem, ((theta, k0), r0), &mut frozen, tol, max_iterations).ok()?;
     if run.stop != SystemStop::Converged && frozen.reused > 0 {
         // A kept Jacobian that led nowhere: on from there with a fresh one every step.
         let mut fresh = FrozenJacobian {
@@ -465,15 +551,16 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
         };
         let left = max_iterations.saturating_sub(run.iterations);
         let done = run.iterations;
-        run = newton(problem, (run.state, run.residuals), &mut fresh, tol, left)?;
+        run = newton(problem, (run.state, run.residuals), &mut fresh, tol, left).ok()?;
         run.iterations += done;
     }
     let (theta, kappas) = run.state;
-    Ok(Solution {
+    Some(Solution {
         jump: problem.jump(&kappas.kappa),
         theta,
         iterations: run.iterations,
         stop: run.stop,
+        wide: problem.half != span::HALF_TURN,
     })
 }
 
