@@ -513,7 +513,7 @@ fn random_point_sets_converge() {
 /// half turn) holds no solution from the circles' start, the solve goes on in the wider
 /// family (a side up to 1.8 half turns, built as an inflection-end piece and a segment)
 /// and by continuation from the points on a line or a circle. Before (session 39's solve),
-/// 11 of 150 open and 40 of 150 closed sets failed; now 2 and 11. Every
+/// 11 of 150 open and 40 of 150 closed sets failed; now 2 and 9. Every
 /// result reported G2 (`g2()`, as the sweep against libspiro counts) now passes every check: the points hit, the segments G2 to 1e-10 and their
 /// cubics to 1e-8 (their own G2 as delivered: chords 30 times apart put the cubics' jumps
 /// near 1e-10), every cubic proven monotone.

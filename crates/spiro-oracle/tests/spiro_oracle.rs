@@ -198,8 +198,8 @@ fn harsh_sweep(turn: f64, closed: bool, seed: u64) -> ([usize; 4], f64, usize) {
 /// least 1,150 of the 1,200. The rest is measured: in session 39 libspiro solved 1,197,
 /// `lac_spline` 1,055 (its spans' family held no solution near libspiro's: one side of an
 /// S-span winds past a half turn). In session 40, with the wider family and the
-/// continuation as fallbacks: 1,173, one of them one libspiro did not solve; 54 of the
-/// 1,172 both solve are another solution of the same equations than libspiro's
+/// continuation as fallbacks: 1,178, one of them one libspiro did not solve; 54 of the
+/// 1,177 both solve are another solution of the same equations than libspiro's
 /// (curvatures apart by up to 1.6 of the largest; 31 before), an open defect in the
 /// issue's note.
 #[test]

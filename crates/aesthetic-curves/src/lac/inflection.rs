@@ -6,6 +6,7 @@ use super::{
 use crate::error::{Error, Result};
 use crate::solve::roots::illinois;
 use kurbo::{Point, Vec2};
+use std::f64::consts::PI;
 
 /// A log-aesthetic segment with an inflection point at its start (docs/math.md §3.2; S4 §2.2):
 /// `C(s) = ∫_0^s e^{i t^q} dt`, `q = (α-1)/α > 1` (α < 0), tangent angle `θ = s^q`,
@@ -152,6 +153,38 @@ impl LacInflectionSegment {
             400,
         )?;
         let alpha = r / (r - 1.0);
+        let (b, t) = Self::standard_end_and_corner(r, theta_d)?;
+        let map = Similarity::fit([Vec2::ZERO, b, t], [control[0], control[2], control[1]])?;
+        Ok(LacInflectionSegment {
+            alpha,
+            theta_d,
+            control,
+            map,
+        })
+    }
+
+    /// The segment of shape `alpha` (< 0) turning `theta_d` in the triangle `control`
+    /// (`control[0]` = the inflection end) where the caller knows both: a solver that
+    /// placed the triangle from α's own standard segment (the G2 spline's inflection
+    /// halves). Neither is solved again from the triangle, which a thin one (a half that
+    /// turns little) leaves ill-conditioned: α recovered there moved a half's end
+    /// curvature by 3 %, and its turning read from the apex moved it by 1e-7 of the
+    /// spline's largest curvature. The similarity sends the standard segment's ends onto
+    /// the triangle's.
+    pub(crate) fn with_shape(alpha: f64, theta_d: f64, control: [Point; 3]) -> Result<Self> {
+        if !(alpha < 0.0 && alpha.is_finite()) {
+            return Err(Error::invalid(
+                "alpha",
+                "inflection-end segments need alpha < 0",
+            ));
+        }
+        if !(theta_d > 0.0 && theta_d < PI) {
+            return Err(Error::NoSegment(format!(
+                "an inflection-end segment turning {:.6} deg",
+                theta_d.to_degrees()
+            )));
+        }
+        let r = alpha / (alpha - 1.0);
         let (b, t) = Self::standard_end_and_corner(r, theta_d)?;
         let map = Similarity::fit([Vec2::ZERO, b, t], [control[0], control[2], control[1]])?;
         Ok(LacInflectionSegment {
@@ -320,5 +353,60 @@ impl LacInflectionSegment {
             points: pts,
             kappa: k,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The standard half of shape α turning θ at unit scale, as a triangle: inflection at
+    /// the origin along +x, its end where the standard chord puts it.
+    fn standard_triangle(alpha: f64, theta: f64) -> [Point; 3] {
+        let b = LacInflectionSegment::standard_chord(alpha, theta).unwrap();
+        let t = Vec2::from_angle(theta);
+        // The end tangent's line meets the x axis at the apex.
+        let apex = Point::new(b.x - b.y * t.x / t.y, 0.0);
+        [Point::ZERO, apex, b.to_point()]
+    }
+
+    #[test]
+    fn a_known_shape_gives_the_solved_segment() {
+        for (alpha, theta) in [(-1.0, 0.8), (-0.4, 2.0), (-3.0, 0.3)] {
+            let c = standard_triangle(alpha, theta);
+            let solved = LacInflectionSegment::new(c).unwrap();
+            let known = LacInflectionSegment::with_shape(alpha, theta, c).unwrap();
+            let k = LacInflectionSegment::standard_end_kappa(alpha, theta);
+            assert!((solved.alpha - alpha).abs() < 1e-9, "{}", solved.alpha);
+            assert!(
+                (known.end_curvature() - k).abs() <= 1e-13 * k,
+                "{alpha} {theta}"
+            );
+            assert!(
+                (solved.end_curvature() - k).abs() <= 1e-9 * k,
+                "{alpha} {theta}"
+            );
+        }
+    }
+
+    /// A half that turns 1e-6 rad, placed as the spline places one (turned, scaled, moved
+    /// off the origin): α and the turning read back from the rounded triangle are off, and
+    /// the end curvature with them (by 1.1e-4, measured); with α and θ_d known it is the
+    /// standard one, `θ^(1-r)/r` over the scale, to the rounding of the triangle's ends.
+    #[test]
+    fn a_thin_half_keeps_its_curvature_when_its_shape_is_known() {
+        let (alpha, theta) = (-1.0, 1e-6);
+        let (f, o) = (Vec2::new(0.006, 0.008), Vec2::new(3.7, -2.1));
+        let c = standard_triangle(alpha, theta)
+            .map(|p| (o + crate::lac::cmul(p.to_vec2(), f)).to_point());
+        let k = LacInflectionSegment::standard_end_kappa(alpha, theta) / f.hypot();
+        let known = LacInflectionSegment::with_shape(alpha, theta, c).unwrap();
+        assert!(
+            (known.end_curvature() - k).abs() <= 1e-9 * k,
+            "{:e}",
+            known.end_curvature() / k - 1.0
+        );
+        assert!(LacInflectionSegment::with_shape(1.0, theta, c).is_err());
+        assert!(LacInflectionSegment::with_shape(alpha, PI, c).is_err());
     }
 }

@@ -248,7 +248,7 @@ impl PairHalves<'_> {
         let (end, de) = (if first { f.a } else { f.b }, f.direction(d));
         let turn = self.side * (d - self.psi);
         if turn < std::f64::consts::PI {
-            let seg = inflection_segment(m, dm, end, de)?;
+            let seg = inflection_segment((self.alpha, turn), m, dm, end, de)?;
             return Ok(vec![Part::Inflection(seg, !first)]);
         }
         // The point at turning τ from the inflection, in the chord frame: the standard
@@ -262,7 +262,7 @@ impl PairHalves<'_> {
             self.inflection + w
         });
         let dq = f.direction(self.psi + self.side * tau);
-        let head = inflection_segment(m, dm, q, dq)?;
+        let head = inflection_segment((self.alpha, tau), m, dm, q, dq)?;
         let apex = tangents_meet(q, dq, end, de)
             .ok_or_else(|| Error::Degenerate("a half's tangents are parallel".into()))?;
         Ok(if first {
@@ -275,12 +275,20 @@ impl PairHalves<'_> {
     }
 }
 
-/// The inflection-end segment from the inflection `m` (tangent `dm`) to the end `p`
-/// (tangent `dp`): the triangle from where the two tangent lines meet.
-fn inflection_segment(m: Point, dm: Vec2, p: Point, dp: Vec2) -> Result<LacInflectionSegment> {
+/// The inflection-end segment of shape α turning θ_d (`shape`) from the inflection `m`
+/// (tangent `dm`) to the end `p` (tangent `dp`): the triangle from where the two tangent
+/// lines meet, α and θ_d the pair's own (not solved again from the triangle:
+/// [`LacInflectionSegment::with_shape`]).
+fn inflection_segment(
+    (alpha, theta_d): (f64, f64),
+    m: Point,
+    dm: Vec2,
+    p: Point,
+    dp: Vec2,
+) -> Result<LacInflectionSegment> {
     let apex = tangents_meet(m, dm, p, dp)
         .ok_or_else(|| Error::Degenerate("an inflection half's tangents are parallel".into()))?;
-    LacInflectionSegment::new([m, apex, p])
+    LacInflectionSegment::with_shape(alpha, theta_d, [m, apex, p])
 }
 
 fn line(span: usize, a: Point, b: Point) -> SplinePiece {
@@ -501,8 +509,11 @@ fn fit_cubic(part: &Part, approx: &ApproxOptions) -> Result<RationalCubicFit> {
         Part::Lac(seg, _) => {
             LacSegment::new(seg.alpha(), local).and_then(|s| fit_rational_cubic(&s, approx))
         }
-        Part::Inflection(..) => {
-            LacInflectionSegment::new(local).and_then(|s| fit_inflection_cubic(&s, approx))
+        // α and θ_d kept, not solved again from the moved triangle (ill-conditioned
+        // where thin).
+        Part::Inflection(seg, _) => {
+            LacInflectionSegment::with_shape(seg.alpha(), seg.theta_d(), local)
+                .and_then(|s| fit_inflection_cubic(&s, approx))
         }
     };
     let back = fitted.ok().and_then(|f| {
