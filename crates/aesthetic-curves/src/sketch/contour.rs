@@ -44,7 +44,7 @@
 //! line: the flank of an S or a wave looks the same.
 
 pub use super::constants::SPARSE_STEP;
-use super::input::{bbox_diagonal, check_points, noise_level, Noise};
+use super::input::{bbox_diagonal, check_points, noise_level, sparse, Noise};
 use super::slot::segment_distance;
 use super::straight;
 use super::types::{Sketch, SketchOptions};
@@ -306,26 +306,41 @@ fn contour_at(
     let (closed, kept) = closes(points, tolerance, opts.closed);
     let stroke = &points[..kept];
     let found = corners_at(stroke, closed, tolerance, opts.corner_angle, noise.sigma);
-    let corners = with_polygon_corners(stroke, closed, found, tolerance);
-    let runs = runs_of(stroke, closed, &corners);
-    // A closed contour without corners is one run whose seam is faired G2, unless it has
-    // straight stretches: then it starts with the first and every join is smooth.
-    let one_loop = closed && corners.is_empty();
-    let lines = line_ends(&runs, closed && !one_loop, tolerance);
-    let sigma = noise.sigma;
+    let mut corners = with_polygon_corners(stroke, closed, found, tolerance);
     let size = bbox_diagonal(stroke);
-    let mut out = Assembly::default();
-    for (k, (r, line)) in runs.iter().zip(&lines).enumerate() {
-        let parts = fit_parts(r, *line, tolerance, one_loop, sigma).map_err(|e| match e {
-            Error::NoSegment(m) => Error::NoSegment(format!("run {k}: {m}")),
-            Error::NoConvergence(m) => Error::NoConvergence(format!("run {k}: {m}")),
-            Error::InvalidInput { field, message } if field == "tolerance" => {
-                Error::invalid(field, format!("run {k}: {message}"))
+    // A run no G2 curve can follow within the tolerance gets a corner at its sharpest
+    // point, and the contour is fitted again, until every run fits: a run that turns back
+    // and forth ("these N points need more than M pieces"); a sparse run (clicks, each
+    // point meant) whose zigzag its own noise estimate reads as noise (which named a
+    // tolerance the user never typed); and once the stroke has turned out to zigzag, a
+    // sparse run that no curve fits. Other runs that fail are left to a looser tolerance
+    // (the default's ladder): a few noisy points of an arc are not corners.
+    let mut zigzag = false;
+    let (mut out, one_loop) = loop {
+        let (k, err) = match assemble(stroke, closed, &corners, tolerance, noise.sigma) {
+            Ok(done) => break done,
+            Err(e) => e,
+        };
+        let sparse_run = || sparse(&runs_of(stroke, closed, &corners)[k]);
+        let split = match &err {
+            Error::Degenerate(_) => true,
+            Error::InvalidInput { field, .. } if field == "tolerance" => sparse_run(),
+            Error::NoConvergence(_) | Error::NoSegment(_) => zigzag && sparse_run(),
+            _ => false,
+        };
+        match split
+            .then(|| sharpest_inside(stroke, closed, &corners, k))
+            .flatten()
+        {
+            Some(c) => {
+                zigzag = true;
+                corners.insert(corners.partition_point(|x| x.0 < c.0), c);
+                // Runs of fewer than 4 points left by the cut are polygons.
+                corners = with_polygon_corners(stroke, closed, corners, tolerance);
             }
-            other => other,
-        })?;
-        out.push_run(parts, size);
-    }
+            None => return Err(in_run(k, err)),
+        }
+    };
     if closed {
         let start = out.runs[0].ends().0;
         out.bridge(start, size);
@@ -362,6 +377,64 @@ fn contour_at(
         max_deviation: out.deviation,
         trimmed: points.len() - kept,
     })
+}
+
+/// The runs of `stroke` cut at `corners`, each fitted ([`fit_parts`]) and assembled, and
+/// whether it is one closed loop; or the first run that fails, with its error.
+fn assemble(
+    stroke: &[Point],
+    closed: bool,
+    corners: &[(usize, f64)],
+    tolerance: f64,
+    sigma: f64,
+) -> std::result::Result<(Assembly, bool), (usize, Error)> {
+    let runs = runs_of(stroke, closed, corners);
+    // A closed contour without corners is one run whose seam is faired G2, unless it has
+    // straight stretches: then it starts with the first and every join is smooth.
+    let one_loop = closed && corners.is_empty();
+    let lines = line_ends(&runs, closed && !one_loop, tolerance);
+    let size = bbox_diagonal(stroke);
+    let mut out = Assembly::default();
+    for (k, (r, line)) in runs.iter().zip(&lines).enumerate() {
+        let parts = fit_parts(r, *line, tolerance, one_loop, sigma).map_err(|e| (k, e))?;
+        out.push_run(parts, size);
+    }
+    Ok((out, one_loop))
+}
+
+/// An error of run `k`, saying so.
+fn in_run(k: usize, e: Error) -> Error {
+    match e {
+        Error::NoSegment(m) => Error::NoSegment(format!("run {k}: {m}")),
+        Error::NoConvergence(m) => Error::NoConvergence(format!("run {k}: {m}")),
+        Error::Degenerate(m) => Error::Degenerate(format!("run {k}: {m}")),
+        Error::InvalidInput { field, message } if field == "tolerance" => {
+            Error::invalid(field, format!("run {k}: {message}"))
+        }
+        other => other,
+    }
+}
+
+/// The point inside run `k` (cut at `corners`) where its chords turn most, with that turn:
+/// the corner a run that no curve follows gets; `None` for a run without inner points.
+fn sharpest_inside(
+    stroke: &[Point],
+    closed: bool,
+    corners: &[(usize, f64)],
+    k: usize,
+) -> Option<(usize, f64)> {
+    let n = stroke.len();
+    let (a, b) = *run_bounds(n, closed, corners).get(k)?;
+    let turn = |j: usize| {
+        let (u, v) = (
+            stroke[j % n] - stroke[(j - 1) % n],
+            stroke[(j + 1) % n] - stroke[j % n],
+        );
+        u.cross(v).atan2(u.dot(v)).abs()
+    };
+    (a + 1..b)
+        .map(|j| (j % n, turn(j)))
+        .max_by(|x, y| x.1.total_cmp(&y.1))
 }
 
 /// The contour's runs as they are fitted: the parts of each run, the smooth joins between
@@ -549,6 +622,14 @@ fn fit_part(part: straight::Part, tolerance: f64) -> Result<(Run, f64)> {
         straight::Part::Line { start, end, points } => {
             let line = Run::Line { start, end };
             let dev = deviation(&points, &line);
+            // Its ends set back along the curves next to it, a line may leave its points
+            // (random clicks read as a closed loop: 465 from them at a tolerance of 437).
+            if dev > tolerance {
+                return Err(Error::NoConvergence(format!(
+                    "a straight stretch's line lies {dev:.3e} from its points, beyond the \
+                     tolerance {tolerance:.3e}"
+                )));
+            }
             Ok((line, dev))
         }
         straight::Part::Curve { points, line_ends } => {

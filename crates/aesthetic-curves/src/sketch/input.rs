@@ -364,7 +364,7 @@ fn fair_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(BSpli
 
 /// Whether the points are sparse: their median step longer than [`SPARSE_STEP`] of their
 /// size (some 50 points or fewer along the stroke).
-fn sparse(points: &[Point]) -> bool {
+pub(super) fn sparse(points: &[Point]) -> bool {
     let mut steps: Vec<f64> = points.windows(2).map(|w| (w[1] - w[0]).hypot()).collect();
     let mid = steps.len() / 2;
     !steps.is_empty()
