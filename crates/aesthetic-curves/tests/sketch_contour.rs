@@ -1268,7 +1268,6 @@ fn an_arc_with_gaussian_noise_has_no_inflection() {
 /// that is what the default assumes of a dozen clicks; a tolerance given says otherwise.
 #[test]
 fn a_few_noisy_points_get_a_fair_curve_by_default() {
-    use aesthetic_curves::sketch::fit_sketch_within;
     let measured = [
         (11.751566298880475, -0.1163033025691039),
         (12.084358738426996, 0.5511601262840434),
@@ -1315,24 +1314,7 @@ fn a_few_noisy_points_get_a_fair_curve_by_default() {
                 )
             });
         let size = (hi.0 - lo.0).hypot(hi.1 - lo.1);
-        match fit_sketch_within(pts, None) {
-            Ok((sk, tol)) => {
-                assert!(sk.max_deviation <= tol && tol <= 0.02 * size * (1.0 + 1e-12));
-                if !(sk.g2 && sk.all_monotone) {
-                    failed.push(format!("stroke {k}: a curve that is not G2 and monotone"));
-                }
-            }
-            Err(e) => failed.push(format!("stroke {k}: {e}")),
-        }
-        match fit_contour(pts, &ContourOptions::default()) {
-            Ok(c) => {
-                let name = format!("stroke {k}");
-                assert_within_tolerance(&name, &c);
-                assert_connected(&name, &c);
-                assert!(c.tolerance <= 0.02 * size * (1.0 + 1e-12));
-            }
-            Err(e) => failed.push(format!("stroke {k}: contour: {e}")),
-        }
+        failed.extend(fair_by_default(k, pts, 0.02 * size * (1.0 + 1e-12)));
     }
     assert!(failed.is_empty(), "{failed:#?}");
 }
@@ -1387,6 +1369,33 @@ fn no_piece_is_returned_with_alpha_beyond_the_bound() {
     assert!(beyond.is_empty(), "{beyond:#?}");
 }
 
+/// Stroke `k` at the default tolerance, as a curve and as a contour: each within its
+/// tolerance, which is at most `most`, the curve G2 and monotone, the contour connected;
+/// the failures, each a line.
+fn fair_by_default(k: usize, pts: &[Point], most: f64) -> Vec<String> {
+    use aesthetic_curves::sketch::fit_sketch_within;
+    let mut failed = Vec::new();
+    match fit_sketch_within(pts, None) {
+        Ok((sk, tol)) => {
+            assert!(sk.max_deviation <= tol && tol <= most, "stroke {k}: {tol}");
+            if !(sk.g2 && sk.all_monotone) {
+                failed.push(format!("stroke {k}: a curve that is not G2 and monotone"));
+            }
+        }
+        Err(e) => failed.push(format!("stroke {k}: {e}")),
+    }
+    match fit_contour(pts, &ContourOptions::default()) {
+        Ok(c) => {
+            let name = format!("stroke {k}");
+            assert_within_tolerance(&name, &c);
+            assert_connected(&name, &c);
+            assert!(c.tolerance <= most, "{name}: {}", c.tolerance);
+        }
+        Err(e) => failed.push(format!("stroke {k}: contour: {e}")),
+    }
+    failed
+}
+
 /// Noisier still: 9 points of an arc with noise of 2 to 3 % of its radius, too few for a
 /// noise estimate. The default's ladder for such strokes goes on to 8 times its first
 /// value (4 % of the size) while nothing is G2; up to 4 times, two fuzzed arcs (below) and
@@ -1394,7 +1403,6 @@ fn no_piece_is_returned_with_alpha_beyond_the_bound() {
 /// requests).
 #[test]
 fn nine_noisy_points_of_an_arc_get_a_fair_curve_by_default() {
-    use aesthetic_curves::sketch::fit_sketch_within;
     let fuzzed: [&[(f64, f64)]; 2] = [
         &[
             (133.317195, 1.782216),
@@ -1446,23 +1454,7 @@ fn nine_noisy_points_of_an_arc_get_a_fair_curve_by_default() {
             .iter()
             .flat_map(|a| pts.iter().map(move |b| (*a - *b).hypot()))
             .fold(0.0, f64::max);
-        match fit_sketch_within(pts, None) {
-            Ok((sk, tol)) => {
-                assert!(sk.max_deviation <= tol && tol <= 0.04 * 1.5 * size);
-                if !(sk.g2 && sk.all_monotone) {
-                    failed.push(format!("stroke {k}: a curve that is not G2 and monotone"));
-                }
-            }
-            Err(e) => failed.push(format!("stroke {k}: {e}")),
-        }
-        match fit_contour(pts, &ContourOptions::default()) {
-            Ok(c) => {
-                let name = format!("stroke {k}");
-                assert_within_tolerance(&name, &c);
-                assert_connected(&name, &c);
-            }
-            Err(e) => failed.push(format!("stroke {k}: contour: {e}")),
-        }
+        failed.extend(fair_by_default(k, pts, 0.04 * 1.5 * size));
     }
     println!(
         "nine noisy points: {} of {} failed",

@@ -152,15 +152,7 @@ impl LacInflectionSegment {
             1e-16,
             400,
         )?;
-        let alpha = r / (r - 1.0);
-        let (b, t) = Self::standard_end_and_corner(r, theta_d)?;
-        let map = Similarity::fit([Vec2::ZERO, b, t], [control[0], control[2], control[1]])?;
-        Ok(LacInflectionSegment {
-            alpha,
-            theta_d,
-            control,
-            map,
-        })
+        Self::with_shape(r / (r - 1.0), theta_d, control)
     }
 
     /// The segment of shape `alpha` (< 0) turning `theta_d` in the triangle `control`
