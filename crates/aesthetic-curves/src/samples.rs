@@ -111,12 +111,23 @@ pub fn wavy_points(n: usize, seed: u64) -> Vec<Point> {
 /// a reproducible sequence of sets.
 pub fn random_walk(rng: &mut SplitMix64, turn: f64) -> Vec<Point> {
     let n = 4 + (rng.next_u64() % 6) as usize;
+    walk(rng, n, turn, |rng| rng.range(0.5, 2.0))
+}
+
+/// `n` points from the origin, each chord `chord(rng)` long and turning from the last by
+/// up to ±`turn` radians (the turn drawn before the chord).
+fn walk(
+    rng: &mut SplitMix64,
+    n: usize,
+    turn: f64,
+    chord: impl Fn(&mut SplitMix64) -> f64,
+) -> Vec<Point> {
     let mut pts = vec![Point::new(0.0, 0.0)];
     let mut dir = 0.0f64;
     for _ in 1..n {
         dir += rng.range(-turn, turn);
         let last = *pts.last().expect("one point at least");
-        pts.push(last + kurbo::Vec2::from_angle(dir) * rng.range(0.5, 2.0));
+        pts.push(last + kurbo::Vec2::from_angle(dir) * chord(rng));
     }
     pts
 }
@@ -126,14 +137,7 @@ pub fn random_walk(rng: &mut SplitMix64, turn: f64) -> Vec<Point> {
 /// thirtyfold spread), each turning from the last by up to ±`turn` radians.
 pub fn harsh_walk(rng: &mut SplitMix64, turn: f64) -> Vec<Point> {
     let n = 5 + (rng.next_u64() % 12) as usize;
-    let mut pts = vec![Point::new(0.0, 0.0)];
-    let mut dir = 0.0f64;
-    for _ in 1..n {
-        dir += rng.range(-turn, turn);
-        let last = *pts.last().expect("one point at least");
-        pts.push(last + kurbo::Vec2::from_angle(dir) * rng.range(0.1f64.ln(), 3f64.ln()).exp());
-    }
-    pts
+    walk(rng, n, turn, |rng| rng.range(0.1f64.ln(), 3f64.ln()).exp())
 }
 
 /// `count` LAC segments of random shape, the distribution of the rational-cubic sweep

@@ -8,6 +8,7 @@
 //! each solved by Newton from the last tangents (a natural-parameter continuation).
 
 use super::system::{newton_from, Problem, Solution};
+use crate::lac::{cmul, conj};
 use crate::solve::systems::SystemStop;
 use kurbo::{Point, Vec2};
 use std::f64::consts::PI;
@@ -30,8 +31,7 @@ const MAX_STEPS: usize = 200;
 pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Option<Solution> {
     let closed = problem.is_closed();
     let easy = fitted(problem.points, &laid_out(problem.points, closed));
-    let start = problem.with_points(&easy).known_solution(closed);
-    let mut theta = start;
+    let mut theta = problem.with_points(&easy).known_solution();
     let (mut t, mut h) = (0.0f64, 0.25f64);
     let mut iterations = 0;
     for _ in 0..MAX_STEPS {
@@ -105,21 +105,17 @@ fn fitted(points: &[Point], shape: &[Point]) -> Vec<Point> {
     let n = points.len() as f64;
     let mean = |ps: &[Point]| ps.iter().fold(Vec2::ZERO, |m, p| m + p.to_vec2()) / n;
     let (mp, ms) = (mean(points), mean(shape));
-    // The complex factor a minimising Σ |p - mp - a (s - ms)|².
-    let (mut re, mut im, mut norm) = (0.0, 0.0, 0.0);
+    // The complex factor a minimising Σ |p - mp - a (s - ms)|²: Σ u v̄ / Σ |v|².
+    let (mut uv, mut norm) = (Vec2::ZERO, 0.0);
     for (p, s) in points.iter().zip(shape) {
         let (u, v) = (p.to_vec2() - mp, s.to_vec2() - ms);
-        re += u.x * v.x + u.y * v.y;
-        im += u.y * v.x - u.x * v.y;
+        uv += cmul(u, conj(v));
         norm += v.hypot2();
     }
-    let (re, im) = (re / norm, im / norm);
+    let a = uv / norm;
     shape
         .iter()
-        .map(|s| {
-            let v = s.to_vec2() - ms;
-            (mp + Vec2::new(re * v.x - im * v.y, im * v.x + re * v.y)).to_point()
-        })
+        .map(|s| (mp + cmul(a, s.to_vec2() - ms)).to_point())
         .collect()
 }
 

@@ -106,8 +106,8 @@ impl Problem<'_> {
 
     /// The solution where it is known: points on a line (every tangent along it) or, for
     /// a closed curve, on a circle (the circle's tangents).
-    pub(super) fn known_solution(&self, closed: bool) -> Vec<f64> {
-        if closed {
+    pub(super) fn known_solution(&self) -> Vec<f64> {
+        if self.is_closed() {
             return self.circle_guess();
         }
         let line = angle(self.points[0], self.points[self.points.len() - 1]);
@@ -435,8 +435,8 @@ pub(super) struct Solution {
     pub(super) stop: SystemStop,
     /// Largest |κ in - κ out| over the largest |κ| at any span end.
     pub(super) jump: f64,
-    /// Solved in the wider family of spans ([`span::WIDE_HALF`]): the pieces are built
-    /// in it too.
+    /// Solved in the wider family of spans ([`span::WIDE_HALF`]; read from the problem
+    /// solved): the pieces are built in it too.
     pub(super) wide: bool,
 }
 
@@ -500,7 +500,6 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
         .or_else(|| Some(problem.bisector_guess()).filter(builds))
     else {
         return super::continuation::solve(&problem.widened(), tol, max_iterations)
-            .map(|s| Solution { wide: true, ..s })
             .ok_or_else(|| problem.first_failure(&circle));
     };
     let direct = newton_from(problem, theta0.clone(), tol, max_iterations)
@@ -516,7 +515,6 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
         if w.stop == SystemStop::Converged {
             return Ok(Solution {
                 iterations: spent,
-                wide: true,
                 ..w
             });
         }
@@ -524,7 +522,6 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
     match super::continuation::solve(&wide, tol, max_iterations) {
         Some(walked) if walked.stop == SystemStop::Converged => Ok(Solution {
             iterations: walked.iterations + spent,
-            wide: true,
             ..walked
         }),
         _ => Ok(direct),

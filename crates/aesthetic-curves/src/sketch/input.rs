@@ -135,6 +135,7 @@ pub(super) struct Noise {
 impl Noise {
     pub(super) fn of(points: &[Point]) -> Noise {
         let mut wide = residuals(points, 7);
+        let known = !wide.is_empty();
         let median = median_sigma(&mut wide);
         // Sparse points (clicks) are read over 7 points: 15 of them span so much of the
         // shape that a cubic misses it by more than the noise (15 clicks on a 170° arc of
@@ -143,7 +144,7 @@ impl Noise {
         let mut sigma_from = if sparse(points) {
             residuals(points, SPARSE_HALF)
         } else {
-            wide.clone()
+            wide
         };
         let sigma = trimmed_sigma(&mut sigma_from);
         let narrow = median_sigma(&mut residuals(points, 2));
@@ -159,7 +160,7 @@ impl Noise {
             fine: sigma.min(median).min(narrow),
             scaling: if median > 0.0 { narrow / median } else { 0.0 },
             extreme,
-            known: !wide.is_empty(),
+            known,
         }
     }
 
