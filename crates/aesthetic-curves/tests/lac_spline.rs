@@ -512,16 +512,18 @@ fn random_point_sets_converge() {
 /// and closed. Where the spans' own family (each side of an S-span turning less than a
 /// half turn) holds no solution from the circles' start, the solve goes on in the wider
 /// family (a side up to 1.8 half turns, built as an inflection-end piece and a segment)
-/// and by continuation from the points on a line or a circle. Before (session 39's solve),
-/// 11 of 150 open and 40 of 150 closed sets failed; now 2 and 9. Every
-/// result reported G2 (`g2()`, as the sweep against libspiro counts) now passes every check: the points hit, the segments G2 to 1e-10 and their
+/// and by continuation from the points on a line or a circle, then with spans that wind
+/// (a tangent past a half turn from its chord, a segment up to 1.95 half turns). Before
+/// (session 39's solve), 11 of 150 open and 40 of 150 closed sets failed; session 40's 2
+/// and 9; now 1 and 1. Every result reported G2 (`g2()`, as the sweep against libspiro
+/// counts) passes every check: the points hit, the segments G2 to 1e-10 and their
 /// cubics to 1e-8 (their own G2 as delivered: chords 30 times apart put the cubics' jumps
 /// near 1e-10), every cubic proven monotone.
 #[test]
 fn harsh_point_sets_converge_in_the_wider_family() {
     use aesthetic_curves::samples::harsh_walk;
     let mut over = Vec::new();
-    for (closed, seed, most) in [(false, 8, 3), (true, 10, 12)] {
+    for (closed, seed, most) in [(false, 8, 2), (true, 10, 3)] {
         let mut rng = SplitMix64::new(seed);
         let opts = LacSplineOptions {
             closed,
@@ -545,4 +547,48 @@ fn harsh_point_sets_converge_in_the_wider_family() {
         }
     }
     assert!(over.is_empty(), "{over:?}");
+}
+
+/// The signed turning of span `k` (the sum of its pieces' turnings, each below a half
+/// turn): past a half turn, the span winds.
+fn span_turning(s: &LacSpline, k: usize) -> f64 {
+    (0..s.pieces.len())
+        .filter(|&i| s.pieces[i].span == k)
+        .map(|i| {
+            let [a, b] = ends(s, i);
+            a.1.cross(b.1).atan2(a.1.dot(b.1))
+        })
+        .sum()
+}
+
+/// A closed set of sharp turns whose G2 curve (libspiro's too) has its closing span wind
+/// 340° with its start tangent 168° from its chord: the deviations measured on the branch
+/// of the start (past a half turn), the one segment turning up to 1.95 half turns.
+/// Session 40's solve, with every deviation wrapped into (-180°, 180°], stopped 0.69 of the
+/// largest curvature short of G2 on it.
+#[test]
+fn a_closing_span_that_winds_nearly_a_full_turn_is_solved() {
+    use aesthetic_curves::samples::harsh_walk;
+    let mut rng = SplitMix64::new(9);
+    let pts = (0..99).map(|_| harsh_walk(&mut rng, 2.1)).last().unwrap();
+    let opts = LacSplineOptions {
+        closed: true,
+        ..Default::default()
+    };
+    let s = lac_spline(&pts, &opts).unwrap();
+    assert!(s.g2(), "{:e} {:e}", s.max_curvature_jump, s.max_cubic_jump);
+    let (jump, angle) = check(&pts, &opts, &s);
+    assert!(jump < 1e-8 && angle < 1e-9, "{jump:e} {angle:e}");
+    let last = pts.len() - 1;
+    let turning = span_turning(&s, last);
+    eprintln!("closing span turns {:.1} deg", turning.to_degrees());
+    assert!(
+        turning.abs() > 1.8 * std::f64::consts::PI,
+        "{}",
+        turning.to_degrees()
+    );
+    // Its start tangent leaves the chord by more than 160°.
+    let chord = pts[0] - pts[last];
+    let t = s.tangents[last];
+    assert!(chord.normalize().dot(t) < (160f64).to_radians().cos());
 }

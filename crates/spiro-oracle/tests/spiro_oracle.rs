@@ -198,9 +198,13 @@ fn harsh_sweep(turn: f64, closed: bool, seed: u64) -> ([usize; 4], f64, usize) {
 /// least 1,150 of the 1,200. The rest is measured: in session 39 libspiro solved 1,197,
 /// `lac_spline` 1,055 (its spans' family held no solution near libspiro's: one side of an
 /// S-span winds past a half turn). In session 40, with the wider family and the
-/// continuation as fallbacks: 1,178, one of them one libspiro did not solve; 54 of the
-/// 1,177 both solve are another solution of the same equations than libspiro's
-/// (curvatures apart by up to 1.6 of the largest; 31 before), an open defect in the
+/// continuation as fallbacks: 1,178, one of them one libspiro did not solve. In session 41,
+/// with spans that wind (a tangent past a half turn from its chord, measured on the
+/// branch of the start; a segment up to 1.95 half turns) as the last fallbacks, and the
+/// cubics' end curvatures read from their f64 coordinates repaired (lac_spline/joins.rs;
+/// three sets had jumps of 3e-8 to 4e-7 there): 1,196.
+/// Some of the sets both solve are another solution of the same equations than
+/// libspiro's (curvatures apart by up to 1.6 of the largest), an open defect in the
 /// issue's note.
 #[test]
 fn harsh_point_sets_against_libspiro() {
@@ -232,5 +236,5 @@ fn harsh_point_sets_against_libspiro() {
         total[0], total[1], total[2], total[3]
     );
     let ours = total[0] + total[2];
-    assert!(ours >= 1150, "lac_spline solved {ours} of 1,200");
+    assert!(ours >= 1190, "lac_spline solved {ours} of 1,200");
 }

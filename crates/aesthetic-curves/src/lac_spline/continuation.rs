@@ -7,7 +7,7 @@
 //! by a similarity; the points then move straight to their own places in adaptive steps,
 //! each solved by Newton from the last tangents (a natural-parameter continuation).
 
-use super::system::{newton_from, Problem, Solution};
+use super::system::{newton_from, Branch, Problem, Solution};
 use crate::lac::{cmul, conj};
 use crate::solve::systems::SystemStop;
 use kurbo::{Point, Vec2};
@@ -28,10 +28,20 @@ const MAX_STEPS: usize = 200;
 
 /// The solution of `problem` reached by continuation from its easy version, if the walk
 /// gets there (module documentation); `None` where a step cannot be made small enough.
-pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Option<Solution> {
+/// `winding`: each step on the branch of the last step's deviations (a span's tangent
+/// may turn past a half turn from its chord as the points move), else every deviation
+/// wrapped.
+pub(super) fn solve(
+    problem: &Problem,
+    winding: bool,
+    tol: f64,
+    max_iterations: usize,
+) -> Option<Solution> {
     let closed = problem.is_closed();
     let easy = fitted(problem.points, &laid_out(problem.points, closed));
-    let mut theta = problem.with_points(&easy).known_solution();
+    let start = problem.with_points(&easy);
+    let mut theta = start.known_solution();
+    let mut near = start.all_deviations(&theta);
     let (mut t, mut h) = (0.0f64, 0.25f64);
     let mut iterations = 0;
     for _ in 0..MAX_STEPS {
@@ -48,12 +58,18 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Optio
             (STEP_TOLERANCE, STEP_ITERATIONS)
         };
         let here = problem.with_points(&pts);
-        match newton_from(&here, theta.clone(), step_tol, step_max) {
+        let branch = if winding {
+            Branch::Near(&near)
+        } else {
+            Branch::Wrapped
+        };
+        match newton_from(&here, (theta.clone(), branch), step_tol, step_max) {
             Some(sol) if sol.stop == SystemStop::Converged => {
                 iterations += sol.iterations;
                 if last {
                     return Some(Solution { iterations, ..sol });
                 }
+                near = here.solved_as(&sol).all_deviations(&sol.theta);
                 theta = sol.theta;
                 t = next;
                 h = (2.0 * h).min(0.5);

@@ -16,10 +16,13 @@
 //! - `continuation`: where Newton stops short, the walk from an easy version of the
 //!   problem (points on a line or a circle) to the points;
 //! - `pieces`: the solved spans as segments in input coordinates and their cubics;
+//! - `joins`: the cubics' end curvatures as their f64 coordinates read them, repaired
+//!   where rounding moved them (short pieces far from the origin);
 //! - here: the options, the result and the driver.
 
 mod clothoid;
 mod continuation;
+mod joins;
 mod pieces;
 mod span;
 mod system;
@@ -132,7 +135,7 @@ pub fn lac_spline(points: &[Point], opts: &LacSplineOptions) -> Result<LacSpline
             sol.stop, sol.iterations, sol.jump
         )));
     }
-    let problem = if sol.wide { problem.widened() } else { problem };
+    let problem = problem.solved_as(&sol);
     let built = pieces::build(&problem, &sol.theta, &opts.approx)?;
     Ok(pieces::result(built, &problem, &sol, opts.closed))
 }
@@ -226,6 +229,7 @@ fn problem_of<'a>(points: &'a [Point], opts: &LacSplineOptions) -> Result<system
         ends,
         unknown,
         smooth,
+        branch: None,
     })
 }
 

@@ -599,11 +599,12 @@ fn piece(span: usize, part: &Part, f: RationalCubicFit) -> Result<SplinePiece> {
 
 /// The spline from its pieces and the solve's report.
 pub(super) fn result(
-    pieces: Vec<SplinePiece>,
+    mut pieces: Vec<SplinePiece>,
     problem: &Problem,
     sol: &Solution,
     closed: bool,
 ) -> LacSpline {
+    super::joins::sharpen(&mut pieces);
     let n = problem.points.len();
     let mut tangents = vec![Vec2::ZERO; n];
     for p in &pieces {

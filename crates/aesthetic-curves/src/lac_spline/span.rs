@@ -26,6 +26,9 @@ use std::f64::consts::PI;
 /// halves of its turning (pieces.rs).
 pub(super) const MAX_TURN: f64 = 1.8 * PI;
 
+/// The most one segment may turn in the wider family.
+pub(super) const WIDE_TURN: f64 = 1.95 * PI;
+
 /// The most each inflection-end half of an S-span may turn (radians): a half turn in the
 /// spline's own family (where the pair is unique), up to [`WIDE_HALF`] in the wider family
 /// the solve falls back on (`system::solve`).
@@ -82,7 +85,9 @@ pub(super) struct Solved {
 /// counter-clockwise positive), for the requested `alpha`, an S-span's halves turning less
 /// than `half` each ([`HALF_TURN`] or [`WIDE_HALF`]).
 pub(super) fn solve(alpha: f64, a: f64, b: f64, half: f64) -> Result<Solved> {
-    if !(a.abs() < PI && b.abs() < PI) {
+    // A deviation past a half turn: a span that winds (the wider family only).
+    let most = if half > HALF_TURN { 2.0 * PI } else { PI };
+    if !(a.abs() < most && b.abs() < most) {
         return Err(Error::NoSegment(format!(
             "a span's tangent turns {:.1} deg from its chord: no fair curve between them",
             a.abs().max(b.abs()).to_degrees()
@@ -94,7 +99,7 @@ pub(super) fn solve(alpha: f64, a: f64, b: f64, half: f64) -> Result<Solved> {
             kappa: (0.0, 0.0),
         });
     }
-    if a * b < 0.0 && (a + b).abs() <= 1e-12 * (a.abs() + b.abs()) {
+    if a * b < 0.0 && (a + b).abs() <= 1e-12 * (a.abs() + b.abs()) && b.abs() < PI {
         // A circular arc (every α): its curvature 2 sin(b) over the chord, whatever its
         // turning 2|b| (up to a full turn; the pieces split it).
         let k = 2.0 * b.sin();
@@ -103,7 +108,12 @@ pub(super) fn solve(alpha: f64, a: f64, b: f64, half: f64) -> Result<Solved> {
             kappa: (k, k),
         });
     }
-    if a * b < 0.0 && a.abs() + b.abs() < MAX_TURN {
+    let most_turn = if half > HALF_TURN {
+        WIDE_TURN
+    } else {
+        MAX_TURN
+    };
+    if a * b < 0.0 && a.abs() + b.abs() < most_turn {
         if let Some(s) = one_segment(alpha, a, b)? {
             return Ok(s);
         }

@@ -56,6 +56,11 @@ pub(super) struct Problem<'a> {
     /// Per span, the clothoid's last root A (f64 bits; NaN: none yet): the next solve of
     /// that span, at tangents a Newton step away, starts there.
     pub(super) roots: Vec<AtomicU64>,
+    /// Per span, the chord's angle plus the whole turns that its start's and its end's
+    /// deviations are measured from ([`Problem::on_branch`]), so that a deviation moves
+    /// continuously with its tangent past a half turn; `None`: every deviation wrapped
+    /// into (-π, π].
+    pub(super) branch: Option<Vec<(f64, f64)>>,
 }
 
 /// The direction angle from `a` to `b`.
@@ -93,7 +98,53 @@ impl Problem<'_> {
                 .iter()
                 .map(|_| AtomicU64::new(f64::NAN.to_bits()))
                 .collect(),
+            branch: None,
         }
+    }
+
+    /// The same problem with its deviations measured from the whole turns that put each
+    /// one at `theta` nearest `near`'s (per span, start and end; zero where `None`: the
+    /// wrapped deviations). A Newton run keeps the branch of its start, so a tangent
+    /// turning past a half turn from its chord stays on the curve it was (libspiro's
+    /// spans through sharp turns wind so); a continuation's step takes the last step's
+    /// deviations as `near`.
+    pub(super) fn on_branch(&self, theta: &[f64], near: Option<&[(f64, f64)]>) -> Problem<'_> {
+        let turns = |p: usize, g: f64, d: f64| match self.unknown[p] {
+            Some(u) => g + 2.0 * PI * ((theta[u] - g - d) / (2.0 * PI)).round(),
+            None => g,
+        };
+        let branch = (0..self.ends.len())
+            .map(|k| {
+                let (i, j) = self.ends[k];
+                let g = self.chord_angle(k);
+                let (da, db) = near.map_or((0.0, 0.0), |n| n[k]);
+                (turns(i, g, da), turns(j, g, db))
+            })
+            .collect();
+        Problem {
+            branch: Some(branch),
+            ..self.with_points(self.points)
+        }
+    }
+
+    /// The problem `sol` solved: in its family of spans, on its branch.
+    pub(super) fn solved_as(&self, sol: &Solution) -> Problem<'_> {
+        let family = if sol.wide {
+            self.widened()
+        } else {
+            self.with_points(self.points)
+        };
+        Problem {
+            branch: sol.branch.clone(),
+            ..family
+        }
+    }
+
+    /// Every span's deviations at `theta`.
+    pub(super) fn all_deviations(&self, theta: &[f64]) -> Vec<(f64, f64)> {
+        (0..self.ends.len())
+            .map(|k| self.deviations(k, theta))
+            .collect()
     }
 
     /// The same problem in the wider family of spans ([`span::WIDE_HALF`]).
@@ -129,8 +180,14 @@ impl Problem<'_> {
     pub(super) fn deviations(&self, k: usize, theta: &[f64]) -> (f64, f64) {
         let (i, j) = self.ends[k];
         let g = self.chord_angle(k);
-        let at = |p: usize| self.unknown[p].map(|u| wrap(theta[u] - g));
-        match (at(i), at(j)) {
+        let from = self.branch.as_ref().map(|b| b[k]);
+        let at = |p: usize, end: usize| {
+            self.unknown[p].map(|u| match from {
+                Some(f) => theta[u] - if end == 0 { f.0 } else { f.1 },
+                None => wrap(theta[u] - g),
+            })
+        };
+        match (at(i, 0), at(j, 1)) {
             (Some(a), Some(b)) => (a, b),
             (Some(a), None) => (a, -a),
             (None, Some(b)) => (-b, b),
@@ -438,6 +495,8 @@ pub(super) struct Solution {
     /// Solved in the wider family of spans ([`span::WIDE_HALF`]; read from the problem
     /// solved): the pieces are built in it too.
     pub(super) wide: bool,
+    /// The branch of the deviations solved on ([`Problem::on_branch`]).
+    pub(super) branch: Option<Vec<(f64, f64)>>,
 }
 
 /// The Jacobian kept from one Newton step to the next while the steps converge fast (each
@@ -486,46 +545,76 @@ impl FrozenJacobian {
     }
 }
 
+/// How a Newton run measures the spans' deviations from their chords.
+#[derive(Clone, Copy)]
+pub(super) enum Branch<'n> {
+    /// Each wrapped into (-π, π] (a span's tangent never more than a half turn from its
+    /// chord).
+    Wrapped,
+    /// On the branch of the start ([`Problem::on_branch`]): continuous with the tangents,
+    /// past a half turn where a span winds.
+    Start,
+    /// On the branch nearest these deviations (a continuation's last step's).
+    Near(&'n [(f64, f64)]),
+}
+
 /// Solve the G2 equations from the circle guess to `tol` (largest jump over the largest
-/// curvature); where Newton stops short from there, or no start builds, by continuation
-/// from an easy version of the problem ([`super::continuation`]).
+/// curvature); where Newton stops short from there, or no start builds, in the wider
+/// family of spans from the same start, then by continuation from an easy version of the
+/// problem ([`super::continuation`]): first with every deviation wrapped, then on
+/// branches where a span may wind past a half turn (libspiro's solutions through sharp
+/// turns do; tried last, as their Newton runs may wander to such a span where a plain
+/// one exists).
 pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Result<Solution> {
     // The first start whose spans all build: the circles' tangents, those mended where a
     // span cannot be built (tried only then), the bisectors'.
     let circle = problem.circle_guess();
     let builds = |t: &Vec<f64>| problem.state(t).is_some();
-    let Some(theta0) = Some(circle.clone())
+    let theta0 = Some(circle.clone())
         .filter(builds)
         .or_else(|| Some(problem.mended(&circle)).filter(builds))
-        .or_else(|| Some(problem.bisector_guess()).filter(builds))
-    else {
-        return super::continuation::solve(&problem.widened(), tol, max_iterations)
-            .ok_or_else(|| problem.first_failure(&circle));
+        .or_else(|| Some(problem.bisector_guess()).filter(builds));
+    let direct = match &theta0 {
+        Some(t) => Some(
+            newton_from(problem, (t.clone(), Branch::Wrapped), tol, max_iterations)
+                .ok_or_else(|| problem.first_failure(&circle))?,
+        ),
+        None => None,
     };
-    let direct = newton_from(problem, theta0.clone(), tol, max_iterations)
-        .ok_or_else(|| problem.first_failure(&circle))?;
-    if direct.stop == SystemStop::Converged {
-        return Ok(direct);
+    if let Some(d) = direct.as_ref().filter(|d| d.stop == SystemStop::Converged) {
+        return Ok(d.clone());
     }
-    // The wider family of spans, from the same start, then by continuation.
     let wide = problem.widened();
-    let mut spent = direct.iterations;
-    if let Some(w) = newton_from(&wide, theta0, tol, max_iterations) {
-        spent += w.iterations;
-        if w.stop == SystemStop::Converged {
-            return Ok(Solution {
-                iterations: spent,
-                ..w
-            });
+    let mut spent = direct.as_ref().map_or(0, |d| d.iterations);
+    for winding in [false, true] {
+        let branch = if winding {
+            Branch::Start
+        } else {
+            Branch::Wrapped
+        };
+        let from_start = theta0
+            .as_ref()
+            .and_then(|t| newton_from(&wide, (t.clone(), branch), tol, max_iterations));
+        if let Some(run) = from_start {
+            spent += run.iterations;
+            if run.stop == SystemStop::Converged {
+                return Ok(Solution {
+                    iterations: spent,
+                    ..run
+                });
+            }
+        }
+        if let Some(walked) = super::continuation::solve(&wide, winding, tol, max_iterations) {
+            spent += walked.iterations;
+            if walked.stop == SystemStop::Converged {
+                return Ok(Solution {
+                    iterations: spent,
+                    ..walked
+                });
+            }
         }
     }
-    match super::continuation::solve(&wide, tol, max_iterations) {
-        Some(walked) if walked.stop == SystemStop::Converged => Ok(Solution {
-            iterations: walked.iterations + spent,
-            ..walked
-        }),
-        _ => Ok(direct),
-    }
+    direct.ok_or_else(|| problem.first_failure(&circle))
 }
 
 /// Newton on the G2 equations from the tangents `theta` (`None` where a span cannot be
@@ -533,10 +622,16 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
 /// stops short, on with a fresh one every step.
 pub(super) fn newton_from(
     problem: &Problem,
-    theta: Vec<f64>,
+    (theta, branch): (Vec<f64>, Branch),
     tol: f64,
     max_iterations: usize,
 ) -> Option<Solution> {
+    let on_branch = match branch {
+        Branch::Wrapped => None,
+        Branch::Start => Some(problem.on_branch(&theta, None)),
+        Branch::Near(near) => Some(problem.on_branch(&theta, Some(near))),
+    };
+    let problem = on_branch.as_ref().unwrap_or(problem);
     let (k0, r0) = problem.state(&theta)?;
     let mut frozen = FrozenJacobian::default();
     let mut run = newton(problem, ((theta, k0), r0), &mut frozen, tol, max_iterations).ok()?;
@@ -558,6 +653,7 @@ pub(super) fn newton_from(
         iterations: run.iterations,
         stop: run.stop,
         wide: problem.half != span::HALF_TURN,
+        branch: problem.branch.clone(),
     })
 }
 
