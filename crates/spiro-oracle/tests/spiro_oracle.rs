@@ -59,6 +59,38 @@ fn spiro_ends(seg: &SpiroSeg) -> (f64, f64) {
     (at(-0.5), at(0.5))
 }
 
+/// libspiro's curvature variation ∫|dκ/ds| ds over its first `spans` segments, input
+/// units: each segment's curvature polynomial sampled at 400 steps, scaled to its end
+/// curvatures ([`spiro_ends`]).
+fn spiro_variation(segs: &[SpiroSeg], spans: usize) -> f64 {
+    let mut total = 0.0;
+    for seg in segs.iter().take(spans) {
+        let (a, b) = spiro_ends(seg);
+        let k = seg.ks;
+        let raw = |x: f64| k[0] + k[1] * x + k[2] * x * x / 2.0 + k[3] * x.powi(3) / 6.0;
+        if raw(0.5) == raw(-0.5) {
+            continue;
+        }
+        let scale = (b - a) / (raw(0.5) - raw(-0.5));
+        let mut last = raw(-0.5);
+        for i in 1..=400 {
+            let v = raw(-0.5 + i as f64 / 400.0);
+            total += ((v - last) * scale).abs();
+            last = v;
+        }
+    }
+    total
+}
+
+/// The spline's curvature variation: every piece is curvature-monotone (proven), so its
+/// part is the difference of its end curvatures.
+fn lac_variation(s: &aesthetic_curves::lac_spline::LacSpline) -> f64 {
+    s.pieces
+        .iter()
+        .map(|p| (p.end_curvatures.1 - p.end_curvatures.0).abs())
+        .sum()
+}
+
 /// The largest difference, over the largest curvature, between the two splines' curvature
 /// at the start and the end of every span.
 fn compare(pts: &[Point], closed: bool, corners: &[usize]) -> Option<f64> {
@@ -167,25 +199,31 @@ fn random_point_sets_agree_with_spiro() {
 /// returns no path where its Newton iteration did not converge, FontForge's "Spiros did
 /// not converge") and `lac_spline` (an error, or a spline not G2); the counts (both, only
 /// libspiro, only `lac_spline`, neither), the largest difference of their curvatures where
-/// both solve, and how many of those differ by more than 1e-6 (another solution of the
-/// same equations).
-fn harsh_sweep(turn: f64, closed: bool, seed: u64) -> ([usize; 4], f64, usize) {
+/// both solve, how many of those differ by more than 1e-6 (another solution of the same
+/// equations) and in how many of those the spline's curvature varies less (∫|dκ/ds| ds).
+fn harsh_sweep(turn: f64, closed: bool, seed: u64) -> ([usize; 4], f64, [usize; 2]) {
     let mut rng = SplitMix64::new(seed);
     let mut counts = [0usize; 4];
     let mut worst = 0.0f64;
-    let mut other = 0;
+    let mut other = [0usize; 2];
     let opts = LacSplineOptions {
         closed,
         ..Default::default()
     };
+    let spans = |n: usize| if closed { n } else { n - 1 };
     for _ in 0..300 {
         let pts = harsh_walk(&mut rng, turn);
-        let s = spiro(&pts, closed, &[]).is_some();
-        let o = lac_spline(&pts, &opts).is_ok_and(|sp| sp.g2());
-        if s && o {
+        let segs = spiro(&pts, closed, &[]);
+        let ours = lac_spline(&pts, &opts).ok().filter(|sp| sp.g2());
+        let (s, o) = (segs.is_some(), ours.is_some());
+        if let (Some(segs), Some(ours)) = (&segs, &ours) {
             let d = compare(&pts, closed, &[]).expect("both solve");
             worst = worst.max(d);
-            other += usize::from(d > 1e-6);
+            if d > 1e-6 {
+                other[0] += 1;
+                let fairer = lac_variation(ours) < spiro_variation(segs, spans(pts.len()));
+                other[1] += usize::from(fairer);
+            }
         }
         counts[usize::from(!s) * 2 + usize::from(!o)] += 1;
     }
@@ -209,6 +247,7 @@ fn harsh_sweep(turn: f64, closed: bool, seed: u64) -> ([usize; 4], f64, usize) {
 #[test]
 fn harsh_point_sets_against_libspiro() {
     let mut total = [0usize; 4];
+    let mut others = [0usize; 2];
     for (turn, closed, seed) in [
         (2.1, false, 7),
         (2.6, false, 8),
@@ -219,11 +258,15 @@ fn harsh_point_sets_against_libspiro() {
             harsh_sweep(turn, closed, seed);
         eprintln!(
             "harsh, turns to ±{:.0}°, {}: both solve {both} (largest difference {worst:.1e}, \
-             {other} other solutions), only lac_spline {only_ours}, only libspiro \
-             {only_spiro}, neither {neither}",
+             {} other solutions, the spline's fairer in {}), only lac_spline {only_ours}, \
+             only libspiro {only_spiro}, neither {neither}",
             turn.to_degrees(),
-            if closed { "closed" } else { "open" }
+            if closed { "closed" } else { "open" },
+            other[0],
+            other[1]
         );
+        others[0] += other[0];
+        others[1] += other[1];
         if turn < 2.2 && !closed {
             assert!(worst < 1e-6, "the two differ by {worst:e}");
         }
@@ -237,4 +280,16 @@ fn harsh_point_sets_against_libspiro() {
     );
     let ours = total[0] + total[2];
     assert!(ours >= 1190, "lac_spline solved {ours} of 1,200");
+    // Where the two reach different solutions, the spline's is the fairer by the issue's
+    // measure in most (session 41: 51 of 57).
+    eprintln!(
+        "other solutions: {}, the spline's curvature varying less in {}",
+        others[0], others[1]
+    );
+    assert!(
+        others[1] * 4 >= others[0] * 3,
+        "the spline fairer in {} of {}",
+        others[1],
+        others[0]
+    );
 }
