@@ -28,8 +28,11 @@ use crate::bezier::RationalBezier;
 use crate::monotone::CurvatureMonotone;
 use kurbo::{Point, Vec2};
 
-/// A curvature read off by more than this share of the spline's largest is repaired.
-const READ_OFF: f64 = 1e-13;
+/// A curvature read off by more than this share of the spline's largest is repaired (the
+/// spline's accepted jump, [`super::ACCEPTED_JUMP`]: below it a move would cost an exact
+/// test a piece for nothing a user's tool sees; at 1e-13 the circle of the spline's
+/// bench took 10 times as long).
+const READ_OFF: f64 = super::ACCEPTED_JUMP;
 
 /// The most an end weight is scaled by (relative): a short, nearly straight piece's end
 /// curvature moves by up to a few per mille with its coordinates' rounding.
