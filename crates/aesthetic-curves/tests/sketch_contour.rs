@@ -1543,3 +1543,41 @@ fn random_clicks_come_back_as_contours() {
     println!("random clicks: {} of 300 failed", failed.len());
     assert!(failed.len() <= 1, "{failed:#?}");
 }
+
+/// A random walk of 7 points (the protocol fuzz of session 40, seed 2, stroke 148) whose
+/// default fit had an inflection piece of α -0.013 turning from zero to its largest
+/// curvature over a thin triangle: no cubic of its family was proven monotone, and the
+/// piece was delivered with the family centre's cubic, reported not monotone. An
+/// inflection piece without a monotone cubic now asks for a split, as a LAC piece does:
+/// every piece proven, the curve G2 and within its tolerance.
+#[test]
+fn an_inflection_piece_without_a_proven_cubic_is_split() {
+    use aesthetic_curves::monotone::CurvatureMonotone;
+    use aesthetic_curves::sketch::fit_sketch_within;
+    let pts = [
+        p(0.0, 0.0),
+        p(-32.26347974087439, 6.0665280133593384),
+        p(-24.415467201093563, 22.117008518142804),
+        p(-51.16223720105158, 14.078234232345189),
+        p(-70.62093046519628, -19.464141095349426),
+        p(-82.60913627409664, -56.19909535707844),
+        p(-69.12432925072645, -16.417754873211955),
+    ];
+    let (s, tol) = fit_sketch_within(&pts, None).unwrap();
+    for (i, q) in s.pieces.iter().enumerate() {
+        let proven = q.rational.is_curvature_monotone().unwrap();
+        assert!(
+            proven && q.monotone,
+            "piece {i} ({:?}, alpha {})",
+            q.kind,
+            q.alpha
+        );
+    }
+    assert!(s.all_monotone && s.g2, "{}", s.max_curvature_jump);
+    assert!(s.max_deviation <= tol, "{} > {tol}", s.max_deviation);
+    println!(
+        "{} pieces, deviation {:.3} within {tol:.3}",
+        s.pieces.len(),
+        s.max_deviation
+    );
+}

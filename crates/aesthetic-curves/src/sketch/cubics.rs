@@ -19,8 +19,9 @@ use std::collections::HashMap;
 pub(super) enum Cubics {
     /// Every piece with its cubic, in curve order.
     Pieces(Vec<SketchPiece>),
-    /// Piece `i`'s LAC segment has no curvature-monotone cubic (it turns too far for its
-    /// curvature range): it is to be split and the round repeated.
+    /// Piece `i` has no curvature-monotone cubic (a LAC segment turning too far for its
+    /// curvature range, an inflection piece of α near 0): it is to be split and the round
+    /// repeated.
     Split(usize),
 }
 
@@ -39,9 +40,11 @@ type Fitted = (RationalCubicFit, Option<InflectionStart>);
 impl CubicCache {
     /// The cubics of `built` (pieces of `slots`): fitted in parallel (each fit is pure work
     /// on its own piece; the memo and the warm starts are read there and updated here in
-    /// curve order). A LAC piece without a monotone cubic asks for a split while
-    /// `max_pieces` allows one; an inflection piece without one gets the G2 cubic of its
-    /// family's centre, reported as not monotone.
+    /// curve order). A piece without a monotone cubic asks for a split while `max_pieces`
+    /// allows one (an inflection piece's halves re-solve their α: one whose α is near 0⁻
+    /// has a curvature that reaches zero over so long a run that no cubic of its family
+    /// is proven monotone); past that, an inflection piece without one gets the G2 cubic of
+    /// its family's centre, reported as not monotone.
     pub(super) fn pieces(
         &mut self,
         slots: &[Slot],
@@ -78,6 +81,9 @@ impl CubicCache {
                         Err(Error::NoSegment(_)) => inflection_fallback(segment)?,
                         Err(e) => return Err(e),
                     };
+                    if !f.monotone && slots.len() < max_pieces {
+                        return Ok(Cubics::Split(pieces.len()));
+                    }
                     in_curve_order(segment.control, f, *inflection_at_start)
                 }
                 (PieceCurve::Lac(_), Err(e)) => return Err(e),
