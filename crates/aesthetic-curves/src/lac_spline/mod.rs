@@ -226,6 +226,7 @@ fn problem_of<'a>(points: &'a [Point], opts: &LacSplineOptions) -> Result<system
         roots: (0..spans)
             .map(|_| std::sync::atomic::AtomicU64::new(f64::NAN.to_bits()))
             .collect(),
+        chords: system::chords_of(points, &ends),
         ends,
         unknown,
         smooth,

@@ -61,6 +61,18 @@ pub(super) struct Problem<'a> {
     /// continuously with its tangent past a half turn; `None`: every deviation wrapped
     /// into (-π, π].
     pub(super) branch: Option<Vec<(f64, f64)>>,
+    /// Per span, its chord's angle and length ([`chords_of`]; read at every span solve).
+    pub(super) chords: Vec<(f64, f64)>,
+}
+
+/// Each span's chord angle and length.
+pub(super) fn chords_of(points: &[Point], ends: &[(usize, usize)]) -> Vec<(f64, f64)> {
+    ends.iter()
+        .map(|&(i, j)| {
+            let c = points[j] - points[i];
+            (c.y.atan2(c.x), c.hypot())
+        })
+        .collect()
 }
 
 /// The direction angle from `a` to `b`.
@@ -99,6 +111,7 @@ impl Problem<'_> {
                 .map(|_| AtomicU64::new(f64::NAN.to_bits()))
                 .collect(),
             branch: None,
+            chords: chords_of(points, &self.ends),
         }
     }
 
@@ -166,14 +179,11 @@ impl Problem<'_> {
     }
 
     fn chord_angle(&self, k: usize) -> f64 {
-        let (i, j) = self.ends[k];
-        let c = self.points[j] - self.points[i];
-        c.y.atan2(c.x)
+        self.chords[k].0
     }
 
     fn chord_length(&self, k: usize) -> f64 {
-        let (i, j) = self.ends[k];
-        (self.points[j] - self.points[i]).hypot()
+        self.chords[k].1
     }
 
     /// The deviations (a, b) of span `k` from its chord at tangent angles `theta`.
