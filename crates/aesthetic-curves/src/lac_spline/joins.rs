@@ -71,9 +71,8 @@ pub(super) fn sharpen(pieces: &mut [SplinePiece]) {
 }
 
 /// `c` with its end weights scaled so that its end curvatures read `target` from its
-/// coordinates, where one reads off by more than `off` (by less than [`MOST_REWEIGHT`] of
-/// itself);
-/// `None` where nothing needs it.
+/// coordinates, where one reads off by more than `off` (and by less than
+/// [`MOST_REWEIGHT`] of itself); `None` where nothing needs it or can have it.
 fn matched(c: &RationalBezier, target: (f64, f64), off: f64) -> Option<RationalBezier> {
     let mut w = c.weights().to_vec();
     let mut changed = false;
