@@ -85,8 +85,10 @@ pub(super) struct Solved {
 /// counter-clockwise positive), for the requested `alpha`, an S-span's halves turning less
 /// than `half` each ([`HALF_TURN`] or [`WIDE_HALF`]).
 pub(super) fn solve(alpha: f64, a: f64, b: f64, half: f64) -> Result<Solved> {
-    // A deviation past a half turn: a span that winds (the wider family only).
-    let most = if half > HALF_TURN { 2.0 * PI } else { PI };
+    // The wider family: a deviation past a half turn (a span that winds), one segment up
+    // to [`WIDE_TURN`].
+    let wide = half > HALF_TURN;
+    let most = if wide { 2.0 * PI } else { PI };
     if !(a.abs() < most && b.abs() < most) {
         return Err(Error::NoSegment(format!(
             "a span's tangent turns {:.1} deg from its chord: no fair curve between them",
@@ -108,11 +110,7 @@ pub(super) fn solve(alpha: f64, a: f64, b: f64, half: f64) -> Result<Solved> {
             kappa: (k, k),
         });
     }
-    let most_turn = if half > HALF_TURN {
-        WIDE_TURN
-    } else {
-        MAX_TURN
-    };
+    let most_turn = if wide { WIDE_TURN } else { MAX_TURN };
     if a * b < 0.0 && a.abs() + b.abs() < most_turn {
         if let Some(s) = one_segment(alpha, a, b)? {
             return Ok(s);

@@ -98,6 +98,18 @@ impl Problem<'_> {
 
     /// The same problem (α, corners, unknowns) through other points.
     pub(super) fn with_points<'b>(&self, points: &'b [Point]) -> Problem<'b> {
+        self.rebuilt(points, chords_of(points, &self.ends))
+    }
+
+    /// The same problem through the same points (their chords kept), with no warm roots
+    /// and its deviations wrapped.
+    fn fresh(&self) -> Problem<'_> {
+        self.rebuilt(self.points, self.chords.clone())
+    }
+
+    /// The problem through `points` whose chords are `chords`, with no warm roots and its
+    /// deviations wrapped.
+    fn rebuilt<'b>(&self, points: &'b [Point], chords: Vec<(f64, f64)>) -> Problem<'b> {
         Problem {
             points,
             half: self.half,
@@ -111,7 +123,7 @@ impl Problem<'_> {
                 .map(|_| AtomicU64::new(f64::NAN.to_bits()))
                 .collect(),
             branch: None,
-            chords: chords_of(points, &self.ends),
+            chords,
         }
     }
 
@@ -136,7 +148,7 @@ impl Problem<'_> {
             .collect();
         Problem {
             branch: Some(branch),
-            ..self.with_points(self.points)
+            ..self.fresh()
         }
     }
 
@@ -145,7 +157,7 @@ impl Problem<'_> {
         let family = if sol.wide {
             self.widened()
         } else {
-            self.with_points(self.points)
+            self.fresh()
         };
         Problem {
             branch: sol.branch.clone(),
@@ -164,7 +176,7 @@ impl Problem<'_> {
     pub(super) fn widened(&self) -> Problem<'_> {
         Problem {
             half: span::WIDE_HALF,
-            ..self.with_points(self.points)
+            ..self.fresh()
         }
     }
 
@@ -190,14 +202,12 @@ impl Problem<'_> {
     pub(super) fn deviations(&self, k: usize, theta: &[f64]) -> (f64, f64) {
         let (i, j) = self.ends[k];
         let g = self.chord_angle(k);
+        // On a branch, from the chord angle plus the whole turns of each end; else wrapped.
         let from = self.branch.as_ref().map(|b| b[k]);
-        let at = |p: usize, end: usize| {
-            self.unknown[p].map(|u| match from {
-                Some(f) => theta[u] - if end == 0 { f.0 } else { f.1 },
-                None => wrap(theta[u] - g),
-            })
+        let at = |p: usize, from: Option<f64>| {
+            self.unknown[p].map(|u| from.map_or_else(|| wrap(theta[u] - g), |f| theta[u] - f))
         };
-        match (at(i, 0), at(j, 1)) {
+        match (at(i, from.map(|f| f.0)), at(j, from.map(|f| f.1))) {
             (Some(a), Some(b)) => (a, b),
             (Some(a), None) => (a, -a),
             (None, Some(b)) => (-b, b),
