@@ -2,6 +2,7 @@
 //! benchmark of the monotonicity tests, plots and the demo gallery.
 
 pub mod any_bezier;
+pub mod atomic_out;
 pub mod batch;
 pub mod bench;
 pub mod bench_targets;
@@ -17,6 +18,7 @@ pub mod progress;
 pub mod protocol;
 pub mod report;
 pub mod summary;
+pub mod ufo_tree;
 
 /// Parse `"x,y x,y ..."` (whitespace or `;` between points) into points.
 pub fn parse_points(s: &str) -> anyhow::Result<Vec<aesthetic_curves::Point>> {

@@ -20,7 +20,7 @@ use anyhow::{bail, Context, Result};
 use skrifa::instance::{LocationRef, Size};
 use skrifa::outline::{DrawSettings, OutlinePen};
 use skrifa::{FontRef, GlyphId, MetadataProvider};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Largest file `aecurve check` reads (bytes): a font or drawing beyond this is refused.
 pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
@@ -174,7 +174,6 @@ pub fn read(path: &Path) -> Result<Outlines> {
             "{}: a folder, and not a .ufo source",
             path.display()
         );
-        check_ufo_folder(path)?;
         return read_ufo(path).with_context(|| format!("{}", path.display()));
     }
     let ext = path
@@ -240,46 +239,6 @@ pub fn read_regular_file(path: &Path, cap: u64) -> Result<Vec<u8>> {
         );
     }
     Ok(data)
-}
-
-/// A UFO folder holds only folders and regular files (no links, pipes or devices), at most
-/// [`MAX_FILE_BYTES`] in all, before `norad` opens any of it.
-fn check_ufo_folder(root: &Path) -> Result<()> {
-    let mut total = 0u64;
-    let mut stack = vec![(root.to_path_buf(), 0usize)];
-    while let Some((dir, depth)) = stack.pop() {
-        anyhow::ensure!(
-            depth <= 8,
-            "{}: folders nested deeper than 8 levels in a UFO source",
-            dir.display()
-        );
-        for entry in
-            std::fs::read_dir(&dir).with_context(|| format!("reading {}", dir.display()))?
-        {
-            let entry = entry.with_context(|| format!("reading {}", dir.display()))?;
-            let path = entry.path();
-            let meta = std::fs::symlink_metadata(&path)
-                .with_context(|| format!("reading {}", path.display()))?;
-            if meta.is_dir() {
-                stack.push((path, depth + 1));
-            } else if meta.is_file() {
-                total += meta.len();
-                anyhow::ensure!(
-                    total <= MAX_FILE_BYTES,
-                    "{}: over the {} MB that are read",
-                    root.display(),
-                    MAX_FILE_BYTES / (1024 * 1024)
-                );
-            } else {
-                bail!(
-                    "{}: not a regular file (a link, pipe or device) inside the UFO source: \
-                     only its own files are read",
-                    path.display()
-                );
-            }
-        }
-    }
-    Ok(())
 }
 
 /// Runs a third-party parser on hostile bytes: a panic inside it (its robustness is not
@@ -585,26 +544,33 @@ fn svg_path_contours(p: &usvg::Path) -> std::result::Result<Vec<Contour>, String
     pen.done()
 }
 
-/// Every glyph of a UFO source's default layer (with `norad`), in font units, in name order.
-/// Contours are read from the UFO point stream: `line`, `curve` (cubic, or a line or a
-/// quadratic with fewer off-curve points), `qcurve` (TrueType quadratics with implied
-/// on-curve points, also a contour of off-curve points alone); components are not resolved
-/// (the glyphs they name are checked themselves).
+/// Every glyph of a UFO source's default layer (with `norad`, from the folder read whole
+/// and confined to it: [`crate::ufo_tree`]), in font units, in name order. Contours are
+/// read from the UFO point stream: `line`, `curve` (cubic, or a line or a quadratic with
+/// fewer off-curve points), `qcurve` (TrueType quadratics with implied on-curve points,
+/// also a contour of off-curve points alone). Components are drawn through their base
+/// glyphs and transforms, as a font reader draws composites; a component whose base is
+/// missing, or that names itself through its bases, is listed as unreadable with the
+/// glyph's name, and the glyph's other contours are read.
 pub fn read_ufo(path: &Path) -> Result<Outlines> {
-    let font = load_ufo(path)?;
+    let tree = crate::ufo_tree::UfoTree::read(path)?;
+    let font = tree.font()?;
+    let layer = font.default_layer();
     let mut shapes = Vec::new();
     let mut unreadable = Vec::new();
-    let mut glyphs: Vec<_> = font.default_layer().iter().collect();
+    let mut glyphs: Vec<_> = layer.iter().collect();
     glyphs.sort_by(|a, b| a.name().as_str().cmp(b.name().as_str()));
     for g in glyphs {
         let name = g.name().as_str().to_string();
         let mut pen = Collector::default();
-        for c in &g.contours {
-            ufo_contour(&c.points, &mut pen);
-        }
+        let mut trouble = Vec::new();
+        draw_glyph(layer, g, &IDENTITY, &mut Vec::new(), &mut pen, &mut trouble);
         match pen.done() {
-            Ok(contours) => shapes.push(Shape { name, contours }),
-            Err(e) => unreadable.push((name, e)),
+            Ok(contours) => shapes.push(Shape { name: name.clone(), contours }),
+            Err(e) => unreadable.push((name.clone(), e)),
+        }
+        if !trouble.is_empty() {
+            unreadable.push((name, trouble.join("; ")));
         }
     }
     if shapes.is_empty() && unreadable.is_empty() {
@@ -617,59 +583,83 @@ pub fn read_ufo(path: &Path) -> Result<Outlines> {
     }))
 }
 
-/// A UFO source loaded by norad after the readers' folder check (regular files only, depth
-/// and total size capped: what [`read`] does first); an error names the first `.glif` file
-/// that does not load (norad's names only the layer), and a default layer without glyphs
-/// is an error too.
+/// An affine map `(xx, xy, yx, yy, dx, dy)` as a UFO component's transform holds it.
+type Affine = [f64; 6];
+const IDENTITY: Affine = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0];
+
+/// Components nested deeper than this are refused (fonts nest two or three).
+const MAX_COMPONENT_DEPTH: usize = 16;
+
+/// A glyph's contours and, through their bases, its components' into the pen, mapped by
+/// `m`; `path` is the chain of bases being drawn (a base already on it is a cycle); what
+/// cannot be drawn goes to `trouble`.
+fn draw_glyph(
+    layer: &norad::Layer,
+    g: &norad::Glyph,
+    m: &Affine,
+    path: &mut Vec<String>,
+    pen: &mut Collector,
+    trouble: &mut Vec<String>,
+) {
+    for c in &g.contours {
+        if *m == IDENTITY {
+            ufo_contour(&c.points, pen);
+        } else {
+            let moved: Vec<norad::ContourPoint> = (c.points.iter())
+                .map(|q| {
+                    let mut q = q.clone();
+                    (q.x, q.y) = (
+                        m[0] * q.x + m[2] * q.y + m[4],
+                        m[1] * q.x + m[3] * q.y + m[5],
+                    );
+                    q
+                })
+                .collect();
+            ufo_contour(&moved, pen);
+        }
+    }
+    path.push(g.name().as_str().to_string());
+    for comp in &g.components {
+        let base = comp.base.as_str();
+        let Some(bg) = layer.get_glyph(base) else {
+            trouble.push(format!("its component's base glyph {base:?} is missing"));
+            continue;
+        };
+        if path.iter().any(|p| p == base) {
+            trouble.push(format!(
+                "its component {base:?} names itself through its bases ({} -> {base})",
+                path.join(" -> ")
+            ));
+            continue;
+        }
+        if path.len() >= MAX_COMPONENT_DEPTH {
+            trouble.push(format!("components nested deeper than {MAX_COMPONENT_DEPTH}"));
+            continue;
+        }
+        let t = &comp.transform;
+        let c = [t.x_scale, t.xy_scale, t.yx_scale, t.y_scale, t.x_offset, t.y_offset];
+        // m after c: a point p of the base goes to m(c(p)).
+        let mc = [
+            m[0] * c[0] + m[2] * c[1],
+            m[1] * c[0] + m[3] * c[1],
+            m[0] * c[2] + m[2] * c[3],
+            m[1] * c[2] + m[3] * c[3],
+            m[0] * c[4] + m[2] * c[5] + m[4],
+            m[1] * c[4] + m[3] * c[5] + m[5],
+        ];
+        draw_glyph(layer, bg, &mc, path, pen, trouble);
+    }
+    path.pop();
+}
+
+/// A UFO source loaded by norad from the folder read whole and confined to it
+/// ([`crate::ufo_tree::UfoTree`]); a default layer without glyphs is an error.
 pub fn load_ufo_checked(path: &Path) -> Result<norad::Font> {
-    check_ufo_folder(path)?;
-    let font = load_ufo(path)?;
+    let font = crate::ufo_tree::UfoTree::read(path)?.font()?;
     if font.default_layer().is_empty() {
         bail!("not a readable UFO: its default layer has no glyphs");
     }
     Ok(font)
-}
-
-/// A UFO source loaded by norad; an error names the first `.glif` file that does not load.
-fn load_ufo(path: &Path) -> Result<norad::Font> {
-    norad::Font::load(path).map_err(|e| match first_bad_glif(path) {
-        Some((file, why)) => anyhow::anyhow!(
-            "not a readable UFO: {} cannot be read ({why}); fix or remove that glyph file",
-            file.display()
-        ),
-        None => anyhow::anyhow!("not a readable UFO: {e}"),
-    })
-}
-
-/// The first `.glif` file of a UFO source that does not load, and why (norad's own error
-/// names only the layer).
-fn first_bad_glif(root: &Path) -> Option<(PathBuf, String)> {
-    let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
-        .ok()?
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| {
-            p.is_dir()
-                && p.file_name()
-                    .is_some_and(|n| n.to_string_lossy().starts_with("glyphs"))
-        })
-        .collect();
-    dirs.sort();
-    for dir in dirs {
-        let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-            .ok()?
-            .flatten()
-            .map(|e| e.path())
-            .filter(|p| p.extension().is_some_and(|e| e == "glif"))
-            .collect();
-        files.sort();
-        for f in files {
-            if let Err(e) = norad::Glyph::load(&f) {
-                return Some((f, e.to_string()));
-            }
-        }
-    }
-    None
 }
 
 /// One UFO contour into the pen.

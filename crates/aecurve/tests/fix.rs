@@ -141,6 +141,7 @@ fn fix_writes_the_same_structure_and_nothing_worse() {
             move_points: false,
             repairs: Default::default(),
         },
+        false,
     )
     .unwrap();
     // The quadratic contour is left alone, with the reason.
@@ -264,7 +265,7 @@ fn fix_rewrites_only_the_path_data_of_an_svg() {
         move_points: false,
         repairs: Default::default(),
     };
-    let (fixes, counts) = fix_svg(&src, &dst, &opts).unwrap();
+    let (fixes, counts) = fix_svg(&src, &dst, &opts, false).unwrap();
     let out = std::fs::read_to_string(&dst).unwrap();
     // Outside the o's d attribute, the text is the input's.
     let (pre, post) = text.split_once(o).unwrap();
@@ -348,7 +349,7 @@ fn fix_on_a_designspace_keeps_the_instances_no_worse() {
         move_points: false,
         repairs: Default::default(),
     };
-    let d = fix_designspace(&input, &output, &opts).unwrap();
+    let d = fix_designspace(&input, &output, &opts, false).unwrap();
     assert_eq!(d.masters.len(), 2);
     assert_eq!(d.compatible_contours, 1, "the o's contour is held together");
     let outs = [dir.join("out/masters/A.ufo"), dir.join("out/masters/B.ufo")];
@@ -391,7 +392,7 @@ fn fix_on_a_designspace_keeps_the_instances_no_worse() {
             + &source_el("masters/B.ufo", 800, " layer=\"bold\""))),
     )
     .unwrap();
-    let err = fix_designspace(&sparse, &dir.join("out2/o.designspace"), &opts)
+    let err = fix_designspace(&sparse, &dir.join("out2/o.designspace"), &opts, false)
         .err()
         .unwrap();
     assert!(format!("{err:#}").contains("\"bold\""), "{err:#}");

@@ -8,7 +8,8 @@ use aecurve::fix::{figures, fix_ufo, ContourFix, FixCounts, FixOptions};
 use aecurve::protocol::fix_file::{
     ContourFixJson, FixDesignspaceResult, FixFileResult, FixHead, MasterFixJson,
 };
-use anyhow::Result;
+use aecurve::atomic_out::{write_new, Staging};
+use anyhow::{Context, Result};
 use std::path::Path;
 use std::path::PathBuf;
 
@@ -17,6 +18,7 @@ pub(crate) fn fix(
     output: &Path,
     opts: FixOptions,
     (json, report): (bool, Option<&Path>),
+    overwrite: bool,
 ) -> Result<()> {
     let (tolerance, grid) = (opts.tolerance, opts.grid);
     anyhow::ensure!(
@@ -28,24 +30,15 @@ pub(crate) fn fix(
         "--grid must be a step >= 0 (0: none)"
     );
     let kind = Kind::of(input)?;
-    let what = match kind {
-        Kind::Svg => "file",
-        Kind::Ufo => "folder",
-        Kind::Designspace => "designspace",
+    // The report page is staged too (checked before the work, moved in after the output).
+    let report = match report {
+        Some(page) => Some((page, Staging::new(page, overwrite, &[input, output])?)),
+        None => None,
     };
-    anyhow::ensure!(
-        !output.exists(),
-        "{}: already exists; fix writes a new {what} and never replaces one",
-        output.display()
-    );
-    if let Some(parent) = output.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent)
-            .map_err(|e| anyhow::anyhow!("creating {}: {e}", parent.display()))?;
-    }
     let head = FixHead::new(input, output, &opts);
     if kind == Kind::Designspace {
-        let d = fix_designspace(input, output, &opts)?;
-        if let Some(page) = report {
+        let d = fix_designspace(input, output, &opts, overwrite)?;
+        if let Some((page, staging)) = report {
             let mut all = Vec::new();
             let mut total = 0;
             for m in &d.masters {
@@ -53,7 +46,7 @@ pub(crate) fn fix(
                 all.extend(f);
                 total += n;
             }
-            write_report(page, input, true, &all, total)?;
+            write_report((page, staging), input, true, &all, total)?;
         }
         if json {
             let masters = (d.masters.iter())
@@ -90,13 +83,13 @@ pub(crate) fn fix(
         return Ok(());
     }
     let (fixes, c) = if kind == Kind::Svg {
-        aecurve::fix::fix_svg(input, output, &opts)?
+        aecurve::fix::fix_svg(input, output, &opts, overwrite)?
     } else {
-        fix_ufo(input, output, &opts)?
+        fix_ufo(input, output, &opts, overwrite)?
     };
-    if let Some(page) = report {
+    if let Some((page, staging)) = report {
         let (f, n) = figures(&fixes, "", REPORT_FIGURES);
-        write_report(page, input, kind != Kind::Svg, &f, n)?;
+        write_report((page, staging), input, kind != Kind::Svg, &f, n)?;
     }
     if json {
         let out = FixFileResult::new(head, &fixes, &c);
@@ -112,7 +105,7 @@ pub(crate) fn fix(
 const REPORT_FIGURES: usize = 80;
 
 fn write_report(
-    page: &Path,
+    (page, staging): (&Path, Staging),
     input: &Path,
     y_up: bool,
     figures: &[aecurve::fix::report::FixFigure],
@@ -120,7 +113,9 @@ fn write_report(
 ) -> Result<()> {
     let title = format!("aecurve fix: {}", input.display());
     let html = aecurve::fix::report::fix_report(&title, y_up, figures, total);
-    std::fs::write(page, html).map_err(|e| anyhow::anyhow!("writing {}: {e}", page.display()))
+    write_new(&staging.output()?, html.as_bytes(), None)
+        .with_context(|| format!("writing the report {}", page.display()))?;
+    staging.commit()
 }
 
 /// What `fix` reads.
@@ -184,7 +179,8 @@ pub(crate) struct Args {
     /// The UFO source (a .ufo folder), a .designspace file, or an SVG file.
     input: PathBuf,
     /// Where to write the result (a new .ufo folder, .svg file, or .designspace file:
-    /// its masters are written beside it at the same relative paths).
+    /// its masters are written beside it at the same relative paths). It appears complete
+    /// or not at all; nothing is written anywhere else.
     #[arg(short, long)]
     output: PathBuf,
     /// How far the outline may move (font units): every segment's shape within this of
@@ -211,6 +207,11 @@ pub(crate) struct Args {
     /// tolerance).
     #[arg(long)]
     move_points: bool,
+    /// Replace what exists at the output (and the report's) path: the previous output is
+    /// swapped for the new one in one step when the new one is complete. Without it, an
+    /// existing output is refused.
+    #[arg(long)]
+    overwrite: bool,
     /// Print every change as JSON instead of the summary.
     #[arg(long)]
     json: bool,
@@ -244,6 +245,7 @@ impl Command for Args {
             &self.output,
             opts,
             (self.json, self.report.as_deref()),
+            self.overwrite,
         )
     }
 }

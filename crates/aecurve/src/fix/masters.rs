@@ -22,14 +22,17 @@
 //! interpolatable anyway and is repaired per master.
 
 use super::{
-    fix_font_holding, harmonize_options, index_contour, write_font_back, ContourFix, FixCounts,
-    FixOptions, Held, IndexedContour,
+    counts_of, fix_font_holding, harmonize_options, index_contour, load_font, patched_glifs,
+    write_tree, ContourFix, FixCounts, FixOptions, Held, IndexedContour,
 };
+use crate::atomic_out::{write_new, Staging};
+use crate::outline_io::{read_regular_file, MAX_FILE_BYTES};
+use crate::ufo_tree::UfoTree;
 use aesthetic_curves::harmonize::{Baseline, Harmonized};
 use aesthetic_curves::Point;
 use anyhow::{bail, Context, Result};
 use std::collections::{BTreeSet, HashMap};
-use std::path::{Path, PathBuf};
+use std::path::{Component, Path, PathBuf};
 
 /// One master's results.
 pub struct MasterFix {
@@ -52,7 +55,10 @@ pub struct DesignspaceFix {
     pub restored_segments: usize,
 }
 
-/// The sources' filenames of a designspace document.
+/// The sources' filenames of a designspace document, each a plain relative path below
+/// the designspace's folder (a master that leaves it, or an absolute path, is refused:
+/// nothing outside the folder is read, and the master could not be written back below the
+/// output's folder).
 fn sources(text: &str, path: &Path) -> Result<Vec<String>> {
     let doc = roxmltree::Document::parse(text)
         .with_context(|| format!("{}: not an XML document", path.display()))?;
@@ -68,6 +74,17 @@ fn sources(text: &str, path: &Path) -> Result<Vec<String>> {
                 path.display()
             );
         }
+        let plain = !file.is_empty()
+            && Path::new(file)
+                .components()
+                .all(|c| matches!(c, Component::Normal(_) | Component::CurDir));
+        if !plain {
+            bail!(
+                "{}: source {file:?} is not a path below the designspace's folder (it leaves \
+                 it, or is absolute): refused; move the masters below the designspace's folder",
+                path.display()
+            );
+        }
         out.push(file.to_string());
     }
     if out.is_empty() {
@@ -77,28 +94,38 @@ fn sources(text: &str, path: &Path) -> Result<Vec<String>> {
 }
 
 /// Fix every master of the designspace at `input` and write the designspace to `output`
-/// (its text unchanged) with the repaired masters beside it at the same relative paths;
-/// refuses when any of them exists.
-pub fn fix_designspace(input: &Path, output: &Path, opts: &FixOptions) -> Result<DesignspaceFix> {
-    let text =
-        std::fs::read_to_string(input).with_context(|| format!("reading {}", input.display()))?;
+/// (its text unchanged) with the repaired masters beside it at the same relative paths,
+/// all of it moved into place when complete ([`Staging`]); refuses when any of them exists
+/// unless `overwrite`.
+pub fn fix_designspace(
+    input: &Path,
+    output: &Path,
+    opts: &FixOptions,
+    overwrite: bool,
+) -> Result<DesignspaceFix> {
+    let bytes = read_regular_file(input, MAX_FILE_BYTES)?;
+    let text = String::from_utf8(bytes)
+        .map_err(|_| anyhow::anyhow!("{}: not UTF-8 text", input.display()))?;
     let files = sources(&text, input)?;
     let here = input.parent().unwrap_or(Path::new(""));
-    let there = output.parent().unwrap_or(Path::new(""));
-    let targets: Vec<PathBuf> = files.iter().map(|f| there.join(f)).collect();
-    if let Some(t) = targets.iter().find(|t| t.exists()) {
-        bail!(
-            "{}: already exists; fix writes new masters and never replaces one",
-            t.display()
-        );
-    }
-    let mut fonts = Vec::with_capacity(files.len());
+    let master_paths: Vec<PathBuf> = files.iter().map(|f| here.join(f)).collect();
+    let mut inputs: Vec<&Path> = master_paths.iter().map(PathBuf::as_path).collect();
+    inputs.push(input);
+    let mut staging = Staging::new(output, overwrite, &inputs)?;
+    let mut targets = Vec::with_capacity(files.len());
     for f in &files {
-        let path = here.join(f);
+        targets.push(staging.beside(f).with_context(|| format!("{}: master {f}", input.display()))?);
+    }
+    let mut trees = Vec::with_capacity(files.len());
+    let mut fonts = Vec::with_capacity(files.len());
+    for (f, path) in files.iter().zip(&master_paths) {
+        let tree = UfoTree::read(path)
+            .with_context(|| format!("{}: master {f} not read", input.display()))?;
         fonts.push(
-            crate::outline_io::load_ufo_checked(&path)
+            load_font(&tree)
                 .with_context(|| format!("{}: master {f} not read", input.display()))?,
         );
+        trees.push(tree);
     }
     let held = held_joins(&fonts);
     let mut all: Vec<Vec<ContourFix>> = fonts
@@ -107,21 +134,23 @@ pub fn fix_designspace(input: &Path, output: &Path, opts: &FixOptions) -> Result
         .collect();
     let (compatible_contours, restored_segments) = hold_together(&mut all, opts);
     let mut masters = Vec::with_capacity(files.len());
-    for ((font, fixes), (file, target)) in fonts.iter_mut().zip(all).zip(files.iter().zip(&targets))
+    for (((tree, font), mut fixes), (file, target)) in
+        trees.iter().zip(&fonts).zip(all).zip(files.iter().zip(&targets))
     {
-        let counts = write_font_back(font, &fixes);
-        if let Some(dir) = target.parent() {
-            std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let patched = patched_glifs(tree, font, &mut fixes)?;
+        let counts = counts_of(&fixes);
+        if target.exists() {
+            bail!("{}: master {file} is named twice", input.display());
         }
-        font.save(target)
-            .with_context(|| format!("writing {}", target.display()))?;
+        write_tree(tree, &patched, target)?;
         masters.push(MasterFix {
             filename: file.clone(),
             fixes,
             counts,
         });
     }
-    std::fs::write(output, &text).with_context(|| format!("writing {}", output.display()))?;
+    write_new(&staging.output()?, text.as_bytes(), None)?;
+    staging.commit()?;
     Ok(DesignspaceFix {
         masters,
         compatible_contours,

@@ -15,8 +15,12 @@ use aesthetic_curves::harmonize::{
 };
 use aesthetic_curves::Point;
 
+pub mod glif_patch;
 pub mod masters;
 pub mod report;
+pub mod svg_path;
+use crate::atomic_out::{write_new, Staging};
+use crate::ufo_tree::UfoTree;
 use anyhow::{Context, Result};
 use std::path::Path;
 
@@ -127,21 +131,125 @@ impl FixCounts {
     }
 }
 
-/// Fix every glyph of the UFO at `input`'s default layer and write the UFO to `output`:
-/// the per-contour results and the counts.
+/// Fix every glyph of the UFO at `input`'s default layer and write the UFO to `output`
+/// (replacing what is there only when `overwrite`): the per-contour results and the counts.
+///
+/// The UFO is read whole and confined to its folder first ([`UfoTree`]); the output is
+/// built in a staging folder and moved into place complete ([`Staging`]): every file as it
+/// was read, byte for byte with its modification time, but the `.glif` files of glyphs
+/// whose points moved, in which only those points' coordinates change ([`glif_patch`]).
 pub fn fix_ufo(
     input: &Path,
     output: &Path,
     opts: &FixOptions,
+    overwrite: bool,
 ) -> Result<(Vec<ContourFix>, FixCounts)> {
-    // The readers' folder check and norad's load, once (not `read` and then norad again).
-    let mut font = crate::outline_io::load_ufo_checked(input)
-        .with_context(|| format!("{}: not a UFO `fix` reads", input.display()))?;
-    let fixes = fix_font(&font, opts);
-    let counts = write_font_back(&mut font, &fixes);
-    font.save(output)
-        .with_context(|| format!("writing {}", output.display()))?;
+    let staging = Staging::new(output, overwrite, &[input])?;
+    let tree = UfoTree::read(input)?;
+    let font = load_font(&tree).with_context(|| format!("{}: not a UFO `fix` reads", input.display()))?;
+    let mut fixes = fix_font(&font, opts);
+    let patched = patched_glifs(&tree, &font, &mut fixes)?;
+    let counts = counts_of(&fixes);
+    write_tree(&tree, &patched, &staging.output()?)?;
+    staging.commit()?;
     Ok((fixes, counts))
+}
+
+/// The font of a UFO tree, with a default layer that holds glyphs.
+pub fn load_font(tree: &UfoTree) -> Result<norad::Font> {
+    let font = tree.font()?;
+    if font.default_layer().is_empty() {
+        anyhow::bail!("not a readable UFO: its default layer has no glyphs");
+    }
+    Ok(font)
+}
+
+/// The counts of a font's (or a master's) fixes.
+pub fn counts_of(fixes: &[ContourFix]) -> FixCounts {
+    let mut counts = FixCounts::default();
+    for f in fixes {
+        match (&f.result, &f.input) {
+            (Ok(h), Some(c)) => counts.add(h, c),
+            _ => counts.skipped_contours += 1,
+        }
+    }
+    counts
+}
+
+/// The new text of every `.glif` file of the default layer whose points moved (path in the
+/// tree to bytes). A glyph whose file cannot be patched (its structure is not what norad
+/// read) keeps its file, and its contours' results become that error.
+pub fn patched_glifs(
+    tree: &UfoTree,
+    font: &norad::Font,
+    fixes: &mut [ContourFix],
+) -> Result<std::collections::BTreeMap<std::path::PathBuf, Vec<u8>>> {
+    let layers = tree.layers()?;
+    let default_dir = Path::new("glyphs");
+    let Some(layer) = layers.iter().find(|l| l.dir == default_dir) else {
+        anyhow::bail!("{}: no default layer (`glyphs`)", tree.root.display());
+    };
+    let mut moved: std::collections::BTreeMap<String, Vec<glif_patch::Moved>> = Default::default();
+    for f in fixes.iter() {
+        let (Ok(h), Some(c)) = (&f.result, &f.input) else {
+            continue;
+        };
+        let list = moved.entry(f.glyph.clone()).or_default();
+        for (idx, (before, after)) in c.indices.iter().zip(c.segments.iter().zip(&h.segments)) {
+            for ((&i, a), b) in idx.iter().zip(after).zip(before) {
+                if a != b {
+                    list.push(glif_patch::Moved { contour: f.contour, point: i, to: *a });
+                }
+            }
+        }
+    }
+    let mut out = std::collections::BTreeMap::new();
+    let mut failed: std::collections::HashMap<String, String> = Default::default();
+    for (glyph, list) in moved.iter().filter(|(_, l)| !l.is_empty()) {
+        let result = (|| {
+            let file = layer.glyphs.get(glyph).ok_or_else(|| anyhow::anyhow!("no file"))?;
+            let g = font.default_layer().get_glyph(glyph.as_str());
+            let sizes: Vec<usize> = g.map_or(Vec::new(), |g| g.contours.iter().map(|c| c.points.len()).collect());
+            let text = std::str::from_utf8(tree.get(file).unwrap_or_default())?;
+            Ok::<_, anyhow::Error>((file.clone(), glif_patch::patch_glif(text, &sizes, list)?))
+        })();
+        match result {
+            Ok((file, text)) => {
+                out.insert(file, text.into_bytes());
+            }
+            Err(e) => {
+                failed.insert(glyph.clone(), format!("its .glif file was not written back: {e}"));
+            }
+        }
+    }
+    for f in fixes.iter_mut() {
+        if let Some(why) = failed.get(&f.glyph) {
+            f.result = Err(why.clone());
+        }
+    }
+    Ok(out)
+}
+
+/// The tree written at `at` (a new folder): every folder, every file as read (with its
+/// modification time) or as `patched` holds it.
+pub fn write_tree(
+    tree: &UfoTree,
+    patched: &std::collections::BTreeMap<std::path::PathBuf, Vec<u8>>,
+    at: &Path,
+) -> Result<()> {
+    std::fs::create_dir(at).with_context(|| format!("making {}", at.display()))?;
+    for d in &tree.dirs {
+        let p = at.join(d);
+        std::fs::create_dir(&p).with_context(|| format!("making {}", p.display()))?;
+    }
+    for (rel, f) in &tree.files {
+        let (bytes, modified) = match patched.get(rel) {
+            Some(b) => (b.as_slice(), None),
+            None => (f.bytes.as_slice(), f.modified),
+        };
+        write_new(&at.join(rel), bytes, modified)?;
+    }
+    Ok(())
 }
 
 /// The options of the library's repair for `fix`'s.
@@ -216,26 +324,6 @@ pub fn fix_font_holding(font: &norad::Font, opts: &FixOptions, held: &Held) -> V
 /// Fonts of at least this many contours show their repair's progress.
 const PROGRESS_FROM: usize = 200;
 
-/// The results of [`fix_font`] written into the font's points; the counts.
-pub fn write_font_back(font: &mut norad::Font, fixes: &[ContourFix]) -> FixCounts {
-    let mut counts = FixCounts::default();
-    let layer = font.default_layer_mut();
-    for f in fixes {
-        let (Ok(h), Some(c)) = (&f.result, &f.input) else {
-            counts.skipped_contours += 1;
-            continue;
-        };
-        if let Some(contour) = layer
-            .get_glyph_mut(f.glyph.as_str())
-            .and_then(|g| g.contours.get_mut(f.contour))
-        {
-            write_back(&mut contour.points, c, h);
-            counts.add(h, c);
-        }
-    }
-    counts
-}
-
 /// The figures of `fix --report` ([`report::fix_report`]): one per glyph or path with a
 /// changed segment (its contours `fix` read, before and after), the most joins brought under
 /// a 1 % jump first, at most `limit`; and how many shapes changed. `prefix` goes before each
@@ -284,84 +372,9 @@ pub fn figures(
     (out, total)
 }
 
-/// The harmonized coordinates into the contour's points (only those that moved).
-fn write_back(points: &mut [norad::ContourPoint], c: &IndexedContour, h: &Harmonized) {
-    for (idx, pts) in c.indices.iter().zip(&h.segments) {
-        for (&i, p) in idx.iter().zip(pts) {
-            points[i].x = p.x;
-            points[i].y = p.y;
-        }
-    }
-}
-
 /// A tangent break of at most this (degrees) counts as a smooth join in an SVG path (SVG
 /// stores no smooth flags; editors keep smooth handles collinear to rounding).
 pub const SVG_SMOOTH_DEGREES: f64 = 0.5;
-
-/// An SVG subpath: its segments' control points, whether it closes (`Z`), and whether its
-/// last segment is the closing line `Z` draws (written back as `Z` alone).
-type SvgContour = (Vec<Vec<Point>>, bool, bool);
-
-/// The contours of SVG path data of moves, lines and cubics (`M L H V C S Z`, absolute or
-/// relative), each with whether it closes by `Z` (the closing line, when the last point is
-/// not the first, is a segment for the check but is written back as `Z`). Err for arcs and
-/// quadratics, which `fix` leaves as they are. `decimals`: the most decimal places a number
-/// of `d` has ([`svg_decimals`]).
-fn svg_contours(d: &str, decimals: usize) -> std::result::Result<Vec<SvgContour>, String> {
-    if d.chars().any(|c| "AaQqTt".contains(c)) {
-        return Err("arcs or quadratics: fix works on paths of lines and cubics".into());
-    }
-    let path = kurbo::BezPath::from_svg(d).map_err(|e| format!("path data not read: {e}"))?;
-    let mut out = Vec::new();
-    let mut segs: Vec<Vec<Point>> = Vec::new();
-    let (mut start, mut at) = (Point::ZERO, Point::ZERO);
-    let flush = |segs: &mut Vec<Vec<Point>>, out: &mut Vec<_>, closed: bool, extra: bool| {
-        if !segs.is_empty() {
-            out.push((std::mem::take(segs), closed, extra));
-        }
-    };
-    for el in path.elements() {
-        match *el {
-            kurbo::PathEl::MoveTo(p) => {
-                flush(&mut segs, &mut out, false, false);
-                start = p;
-                at = p;
-            }
-            kurbo::PathEl::LineTo(p) => {
-                segs.push(vec![at, p]);
-                at = p;
-            }
-            kurbo::PathEl::CurveTo(a, b, p) => {
-                segs.push(vec![at, a, b, p]);
-                at = p;
-            }
-            kurbo::PathEl::QuadTo(..) => {
-                return Err("a quadratic: fix works on lines and cubics".into())
-            }
-            kurbo::PathEl::ClosePath => {
-                // Relative commands summed to absolute points miss the start by their
-                // rounding (a unit in the last written place per segment, plus float
-                // noise): that is the start (a reader closes there with no segment).
-                let written = 10f64.powi(-(decimals as i32)) * (segs.len() + 1) as f64;
-                let noise = (1e-9 * start.to_vec2().hypot().max(1.0)).max(written);
-                if at != start && (at - start).hypot() <= noise {
-                    if let Some(last) = segs.last_mut().and_then(|s| s.last_mut()) {
-                        *last = start;
-                    }
-                    at = start;
-                }
-                let extra = at != start;
-                if extra {
-                    segs.push(vec![at, start]);
-                }
-                flush(&mut segs, &mut out, true, extra);
-                at = start;
-            }
-        }
-    }
-    flush(&mut segs, &mut out, false, false);
-    Ok(out)
-}
 
 /// A coordinate as written back, with `decimals` places (trailing zeros dropped): the
 /// input's own precision for points that did not move (relative commands summed to
@@ -398,33 +411,86 @@ fn svg_decimals(d: &str) -> usize {
     most.max(run.unwrap_or(0)).min(9)
 }
 
-/// Path data for the contours (absolute `M L C Z`), `orig` telling which points moved,
-/// unmoved ones with `decimals` places.
-fn svg_data(contours: &[SvgContour], orig: &[SvgContour], decimals: usize) -> String {
-    let mut out = Vec::new();
-    for ((segs, closed, extra), (o, ..)) in contours.iter().zip(orig) {
-        let pt = |p: Point, q: Point| {
-            let k = if p == q { decimals } else { decimals.max(4) };
-            format!("{} {}", svg_number(p.x, k), svg_number(p.y, k))
-        };
-        out.push(format!("M{}", pt(segs[0][0], o[0][0])));
-        let n = segs.len() - usize::from(*extra);
-        for (s, q) in segs.iter().zip(o).take(n) {
-            match s.len() {
-                2 => out.push(format!("L{}", pt(s[1], q[1]))),
-                _ => out.push(format!(
-                    "C{} {} {}",
-                    pt(s[1], q[1]),
-                    pt(s[2], q[2]),
-                    pt(s[3], q[3])
-                )),
-            }
+/// The width of a contour's points' bounding box's diagonal.
+fn extent(segs: &[Vec<Point>]) -> f64 {
+    let (lo, hi) = segs.iter().flatten().fold(
+        (Point::new(f64::MAX, f64::MAX), Point::new(f64::MIN, f64::MIN)),
+        |(lo, hi), p| {
+            (
+                Point::new(lo.x.min(p.x), lo.y.min(p.y)),
+                Point::new(hi.x.max(p.x), hi.y.max(p.y)),
+            )
+        },
+    );
+    (hi - lo).hypot()
+}
+
+/// Whether a repair made something better: a join's curvature jump or angle smaller
+/// (beyond 1e-9), or fewer cubics with a hook or several extrema.
+fn improves(h: &Harmonized, c: &IndexedContour) -> bool {
+    let joins = h.joins.iter().any(|j| {
+        j.jump.1 < j.jump.0 - 1e-9 || j.angle.1 < j.angle.0 - 1e-9
+    });
+    let zone = Repairs::default().hook_zone;
+    let bumps = |segs: &[Vec<Point>]| {
+        segs.iter()
+            .filter(|p| has_bump(p, zone).unwrap_or(false))
+            .count()
+    };
+    joins || bumps(&h.segments) < bumps(&c.segments)
+}
+
+/// A repair's result given back its input (nothing moved, every join as it was).
+fn unchanged(mut h: Harmonized, c: &IndexedContour) -> Harmonized {
+    let all: Vec<usize> = (0..c.segments.len()).collect();
+    h.restore(&c.segments, c.closed, &all);
+    h
+}
+
+/// Why an SVG `<path>` is not drawn, if it is not: not in SVG's namespace, inside
+/// `<defs>`, `<clipPath>`, `<mask>`, `<metadata>` and the like (used or never drawn, not
+/// seen as such), or hidden (`display="none"`, `visibility` hidden or collapsed, as an
+/// attribute or in `style`, on it or on an element that holds it).
+fn not_rendered(node: roxmltree::Node) -> Option<String> {
+    const SVG: &str = "http://www.w3.org/2000/svg";
+    if node.tag_name().namespace() != Some(SVG) {
+        return Some("not an SVG-namespace path".into());
+    }
+    let style = |n: roxmltree::Node, prop: &str| -> Option<String> {
+        let inline = n.attribute("style").and_then(|s| {
+            s.split(';').find_map(|decl| {
+                let (k, v) = decl.split_once(':')?;
+                (k.trim() == prop).then(|| v.trim().to_string())
+            })
+        });
+        inline.or_else(|| n.attribute(prop).map(|v| v.trim().to_string()))
+    };
+    let mut visibility: Option<String> = None;
+    for n in node.ancestors().filter(|n| n.is_element()) {
+        let tag = n.tag_name().name();
+        if n != node
+            && matches!(
+                tag,
+                "defs" | "clipPath" | "mask" | "metadata" | "symbol" | "marker" | "pattern"
+                    | "title" | "desc" | "switch"
+            )
+        {
+            return Some(format!("inside <{tag}>, not drawn as it is"));
         }
-        if *closed {
-            out.push("Z".into());
+        if n.tag_name().namespace() != Some(SVG) {
+            return Some(format!("inside the foreign element <{tag}>"));
+        }
+        if style(n, "display").as_deref() == Some("none") {
+            return Some("hidden (display: none)".into());
+        }
+        if visibility.is_none() {
+            visibility = style(n, "visibility");
         }
     }
-    out.join(" ")
+    match visibility.as_deref() {
+        Some("hidden") | Some("collapse") => Some("hidden (visibility)".into()),
+        _ => None,
+    }
 }
 
 /// Smooth flags of a contour's joins by the angle test ([`SVG_SMOOTH_DEGREES`]).
@@ -468,7 +534,9 @@ pub fn fix_svg(
     input: &Path,
     output: &Path,
     opts: &FixOptions,
+    overwrite: bool,
 ) -> Result<(Vec<ContourFix>, FixCounts)> {
+    let staging = Staging::new(output, overwrite, &[input])?;
     let data = crate::outline_io::read_regular_file(input, crate::outline_io::MAX_FILE_BYTES)?;
     crate::outline_io::read_svg(&data).with_context(|| format!("{}", input.display()))?;
     let text =
@@ -490,55 +558,56 @@ pub fn fix_svg(
     let mut edits: Vec<(std::ops::Range<usize>, String)> = Vec::new();
     let paths = doc.descendants().filter(|n| n.has_tag_name("path"));
     for (k, node) in paths.enumerate() {
-        let Some(attr) = node.attributes().find(|a| a.name() == "d") else {
+        let Some(attr) = node.attributes().find(|a| a.name() == "d" && a.namespace().is_none())
+        else {
             continue;
         };
         let name = node
             .attribute("id")
             .map_or(format!("path {}", k + 1), str::to_string);
-        let decimals = svg_decimals(attr.value());
-        let parsed = svg_contours(attr.value(), decimals);
-        let contours = match parsed {
+        let left = |why: String| ContourFix {
+            glyph: name.clone(),
+            contour: 0,
+            input: None,
+            result: Err(why),
+        };
+        if let Some(why) = not_rendered(node) {
+            counts.skipped_contours += 1;
+            fixes.push(left(format!("{why}: left as it is")));
+            continue;
+        }
+        let raw = &text[attr.range_value()];
+        if raw != attr.value() {
+            counts.skipped_contours += 1;
+            fixes.push(left("path data with character references: left as it is".into()));
+            continue;
+        }
+        let decimals = svg_decimals(raw);
+        let cmds = match svg_path::parse(raw) {
             Ok(c) => c,
             Err(why) => {
                 counts.skipped_contours += 1;
-                fixes.push(ContourFix {
-                    glyph: name,
-                    contour: 0,
-                    input: None,
-                    result: Err(why),
-                });
+                fixes.push(left(why));
                 continue;
             }
         };
+        let abs = svg_path::absolute(&cmds);
+        let contours = svg_path::contours(&cmds, &abs, decimals);
         let mut fixed = contours.clone();
-        for (ci, (segs, closed, extra)) in contours.iter().enumerate() {
+        let mut changed = false;
+        for (ci, ((segs, closed, _), _)) in contours.iter().enumerate() {
             // A contour under 1,000 grid steps across (0.1 user units at the 1e-4 grid) is
             // left: the written precision is too coarse for it (a moved handle would turn
             // by degrees).
-            let (lo, hi) = segs.iter().flatten().fold(
-                (
-                    Point::new(f64::MAX, f64::MAX),
-                    Point::new(f64::MIN, f64::MIN),
-                ),
-                |(lo, hi), p| {
-                    (
-                        Point::new(lo.x.min(p.x), lo.y.min(p.y)),
-                        Point::new(hi.x.max(p.x), hi.y.max(p.y)),
-                    )
-                },
-            );
-            if (hi - lo).hypot() < 1000.0 * hopts.grid {
+            if extent(segs) < 1000.0 * hopts.grid {
                 counts.skipped_contours += 1;
                 let why = format!(
                     "smaller than 1,000 grid steps of {} across: left as it is",
                     hopts.grid
                 );
                 fixes.push(ContourFix {
-                    glyph: name.clone(),
                     contour: ci,
-                    input: None,
-                    result: Err(why),
+                    ..left(why)
                 });
                 continue;
             }
@@ -550,9 +619,13 @@ pub fn fix_svg(
             };
             let result =
                 repair(segs, *closed, &c.smooth, &hopts, &opts.repairs).map_err(|e| e.to_string());
+            // A contour is written back only where a join or a bump got better: moves that
+            // improve nothing (rounding to the grid) leave its numbers as they were.
+            let result = result.map(|h| if improves(&h, &c) { h } else { unchanged(h, &c) });
             if let Ok(h) = &result {
                 counts.add(h, &c);
-                fixed[ci] = (h.segments.clone(), *closed, *extra);
+                changed |= h.segments != *segs;
+                fixed[ci].0 .0 = h.segments.clone();
             } else {
                 counts.skipped_contours += 1;
             }
@@ -563,8 +636,10 @@ pub fn fix_svg(
                 result,
             });
         }
-        if fixed != contours {
-            edits.push((attr.range_value(), svg_data(&fixed, &contours, decimals)));
+        if changed {
+            let new = svg_path::moved_points(&abs, &fixed);
+            let d = svg_path::rewrite(raw, &cmds, (&abs, &new), decimals.max(4), svg_number);
+            edits.push((attr.range_value(), d));
         }
     }
     let mut out = text.to_string();
@@ -572,6 +647,7 @@ pub fn fix_svg(
     for (range, d) in edits {
         out.replace_range(range, &d);
     }
-    std::fs::write(output, out).with_context(|| format!("writing {}", output.display()))?;
+    write_new(&staging.output()?, out.as_bytes(), None)?;
+    staging.commit()?;
     Ok((fixes, counts))
 }
