@@ -263,8 +263,12 @@ pub fn write_new(path: &Path, bytes: &[u8], modified: Option<std::time::SystemTi
 fn sync_tree(root: &Path) -> Result<()> {
     let mut stack = vec![root.to_path_buf()];
     while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(&dir).with_context(|| format!("reading {}", dir.display()))? {
-            let path = entry.with_context(|| format!("reading {}", dir.display()))?.path();
+        for entry in
+            std::fs::read_dir(&dir).with_context(|| format!("reading {}", dir.display()))?
+        {
+            let path = entry
+                .with_context(|| format!("reading {}", dir.display()))?
+                .path();
             let meta = std::fs::symlink_metadata(&path)?;
             if meta.is_dir() {
                 stack.push(path);
@@ -338,7 +342,15 @@ fn renameat2(from: &Path, to: &Path, flags: libc::c_uint) -> std::io::Result<()>
     };
     let (a, b) = (c(from)?, c(to)?);
     // SAFETY: two NUL-terminated paths that live across the call; AT_FDCWD for both.
-    let r = unsafe { libc::renameat2(libc::AT_FDCWD, a.as_ptr(), libc::AT_FDCWD, b.as_ptr(), flags) };
+    let r = unsafe {
+        libc::renameat2(
+            libc::AT_FDCWD,
+            a.as_ptr(),
+            libc::AT_FDCWD,
+            b.as_ptr(),
+            flags,
+        )
+    };
     if r == 0 {
         Ok(())
     } else {

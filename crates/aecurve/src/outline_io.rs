@@ -566,7 +566,10 @@ pub fn read_ufo(path: &Path) -> Result<Outlines> {
         let mut trouble = Vec::new();
         draw_glyph(layer, g, &IDENTITY, &mut Vec::new(), &mut pen, &mut trouble);
         match pen.done() {
-            Ok(contours) => shapes.push(Shape { name: name.clone(), contours }),
+            Ok(contours) => shapes.push(Shape {
+                name: name.clone(),
+                contours,
+            }),
             Err(e) => unreadable.push((name.clone(), e)),
         }
         if !trouble.is_empty() {
@@ -633,11 +636,15 @@ fn draw_glyph(
             continue;
         }
         if path.len() >= MAX_COMPONENT_DEPTH {
-            trouble.push(format!("components nested deeper than {MAX_COMPONENT_DEPTH}"));
+            trouble.push(format!(
+                "components nested deeper than {MAX_COMPONENT_DEPTH}"
+            ));
             continue;
         }
         let t = &comp.transform;
-        let c = [t.x_scale, t.xy_scale, t.yx_scale, t.y_scale, t.x_offset, t.y_offset];
+        let c = [
+            t.x_scale, t.xy_scale, t.yx_scale, t.y_scale, t.x_offset, t.y_offset,
+        ];
         // m after c: a point p of the base goes to m(c(p)).
         let mc = [
             m[0] * c[0] + m[2] * c[1],

@@ -163,10 +163,16 @@ impl UfoTree {
             }
             let contents = dir.join("contents.plist");
             let Some(bytes) = self.get(&contents) else {
-                bail!("{}: missing (the layer {name:?}'s glyph list)", self.at(&contents));
+                bail!(
+                    "{}: missing (the layer {name:?}'s glyph list)",
+                    self.at(&contents)
+                );
             };
             let entries: BTreeMap<String, String> = plist::from_bytes(bytes).map_err(|e| {
-                anyhow::anyhow!("{}: not a dictionary of glyph files: {e}", self.at(&contents))
+                anyhow::anyhow!(
+                    "{}: not a dictionary of glyph files: {e}",
+                    self.at(&contents)
+                )
             })?;
             let mut glyphs = BTreeMap::new();
             for (glyph, file) in entries {
@@ -263,9 +269,7 @@ impl norad::FontSource for TreeSource<'_> {
         let mut out: Vec<norad::DirEntry> = (t.dirs.iter().filter(|p| child(p)))
             .map(|p| norad::DirEntry::Dir(name(p)))
             .collect();
-        out.extend(
-            (t.files.keys().filter(|p| child(p))).map(|p| norad::DirEntry::File(name(p))),
-        );
+        out.extend((t.files.keys().filter(|p| child(p))).map(|p| norad::DirEntry::File(name(p))));
         Ok(out)
     }
 }
@@ -287,9 +291,15 @@ fn read_no_follow(path: &Path, cap: u64) -> Result<Vec<u8>> {
         bail!("{}: not a regular file once opened", path.display());
     }
     let mut data = Vec::new();
-    file.take(cap + 1).read_to_end(&mut data).with_context(what)?;
+    file.take(cap + 1)
+        .read_to_end(&mut data)
+        .with_context(what)?;
     if data.len() as u64 > cap {
-        bail!("{}: over the {} MB that are read", path.display(), cap / (1024 * 1024));
+        bail!(
+            "{}: over the {} MB that are read",
+            path.display(),
+            cap / (1024 * 1024)
+        );
     }
     Ok(data)
 }

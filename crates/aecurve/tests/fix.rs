@@ -140,6 +140,7 @@ fn fix_writes_the_same_structure_and_nothing_worse() {
             grid: 1.0,
             move_points: false,
             repairs: Default::default(),
+            deadline: None,
         },
         false,
     )
@@ -264,6 +265,7 @@ fn fix_rewrites_only_the_path_data_of_an_svg() {
         grid: 1e-4,
         move_points: false,
         repairs: Default::default(),
+        deadline: None,
     };
     let (fixes, counts) = fix_svg(&src, &dst, &opts, false).unwrap();
     let out = std::fs::read_to_string(&dst).unwrap();
@@ -348,6 +350,7 @@ fn fix_on_a_designspace_keeps_the_instances_no_worse() {
         grid: 1.0,
         move_points: false,
         repairs: Default::default(),
+        deadline: None,
     };
     let d = fix_designspace(&input, &output, &opts, false).unwrap();
     assert_eq!(d.masters.len(), 2);

@@ -3,12 +3,12 @@
 //! change as JSON.
 
 use crate::commands::Command;
+use aecurve::atomic_out::{write_new, Staging};
 use aecurve::fix::masters::fix_designspace;
 use aecurve::fix::{figures, fix_ufo, ContourFix, FixCounts, FixOptions};
 use aecurve::protocol::fix_file::{
     ContourFixJson, FixDesignspaceResult, FixFileResult, FixHead, MasterFixJson,
 };
-use aecurve::atomic_out::{write_new, Staging};
 use anyhow::{Context, Result};
 use std::path::Path;
 use std::path::PathBuf;
@@ -212,6 +212,11 @@ pub(crate) struct Args {
     /// existing output is refused.
     #[arg(long)]
     overwrite: bool,
+    /// Stop starting contours after this many seconds: those not begun are left as they
+    /// are and listed, and the output is written with the rest (a contour begun finishes:
+    /// each takes a few seconds at most).
+    #[arg(long, value_name = "SECONDS")]
+    timeout: Option<f64>,
     /// Print every change as JSON instead of the summary.
     #[arg(long)]
     json: bool,
@@ -228,6 +233,10 @@ impl Command for Args {
     }
 
     fn run(self) -> Result<()> {
+        anyhow::ensure!(
+            self.timeout.is_none_or(|t| t.is_finite() && t > 0.0),
+            "--timeout must be a number of seconds > 0"
+        );
         let opts = FixOptions {
             tolerance: self.tolerance,
             grid: self
@@ -239,6 +248,9 @@ impl Command for Args {
                 harmonize: !self.no_harmonize,
                 ..Default::default()
             },
+            deadline: self
+                .timeout
+                .map(|t| std::time::Instant::now() + std::time::Duration::from_secs_f64(t)),
         };
         fix(
             &self.input,

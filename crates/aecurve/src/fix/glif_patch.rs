@@ -35,7 +35,11 @@ pub fn patch_glif(text: &str, contour_sizes: &[usize], moved: &[Moved]) -> Resul
     let contours: Vec<Vec<roxmltree::Node>> = outline
         .children()
         .filter(|n| n.has_tag_name("contour"))
-        .map(|c| c.children().filter(|p| p.has_tag_name("point")).collect::<Vec<_>>())
+        .map(|c| {
+            c.children()
+                .filter(|p| p.has_tag_name("point"))
+                .collect::<Vec<_>>()
+        })
         .filter(|pts| !(v1 && is_v1_anchor(pts)))
         .collect();
     let sizes: Vec<usize> = contours.iter().map(Vec::len).collect();
@@ -51,7 +55,11 @@ pub fn patch_glif(text: &str, contour_sizes: &[usize], moved: &[Moved]) -> Resul
     let mut edits: Vec<(std::ops::Range<usize>, String)> = Vec::new();
     for m in moved {
         let Some(node) = contours.get(m.contour).and_then(|c| c.get(m.point)) else {
-            bail!("point {} of contour {} is not in the file", m.point, m.contour);
+            bail!(
+                "point {} of contour {} is not in the file",
+                m.point,
+                m.contour
+            );
         };
         for (name, v) in [("x", m.to.x), ("y", m.to.y)] {
             let Some(attr) = node.attributes().find(|a| a.name() == name) else {
@@ -105,7 +113,16 @@ mod tests {
 
     #[test]
     fn numbers_read_back_exactly_and_short() {
-        for v in [120.0, -3.0, 0.5, 1e308, -2.5e-7, 0.1 + 0.2, 123456.789, 5e15] {
+        for v in [
+            120.0,
+            -3.0,
+            0.5,
+            1e308,
+            -2.5e-7,
+            0.1 + 0.2,
+            123456.789,
+            5e15,
+        ] {
             let s = number(v);
             assert_eq!(s.parse::<f64>().unwrap(), v, "{s}");
             assert!(s.len() <= 24, "{s}");

@@ -114,7 +114,11 @@ pub fn fix_designspace(
     let mut staging = Staging::new(output, overwrite, &inputs)?;
     let mut targets = Vec::with_capacity(files.len());
     for f in &files {
-        targets.push(staging.beside(f).with_context(|| format!("{}: master {f}", input.display()))?);
+        targets.push(
+            staging
+                .beside(f)
+                .with_context(|| format!("{}: master {f}", input.display()))?,
+        );
     }
     let mut trees = Vec::with_capacity(files.len());
     let mut fonts = Vec::with_capacity(files.len());
@@ -134,8 +138,11 @@ pub fn fix_designspace(
         .collect();
     let (compatible_contours, restored_segments) = hold_together(&mut all, opts);
     let mut masters = Vec::with_capacity(files.len());
-    for (((tree, font), mut fixes), (file, target)) in
-        trees.iter().zip(&fonts).zip(all).zip(files.iter().zip(&targets))
+    for (((tree, font), mut fixes), (file, target)) in trees
+        .iter()
+        .zip(&fonts)
+        .zip(all)
+        .zip(files.iter().zip(&targets))
     {
         let patched = patched_glifs(tree, font, &mut fixes)?;
         let counts = counts_of(&fixes);

@@ -65,6 +65,33 @@ pub struct FixOptions {
     pub move_points: bool,
     /// Which repairs run (hooks and extra extrema first, then the joins).
     pub repairs: Repairs,
+    /// When to stop starting contours (`--timeout`): those not begun by then are left as
+    /// they are and listed.
+    pub deadline: Option<std::time::Instant>,
+}
+
+/// Most segments of a contour `fix` repairs. The repair's time grows about linearly with a
+/// contour's length (a long cycle is cut and its joint problem solved in windows): about
+/// 20 ms a segment on a 2-core machine where every join of a wavy closed contour is off,
+/// so one contour takes at most about 8 s. A longer one (no glyph's contour comes near:
+/// the largest have a few hundred points) is left as it is and listed with its size.
+pub const MAX_FIX_SEGMENTS: usize = 400;
+
+/// Why a contour is not repaired before any work: over [`MAX_FIX_SEGMENTS`], or the
+/// deadline passed.
+fn left_before_work(segments: usize, opts: &FixOptions) -> Option<String> {
+    if segments > MAX_FIX_SEGMENTS {
+        return Some(format!(
+            "{segments} segments: over the {MAX_FIX_SEGMENTS} fix repairs in one contour; left as it is"
+        ));
+    }
+    if opts
+        .deadline
+        .is_some_and(|d| std::time::Instant::now() >= d)
+    {
+        return Some("the --timeout was reached before this contour: left as it is".into());
+    }
+    None
 }
 
 /// One contour's result, as JSON and as counts.
@@ -146,7 +173,8 @@ pub fn fix_ufo(
 ) -> Result<(Vec<ContourFix>, FixCounts)> {
     let staging = Staging::new(output, overwrite, &[input])?;
     let tree = UfoTree::read(input)?;
-    let font = load_font(&tree).with_context(|| format!("{}: not a UFO `fix` reads", input.display()))?;
+    let font =
+        load_font(&tree).with_context(|| format!("{}: not a UFO `fix` reads", input.display()))?;
     let mut fixes = fix_font(&font, opts);
     let patched = patched_glifs(&tree, &font, &mut fixes)?;
     let counts = counts_of(&fixes);
@@ -198,7 +226,11 @@ pub fn patched_glifs(
         for (idx, (before, after)) in c.indices.iter().zip(c.segments.iter().zip(&h.segments)) {
             for ((&i, a), b) in idx.iter().zip(after).zip(before) {
                 if a != b {
-                    list.push(glif_patch::Moved { contour: f.contour, point: i, to: *a });
+                    list.push(glif_patch::Moved {
+                        contour: f.contour,
+                        point: i,
+                        to: *a,
+                    });
                 }
             }
         }
@@ -207,9 +239,14 @@ pub fn patched_glifs(
     let mut failed: std::collections::HashMap<String, String> = Default::default();
     for (glyph, list) in moved.iter().filter(|(_, l)| !l.is_empty()) {
         let result = (|| {
-            let file = layer.glyphs.get(glyph).ok_or_else(|| anyhow::anyhow!("no file"))?;
+            let file = layer
+                .glyphs
+                .get(glyph)
+                .ok_or_else(|| anyhow::anyhow!("no file"))?;
             let g = font.default_layer().get_glyph(glyph.as_str());
-            let sizes: Vec<usize> = g.map_or(Vec::new(), |g| g.contours.iter().map(|c| c.points.len()).collect());
+            let sizes: Vec<usize> = g.map_or(Vec::new(), |g| {
+                g.contours.iter().map(|c| c.points.len()).collect()
+            });
             let text = std::str::from_utf8(tree.get(file).unwrap_or_default())?;
             Ok::<_, anyhow::Error>((file.clone(), glif_patch::patch_glif(text, &sizes, list)?))
         })();
@@ -218,7 +255,10 @@ pub fn patched_glifs(
                 out.insert(file, text.into_bytes());
             }
             Err(e) => {
-                failed.insert(glyph.clone(), format!("its .glif file was not written back: {e}"));
+                failed.insert(
+                    glyph.clone(),
+                    format!("its .glif file was not written back: {e}"),
+                );
             }
         }
     }
@@ -298,6 +338,9 @@ pub fn fix_font_holding(font: &norad::Font, opts: &FixOptions, held: &Held) -> V
             let indexed = index_contour(&contour.points);
             let hold = held.get(&(name.to_string(), ci));
             let result = indexed.as_ref().map_err(Clone::clone).and_then(|c| {
+                if let Some(why) = left_before_work(c.segments.len(), opts) {
+                    return Err(why);
+                }
                 let none = vec![false; c.smooth.len()];
                 let hold = hold.filter(|h| h.len() == none.len()).unwrap_or(&none);
                 repair_holding(
@@ -414,7 +457,10 @@ fn svg_decimals(d: &str) -> usize {
 /// The width of a contour's points' bounding box's diagonal.
 fn extent(segs: &[Vec<Point>]) -> f64 {
     let (lo, hi) = segs.iter().flatten().fold(
-        (Point::new(f64::MAX, f64::MAX), Point::new(f64::MIN, f64::MIN)),
+        (
+            Point::new(f64::MAX, f64::MAX),
+            Point::new(f64::MIN, f64::MIN),
+        ),
         |(lo, hi), p| {
             (
                 Point::new(lo.x.min(p.x), lo.y.min(p.y)),
@@ -428,9 +474,10 @@ fn extent(segs: &[Vec<Point>]) -> f64 {
 /// Whether a repair made something better: a join's curvature jump or angle smaller
 /// (beyond 1e-9), or fewer cubics with a hook or several extrema.
 fn improves(h: &Harmonized, c: &IndexedContour) -> bool {
-    let joins = h.joins.iter().any(|j| {
-        j.jump.1 < j.jump.0 - 1e-9 || j.angle.1 < j.angle.0 - 1e-9
-    });
+    let joins = h
+        .joins
+        .iter()
+        .any(|j| j.jump.1 < j.jump.0 - 1e-9 || j.angle.1 < j.angle.0 - 1e-9);
     let zone = Repairs::default().hook_zone;
     let bumps = |segs: &[Vec<Point>]| {
         segs.iter()
@@ -471,8 +518,16 @@ fn not_rendered(node: roxmltree::Node) -> Option<String> {
         if n != node
             && matches!(
                 tag,
-                "defs" | "clipPath" | "mask" | "metadata" | "symbol" | "marker" | "pattern"
-                    | "title" | "desc" | "switch"
+                "defs"
+                    | "clipPath"
+                    | "mask"
+                    | "metadata"
+                    | "symbol"
+                    | "marker"
+                    | "pattern"
+                    | "title"
+                    | "desc"
+                    | "switch"
             )
         {
             return Some(format!("inside <{tag}>, not drawn as it is"));
@@ -558,7 +613,9 @@ pub fn fix_svg(
     let mut edits: Vec<(std::ops::Range<usize>, String)> = Vec::new();
     let paths = doc.descendants().filter(|n| n.has_tag_name("path"));
     for (k, node) in paths.enumerate() {
-        let Some(attr) = node.attributes().find(|a| a.name() == "d" && a.namespace().is_none())
+        let Some(attr) = node
+            .attributes()
+            .find(|a| a.name() == "d" && a.namespace().is_none())
         else {
             continue;
         };
@@ -579,7 +636,9 @@ pub fn fix_svg(
         let raw = &text[attr.range_value()];
         if raw != attr.value() {
             counts.skipped_contours += 1;
-            fixes.push(left("path data with character references: left as it is".into()));
+            fixes.push(left(
+                "path data with character references: left as it is".into(),
+            ));
             continue;
         }
         let decimals = svg_decimals(raw);
@@ -617,11 +676,20 @@ pub fn fix_svg(
                 closed: *closed,
                 smooth: svg_smooth(segs, *closed),
             };
-            let result =
-                repair(segs, *closed, &c.smooth, &hopts, &opts.repairs).map_err(|e| e.to_string());
+            let result = match left_before_work(segs.len(), opts) {
+                Some(why) => Err(why),
+                None => repair(segs, *closed, &c.smooth, &hopts, &opts.repairs)
+                    .map_err(|e| e.to_string()),
+            };
             // A contour is written back only where a join or a bump got better: moves that
             // improve nothing (rounding to the grid) leave its numbers as they were.
-            let result = result.map(|h| if improves(&h, &c) { h } else { unchanged(h, &c) });
+            let result = result.map(|h| {
+                if improves(&h, &c) {
+                    h
+                } else {
+                    unchanged(h, &c)
+                }
+            });
             if let Ok(h) = &result {
                 counts.add(h, &c);
                 changed |= h.segments != *segs;

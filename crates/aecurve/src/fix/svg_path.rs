@@ -152,7 +152,8 @@ pub fn absolute(cmds: &[Cmd]) -> Vec<Vec<Point>> {
             'M' | 'L' => vec![pair(0)],
             'C' => vec![pair(0), pair(1), pair(2)],
             'S' => {
-                let r = last_c2.map_or(cur, |c2| Point::new(2.0 * cur.x - c2.x, 2.0 * cur.y - c2.y));
+                let r =
+                    last_c2.map_or(cur, |c2| Point::new(2.0 * cur.x - c2.x, 2.0 * cur.y - c2.y));
                 vec![r, pair(0), pair(1)]
             }
             'H' => vec![Point::new(base.x + c.vals[0], cur.y)],
@@ -185,21 +186,18 @@ pub type Sources = Vec<Vec<(usize, usize)>>;
 /// comes from. A subpath that ends within its rounding of its start (relative commands
 /// summed: a unit in the last written place per segment, plus float noise) ends at its
 /// start; where it ends elsewhere, `Z`'s closing line is a segment (`extra`).
-pub fn contours(
-    cmds: &[Cmd],
-    abs: &[Vec<Point>],
-    decimals: usize,
-) -> Vec<(SvgContour, Sources)> {
+pub fn contours(cmds: &[Cmd], abs: &[Vec<Point>], decimals: usize) -> Vec<(SvgContour, Sources)> {
     let mut out = Vec::new();
     let mut segs: Vec<Vec<Point>> = Vec::new();
     let mut srcs: Sources = Vec::new();
     let (mut start, mut at) = (Point::ZERO, Point::ZERO);
     let (mut start_src, mut at_src) = ((0, 0), (0, 0));
-    let flush = |segs: &mut Vec<Vec<Point>>, srcs: &mut Sources, out: &mut Vec<_>, closed, extra| {
-        if !segs.is_empty() {
-            out.push(((std::mem::take(segs), closed, extra), std::mem::take(srcs)));
-        }
-    };
+    let flush =
+        |segs: &mut Vec<Vec<Point>>, srcs: &mut Sources, out: &mut Vec<_>, closed, extra| {
+            if !segs.is_empty() {
+                out.push(((std::mem::take(segs), closed, extra), std::mem::take(srcs)));
+            }
+        };
     for (k, (c, p)) in cmds.iter().zip(abs).enumerate() {
         match c.upper() {
             'M' => {
@@ -244,10 +242,7 @@ pub fn contours(
 
 /// The commands' points (as [`absolute`] gives them) with the fixed contours' points put
 /// where they come from.
-pub fn moved_points(
-    abs: &[Vec<Point>],
-    fixed: &[(SvgContour, Sources)],
-) -> Vec<Vec<Point>> {
+pub fn moved_points(abs: &[Vec<Point>], fixed: &[(SvgContour, Sources)]) -> Vec<Vec<Point>> {
     let mut new = abs.to_vec();
     for ((segs, ..), srcs) in fixed {
         for (seg, src) in segs.iter().zip(srcs) {
@@ -288,7 +283,11 @@ pub fn rewrite(
         let rel = c.relative();
         let base = if rel { cur } else { Point::ZERO };
         let fmt_pair = |p: Point| {
-            format!("{} {}", number(p.x - base.x, decimals), number(p.y - base.y, decimals))
+            format!(
+                "{} {}",
+                number(p.x - base.x, decimals),
+                number(p.y - base.y, decimals)
+            )
         };
         let upper = c.upper();
         let reflected = match last_c2 {
@@ -318,8 +317,14 @@ pub fn rewrite(
             let vals: Vec<f64> = match upper {
                 'H' => vec![n[0].x - base.x],
                 'V' => vec![n[0].y - base.y],
-                'S' => n[n.len() - 2..].iter().flat_map(|p| [p.x - base.x, p.y - base.y]).collect(),
-                _ => n.iter().flat_map(|p| [p.x - base.x, p.y - base.y]).collect(),
+                'S' => n[n.len() - 2..]
+                    .iter()
+                    .flat_map(|p| [p.x - base.x, p.y - base.y])
+                    .collect(),
+                _ => n
+                    .iter()
+                    .flat_map(|p| [p.x - base.x, p.y - base.y])
+                    .collect(),
             };
             for ((range, &old_v), v) in c.nums.iter().zip(&c.vals).zip(vals) {
                 if (v - old_v).abs() > tiny {
@@ -383,8 +388,16 @@ mod tests {
 
     fn num(v: f64, k: usize) -> String {
         let s = format!("{v:.k$}");
-        let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
-        if s == "-0" { "0".into() } else { s }
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        };
+        if s == "-0" {
+            "0".into()
+        } else {
+            s
+        }
     }
 
     /// Every command form read to the same absolute points as kurbo reads them.

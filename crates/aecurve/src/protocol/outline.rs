@@ -552,6 +552,7 @@ impl Op for OutlineFix {
                 bumps: req.bumps != Some(false),
                 ..Default::default()
             },
+            deadline: None,
         };
         let (h, smooth) = crate::fix::fix_segments(&segments, closed, &opts)?;
         let joins = h

@@ -37,6 +37,14 @@ const NEAR_TARGET: usize = 9;
 /// state of a cubic has at most 11 × 11: all of them).
 const CYCLE_STARTS: usize = 121;
 
+/// A cycle of more segments than this is solved from [`LONG_CYCLE_STARTS`] states of its
+/// cut cubic (the cheapest alone first, and the input's), so that its time stays linear
+/// in its length; shorter cycles (every contour of a real glyph) are solved exactly.
+const LONG_CYCLE: usize = 64;
+
+/// States of the cut cubic tried in a long cycle.
+const LONG_CYCLE_STARTS: usize = 8;
+
 /// Grid steps along its tangent a handle may take in [`line_states`], each way: fine near
 /// the input, coarser further out (the tolerance on the shape lets a handle slide further
 /// than at equal parameters). On C059 Italic at T = 2, handles only, by the fix's count of
@@ -319,7 +327,13 @@ fn best_states(
             let mut firsts: Vec<usize> = (0..states[first].len()).collect();
             let own = &chain.unaries[first];
             firsts.sort_by(|&x, &y| own[x].total_cmp(&own[y]));
-            firsts.truncate(CYCLE_STARTS);
+            // A long cycle tries fewer starts (each is a pass over the whole contour).
+            let starts = if n > LONG_CYCLE {
+                LONG_CYCLE_STARTS
+            } else {
+                CYCLE_STARTS
+            };
+            firsts.truncate(starts);
             if !firsts.contains(&0) {
                 firsts.push(0);
             }

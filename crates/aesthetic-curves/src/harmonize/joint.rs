@@ -407,12 +407,61 @@ pub(super) struct Joins<'a> {
     pub guard: &'a [(f64, f64)],
 }
 
+/// Most segments the joint stage solves as one problem. Its solver's normal equations are
+/// dense (cubic in the unknowns), so a longer contour is solved in overlapping windows of
+/// this many segments, one after the other, each with the cubics outside it held and only
+/// the joins that touch it counted: time linear in the contour's length. A window this
+/// long holds every contour of a real glyph whole (the largest have a few dozen segments).
+const WINDOW: usize = 48;
+
+/// Segments two consecutive windows share (the later one may adjust a join the earlier
+/// one left at its edge).
+const WINDOW_OVERLAP: usize = 8;
+
 /// The joint stage: the handle lengths of `h` (the sweep's result on the stage's start
 /// `segs`) of the cubics at `moving` joins, except those in `hold` and the handles at
 /// `held` joins, solved together for G2 at the moving joins, with no join's jump past its
 /// `guard` and the extrema rule kept as residuals ([`shape_samples`]); why the solver
-/// stopped, or None when nothing was free.
+/// stopped, or None when nothing was free. A contour of more than [`WINDOW`] segments is
+/// solved window by window.
 pub(super) fn refine(
+    segs: &[Vec<Point>],
+    h: &mut Handles,
+    joins: &Joins,
+    hold: &[bool],
+    reach: &Reach,
+) -> Option<Stop> {
+    let n = segs.len();
+    if n <= WINDOW {
+        return refine_window(segs, h, joins, hold, reach);
+    }
+    let all: Vec<(usize, usize, usize)> = super::joins(n, joins.closed).collect();
+    let mut last = None;
+    let mut start = 0;
+    loop {
+        let end = (start + WINDOW).min(n);
+        let inside = |i: usize| (start..end).contains(&i);
+        let window_hold: Vec<bool> = (0..n).map(|i| hold[i] || !inside(i)).collect();
+        let mut moving = joins.moving.to_vec();
+        for &(j, a, b) in &all {
+            moving[j] &= inside(a) || inside(b);
+        }
+        let window = Joins {
+            moving: &moving,
+            ..*joins
+        };
+        if let Some(stop) = refine_window(segs, h, &window, &window_hold, reach) {
+            last = Some(stop);
+        }
+        if end == n {
+            return last;
+        }
+        start = end - WINDOW_OVERLAP;
+    }
+}
+
+/// [`refine`] on one problem: every cubic not held at once.
+fn refine_window(
     segs: &[Vec<Point>],
     h: &mut Handles,
     joins: &Joins,
