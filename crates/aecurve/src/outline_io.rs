@@ -591,7 +591,7 @@ type Affine = [f64; 6];
 const IDENTITY: Affine = [1.0, 0.0, 0.0, 1.0, 0.0, 0.0];
 
 /// Components nested deeper than this are refused (fonts nest two or three).
-const MAX_COMPONENT_DEPTH: usize = 16;
+const MAX_COMPONENT_DEPTH: usize = 32;
 
 /// A glyph's contours and, through their bases, its components' into the pen, mapped by
 /// `m`; `path` is the chain of bases being drawn (a base already on it is a cycle); what
@@ -637,7 +637,7 @@ fn draw_glyph(
         }
         if path.len() >= MAX_COMPONENT_DEPTH {
             trouble.push(format!(
-                "components nested deeper than {MAX_COMPONENT_DEPTH}"
+                "components nested more than {MAX_COMPONENT_DEPTH} deep"
             ));
             continue;
         }

@@ -10,3 +10,4 @@ mod protocol_fuzz;
 mod readers;
 mod readme_commands;
 mod schema;
+mod write_safety;

@@ -119,49 +119,47 @@ fn short_of_g2(contour: &Contour, pts: &[Vec<Point>], g2: f64) -> Vec<bool> {
     touch
 }
 
-/// [`place`] among given states.
+/// [`place`] among given states. The chain's table of pair costs is computed once: a
+/// state struck out (it gains extrema, or is a near twin of one that does) costs infinity
+/// from then on instead of leaving the list.
 fn place_among(
     contour: &Contour,
-    mut states: Vec<Vec<Vec<Point>>>,
+    states: Vec<Vec<Vec<Point>>>,
     opts: &HarmonizeOptions,
 ) -> Vec<Vec<Point>> {
     let n = contour.input.len();
+    let mut chain = Chain::new(contour, &states, opts);
+    let chosen = |pick: &[usize]| -> Vec<Vec<Point>> {
+        pick.iter()
+            .enumerate()
+            .map(|(i, &s)| states[i][s].clone())
+            .collect()
+    };
     for round in 0..=STRIKE_ROUNDS {
-        let pick = best_states(contour, &states, opts);
+        let pick = chain.best();
         let mut struck = false;
         for i in 0..n {
             let s = pick[i];
             if s != 0 && gains_extrema(&states[i][s], contour.extrema_before[i]) {
-                if round == STRIKE_ROUNDS {
-                    states[i].truncate(1);
-                } else {
-                    // The state and its near twins (within two grid cells: the others
-                    // around the same target spoil the same way); never the input.
-                    let bad = states[i][s].clone();
-                    let near = 2.0 * opts.grid;
-                    let mut k = 0;
-                    states[i].retain(|q| {
-                        k += 1;
-                        k == 1 || max_move(q, &bad) > near
-                    });
+                // The state and its near twins (within two grid cells: the others around
+                // the same target spoil the same way), or in the last round every state
+                // but the input.
+                let bad = &states[i][s];
+                let near = 2.0 * opts.grid;
+                for (k, q) in states[i].iter().enumerate().skip(1) {
+                    if round == STRIKE_ROUNDS || max_move(q, bad) <= near {
+                        chain.unaries[i][k] = f64::INFINITY;
+                    }
                 }
                 struck = true;
             }
         }
         if !struck {
-            return pick
-                .iter()
-                .enumerate()
-                .map(|(i, &s)| states[i][s].clone())
-                .collect();
+            return chosen(&pick);
         }
     }
     // The last round left only input states where it struck: solved once more.
-    let pick = best_states(contour, &states, opts);
-    pick.iter()
-        .enumerate()
-        .map(|(i, &s)| states[i][s].clone())
-        .collect()
+    chosen(&chain.best())
 }
 
 /// A cubic's states: its two handles at each of their candidates, where the outline stays
@@ -302,44 +300,13 @@ fn unit(v: Vec2) -> Vec2 {
 }
 
 /// The state per segment minimising the chain's cost (see the module documentation).
+#[cfg(test)]
 fn best_states(
     contour: &Contour,
     states: &[Vec<Vec<Point>>],
     opts: &HarmonizeOptions,
 ) -> Vec<usize> {
-    let n = states.len();
-    let free = |j: usize| !contour.smooth[j];
-    // A join where the chain may be cut: a corner, or (open) the contour's ends.
-    let start = if !contour.closed {
-        Some(0)
-    } else {
-        (0..n).find(|&j| free(j)).map(|j| (j + 1) % n)
-    };
-    let order_from = |s: usize| -> Vec<usize> { (0..n).map(|k| (s + k) % n).collect() };
-    let chain = Chain::new(contour, states, opts);
-    match start {
-        Some(s) => chain.solve(&order_from(s), None).1,
-        None => {
-            // A cycle: cut at the cubic with the fewest states, each of them tried (the
-            // cheapest alone first, at most CYCLE_STARTS: exact up to that many).
-            let first = (0..n).min_by_key(|&i| states[i].len()).unwrap_or(0);
-            let order = order_from(first);
-            let mut firsts: Vec<usize> = (0..states[first].len()).collect();
-            let own = &chain.unaries[first];
-            firsts.sort_by(|&x, &y| own[x].total_cmp(&own[y]));
-            // A long cycle tries fewer starts (each is a pass over the whole contour).
-            let starts = if n > LONG_CYCLE {
-                LONG_CYCLE_STARTS
-            } else {
-                CYCLE_STARTS
-            };
-            firsts.truncate(starts);
-            if !firsts.contains(&0) {
-                firsts.push(0);
-            }
-            chain.best_cycle(&order, &firsts)
-        }
-    }
+    Chain::new(contour, states, opts).best()
 }
 
 /// The chain's costs over the candidate states.
@@ -360,6 +327,48 @@ struct Chain<'a> {
 }
 
 impl<'a> Chain<'a> {
+    /// The state per segment minimising the chain's cost (see the module documentation).
+    fn best(&self) -> Vec<usize> {
+        let n = self.states.len();
+        let free = |j: usize| !self.contour.smooth[j];
+        // A join where the chain may be cut: a corner, or (open) the contour's ends.
+        let start = if !self.contour.closed {
+            Some(0)
+        } else {
+            (0..n).find(|&j| free(j)).map(|j| (j + 1) % n)
+        };
+        let order_from = |s: usize| -> Vec<usize> { (0..n).map(|k| (s + k) % n).collect() };
+        match start {
+            Some(s) => self.solve(&order_from(s), None).1,
+            None => {
+                // A cycle: cut at the cubic with the fewest states, each of them tried (the
+                // cheapest alone first, at most CYCLE_STARTS: exact up to that many).
+                let first = (0..n).min_by_key(|&i| self.live(i)).unwrap_or(0);
+                let order = order_from(first);
+                let mut firsts: Vec<usize> = (0..self.states[first].len()).collect();
+                let own = &self.unaries[first];
+                firsts.sort_by(|&x, &y| own[x].total_cmp(&own[y]));
+                firsts.retain(|&x| x == 0 || own[x].is_finite());
+                // A long cycle tries fewer starts (each is a pass over the whole contour).
+                let starts = if n > LONG_CYCLE {
+                    LONG_CYCLE_STARTS
+                } else {
+                    CYCLE_STARTS
+                };
+                firsts.truncate(starts);
+                if !firsts.contains(&0) {
+                    firsts.push(0);
+                }
+                self.best_cycle(&order, &firsts)
+            }
+        }
+    }
+
+    /// How many of segment `i`'s states are not struck out.
+    fn live(&self, i: usize) -> usize {
+        self.unaries[i].iter().filter(|u| u.is_finite()).count()
+    }
+
     fn new(
         contour: &'a Contour<'a>,
         states: &'a [Vec<Vec<Point>>],
