@@ -6,6 +6,7 @@ pub mod atomic_out;
 pub mod batch;
 pub mod bench;
 pub mod bench_targets;
+pub mod cff_exact;
 pub mod check_json;
 pub mod editor;
 /// The exports live in their own crate (shared with the Python package).

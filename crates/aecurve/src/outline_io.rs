@@ -257,7 +257,23 @@ pub fn contained<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
     }
 }
 
-/// Every glyph of a TrueType or OpenType/CFF font, unhinted, in font units. A glyph whose
+impl crate::cff_exact::ExactPen for Collector {
+    fn move_to(&mut self, p: Point) {
+        Collector::move_to(self, p);
+    }
+    fn line_to(&mut self, p: Point) {
+        Collector::line_to(self, p);
+    }
+    fn cubic_to(&mut self, a: Point, b: Point, p: Point) {
+        Collector::cubic_to(self, a, b, p);
+    }
+    fn close(&mut self) {
+        Collector::close(self);
+    }
+}
+
+/// Every glyph of a TrueType or OpenType/CFF font, unhinted, in font units (CFF and CFF2
+/// coordinates at their charstrings' full precision: [`crate::cff_exact`]). A glyph whose
 /// name another glyph also has is named with its glyph id too (`uni00AD (gid 2584)`), so
 /// each shape has its own name; a glyph the parser fails on (a panic inside it included) is
 /// listed as unreadable, and the others are read.
@@ -269,6 +285,9 @@ fn read_font_inner(data: &[u8]) -> Result<Outlines> {
     let font = FontRef::new(data).map_err(|e| anyhow::anyhow!("not a readable font: {e}"))?;
     let names = font.glyph_names();
     let outlines = font.outline_glyphs();
+    // CFF and CFF2 charstrings at their own precision (skrifa's unscaled drawing truncates
+    // them to whole units); TrueType glyphs through skrifa, whose points are integers.
+    let exact = crate::cff_exact::ExactCff::of(&font);
     let count = names.num_glyphs();
     if count == 0 {
         bail!("not a readable font: it has no glyphs (a truncated or damaged file?)");
@@ -294,6 +313,13 @@ fn read_font_inner(data: &[u8]) -> Result<Outlines> {
             raw[gid as usize].clone()
         };
         let drawn = contained(|| {
+            if let Some(cff) = &exact {
+                let mut pen = Collector::default();
+                let drawn = cff.draw(gid, &mut pen).map_err(|e| anyhow::anyhow!("glyph {gid}: {e}"))?;
+                if drawn {
+                    return pen.done().map_err(|e| anyhow::anyhow!("glyph {gid}: {e}"));
+                }
+            }
             let glyph = outlines
                 .get(GlyphId::new(gid))
                 .ok_or_else(|| anyhow::anyhow!("glyph {gid}: {}", why_no_outline(&font, gid)))?;
@@ -553,7 +579,7 @@ fn svg_path_contours(p: &usvg::Path) -> std::result::Result<Vec<Contour>, String
 /// missing, or that names itself through its bases, is listed as unreadable with the
 /// glyph's name, and the glyph's other contours are read.
 pub fn read_ufo(path: &Path) -> Result<Outlines> {
-    let tree = crate::ufo_tree::UfoTree::read(path)?;
+    let tree = crate::ufo_tree::UfoTree::read(path, MAX_FILE_BYTES)?;
     let font = tree.font()?;
     let layer = font.default_layer();
     let mut shapes = Vec::new();
@@ -657,16 +683,6 @@ fn draw_glyph(
         draw_glyph(layer, bg, &mc, path, pen, trouble);
     }
     path.pop();
-}
-
-/// A UFO source loaded by norad from the folder read whole and confined to it
-/// ([`crate::ufo_tree::UfoTree`]); a default layer without glyphs is an error.
-pub fn load_ufo_checked(path: &Path) -> Result<norad::Font> {
-    let font = crate::ufo_tree::UfoTree::read(path)?.font()?;
-    if font.default_layer().is_empty() {
-        bail!("not a readable UFO: its default layer has no glyphs");
-    }
-    Ok(font)
 }
 
 /// One UFO contour into the pen.

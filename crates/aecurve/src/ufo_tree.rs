@@ -6,7 +6,7 @@
 //! and a name such as `../../outside/O_.glif` or `/dev/zero` must not lead a reader (or
 //! a writer that writes the fixed glyph back where it was read) outside the UFO. So the
 //! folder is walked first, without following links: only folders and regular files, at
-//! most [`MAX_DEPTH`] levels and [`MAX_FILE_BYTES`] in all, each file opened without
+//! most [`MAX_DEPTH`] levels and the caller's cap of bytes in all, each file opened without
 //! blocking and checked again once open. Then every entry of the two plists is checked to
 //! be a plain name of the UFO's own (one path component, no `..`, not absolute) naming a
 //! file that was read, and an entry that is not is an error naming the entry and the plist
@@ -16,7 +16,6 @@
 //! The bytes stay in the tree, so that `fix` writes the output from what it read: every file
 //! it did not change byte for byte as it was, with its modification time.
 
-use crate::outline_io::MAX_FILE_BYTES;
 use anyhow::{bail, Context, Result};
 use std::collections::BTreeMap;
 use std::path::{Component, Path, PathBuf};
@@ -59,9 +58,9 @@ pub struct LayerFiles {
 
 impl UfoTree {
     /// Read the folder at `root`: folders and regular files only (a link, pipe, device or
-    /// socket anywhere is an error naming it), at most [`MAX_DEPTH`] levels and
-    /// [`MAX_FILE_BYTES`] in all.
-    pub fn read(root: &Path) -> Result<UfoTree> {
+    /// socket anywhere is an error naming it), at most [`MAX_DEPTH`] levels and `cap` bytes
+    /// in all.
+    pub fn read(root: &Path, cap: u64) -> Result<UfoTree> {
         let meta = std::fs::symlink_metadata(root)
             .with_context(|| format!("reading {}", root.display()))?;
         if !meta.is_dir() {
@@ -101,14 +100,14 @@ impl UfoTree {
                     stack.push(name);
                 } else if meta.is_file() {
                     total += meta.len();
-                    if total > MAX_FILE_BYTES {
+                    if total > cap {
                         bail!(
                             "{}: over the {} MB that are read",
                             root.display(),
-                            MAX_FILE_BYTES / (1024 * 1024)
+                            cap / (1024 * 1024)
                         );
                     }
-                    let bytes = read_no_follow(&path, MAX_FILE_BYTES)?;
+                    let bytes = read_no_follow(&path, cap - (total - meta.len()))?;
                     total += (bytes.len() as u64).saturating_sub(meta.len());
                     let modified = meta.modified().ok();
                     tree.files.insert(name, TreeFile { bytes, modified });

@@ -404,3 +404,52 @@ fn a_spline_whose_control_points_lack_z_is_named_as_such() {
         "{why}"
     );
 }
+
+/// A CFF font whose charstrings hold fractions (16.16 operands, as fontmake, FontForge and
+/// interpolation write them), one glyph drawn with `flex` and `hflex`, and one whose last
+/// point is 1/65536 from its start: every point is read as fontTools reads it (the font and
+/// fontTools' reading are made by `tools/make_fractional_cff.py`), not truncated to whole
+/// units, and the closing line of 1/65536 is a segment of its own.
+#[test]
+fn cff_coordinates_are_read_at_their_full_precision() {
+    let o = read_font(include_bytes!("data/fractional.otf")).unwrap();
+    let theirs: serde_json::Value =
+        serde_json::from_str(include_str!("data/fractional.json")).unwrap();
+    let theirs = theirs.as_object().unwrap();
+    assert_eq!(theirs.len(), 3);
+    for (name, ops) in theirs {
+        let shape = (o.shapes.iter().find(|s| &s.name == name))
+            .unwrap_or_else(|| panic!("{name} not read: {:?}", o.unreadable));
+        // fontTools' points in order, and where each contour starts.
+        let mut expected: Vec<Vec<(f64, f64)>> = Vec::new();
+        for op in ops.as_array().unwrap() {
+            let kind = op[0].as_str().unwrap();
+            let pts: Vec<(f64, f64)> = (op[1].as_array().unwrap().iter())
+                .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+                .collect();
+            match kind {
+                "moveTo" => expected.push(pts),
+                "closePath" | "endPath" => {}
+                _ => expected.last_mut().unwrap().extend(pts),
+            }
+        }
+        assert_eq!(shape.contours.len(), expected.len(), "{name}");
+        for (c, want) in shape.contours.iter().zip(&expected) {
+            let mut got = vec![c.segments[0].points()[0]];
+            for s in &c.segments {
+                got.extend(&s.points()[1..]);
+            }
+            // The closing line back to the start, which fontTools' closePath implies.
+            if c.closed && got.len() == want.len() + 1 {
+                assert_eq!(got.pop(), Some(got[0]), "{name}");
+            }
+            let got: Vec<(f64, f64)> = got.iter().map(|p| (p.x, p.y)).collect();
+            assert_eq!(&got, want, "{name}: not the font's own numbers");
+        }
+    }
+    // The glyph that ends 1/65536 from its start keeps its closing line.
+    let nearly = o.shapes.iter().find(|s| s.name == "nearly").unwrap();
+    let last = nearly.contours[0].segments.last().unwrap().points().to_vec();
+    assert_eq!(last.len(), 2, "{last:?}");
+    assert_eq!(last[0].x - last[1].x, 1.0 / 65536.0);
+}

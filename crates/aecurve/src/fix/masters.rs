@@ -123,7 +123,7 @@ pub fn fix_designspace(
     let mut trees = Vec::with_capacity(files.len());
     let mut fonts = Vec::with_capacity(files.len());
     for (f, path) in files.iter().zip(&master_paths) {
-        let tree = UfoTree::read(path)
+        let tree = UfoTree::read(path, MAX_FILE_BYTES)
             .with_context(|| format!("{}: master {f} not read", input.display()))?;
         fonts.push(
             load_font(&tree)

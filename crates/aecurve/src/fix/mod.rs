@@ -172,7 +172,7 @@ pub fn fix_ufo(
     overwrite: bool,
 ) -> Result<(Vec<ContourFix>, FixCounts)> {
     let staging = Staging::new(output, overwrite, &[input])?;
-    let tree = UfoTree::read(input)?;
+    let tree = UfoTree::read(input, crate::outline_io::MAX_FILE_BYTES)?;
     let font =
         load_font(&tree).with_context(|| format!("{}: not a UFO `fix` reads", input.display()))?;
     let mut fixes = fix_font(&font, opts);
