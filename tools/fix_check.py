@@ -252,6 +252,33 @@ def labels_agree(report, name):
             if j["outcome"] in ("limited", "partly", "reverted") and after is not None and after < 0.01:
                 fail(f"{name} {c['glyph']} contour {c['contour']}: {j['outcome']} with a jump of {after} (under 1 %)")
 
+def reviewable_diff(src, dst, what):
+    """The diff a reviewer sees (`git diff` of the source against the fix, by `git
+    diff --no-index --numstat`): the same files; only the .glif files of glyphs whose
+    segments changed differ, in as many lines as they have, and every changed line is a
+    `<point` line; every other file has its bytes and its modification time."""
+    files = lambda root: sorted(os.path.relpath(os.path.join(d, f), root)
+                                for d, _, fs in os.walk(root) for f in fs)
+    if files(src) != files(dst):
+        fail(f"{what}: the fix's files are not the source's")
+    out = subprocess.run(["git", "diff", "--no-index", "--numstat", src, dst], capture_output=True, text=True)
+    differ = [line.split("\t") for line in out.stdout.splitlines()]
+    for added, removed, path in differ:
+        if ".glif" not in path:
+            fail(f"{what}: {path} differs (only glyph files may)")
+        if added != removed:
+            fail(f"{what}: {path}: {added} lines added, {removed} removed (only lines of moved points may change)")
+    diff = subprocess.run(["git", "diff", "--no-index", "-U0", src, dst], capture_output=True, text=True).stdout
+    for line in diff.splitlines():
+        if line[:1] in "+-" and not line.startswith(("+++", "---")) and not line[1:].lstrip().startswith("<point"):
+            fail(f"{what}: a changed line that is not a point's: {line!r}")
+    same = [f for f in files(src) if os.path.getmtime(os.path.join(src, f)) == os.path.getmtime(os.path.join(dst, f))]
+    if len(same) != len(files(src)) - len(differ):
+        fail(f"{what}: {len(files(src)) - len(differ)} files unchanged, but {len(same)} keep their modification time")
+    print(f"{what}: git diff shows {len(differ)} glyph files changed, only <point> lines; "
+          f"{len(same)} of {len(files(src))} files keep their bytes and modification time")
+
+
 fonts = sorted(glob.glob("/usr/share/texmf/fonts/opentype/public/tex-gyre/texgyre*-regular.otf"))[:2]
 if not fonts:
     fail("no TeX Gyre fonts (apt install fonts-texgyre)")
@@ -272,6 +299,7 @@ for f in fonts:
         claims = report["counts"]
         labels_agree(report, f"{name} {mode}")
         moved = same_structure(ufoLib2.Font.open(src), ufoLib2.Font.open(dst), name, bool(mode))
+        reviewable_diff(src, dst, f"{name} {' '.join(mode)}")
         joins, (u0, u1), bumps = compare_checks(before, check_json(dst), name)
         if (claims["bumps_before"], claims["bumps_after"]) != tuple(bumps):
             fail(f"{name}: fix claims {claims['bumps_before']} -> {claims['bumps_after']} hooks or wobbles, check counts {bumps}")

@@ -609,6 +609,17 @@ fn fix_writes_back_only_the_moved_points() {
     }
     // The output reads back in norad as a UFO 2 would (upconverted in memory).
     assert!(Font::load(&out).is_ok());
+    // With on-curve points moving too (each shared by two segments): written once each,
+    // and the file still reads.
+    let out2 = dir.join("out2.ufo");
+    let moving = FixOptions {
+        move_points: true,
+        ..opts()
+    };
+    let (_, counts) = fix_ufo(&ufo, &out2, &moving, false).unwrap();
+    assert!(counts.changed_segments > 0);
+    let font = Font::load(&out2).unwrap();
+    assert_eq!(font.default_layer().len(), 3);
 }
 
 /// A UFO's composites are checked through their components (as a font reader draws

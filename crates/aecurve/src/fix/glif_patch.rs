@@ -76,7 +76,12 @@ pub fn patch_glif(text: &str, contour_sizes: &[usize], moved: &[Moved]) -> Resul
             edits.push((range, number(v)));
         }
     }
+    // A point shared by two segments (an on-curve point) is listed once per segment.
     edits.sort_by_key(|e| std::cmp::Reverse(e.0.start));
+    edits.dedup_by(|a, b| a.0 == b.0);
+    if edits.windows(2).any(|w| w[1].0.end > w[0].0.start) {
+        bail!("two different moves of one coordinate");
+    }
     let mut out = text.to_string();
     for (range, s) in edits {
         out.replace_range(range, &s);
@@ -146,5 +151,8 @@ mod tests {
         let out = patch_glif(text, &[2], &moved).unwrap();
         assert_eq!(out, text.replace("x=\"20.50\"", "x=\"21\""));
         assert!(patch_glif(text, &[3], &moved).is_err());
+        // A point listed twice (shared by two segments) is written once.
+        let twice = [moved[0], moved[0]];
+        assert_eq!(patch_glif(text, &[2], &twice).unwrap(), out);
     }
 }
