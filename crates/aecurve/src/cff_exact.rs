@@ -56,7 +56,10 @@ impl<'a> ExactCff<'a> {
     /// damaged charstring).
     pub fn draw(&self, gid: u32, pen: &mut impl ExactPen) -> Result<bool, String> {
         let gid = GlyphId::new(gid);
-        let index = self.cff.subfont_index(gid).ok_or("no subfont for the glyph")?;
+        let index = self
+            .cff
+            .subfont_index(gid)
+            .ok_or("no subfont for the glyph")?;
         let subfont = (self.cff.subfont(index, &[])).map_err(|e| e.to_string())?;
         // What a reader applies to font units (FreeType's and skrifa's rule): nothing
         // where the normalized matrix is the identity at the font's own units per em.
@@ -66,8 +69,10 @@ impl<'a> ExactCff<'a> {
         }
         let mut sink = Sink(pen);
         let mut filtered = NopFilterSink::new(&mut sink);
-        (self.cff.evaluate_charstring(&subfont, gid, &[], &mut filtered))
-            .map_err(|e| e.to_string())?;
+        (self
+            .cff
+            .evaluate_charstring(&subfont, gid, &[], &mut filtered))
+        .map_err(|e| e.to_string())?;
         Ok(true)
     }
 }

@@ -315,7 +315,9 @@ fn read_font_inner(data: &[u8]) -> Result<Outlines> {
         let drawn = contained(|| {
             if let Some(cff) = &exact {
                 let mut pen = Collector::default();
-                let drawn = cff.draw(gid, &mut pen).map_err(|e| anyhow::anyhow!("glyph {gid}: {e}"))?;
+                let drawn = cff
+                    .draw(gid, &mut pen)
+                    .map_err(|e| anyhow::anyhow!("glyph {gid}: {e}"))?;
                 if drawn {
                     return pen.done().map_err(|e| anyhow::anyhow!("glyph {gid}: {e}"));
                 }

@@ -449,7 +449,12 @@ fn cff_coordinates_are_read_at_their_full_precision() {
     }
     // The glyph that ends 1/65536 from its start keeps its closing line.
     let nearly = o.shapes.iter().find(|s| s.name == "nearly").unwrap();
-    let last = nearly.contours[0].segments.last().unwrap().points().to_vec();
+    let last = nearly.contours[0]
+        .segments
+        .last()
+        .unwrap()
+        .points()
+        .to_vec();
     assert_eq!(last.len(), 2, "{last:?}");
     assert_eq!(last[0].x - last[1].x, 1.0 / 65536.0);
 }

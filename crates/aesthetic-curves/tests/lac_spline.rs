@@ -592,3 +592,128 @@ fn a_closing_span_that_winds_nearly_a_full_turn_is_solved() {
     let t = s.tangents[last];
     assert!(chord.normalize().dot(t) < (160f64).to_radians().cos());
 }
+
+/// Point sets a designer clicks or types, over the α range the editor offers: random open
+/// walks of 4 to 9 points turning up to 75° between chords at integer pixels, closed
+/// polygons of 4 to 9 integer points around a centre, and typed waves of round
+/// coordinates; `n_per_alpha` of each kind at each α of -5, -3, -2, -1, -0.5, 0, 0.5, 1,
+/// 2, 3, 5. Every answer must be the checked spline (through the points, G2 and every
+/// cubic proven monotone, by the test's own evaluator); where the requested α could not
+/// be held, the spans that took another α are named and every other span has the
+/// requested one. Returns (answered, asked, relaxed spans, spans).
+fn alpha_sweep(seed: u64, n_per_alpha: usize) -> (usize, usize, usize, usize) {
+    let mut rng = SplitMix64::new(seed);
+    let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * rng.next_f64();
+    let alphas = [-5.0, -3.0, -2.0, -1.0, -0.5, 0.0, 0.5, 1.0, 2.0, 3.0, 5.0];
+    let (mut answered, mut asked, mut relaxed, mut spans) = (0, 0, 0, 0);
+    for &alpha in &alphas {
+        for case in 0..3 * n_per_alpha {
+            let n = 4 + (uniform(0.0, 6.0) as usize).min(5);
+            let (pts, closed): (Vec<Point>, bool) = match case % 3 {
+                0 => {
+                    let mut pts = vec![p(0.0, 0.0)];
+                    let mut heading = uniform(-3.14, 3.14);
+                    for _ in 1..n {
+                        heading += uniform(-75.0, 75.0).to_radians();
+                        let l = uniform(20.0, 120.0);
+                        let last = *pts.last().unwrap();
+                        let next = p(
+                            (last.x + l * heading.cos()).round(),
+                            (last.y + l * heading.sin()).round(),
+                        );
+                        if next != last {
+                            pts.push(next);
+                        }
+                    }
+                    (pts, false)
+                }
+                1 => {
+                    let pts = (0..n)
+                        .map(|k| {
+                            let t =
+                                std::f64::consts::TAU * k as f64 / n as f64 + uniform(-0.3, 0.3);
+                            let r = uniform(60.0, 140.0);
+                            p((r * t.cos()).round(), (r * t.sin()).round())
+                        })
+                        .collect();
+                    (pts, true)
+                }
+                _ => {
+                    // A wave typed in round numbers: x every 3 units, y a rounded sine
+                    // of a random phase and amplitude.
+                    let (amp, phase) = (uniform(1.0, 4.0), uniform(0.0, 6.28));
+                    let pts = (0..n + 2)
+                        .map(|i| {
+                            let y = 5.0 + amp * (phase + i as f64 * 1.3).sin();
+                            p(1.0 + 3.0 * i as f64, y.round())
+                        })
+                        .collect();
+                    (pts, false)
+                }
+            };
+            if pts.len() < 3 {
+                continue;
+            }
+            asked += 1;
+            let opts = LacSplineOptions {
+                alpha,
+                closed,
+                ..Default::default()
+            };
+            let s = match lac_spline(&pts, &opts) {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("alpha {alpha} kind {} {pts:?}: {e}", case % 3);
+                    continue;
+                }
+            };
+            let (jump, angle) = check(&pts, &opts, &s);
+            if !(s.g2() && jump < 1e-8 && angle < 1e-9) {
+                eprintln!(
+                    "alpha {alpha} kind {} {pts:?}: jump {jump:e} angle {angle:e}",
+                    case % 3
+                );
+                continue;
+            }
+            answered += 1;
+            spans += s.span_alphas.len();
+            relaxed += s.relaxed_spans.len();
+            for (k, a) in s.span_alphas.iter().enumerate() {
+                assert!(
+                    *a == alpha || s.relaxed_spans.contains(&k),
+                    "span {k} got alpha {a} without being named"
+                );
+            }
+        }
+    }
+    (answered, asked, relaxed, spans)
+}
+
+/// The sweep of [`alpha_sweep`], 8 sets of each kind at each α (264 sets). Before the
+/// spans could take the nearest α they hold, 35 to 85 % of the sets at α >= 0 failed and
+/// half of the waves at every α; 20 sets of each kind (660) answer 644 (97.6 %): the rest
+/// are solved but their cubics not G2 to 1e-8 as delivered (mostly α <= -2, jumps of
+/// 1e-8 to 1e-3), and three typed waves at α >= 2 with no solution found.
+#[test]
+fn the_spline_answers_at_every_alpha() {
+    let (answered, asked, relaxed, spans) = alpha_sweep(67, 8);
+    eprintln!(
+        "alpha sweep: {answered} of {asked} answered G2 and monotone; {relaxed} of {spans} \
+         spans took another alpha than the requested one"
+    );
+    assert!(answered * 100 >= asked * 96, "{answered} of {asked}");
+    assert!(relaxed * 4 <= spans, "{relaxed} of {spans} spans relaxed");
+}
+
+/// The sweep with 40 sets of each kind at each α (1,320 sets, another seed).
+#[test]
+#[ignore = "slow: about two minutes (run by CI's slow oracles)"]
+fn the_spline_answers_at_every_alpha_on_1320_sets() {
+    let (answered, asked, relaxed, spans) = alpha_sweep(1067, 40);
+    eprintln!(
+        "alpha sweep: {answered} of {asked} answered G2 and monotone; {relaxed} of {spans} \
+         spans took another alpha than the requested one"
+    );
+    assert!(answered * 100 >= asked * 96, "{answered} of {asked}");
+    assert!(relaxed * 4 <= spans, "{relaxed} of {spans} spans relaxed");
+}

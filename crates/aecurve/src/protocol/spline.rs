@@ -260,6 +260,12 @@ pub struct LacSplineResult {
     pub inflections: usize,
     /// Curvature extrema.
     pub curvature_extrema: usize,
+    /// The α each span was solved with: the requested one, or where no G2 spline through
+    /// the points holds it in every span, the nearest one that span could hold.
+    pub span_alphas: Vec<f64>,
+    /// The spans (by their first point) whose α is not the requested one; empty when every
+    /// span has it.
+    pub relaxed_spans: Vec<usize>,
 }
 
 /// The result of `spline.lac` (also `aecurve spline --kind lac --json`).
@@ -294,6 +300,8 @@ pub fn lac_spline_json(s: &LacSpline) -> LacSplineResult {
         max_rational_error: s.max_rational_error,
         inflections: s.inflections,
         curvature_extrema: s.curvature_extrema,
+        span_alphas: s.span_alphas.clone(),
+        relaxed_spans: s.relaxed_spans.clone(),
     }
 }
 

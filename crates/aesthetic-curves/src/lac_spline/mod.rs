@@ -18,12 +18,15 @@
 //! - `pieces`: the solved spans as segments in input coordinates and their cubics;
 //! - `joins`: the cubics' end curvatures as their f64 coordinates read them, repaired
 //!   where rounding moved them (short pieces far from the origin);
+//! - `relax`: where the requested α fails, the walk from the clothoid spline (α = -1) to
+//!   the nearest α each span can hold;
 //! - here: the options, the result and the driver.
 
 mod clothoid;
 mod continuation;
 mod joins;
 mod pieces;
+mod relax;
 mod span;
 mod system;
 
@@ -31,7 +34,6 @@ use crate::approx::ApproxOptions;
 use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
 use crate::lac::MAX_ABS_ALPHA;
-use crate::solve::systems::SystemStop;
 use kurbo::Point;
 
 pub use pieces::{SplinePiece, SplinePieceKind};
@@ -104,6 +106,13 @@ pub struct LacSpline {
     pub curvature_extrema: usize,
     /// The curve is closed.
     pub closed: bool,
+    /// The α each span was solved with: the requested one, or the nearest one it could
+    /// hold (an S-span's halves of α ≥ 0 are clothoid-like whatever this says: see the
+    /// pieces' own α).
+    pub span_alphas: Vec<f64>,
+    /// The spans whose α is not the requested one (the requested α had no G2 solution
+    /// through the points, or none the solve found).
+    pub relaxed_spans: Vec<usize>,
 }
 
 impl LacSpline {
@@ -119,25 +128,57 @@ impl LacSpline {
     }
 }
 
-/// The G2 log-aesthetic spline through `points` (module documentation). Errors: fewer
-/// than 2 points (3 closed), repeated consecutive points, a bad α or corner index
-/// ([`Error::InvalidInput`]); a span no log-aesthetic curve can take
-/// ([`Error::NoSegment`]); the solve not reaching G2 ([`Error::NoConvergence`], naming the
-/// jump it reached).
+/// The G2 log-aesthetic spline through `points` (module documentation). Where the
+/// requested α cannot be held by every span (no solution, or none found), the spans take
+/// the nearest α that can ([`relax`]): the result's `span_alphas` and `relaxed_spans` say
+/// which. Errors: fewer than 2 points (3 closed), repeated consecutive points, a bad α or
+/// corner index ([`Error::InvalidInput`]); a span no log-aesthetic curve can take
+/// ([`Error::NoSegment`]); the solve not reaching G2 at any α ([`Error::NoConvergence`],
+/// naming the jump it reached at the requested one).
 pub fn lac_spline(points: &[Point], opts: &LacSplineOptions) -> Result<LacSpline> {
     let problem = problem_of(points, opts)?;
-    let sol = system::solve(&problem, opts.g2_tolerance, opts.max_iterations)?;
-    // Accepted at the target, or where Newton stopped within 1e-10 (rounding).
-    if sol.stop != SystemStop::Converged && (sol.jump.is_nan() || sol.jump > ACCEPTED_JUMP) {
-        return Err(Error::NoConvergence(format!(
-            "the G2 solve stopped ({:?}) after {} steps with a curvature jump of {:.3e} of \
-             the largest curvature",
-            sol.stop, sol.iterations, sol.jump
-        )));
+    let requested = problem.alphas.clone();
+    let first = system::solve(&problem, opts.g2_tolerance, opts.max_iterations).and_then(|sol| {
+        if !relax::accepted(&sol) {
+            return Err(Error::NoConvergence(format!(
+                "the G2 solve stopped ({:?}) after {} steps with a curvature jump of {:.3e} \
+                 of the largest curvature",
+                sol.stop, sol.iterations, sol.jump
+            )));
+        }
+        built(&problem, &sol, opts, &requested)
+    });
+    match first {
+        Err(e @ (Error::NoConvergence(_) | Error::NoSegment(_))) => {
+            let Some((alphas, sol)) = relax::walk(points, opts, &requested) else {
+                return Err(e);
+            };
+            let o = LacSplineOptions {
+                span_alphas: Some(alphas),
+                ..opts.clone()
+            };
+            built(&problem_of(points, &o)?, &sol, opts, &requested).map_err(|_| e)
+        }
+        other => other,
     }
-    let problem = problem.solved_as(&sol);
-    let built = pieces::build(&problem, &sol.theta, &opts.approx)?;
-    Ok(pieces::result(built, &problem, &sol, opts.closed))
+}
+
+/// The spline of a solved problem: its pieces and cubics, and which spans hold another α
+/// than `requested`.
+fn built(
+    problem: &system::Problem,
+    sol: &system::Solution,
+    opts: &LacSplineOptions,
+    requested: &[f64],
+) -> Result<LacSpline> {
+    let problem = problem.solved_as(sol);
+    let pieces = pieces::build(&problem, &sol.theta, &opts.approx)?;
+    let mut spline = pieces::result(pieces, &problem, sol, opts.closed);
+    spline.span_alphas = problem.alphas.clone();
+    spline.relaxed_spans = (0..requested.len())
+        .filter(|&k| problem.alphas[k] != requested[k])
+        .collect();
+    Ok(spline)
 }
 
 /// The G2 solve alone, without the pieces' cubics: the tangent angle at every point

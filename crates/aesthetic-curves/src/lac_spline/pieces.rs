@@ -247,6 +247,11 @@ impl PairHalves<'_> {
         let (m, dm) = (f.point(self.inflection), f.direction(self.psi));
         let (end, de) = (if first { f.a } else { f.b }, f.direction(d));
         let turn = self.side * (d - self.psi);
+        if turn <= 1e-12 * std::f64::consts::PI {
+            // A half of no turning (the pair at the existence region's edge is the other
+            // half alone): nothing to draw.
+            return Ok(Vec::new());
+        }
         if turn < std::f64::consts::PI {
             let seg = inflection_segment((self.alpha, turn), m, dm, end, de)?;
             return Ok(vec![Part::Inflection(seg, !first)]);
@@ -634,6 +639,8 @@ pub(super) fn result(
         inflections,
         curvature_extrema,
         closed,
+        span_alphas: problem.alphas.clone(),
+        relaxed_spans: Vec::new(),
         pieces,
     }
 }

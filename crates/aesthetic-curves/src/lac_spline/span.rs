@@ -40,6 +40,10 @@ pub(super) const HALF_TURN: f64 = PI;
 /// holds as an inflection-end piece and a segment (pieces.rs).
 pub(super) const WIDE_HALF: f64 = 1.8 * PI;
 
+/// A pair's mismatch (radians) within this of zero at an end of its range is a root there
+/// (rounding of the halves' chords, which are integrals, is far below it).
+const EDGE_MISMATCH: f64 = 1e-12;
+
 /// Deviations below this (radians, summed) make a span a line.
 const LINE_TURN: f64 = 2e-9;
 
@@ -294,11 +298,13 @@ impl PairGeometry {
             }
         }
         let (f0, f1) = (self.mismatch(lo)?, self.mismatch(hi)?);
-        if f0 == 0.0 {
+        // A root within rounding of an end (a half of no turning: the one segment at the
+        // existence region's edge, where its own solve refuses by rounding) is that end.
+        if f0.abs() <= EDGE_MISMATCH {
             return Ok(Some(lo));
         }
         if f0 * f1 >= 0.0 {
-            return Ok((f1 == 0.0).then_some(hi));
+            return Ok((f1.abs() <= EDGE_MISMATCH).then_some(hi));
         }
         let r = newton(slope, 0.5 * (lo + hi), (lo, hi), true, 1e-15, 0.0, 40)?;
         if r.converged {
@@ -311,9 +317,14 @@ impl PairGeometry {
     /// one segment at the region's edge, which `solve` builds instead).
     fn solved(&self, psi: f64) -> Result<Option<Solved>> {
         let (t1, t2) = self.turns(psi);
-        if !(t1 > 0.0 && t2 > 0.0 && t1 < self.half && t2 < self.half) {
+        // A half may turn by nothing within rounding: at the existence region's edge the
+        // pair is the one inflection-end segment of the other half (which the one-segment
+        // solve may refuse there by rounding).
+        let edge = 1e-12 * (t1.abs() + t2.abs());
+        if !(t1 > -edge && t2 > -edge && t1.max(t2) > 0.0 && t1 < self.half && t2 < self.half) {
             return Ok(None);
         }
+        let (t1, t2) = (t1.max(0.0), t2.max(0.0));
         let (w1, w2) = self.chords(psi)?;
         let scale = 1.0 / (w1 + w2).hypot();
         let k = |t: f64| LacInflectionSegment::standard_end_kappa(self.alpha, t) / scale;
