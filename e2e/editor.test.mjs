@@ -760,6 +760,39 @@ await step('G2 spline: a closed contour with two corners, insert and delete, und
   await page.setViewportSize({ width: 1300, height: 800 });
 });
 
+await step('G2 spline: a failed update keeps the last good curve on screen, marks the point and says what to do', async () => {
+  await page.click('#mode-g2');
+  await idle();
+  await page.click('#clear');
+  await idle();
+  for (const q of [[2, 2], [6, 5], [10, 3], [14, 6]]) {
+    const [x, y] = await page.evaluate((w) => window.__editor.pageOf(w), q);
+    await page.mouse.click(x, y);
+    await idle();
+  }
+  const before = await page.evaluate(() => window.__editor.shownSummary());
+  assert.ok(before.pieces > 0, 'no curve to keep');
+  // Point 2 dragged onto point 1: two points coincide, the update fails.
+  const [xa, ya] = await page.evaluate(() => window.__editor.screenOf(2));
+  const [xb, yb] = await page.evaluate(() => window.__editor.screenOf(1));
+  await page.mouse.move(xa, ya);
+  await page.mouse.down();
+  await page.mouse.move((xa + xb) / 2, (ya + yb) / 2, { steps: 4 });
+  await page.mouse.move(xb, yb, { steps: 4 });
+  await page.mouse.up();
+  await idle();
+  const after = await page.evaluate(() => window.__editor.shownSummary());
+  assert.equal(after.pieces, before.pieces, 'the last good curve is gone');
+  assert.ok(after.fault, 'no point marked at fault');
+  const verdict = await text('verdict');
+  assert.match(verdict, /Move one of the points apart/);
+  assert.equal((verdict.match(/coincide/g) || []).length <= 2, true);
+  assert.ok(+(await page.evaluate(() => document.body.dataset.kept)) >= 1);
+  await shot('11-g2-failure-keeps-the-curve');
+  await page.keyboard.press('Control+z');
+  await idle();
+});
+
 await step('LAC: a point dragged out of the existence region is held at its edge; Bézier: + point places points in view', async () => {
   await page.click('#mode-lac');
   await idle();

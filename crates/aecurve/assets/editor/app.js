@@ -72,6 +72,28 @@ function show(f) {
 let busy = false;
 let dirty = false;
 const lastGood = {}; // each mode's state at its last answered update
+const lastFrame = {}; // each mode's last answer, shown again when an update fails
+
+// What a failed update means for the designer, and what to do about it.
+function advice(e, m, kept) {
+  const what = {
+    no_convergence: m === 'g2'
+      ? 'No G2 curve goes through these points here.'
+      : 'No fair curve was found for this input.',
+    no_segment: 'No curve of this alpha fits between these points.',
+    degenerate: 'Two points coincide or the points lie on a line.',
+    invalid_input: 'This input cannot be used.',
+    timeout: 'This took too long to answer.',
+  }[e.kind] || 'This could not be drawn.';
+  const todo = {
+    no_convergence: 'Move the marked point back a little, add a point between far-apart ones, or try another alpha.',
+    no_segment: 'Move the marked point, or change alpha.',
+    degenerate: 'Move one of the points apart.',
+    timeout: 'Use fewer points, or a larger tolerance.',
+  }[e.kind] || '';
+  const shown = kept ? ' The last good curve is shown.' : '';
+  return `${what} ${todo}${shown} (${e.kind}: ${e.message})`;
+}
 let released = false; // a point drag just ended: its last update may still be on the way
 let drag = null; // {index}, {stroke: true} or {pan: world point}
 function requestUpdate() {
@@ -87,7 +109,8 @@ function requestUpdate() {
     .then((f) => {
       if (state.mode !== m) return; // the mode changed meanwhile: its own update follows
       lastGood[m] = JSON.parse(JSON.stringify(state[m]));
-      show(Object.assign({ mode: m }, f));
+      lastFrame[m] = Object.assign({ mode: m }, f);
+      show(lastFrame[m]);
       setStatus(`server ${fmt(timing.last, 2)} ms (largest so far ${fmt(timing.max, 2)} ms)`);
     })
     .catch((e) => {
@@ -101,15 +124,25 @@ function requestUpdate() {
         draw();
         return;
       }
+      // The last good curve stays on screen, with the points as they are now and the one
+      // being moved marked; the message says once, in a designer's words, what to do.
+      const last = lastFrame[m];
+      const fault = drag && drag.index != null ? drag.index : (state[m] && state[m].selected != null ? state[m].selected : null);
+      const now = handles();
       show({
         mode: m,
-        shown: { handles: handles(), polygon: MODES[m].polygon ? handles() : null },
-        nurbs: null,
-        numbers: [['error', 'error', e.kind || 'error']],
-        verdict: [e.message, false],
-        lcg: { fit: null },
+        shown: Object.assign({}, last ? last.shown : {}, {
+          handles: now,
+          polygon: MODES[m].polygon ? now : last && last.shown.polygon,
+          fault: fault != null ? now[fault] : null,
+        }),
+        nurbs: last ? last.nurbs : null,
+        numbers: last ? last.numbers : [['error', 'error', e.kind || 'error']],
+        verdict: [advice(e, m, last != null), false],
+        lcg: last ? last.lcg : { fit: null },
       });
-      setStatus(e.message, true);
+      document.body.dataset.kept = String(+(document.body.dataset.kept || 0) + (last ? 1 : 0));
+      setStatus(last ? 'the last good curve is kept (red ring: the point at fault)' : e.kind || 'error', true);
     })
     .finally(() => {
       busy = false;
@@ -906,6 +939,9 @@ window.__editor = {
   // The G2 spline's answer on screen: its pieces' spans, and the page coordinates of the
   // middle sample of piece k.
   spans: () => (frame && frame.shown.spans ? frame.shown.spans.slice() : null),
+  // What the answer on screen draws: its pieces (a kept curve after a failure too) and the
+  // point marked at fault.
+  shownSummary: () => (frame ? { pieces: frame.shown.pieces ? frame.shown.pieces.length : 0, fault: frame.shown.fault || null } : null),
   // ... and each piece's α.
   alphas: () => (frame && frame.shown.alphas ? frame.shown.alphas.slice() : null),
   pieceMiddle: (k) => {

@@ -120,6 +120,15 @@ export function drawStage(vp, ctx, shown, region, opts) {
     ctx.lineWidth = 2;
     ctx.strokeRect(x - 6, y - 6, 12, 12);
   }
+  // The point at fault after a failed update: a red ring around it.
+  if (shown.fault) {
+    const [x, y] = vp.toScreen(shown.fault);
+    ctx.beginPath();
+    ctx.arc(x, y, 11, 0, 2 * Math.PI);
+    ctx.strokeStyle = '#d00';
+    ctx.lineWidth = 2.5;
+    ctx.stroke();
+  }
   // Handles: filled discs; an outline's off-curve points hollow and smaller, as font
   // editors draw them.
   (shown.handles || []).forEach((p, i) => {
