@@ -434,14 +434,6 @@ impl LacSegment {
         };
         let standard = LacStandard::new(alpha, lambda)?;
         let interval = Self::standard_interval(alpha, theta_d);
-        // Λ solved onto the region's edge: the low-curvature end lands on the standard
-        // form's singular end (zero curvature for α < 1) within rounding. That is the
-        // closure of the region, where the segment is an inflection-end piece: outside,
-        // so that a caller takes the family that holds it (an S-span's pair) instead of
-        // refusing a value against itself as a bound.
-        if !(standard.in_domain(interval.0) && standard.in_domain(interval.1)) {
-            return Ok(None);
-        }
         let chord = match chord {
             Some(c) => c,
             None => standard.integral(interval.0, interval.1).map_err(|e| {

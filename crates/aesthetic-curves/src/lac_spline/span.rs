@@ -143,7 +143,14 @@ fn one_segment(alpha: f64, a: f64, b: f64) -> Result<Option<Solved>> {
     // At the high-curvature end first; the sign of the turn (b > 0: counter-clockwise);
     // `None` outside the existence region.
     let kappa = |alpha: f64| -> Result<Option<(f64, f64)>> {
-        let found = LacSegment::unit_chord_curvatures(alpha, theta_d, phi)?;
+        let found = match LacSegment::unit_chord_curvatures(alpha, theta_d, phi) {
+            // Λ solved onto the existence region's edge, where the low-curvature end lands
+            // on the standard form's zero curvature within rounding and the integral
+            // refuses it: for α < 0 that is the pair's inflection-end segment, which the
+            // pair builds (a half of no turning), not a refusal.
+            Err(Error::NoConvergence(_)) if alpha < 0.0 => None,
+            other => other?,
+        };
         let s = b.signum();
         Ok(found.map(|(hi, lo)| {
             if a.abs() >= b.abs() {
