@@ -612,7 +612,7 @@ fn alpha_sweep(seed: u64, n_per_alpha: usize) -> (usize, usize, usize, usize) {
             let (pts, closed): (Vec<Point>, bool) = match case % 3 {
                 0 => {
                     let mut pts = vec![p(0.0, 0.0)];
-                    let mut heading = uniform(-3.14, 3.14);
+                    let mut heading = uniform(-std::f64::consts::PI, std::f64::consts::PI);
                     for _ in 1..n {
                         heading += uniform(-75.0, 75.0).to_radians();
                         let l = uniform(20.0, 120.0);
@@ -641,7 +641,7 @@ fn alpha_sweep(seed: u64, n_per_alpha: usize) -> (usize, usize, usize, usize) {
                 _ => {
                     // A wave typed in round numbers: x every 3 units, y a rounded sine
                     // of a random phase and amplitude.
-                    let (amp, phase) = (uniform(1.0, 4.0), uniform(0.0, 6.28));
+                    let (amp, phase) = (uniform(1.0, 4.0), uniform(0.0, std::f64::consts::TAU));
                     let pts = (0..n + 2)
                         .map(|i| {
                             let y = 5.0 + amp * (phase + i as f64 * 1.3).sin();

@@ -130,11 +130,11 @@ impl LacSpline {
 
 /// The G2 log-aesthetic spline through `points` (module documentation). Where the
 /// requested α cannot be held by every span (no solution, or none found), the spans take
-/// the nearest α that can ([`relax`]): the result's `span_alphas` and `relaxed_spans` say
-/// which. Errors: fewer than 2 points (3 closed), repeated consecutive points, a bad α or
-/// corner index ([`Error::InvalidInput`]); a span no log-aesthetic curve can take
-/// ([`Error::NoSegment`]); the solve not reaching G2 at any α ([`Error::NoConvergence`],
-/// naming the jump it reached at the requested one).
+/// the nearest α that can (the walk from α = -1 of the room `relax`): the result's
+/// `span_alphas` and `relaxed_spans` say which. Errors: fewer than 2 points (3 closed),
+/// repeated consecutive points, a bad α or corner index ([`Error::InvalidInput`]); a span
+/// no log-aesthetic curve can take ([`Error::NoSegment`]); the solve not reaching G2 at
+/// any α ([`Error::NoConvergence`], naming the jump it reached at the requested one).
 pub fn lac_spline(points: &[Point], opts: &LacSplineOptions) -> Result<LacSpline> {
     let problem = problem_of(points, opts)?;
     let requested = problem.alphas.clone();
