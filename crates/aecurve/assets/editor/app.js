@@ -74,7 +74,8 @@ let dirty = false;
 const lastGood = {}; // each mode's state at its last answered update
 const lastFrame = {}; // each mode's last answer, shown again when an update fails
 
-// What a failed update means for the designer, and what to do about it.
+// What a failed update means for the designer, and what to do about it (the server's own
+// message goes to the status line).
 function advice(e, m, kept) {
   const what = {
     no_convergence: m === 'g2'
@@ -92,7 +93,7 @@ function advice(e, m, kept) {
     timeout: 'Use fewer points, or a larger tolerance.',
   }[e.kind] || '';
   const shown = kept ? ' The last good curve is shown.' : '';
-  return `${what} ${todo}${shown} (${e.kind}: ${e.message})`;
+  return `${what} ${todo}${shown}`;
 }
 let released = false; // a point drag just ended: its last update may still be on the way
 let drag = null; // {index}, {stroke: true} or {pan: world point}
@@ -142,7 +143,8 @@ function requestUpdate() {
         lcg: last ? last.lcg : { fit: null },
       });
       document.body.dataset.kept = String(+(document.body.dataset.kept || 0) + (last ? 1 : 0));
-      setStatus(last ? 'the last good curve is kept (red ring: the point at fault)' : e.kind || 'error', true);
+      // The server's own words once, in the status line; the verdict says what to do.
+      setStatus(e.message, true);
     })
     .finally(() => {
       busy = false;
