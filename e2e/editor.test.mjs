@@ -23,7 +23,12 @@ mkdirSync(out, { recursive: true });
 
 function startServer() {
   return new Promise((resolve, reject) => {
-    const child = spawn(bin, ['editor', '--port', '0', '--no-open'], { stdio: ['ignore', 'pipe', 'inherit'] });
+    // A 10 s limit per request instead of the editor's 5 s: the sketch's fits at a tolerance
+    // typed inside a stroke's noise, and at the tolerance it then advises, take 4 to 5 s of
+    // server time on a 2-core machine (at the default limit, open work on the sketch's
+    // speed); the behaviour is what this test checks, and every op's server times are
+    // printed below ("sketch.contour in order").
+    const child = spawn(bin, ['editor', '--port', '0', '--no-open', '--timeout', '10'], { stdio: ['ignore', 'pipe', 'inherit'] });
     let buf = '';
     const timer = setTimeout(() => reject(new Error('the editor did not print its URL within 20 s')), 20000);
     child.stdout.on('data', (d) => {
@@ -604,6 +609,7 @@ await step('typical interactions take under 16 ms of server time', async () => {
   // many depends on how drags are debounced), too few for a median on a shared machine: for
   // fewer than 5 the fastest is checked instead. Everything is reported.
   const all = await page.evaluate(() => window.__editor.serverMs());
+  console.log(`     sketch.contour in order: ${(all['sketch.contour'] || []).map((t) => t.toFixed(0)).join(' ')} ms`);
   const q = (v, f) => v.slice().sort((a, b) => a - b)[Math.min(v.length - 1, Math.floor(f * v.length))];
   const summary = {};
   for (const [k, v] of Object.entries(all)) {

@@ -17,6 +17,7 @@ pub mod outline_io;
 pub mod plot;
 pub mod progress;
 pub mod protocol;
+pub mod regular_file;
 pub mod report;
 pub mod summary;
 pub mod ufo_tree;

@@ -195,51 +195,7 @@ pub fn read(path: &Path) -> Result<Outlines> {
     reader(&data).with_context(|| format!("{}", path.display()))
 }
 
-/// The bytes of a regular file, at most `cap` of them: anything else (a pipe, a device, a
-/// socket) is refused before it is opened, the file is opened without blocking and checked
-/// again once open (it may have been replaced), and the read stops at the cap.
-pub fn read_regular_file(path: &Path, cap: u64) -> Result<Vec<u8>> {
-    use std::io::Read;
-    let what = || format!("reading {}", path.display());
-    let meta = std::fs::metadata(path).with_context(what)?;
-    if !meta.is_file() {
-        bail!(
-            "{}: not a regular file (a pipe, device or socket?): only files are read",
-            path.display()
-        );
-    }
-    if meta.len() > cap {
-        bail!(
-            "{}: {} bytes, over the {} MB that are read",
-            path.display(),
-            meta.len(),
-            cap / (1024 * 1024)
-        );
-    }
-    let mut opts = std::fs::OpenOptions::new();
-    opts.read(true);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::OpenOptionsExt;
-        opts.custom_flags(libc::O_NONBLOCK);
-    }
-    let file = opts.open(path).with_context(what)?;
-    if !file.metadata().with_context(what)?.is_file() {
-        bail!("{}: not a regular file once opened", path.display());
-    }
-    let mut data = Vec::with_capacity(meta.len() as usize);
-    file.take(cap + 1)
-        .read_to_end(&mut data)
-        .with_context(what)?;
-    if data.len() as u64 > cap {
-        bail!(
-            "{}: over the {} MB that are read",
-            path.display(),
-            cap / (1024 * 1024)
-        );
-    }
-    Ok(data)
-}
+pub use crate::regular_file::read_regular_file;
 
 /// Runs a third-party parser on hostile bytes: a panic inside it (its robustness is not
 /// ours) becomes an error naming it, and the caller goes on.

@@ -16,6 +16,7 @@
 //! The bytes stay in the tree, so that `fix` writes the output from what it read: every file
 //! it did not change byte for byte as it was, with its modification time.
 
+use crate::regular_file::read_no_follow;
 use anyhow::{bail, Context, Result};
 use std::collections::BTreeMap;
 use std::path::{Component, Path, PathBuf};
@@ -271,34 +272,4 @@ impl norad::FontSource for TreeSource<'_> {
         out.extend((t.files.keys().filter(|p| child(p))).map(|p| norad::DirEntry::File(name(p))));
         Ok(out)
     }
-}
-
-/// The bytes of the regular file at `path`, opened without following a link and without
-/// blocking, checked to be a regular file once open, at most `cap` bytes.
-fn read_no_follow(path: &Path, cap: u64) -> Result<Vec<u8>> {
-    use std::io::Read;
-    let what = || format!("reading {}", path.display());
-    let mut opts = std::fs::OpenOptions::new();
-    opts.read(true);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::OpenOptionsExt;
-        opts.custom_flags(libc::O_NONBLOCK | libc::O_NOFOLLOW);
-    }
-    let file = opts.open(path).with_context(what)?;
-    if !file.metadata().with_context(what)?.is_file() {
-        bail!("{}: not a regular file once opened", path.display());
-    }
-    let mut data = Vec::new();
-    file.take(cap + 1)
-        .read_to_end(&mut data)
-        .with_context(what)?;
-    if data.len() as u64 > cap {
-        bail!(
-            "{}: over the {} MB that are read",
-            path.display(),
-            cap / (1024 * 1024)
-        );
-    }
-    Ok(data)
 }

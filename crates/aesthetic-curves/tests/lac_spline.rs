@@ -689,14 +689,10 @@ fn alpha_sweep(seed: u64, n_per_alpha: usize) -> (usize, usize, usize, usize) {
     (answered, asked, relaxed, spans)
 }
 
-/// The sweep of [`alpha_sweep`], 8 sets of each kind at each α (264 sets). Before the
-/// spans could take the nearest α they hold, 35 to 85 % of the sets at α >= 0 failed and
-/// half of the waves at every α; 20 sets of each kind (660) answer 644 (97.6 %): the rest
-/// are solved but their cubics not G2 to 1e-8 as delivered (mostly α <= -2, jumps of
-/// 1e-8 to 1e-3), and three typed waves at α >= 2 with no solution found.
-#[test]
-fn the_spline_answers_at_every_alpha() {
-    let (answered, asked, relaxed, spans) = alpha_sweep(67, 8);
+/// [`alpha_sweep`] asserted: at least 96 % of the sets answered, at most a quarter of the
+/// spans at another α than the requested one.
+fn assert_sweep(seed: u64, n_per_alpha: usize) {
+    let (answered, asked, relaxed, spans) = alpha_sweep(seed, n_per_alpha);
     eprintln!(
         "alpha sweep: {answered} of {asked} answered G2 and monotone; {relaxed} of {spans} \
          spans took another alpha than the requested one"
@@ -705,15 +701,19 @@ fn the_spline_answers_at_every_alpha() {
     assert!(relaxed * 4 <= spans, "{relaxed} of {spans} spans relaxed");
 }
 
+/// The sweep of [`alpha_sweep`], 8 sets of each kind at each α (264 sets). Before the
+/// spans could take the nearest α they hold, 35 to 85 % of the sets at α >= 0 failed and
+/// half of the waves at every α; 20 sets of each kind (660) answer 644 (97.6 %): the rest
+/// are solved but their cubics not G2 to 1e-8 as delivered (mostly α <= -2, jumps of
+/// 1e-8 to 1e-3), and three typed waves at α >= 2 with no solution found.
+#[test]
+fn the_spline_answers_at_every_alpha() {
+    assert_sweep(67, 8);
+}
+
 /// The sweep with 40 sets of each kind at each α (1,320 sets, another seed).
 #[test]
 #[ignore = "slow: about two minutes (run by CI's slow oracles)"]
 fn the_spline_answers_at_every_alpha_on_1320_sets() {
-    let (answered, asked, relaxed, spans) = alpha_sweep(1067, 40);
-    eprintln!(
-        "alpha sweep: {answered} of {asked} answered G2 and monotone; {relaxed} of {spans} \
-         spans took another alpha than the requested one"
-    );
-    assert!(answered * 100 >= asked * 96, "{answered} of {asked}");
-    assert!(relaxed * 4 <= spans, "{relaxed} of {spans} spans relaxed");
+    assert_sweep(1067, 40);
 }
