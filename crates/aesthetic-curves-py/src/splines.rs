@@ -138,6 +138,11 @@ pub(crate) struct LacSpline {
     pub(crate) inflections: usize,
     /// Curvature extrema.
     pub(crate) curvature_extrema: usize,
+    /// The α each span was solved with (the requested one, or the nearest one it holds
+    /// where the requested α has no G2 spline through the points).
+    pub(crate) span_alphas: Vec<f64>,
+    /// The spans whose α is not the requested one.
+    pub(crate) relaxed_spans: Vec<usize>,
 }
 
 /// One piece of the G2 spline, with the fields of the protocol's `segments` entries.
@@ -226,6 +231,8 @@ pub(crate) fn lac_spline(
         max_rational_error: s.max_rational_error,
         inflections: s.inflections,
         curvature_extrema: s.curvature_extrema,
+        span_alphas: s.span_alphas.clone(),
+        relaxed_spans: s.relaxed_spans.clone(),
     })
 }
 

@@ -278,6 +278,8 @@ class LacSpline(_Exportable):
     max_rational_error: float
     inflections: int
     curvature_extrema: int
+    span_alphas: list[float]
+    relaxed_spans: list[int]
     def domain(self) -> Tuple[float, float]: ...
     def at(self, u: _Params) -> CurveAt:
         """Piece ``floor(u)`` at its own t = u - floor(u) (clamped into (0, n))."""
