@@ -131,13 +131,21 @@ fn span_pieces(
                 scale,
                 inflection,
             };
+            let (first, second) = (pair.half(da, true)?, pair.half(db, false)?);
+            let (first_empty, second_empty) = (first.is_empty(), second.is_empty());
+            // A half of no turning (at the existence region's edge) still spans the short
+            // way from the inflection to its point: a straight piece, so that the span ends
+            // exactly at its points.
+            let m = frame.point(inflection);
             let mut out = Vec::new();
-            for part in pair
-                .half(da, true)?
-                .into_iter()
-                .chain(pair.half(db, false)?)
-            {
+            if first_empty && m != frame.a {
+                out.push(line(k, frame.a, m));
+            }
+            for part in first.into_iter().chain(second) {
                 out.extend(fit(k, part, approx, 0)?);
+            }
+            if second_empty && m != frame.b {
+                out.push(line(k, m, frame.b));
             }
             Ok(out)
         }
@@ -249,7 +257,7 @@ impl PairHalves<'_> {
         let turn = self.side * (d - self.psi);
         if turn <= 1e-12 * std::f64::consts::PI {
             // A half of no turning (the pair at the existence region's edge is the other
-            // half alone): nothing to draw.
+            // half alone): no segment (the caller joins the inflection to the point).
             return Ok(Vec::new());
         }
         if turn < std::f64::consts::PI {
