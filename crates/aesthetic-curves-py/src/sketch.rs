@@ -267,15 +267,18 @@ pub(crate) struct SketchContour {
 /// A pen stroke (`points`, in drawing order) as a contour: corners found, straight runs
 /// as lines, a stroke that ends at its start closed (`closed`: None decides from the
 /// stroke); `tolerance` None for the default from the points' size and noise;
-/// `corner_angle` the least turn of a corner (degrees).
+/// `corner_angle` the least turn of a corner (degrees); `resolution` the size of one
+/// device pixel in the points' units (None: read from the points), the default tolerance
+/// at least two of them.
 #[pyfunction]
-#[pyo3(signature = (points, tolerance=None, closed=None, corner_angle=35.0))]
+#[pyo3(signature = (points, tolerance=None, closed=None, corner_angle=35.0, resolution=None))]
 pub(crate) fn fit_contour(
     py: Python<'_>,
     points: &Bound<'_, PyAny>,
     tolerance: Option<f64>,
     closed: Option<bool>,
     corner_angle: f64,
+    resolution: Option<f64>,
 ) -> PyResult<SketchContour> {
     use ac::sketch::contour::{fit_contour, ContourOptions, Run};
     let p = points_arg("points", points)?;
@@ -283,6 +286,7 @@ pub(crate) fn fit_contour(
         tolerance,
         closed,
         corner_angle: corner_angle.to_radians(),
+        resolution,
     };
     let c = py.detach(move || fit_contour(&p, &opts)).map_err(err)?;
     let (nurbs, pieces) = joined(c.as_curve().map_err(err)?)?;

@@ -1,11 +1,17 @@
 //! The sketch pipeline end to end: 1000 points (target: under 20 ms median), the five
-//! measured Prius key lines at 0.3 mm (target: under 20 ms each, issue 35) and the probe's two
+//! measured Prius key lines at 0.3 mm (target: under 20 ms each) and the probe's two
 //! random-walk strokes at their tight tolerances (target: well under a second).
+//! Hand strokes of the stroke model through `sketch::contour`: 1,000 points (target: under
+//! 100 ms) and 20,000 (target: under 1 s).
 
 use aesthetic_curves::lac::LacSegment;
 use aesthetic_curves::sketch::{fit_sketch, SketchOptions};
 use aesthetic_curves::{Point, Vec2};
 use criterion::{criterion_group, criterion_main, Criterion};
+
+#[allow(dead_code)]
+#[path = "../tests/common/hand.rs"]
+mod hand;
 
 /// A symmetric bump of two alpha = 0.5 LAC segments (peak at the joint), 999 points,
 /// with or without noise of 1e-4 of its size.
@@ -46,7 +52,7 @@ fn bench(c: &mut Criterion) {
         let opts = SketchOptions::with_tolerance(3e-3 * 15.0);
         g.bench_function(name, |b| b.iter(|| fit_sketch(&pts, &opts).unwrap()));
     }
-    // The measured Prius key lines at 0.3 mm (issue target: under 20 ms each).
+    // The measured Prius key lines at 0.3 mm (target: under 20 ms each).
     for line in &aesthetic_curves_data::PRIUS {
         let pts: Vec<Point> = line.points_as::<Point>();
         let opts = SketchOptions::with_tolerance(0.3);
@@ -83,5 +89,28 @@ fn probe(text: &str) -> (Vec<Point>, SketchOptions) {
     (pts, SketchOptions::with_tolerance(tol))
 }
 
-criterion_group!(benches, bench);
+/// Hand strokes of the stroke model (`tests/common/hand.rs`) as `sketch.contour` gets them
+/// from a file (every event, nothing said of the device): 1,000 points (target: under
+/// 100 ms) and 20,000 (target: under 1 s).
+fn hand_strokes(c: &mut Criterion) {
+    use aesthetic_curves::sketch::contour::{fit_contour, ContourOptions};
+    use hand::{Device, Kind};
+    let mut g = c.benchmark_group("hand");
+    g.sample_size(10);
+    for (name, kind, device, n) in [
+        ("mouse_circle_1000", Kind::Circle, Device::Mouse, 1000),
+        ("pen_s_1000", Kind::S, Device::Pen, 1000),
+        ("trackpad_rounded_rectangle_1000", Kind::RoundedRectangle, Device::Trackpad, 1000),
+        ("pen_spiral_20000", Kind::Spiral, Device::Pen, 20_000),
+    ] {
+        let stroke = hand::with_points(kind, device, n, 7);
+        let opts = ContourOptions::default();
+        g.bench_function(format!("{name}_{}", stroke.points.len()), |b| {
+            b.iter(|| fit_contour(&stroke.points, &opts).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, hand_strokes);
 criterion_main!(benches);

@@ -10,6 +10,7 @@ mod common;
 
 mod approx_reference;
 mod approx_sweep;
+mod hand_strokes;
 mod lac_fit_prius;
 mod lac_properties;
 mod lac_reference;

@@ -411,6 +411,7 @@ view.addEventListener('pointerdown', (ev) => {
   if (m.draws) {
     remember();
     edited().stroke = [vp.eventWorld(ev)];
+    edited().resolution = vp.pointerResolution();
     drag = { stroke: true };
     pending = { stroke: edited().stroke };
     draw();

@@ -194,14 +194,16 @@ export const MODES = {
     hint: 'Draw with the mouse or a pen: the stroke becomes a contour of fair runs, G2 curves of log-aesthetic pieces and straight lines (colours; circles: joints; squares: corners). A stroke that ends at its start closes.',
     controls: ['clear', 'sketch-tolerance-box'],
     draws: true,
-    initial: () => ({ stroke: [], tolerance: null }),
+    initial: () => ({ stroke: [], tolerance: null, resolution: null }),
     handles: () => [],
     async update(st) {
       const s = st.stroke;
       if (s.length < 8) {
         return { shown: { stroke: s }, nurbs: null, numbers: [['pieces', 'pieces', 0]], verdict: ['draw a stroke'], lcg: { fit: null, note: 'draw a stroke' } };
       }
+      // One screen pixel in world units: the stroke is never taken as finer than that.
       const req = { op: 'sketch.contour', points: s, draw: DRAW.sketch };
+      if (st.resolution > 0) req.resolution = st.resolution;
       if (st.tolerance > 0) req.tolerance = st.tolerance;
       const r = await api(req);
       // The tolerance box shows the default it used while none is set.

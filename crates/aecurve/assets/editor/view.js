@@ -27,6 +27,13 @@ export class Viewport {
     return [(ev.clientX - r.left) * this.canvas.width / r.width, (ev.clientY - r.top) * this.canvas.height / r.height];
   }
 
+  // The world size of one step of the pointer (a CSS pixel): the finest a hand's stroke
+  // on this view can be.
+  pointerResolution() {
+    const r = this.canvas.getBoundingClientRect();
+    return (r.width > 0 ? this.canvas.width / r.width : 1) / this.scale();
+  }
+
   eventWorld(ev) {
     return this.toWorld(...this.eventPixel(ev));
   }

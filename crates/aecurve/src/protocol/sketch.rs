@@ -184,6 +184,11 @@ pub struct SketchContourRequest {
     /// stroke, between its two chords, at least 80).
     #[serde(default)]
     pub corner_angle_degrees: Option<f64>,
+    /// The size of one device pixel in the points' units (the editor sends its view's):
+    /// the default tolerance is at least two of them. Absent: read from the points (a
+    /// mouse's whole pixels).
+    #[serde(default)]
+    pub resolution: Option<Positive>,
     /// Points per piece of a `drawing`.
     #[serde(default)]
     pub draw: Option<Draw>,
@@ -335,6 +340,7 @@ impl Op for SketchContourOp {
         let mut opts = ContourOptions {
             tolerance: req.tolerance.map(|t| t.0),
             closed: req.closed,
+            resolution: req.resolution.map(|r| r.0),
             ..Default::default()
         };
         if let Some(a) = req.corner_angle_degrees {

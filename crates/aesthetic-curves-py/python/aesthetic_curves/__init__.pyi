@@ -402,6 +402,7 @@ def fit_contour(
     tolerance: Optional[float] = None,
     closed: Optional[bool] = None,
     corner_angle: float = 35.0,
+    resolution: Optional[float] = None,
 ) -> SketchContour: ...
 def check_outline(
     contours: Any,

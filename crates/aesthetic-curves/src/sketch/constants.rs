@@ -161,3 +161,7 @@ pub(super) const NOISE_EXTRA_PIECES: usize = 4;
 /// points went from 11 to 41 pieces in 30 rounds, and failed after 12 s over the default
 /// tolerance's rungs; sparse smooth strokes need fewer).
 pub(super) const PIECES_OVER_POINTS: usize = 4;
+
+/// The default tolerance is at least this many times the hand's slow wobble
+/// (`resolution::wobble`): about twice its amplitude.
+pub(super) const WOBBLE_FACTOR: f64 = 2.5;

@@ -79,6 +79,27 @@ pub const CONCENTRATION: f64 = 1.35;
 /// a smooth arc about a third).
 pub const SHORT_SHARE: f64 = 0.7;
 
+/// The most pieces a run of the contour may take at a rung of the default tolerance's
+/// ladder other than the last (an S takes 2 to 4, a loop 4 to 8).
+const RUNG_PIECES: usize = 24;
+
+/// What the fit of a run may use: the tolerance and the most pieces.
+#[derive(Clone, Copy, Debug)]
+struct Fit {
+    tolerance: f64,
+    max_pieces: usize,
+}
+
+impl Fit {
+    /// At `tolerance`, with [`SketchOptions`]'s default for the pieces.
+    fn at(tolerance: f64) -> Fit {
+        Fit {
+            tolerance,
+            max_pieces: SketchOptions::with_tolerance(tolerance).max_pieces,
+        }
+    }
+}
+
 /// What [`fit_contour`] may do.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContourOptions {
@@ -88,6 +109,11 @@ pub struct ContourOptions {
     pub closed: Option<bool>,
     /// The least turn of a corner (radians).
     pub corner_angle: f64,
+    /// The size of one device pixel in the points' units (the editor sends its view's), or
+    /// `None` to read it from the points (whole steps of a mouse: `resolution::quantum`).
+    /// The default tolerance is at least two of them: a stroke drawn on a screen is never
+    /// taken as more precise than the screen shows it.
+    pub resolution: Option<f64>,
 }
 
 impl Default for ContourOptions {
@@ -96,6 +122,7 @@ impl Default for ContourOptions {
             tolerance: None,
             closed: None,
             corner_angle: 35f64.to_radians(),
+            resolution: None,
         }
     }
 }
@@ -270,29 +297,48 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     // Estimated once for the stroke: the default tolerance, the corners' windows and the
     // straight stretches' test all read it (a closed stroke's overlapping tail, dropped
     // below, is a few points of hundreds).
-    let noise = Noise::of(points);
+    if let Some(r) = opts.resolution {
+        Error::check_positive("resolution", r)?;
+    }
+    let noise = Noise::of(points).with_resolution(opts.resolution);
     match opts.tolerance {
         Some(t) => {
             Error::check_positive("tolerance", t)?;
-            contour_at(points, opts, t, &noise)
+            contour_at(points, opts, Fit::at(t), &noise)
         }
-        None if points.len() >= 4 => super::at_default(
-            default_tolerance_of(points, &noise),
-            super::escalation(&noise),
-            |t| contour_at(points, opts, t, &noise),
-            |c| {
-                let curves = c.runs.iter().filter_map(|r| match r {
-                    Run::Curve(s) => Some(s),
-                    Run::Line { .. } => None,
-                });
-                c.runs
-                    .iter()
-                    .all(Run::is_g2)
-                    .then(|| curves.map(|s| s.inflections + s.curvature_extrema).sum())
-            },
-        )
-        .map(|(c, _)| c),
-        None => contour_at(points, opts, 0.005 * size, &noise),
+        None if points.len() >= 4 => {
+            let default = default_tolerance_of(points, &noise);
+            let ladder = super::escalation(&noise);
+            let last = default * ladder[ladder.len() - 1];
+            // Every rung but the last with at most RUNG_PIECES pieces a run: a rung that
+            // needs more follows the hand's wobble, slowly, and the next, looser one is
+            // fairer.
+            let fit = |t: f64| Fit {
+                tolerance: t,
+                max_pieces: if t < last {
+                    RUNG_PIECES
+                } else {
+                    Fit::at(t).max_pieces
+                },
+            };
+            super::at_default(
+                default,
+                ladder,
+                |t| contour_at(points, opts, fit(t), &noise),
+                |c| {
+                    let curves = c.runs.iter().filter_map(|r| match r {
+                        Run::Curve(s) => Some(s),
+                        Run::Line { .. } => None,
+                    });
+                    c.runs
+                        .iter()
+                        .all(Run::is_g2)
+                        .then(|| curves.map(|s| s.inflections + s.curvature_extrema).sum())
+                },
+            )
+            .map(|(c, _)| c)
+        }
+        None => contour_at(points, opts, Fit::at(0.005 * size), &noise),
     }
 }
 
@@ -300,9 +346,10 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
 fn contour_at(
     points: &[Point],
     opts: &ContourOptions,
-    tolerance: f64,
+    fit: Fit,
     noise: &Noise,
 ) -> Result<SketchContour> {
+    let tolerance = fit.tolerance;
     let (closed, kept) = closes(points, tolerance, opts.closed);
     let stroke = &points[..kept];
     let found = corners_at(stroke, closed, tolerance, opts.corner_angle, noise.sigma);
@@ -317,7 +364,7 @@ fn contour_at(
     // (the default's ladder): a few noisy points of an arc are not corners.
     let mut zigzag = false;
     let (mut out, one_loop) = loop {
-        let (k, err) = match assemble(stroke, closed, &corners, tolerance, noise.sigma) {
+        let (k, err) = match assemble(stroke, closed, &corners, fit, noise.sigma) {
             Ok(done) => break done,
             Err(e) => e,
         };
@@ -385,9 +432,10 @@ fn assemble(
     stroke: &[Point],
     closed: bool,
     corners: &[(usize, f64)],
-    tolerance: f64,
+    fit: Fit,
     sigma: f64,
 ) -> std::result::Result<(Assembly, bool), (usize, Error)> {
+    let tolerance = fit.tolerance;
     let runs = runs_of(stroke, closed, corners);
     // A closed contour without corners is one run whose seam is faired G2, unless it has
     // straight stretches: then it starts with the first and every join is smooth.
@@ -396,7 +444,7 @@ fn assemble(
     let size = bbox_diagonal(stroke);
     let mut out = Assembly::default();
     for (k, (r, line)) in runs.iter().zip(&lines).enumerate() {
-        let parts = fit_parts(r, *line, tolerance, one_loop, sigma).map_err(|e| (k, e))?;
+        let parts = fit_parts(r, *line, fit, one_loop, sigma).map_err(|e| (k, e))?;
         out.push_run(parts, size);
     }
     Ok((out, one_loop))
@@ -518,12 +566,13 @@ impl Assembly {
 fn fit_parts(
     run: &[Point],
     line: Option<(Point, Point)>,
-    tolerance: f64,
+    fit: Fit,
     one_loop: bool,
     sigma: f64,
 ) -> Result<Vec<(Run, f64)>> {
+    let tolerance = fit.tolerance;
     let whole = || -> Result<Vec<(Run, f64)>> {
-        let fitted = fit_run(run, line, tolerance, one_loop)?;
+        let fitted = fit_run(run, line, fit, one_loop)?;
         let dev = deviation(run, &fitted);
         Ok(vec![(fitted, dev)])
     };
@@ -552,7 +601,7 @@ fn fit_parts(
         };
         let Ok(fitted) = parts
             .into_iter()
-            .map(|part| fit_part(part, tolerance))
+            .map(|part| fit_part(part, fit))
             .collect::<Result<Vec<(Run, f64)>>>()
         else {
             continue;
@@ -617,7 +666,8 @@ fn turn_loop(run: &[Point], k: usize) -> Vec<Point> {
 }
 
 /// A part fitted: a line as it is, a curve by the sketch with its line ends.
-fn fit_part(part: straight::Part, tolerance: f64) -> Result<(Run, f64)> {
+fn fit_part(part: straight::Part, fit: Fit) -> Result<(Run, f64)> {
+    let tolerance = fit.tolerance;
     match part {
         straight::Part::Line { start, end, points } => {
             let line = Run::Line { start, end };
@@ -640,6 +690,7 @@ fn fit_part(part: straight::Part, tolerance: f64) -> Result<(Run, f64)> {
             }
             let opts = SketchOptions {
                 line_ends,
+                max_pieces: fit.max_pieces,
                 ..SketchOptions::with_tolerance(tolerance)
             };
             let s = fit_sketch(&points, &opts)?;
@@ -1074,12 +1125,8 @@ fn intersection(a: (Point, Vec2), b: (Point, Vec2)) -> Option<Point> {
 /// One run fitted: a line where every point lies within the tolerance of its line's ends
 /// ([`line_ends`]) or of its chord, else the G2 sketch (`closed`: a loop, G2 across its
 /// seam).
-fn fit_run(
-    points: &[Point],
-    line: Option<(Point, Point)>,
-    tolerance: f64,
-    closed: bool,
-) -> Result<Run> {
+fn fit_run(points: &[Point], line: Option<(Point, Point)>, fit: Fit, closed: bool) -> Result<Run> {
+    let tolerance = fit.tolerance;
     // A line has a length: a closed stroke's one corner starts and ends its one run (a
     // teardrop), which no line is, however loose the tolerance.
     let size = bbox_diagonal(points);
@@ -1097,6 +1144,7 @@ fn fit_run(
     }
     let opts = SketchOptions {
         closed,
+        max_pieces: fit.max_pieces,
         ..SketchOptions::with_tolerance(tolerance)
     };
     match fit_sketch(points, &opts) {

@@ -2,6 +2,7 @@ use super::constants::{
     EXTREME_CUT, EXTREME_FACTOR, FAIR_SHARE, FAIR_SHARE_LAST, NEAR_NOISE, NEAR_NOISE_SHARE,
     PRECISE_NOISE, PRECISE_SCALING, SPARSE_STEP, TIGHT_SHARE,
 };
+use super::resolution;
 use super::slot::EndPoints;
 use super::track::Track;
 use super::types::SketchOptions;
@@ -58,7 +59,12 @@ pub(super) fn bbox_diagonal(points: &[Point]) -> f64 {
 /// against 0.66 px for a true 0.87 px). The residual along the stroke is not used: the
 /// chord length follows the points, so the fit absorbs it. 0 for fewer than 15 points.
 pub(super) fn noise_level(points: &[Point]) -> f64 {
-    trimmed_sigma(&mut residuals(points, 7))
+    sigma_of_residuals(points, 7)
+}
+
+/// σ of the noise as [`noise_level`] reads it, over `2 half + 1` points.
+pub(super) fn sigma_of_residuals(points: &[Point], half: usize) -> f64 {
+    trimmed_sigma(&mut residuals(points, half))
 }
 
 /// The half window over which a sparse stroke's noise is read ([`Noise::of`]).
@@ -130,6 +136,10 @@ pub(super) struct Noise {
     /// Whether the stroke has enough points (15) for an estimate: fewer leave every field 0,
     /// and the stroke is taken as precise (a few clicked points), whether it is or not.
     pub(super) known: bool,
+    /// The device's step ([`resolution::quantum`]), 0 if none is seen.
+    pub(super) quantum: f64,
+    /// The hand's slow wobble ([`resolution::wobble`]).
+    pub(super) wobble: f64,
 }
 
 impl Noise {
@@ -161,6 +171,17 @@ impl Noise {
             scaling: if median > 0.0 { narrow / median } else { 0.0 },
             extreme,
             known,
+            quantum: resolution::quantum(points, bbox_diagonal(points)),
+            wobble: resolution::wobble(points),
+        }
+    }
+
+    /// The noise with the device's step `resolution` when the caller knows it (it
+    /// replaces the one read from the points).
+    pub(super) fn with_resolution(self, resolution: Option<f64>) -> Noise {
+        match resolution {
+            Some(r) => Noise { quantum: r, ..self },
+            None => self,
         }
     }
 
@@ -168,7 +189,7 @@ impl Noise {
     /// rounding: 4 times its noise (at the finer scale) below [`PRECISE_NOISE`] of the
     /// size. The fit follows such input tightly.
     pub(super) fn precise(&self, size: f64) -> bool {
-        4.0 * self.fine <= PRECISE_NOISE * size
+        self.quantum == 0.0 && 4.0 * self.fine <= PRECISE_NOISE * size
     }
 
     /// Whether the input is a curve's samples: [`Noise::precise`], or its residuals
@@ -177,7 +198,7 @@ impl Noise {
     /// well above rounding). Its default tolerance is a share of its size, not of a noise
     /// it does not have.
     pub(super) fn sampled(&self, size: f64) -> bool {
-        self.precise(size) || self.scaling < PRECISE_SCALING
+        self.precise(size) || (self.quantum == 0.0 && self.scaling < PRECISE_SCALING)
     }
 }
 

@@ -69,6 +69,7 @@ mod fairing;
 mod input;
 mod inside_noise;
 mod pieces;
+mod resolution;
 mod rounds;
 mod segment;
 mod slot;
@@ -83,7 +84,7 @@ pub use types::{
 
 use constants::{
     DEFAULT_ESCALATION, DEFAULT_NOISE_FACTOR, EXTREME_FACTOR, NOISE_FACTOR_POINTS, NOISE_RUNG_STEP,
-    NOISY_SIZE_SHARE, PRECISE_SIZE_SHARE, UNKNOWN_NOISE_ESCALATION,
+    NOISY_SIZE_SHARE, PRECISE_SIZE_SHARE, UNKNOWN_NOISE_ESCALATION, WOBBLE_FACTOR,
 };
 use input::{bbox_diagonal, check_points, noise_level, Noise};
 use rounds::fit_at;
@@ -113,6 +114,8 @@ fn default_tolerance_of(points: &[Point], noise: &Noise) -> f64 {
         (noise_factor(points.len()) * noise.sigma)
             .max(EXTREME_FACTOR * noise.extreme)
             .max(NOISY_SIZE_SHARE * size)
+            .max(WOBBLE_FACTOR * noise.wobble)
+            .max(resolution::QUANTUM_TOLERANCE * noise.quantum)
     }
 }
 
