@@ -100,7 +100,12 @@ fn hand_strokes(c: &mut Criterion) {
     for (name, kind, device, n) in [
         ("mouse_circle_1000", Kind::Circle, Device::Mouse, 1000),
         ("pen_s_1000", Kind::S, Device::Pen, 1000),
-        ("trackpad_rounded_rectangle_1000", Kind::RoundedRectangle, Device::Trackpad, 1000),
+        (
+            "trackpad_rounded_rectangle_1000",
+            Kind::RoundedRectangle,
+            Device::Trackpad,
+            1000,
+        ),
         ("pen_spiral_20000", Kind::Spiral, Device::Pen, 20_000),
     ] {
         let stroke = hand::with_points(kind, device, n, 7);

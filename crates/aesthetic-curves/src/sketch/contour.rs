@@ -83,11 +83,17 @@ pub const SHORT_SHARE: f64 = 0.7;
 /// ladder other than the last (an S takes 2 to 4, a loop 4 to 8).
 const RUNG_PIECES: usize = 24;
 
+/// The root-mean-square bow of a hand's straight stretch, in tolerances (a drawn side
+/// that the hand's drift bows by up to about half the tolerance is still straight).
+const HAND_BOW: f64 = 0.3;
+
 /// What the fit of a run may use: the tolerance and the most pieces.
 #[derive(Clone, Copy, Debug)]
 struct Fit {
     tolerance: f64,
     max_pieces: usize,
+    /// The root-mean-square bow a straight stretch may have ([`straight::Test::allowing_bow`]).
+    bow: f64,
 }
 
 impl Fit {
@@ -96,6 +102,7 @@ impl Fit {
         Fit {
             tolerance,
             max_pieces: SketchOptions::with_tolerance(tolerance).max_pieces,
+            bow: 0.0,
         }
     }
 }
@@ -314,12 +321,12 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
             // needs more follows the hand's wobble, slowly, and the next, looser one is
             // fairer.
             let fit = |t: f64| Fit {
-                tolerance: t,
                 max_pieces: if t < last {
                     RUNG_PIECES
                 } else {
                     Fit::at(t).max_pieces
                 },
+                ..Fit::at(t)
             };
             super::at_default(
                 default,
@@ -350,6 +357,16 @@ fn contour_at(
     noise: &Noise,
 ) -> Result<SketchContour> {
     let tolerance = fit.tolerance;
+    // A hand's stroke (a device's step seen or given): its slow wobble bows a drawn side
+    // by a pixel or two, which a designer does not mean.
+    let fit = Fit {
+        bow: if noise.quantum > 0.0 {
+            HAND_BOW * tolerance
+        } else {
+            0.0
+        },
+        ..fit
+    };
     let (closed, kept) = closes(points, tolerance, opts.closed);
     let stroke = &points[..kept];
     let found = corners_at(stroke, closed, tolerance, opts.corner_angle, noise.sigma);
@@ -594,6 +611,7 @@ fn fit_parts(
     let Some(test) = straight::Test::of(points, tolerance, sigma, one_loop) else {
         return whole();
     };
+    let test = test.allowing_bow(fit.bow);
     let mut best: Option<(usize, Vec<(Run, f64)>)> = None;
     for setback in SETBACKS {
         let Some(parts) = split_run(&test, setback) else {

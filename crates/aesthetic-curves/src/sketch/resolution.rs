@@ -15,7 +15,7 @@
 //! is smooth at that scale, so what is left is the hand's).
 
 /// The default tolerance is at least this many device steps.
-pub(super) const QUANTUM_TOLERANCE: f64 = 2.0;
+pub(super) const QUANTUM_TOLERANCE: f64 = 3.0;
 
 /// A stroke is a device's when its typical step is at most this many quanta (a typed
 /// polygon on whole numbers has steps of many units: its points are meant exactly).

@@ -44,6 +44,9 @@ pub(super) const MIN_GAP: usize = 8;
 /// largest just beyond it.
 pub(super) const FLAT_SHARE: f64 = 0.15;
 
+/// [`FLAT_SHARE`] for a hand's stroke ([`Test::allowing_bow`]).
+pub(super) const HAND_FLAT_SHARE: f64 = 0.3;
+
 /// A straight stretch: points `a..=b` of the run and their least-squares line.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Stretch {
@@ -144,10 +147,19 @@ impl<'a> Test<'a> {
             points,
             tolerance,
             sigma,
+            bow: 0.0,
             kappa: fair_curvatures(points, tolerance)?,
             arc: arc_lengths(points),
             closed_loop,
         })
+    }
+
+    /// The test letting a stretch bow by up to `bow` root mean square (the drop of item 1 up
+    /// to `bow² n` over `n` points): a hand's slow wobble bows a side drawn straight by a
+    /// pixel or two, a bend that the χ² test, whose noise is the white noise of 15
+    /// neighbours, finds in every long side. Item 3 still tells a large arc from a line.
+    pub(super) fn allowing_bow(self, bow: f64) -> Self {
+        Test { bow, ..self }
     }
 
     /// The straight stretches, each line ending `setback` radii before its curve
@@ -237,6 +249,8 @@ pub(super) struct Test<'a> {
     pub(super) points: &'a [Point],
     tolerance: f64,
     sigma: f64,
+    /// The root-mean-square bow item 1 lets pass whatever the noise ([`Test::allowing_bow`]).
+    bow: f64,
     /// The fair spline's signed curvature at each point (item 3).
     kappa: Vec<f64>,
     /// Cumulative arc length at each point.
@@ -304,7 +318,9 @@ impl Test<'_> {
             return None;
         }
         let drop = bend(pts, centre, dir)?;
-        (drop <= BEND_CHI2 * self.sigma * self.sigma).then_some(Stretch { a, b, centre, dir })
+        let allowed =
+            (BEND_CHI2 * self.sigma * self.sigma).max(self.bow * self.bow * pts.len() as f64);
+        (drop <= allowed).then_some(Stretch { a, b, centre, dir })
     }
 
     /// Item 3: the curves on both sides bend the same way (the fair spline's curvature at
@@ -326,7 +342,14 @@ impl Test<'_> {
         let after = self.bend_beyond(s.b, true, 0.5 * length)?;
         let same_way = before.signum() == after.signum();
         let (kb, ka) = (before.abs(), after.abs());
-        (same_way && inside <= FLAT_SHARE * kb.min(ka)).then_some([kb, ka])
+        // A hand's side (a bow allowed): its fair spline carries the corners' curvature a
+        // little further in, and the wobble's.
+        let share = if self.bow > 0.0 {
+            HAND_FLAT_SHARE
+        } else {
+            FLAT_SHARE
+        };
+        (same_way && inside <= share * kb.min(ka)).then_some([kb, ka])
     }
 
     /// The fair spline's signed curvature where |κ| is largest within `reach` of point

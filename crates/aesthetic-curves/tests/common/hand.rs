@@ -13,8 +13,9 @@
 //! - **device**: events at a fixed rate (mouse 125 Hz, trackpad 60 Hz, pen 200 Hz), the
 //!   position quantized (mouse and trackpad: whole pixels; pen: 1/16 px and a sensor noise
 //!   of 0.15 px);
-//! - **closure**: a closed stroke ends near its start: an overshoot past it or a gap
-//!   short of it of up to a few percent of its length;
+//! - **closure**: a closed stroke ends near its start: an overshoot past it of up to 5 %
+//!   of its length or a gap short of it of up to 1.5 % (about 3 % of its size: a gap of
+//!   more than 5 % of the size reads as an open stroke, by design);
 //! - **editor**: optionally, only events at least 2 px from the last kept one (what the
 //!   editor sends), then scaled to world units (`scale` pixels per unit, an offset).
 
@@ -423,7 +424,7 @@ pub fn stroke(shape: Shape, hand: Hand, rng: &mut ChaCha8Rng) -> Stroke {
     stops.push(0.0);
     let mut end = total;
     if shape.closed {
-        end = total * (1.0 + rng.random_range(-0.03..0.05));
+        end = total * (1.0 + rng.random_range(-0.015..0.05));
     } else {
         stops.push(total);
     }
