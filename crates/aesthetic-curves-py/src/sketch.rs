@@ -269,7 +269,7 @@ pub(crate) struct SketchContour {
 /// stroke); `tolerance` None for the default from the points' size and noise;
 /// `corner_angle` the least turn of a corner (degrees); `resolution` the size of one
 /// device pixel in the points' units (None: read from the points), the default tolerance
-/// at least two of them.
+/// at least three of them.
 #[pyfunction]
 #[pyo3(signature = (points, tolerance=None, closed=None, corner_angle=35.0, resolution=None))]
 pub(crate) fn fit_contour(

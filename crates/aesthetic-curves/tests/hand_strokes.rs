@@ -144,13 +144,16 @@ fn run(stroke: &Stroke) -> Result<Seen, String> {
 }
 
 /// The most pieces a designer means for each kind (an S in at most 4, a circle or an egg in
-/// at most 6, a rounded rectangle as its 4 sides and 4 corner arcs, an L and a V as 2 lines).
+/// at most 6, a rounded rectangle as its 4 sides as lines and 4 corner arcs, an L and a V as
+/// 2 lines).
 fn meant_pieces(kind: Kind) -> usize {
     match kind {
         Kind::S => 4,
         Kind::Arc => 3,
         Kind::Circle | Kind::Egg => 6,
-        Kind::RoundedRectangle => 8,
+        // 4 lines and 4 corner arcs, each arc two pieces meeting at its curvature peak (it
+        // leaves both lines with zero curvature).
+        Kind::RoundedRectangle => 12,
         Kind::L | Kind::V => 2,
         Kind::Spiral => 10,
         Kind::Wave => 8,
@@ -180,13 +183,20 @@ impl Rates {
         self.answered += 1;
         self.closed += (s.closed == kind.closed()) as usize;
         self.corners += (s.corners == kind.corners()) as usize;
-        let lines_ok = !matches!(kind, Kind::L | Kind::V) || s.lines == 2;
+        let lines_ok = match kind {
+            Kind::L | Kind::V => s.lines == 2,
+            Kind::RoundedRectangle => s.lines == 4,
+            _ => true,
+        };
         self.pieces += (s.pieces <= meant_pieces(kind) && lines_ok) as usize;
-        // Lines have no curvature: an L's or a V's hook is its curvature times its size.
-        let hook_bound = if matches!(kind, Kind::L | Kind::V) {
-            0.5
-        } else {
-            1.5
+        // Lines have no curvature: an L's or a V's hook is its curvature times its size. A
+        // rounded rectangle's corner arc of radius r leaves its lines with zero curvature
+        // (G2): turning 90° over the drawn arc's length, its curvature peaks at 2/r at least
+        // (a triangle of area π/2 over a base of πr/2), so its bound is 2.2 times 1/r.
+        let hook_bound = match kind {
+            Kind::L | Kind::V => 0.5,
+            Kind::RoundedRectangle => 2.2,
+            _ => 1.5,
         };
         self.no_hook += (s.hook <= hook_bound) as usize;
         self.g2 += s.g2 as usize;
@@ -240,8 +250,10 @@ fn sweep(per_kind: u64, editor: bool) -> Vec<(Kind, Rates)> {
         "med ms",
         "max ms"
     );
+    let only = std::env::var("HAND_KIND").ok();
     Kind::ALL
         .into_iter()
+        .filter(|kind| only.as_ref().is_none_or(|k| *k == format!("{kind:?}")))
         .map(|kind| {
             let mut rates = Rates::default();
             for i in 0..per_kind {

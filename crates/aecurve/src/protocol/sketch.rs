@@ -185,7 +185,7 @@ pub struct SketchContourRequest {
     #[serde(default)]
     pub corner_angle_degrees: Option<f64>,
     /// The size of one device pixel in the points' units (the editor sends its view's):
-    /// the default tolerance is at least two of them. Absent: read from the points (a
+    /// the default tolerance is at least three of them. Absent: read from the points (a
     /// mouse's whole pixels).
     #[serde(default)]
     pub resolution: Option<Positive>,

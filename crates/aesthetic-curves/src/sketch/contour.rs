@@ -83,6 +83,11 @@ pub const SHORT_SHARE: f64 = 0.7;
 /// ladder other than the last (an S takes 2 to 4, a loop 4 to 8).
 const RUNG_PIECES: usize = 24;
 
+/// The most pieces of a curve between two straight stretches (a rounded corner takes 2 to
+/// 4): one that needs more does not fit between those lines, and the next setback, or the
+/// run as one curve, is tried at once instead of after splitting up to the run's limit.
+const PART_PIECES: usize = 8;
+
 /// The root-mean-square bow of a hand's straight stretch, in tolerances (a drawn side
 /// that the hand's drift bows by up to about half the tolerance is still straight).
 const HAND_BOW: f64 = 0.3;
@@ -118,7 +123,7 @@ pub struct ContourOptions {
     pub corner_angle: f64,
     /// The size of one device pixel in the points' units (the editor sends its view's), or
     /// `None` to read it from the points (whole steps of a mouse: `resolution::quantum`).
-    /// The default tolerance is at least two of them: a stroke drawn on a screen is never
+    /// The default tolerance is at least three of them: a stroke drawn on a screen is never
     /// taken as more precise than the screen shows it.
     pub resolution: Option<f64>,
 }
@@ -708,7 +713,7 @@ fn fit_part(part: straight::Part, fit: Fit) -> Result<(Run, f64)> {
             }
             let opts = SketchOptions {
                 line_ends,
-                max_pieces: fit.max_pieces,
+                max_pieces: fit.max_pieces.min(PART_PIECES),
                 ..SketchOptions::with_tolerance(tolerance)
             };
             let s = fit_sketch(&points, &opts)?;
