@@ -9,7 +9,6 @@ use aesthetic_curves::sketch::{fit_sketch, SketchOptions};
 use aesthetic_curves::{Point, Vec2};
 use criterion::{criterion_group, criterion_main, Criterion};
 
-#[allow(dead_code)]
 #[path = "../tests/common/hand.rs"]
 mod hand;
 

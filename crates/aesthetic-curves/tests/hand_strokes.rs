@@ -52,6 +52,18 @@ fn rational_point(points: &[Point], weights: &[f64], t: f64) -> Point {
     Point::new(x / w, y / w)
 }
 
+/// The squared distance from `q` to the segment `a`-`b`.
+fn segment_distance2(q: Point, a: Point, b: Point) -> f64 {
+    let d = b - a;
+    let len2 = d.hypot2();
+    let t = if len2 > 0.0 {
+        ((q - a).dot(d) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (q - (a + d * t)).hypot2()
+}
+
 /// What a user sees of a contour.
 #[derive(Debug)]
 struct Seen {
@@ -65,31 +77,32 @@ struct Seen {
     hook: f64,
     /// Farthest input point from the delivered curve, in tolerances.
     deviation: f64,
+    /// Pieces whose α sits on its bound (read in the reports' output).
+    #[allow(dead_code)]
     alphas_at_bound: usize,
-    /// The tolerance in device pixels.
+    /// The tolerance in device pixels (read in the reports' output).
+    #[allow(dead_code)]
     tolerance_px: f64,
 }
 
 fn seen(stroke: &Stroke, c: &SketchContour, elapsed: Duration) -> Seen {
-    let mut dense = vec![];
+    let mut dense: Vec<Vec<Point>> = vec![];
     let mut max_k = 0.0f64;
     let mut at_bound = 0;
     for run in &c.runs {
         match run {
-            Run::Line { start, end } => {
-                for k in 0..=200 {
-                    dense.push(start.lerp(*end, k as f64 / 200.0));
-                }
-            }
+            Run::Line { start, end } => dense.push(vec![*start, *end]),
             Run::Curve(s) => {
                 for piece in &s.pieces {
                     at_bound += piece.alpha_at_bound as usize;
                     let (p, w) = (piece.rational.points(), piece.rational.weights());
+                    let mut polyline = Vec::with_capacity(401);
                     for k in 0..=400 {
                         let t = k as f64 / 400.0;
-                        dense.push(rational_point(p, w, t));
+                        polyline.push(rational_point(p, w, t));
                         max_k = max_k.max(rational_curvature(p, w, t).abs());
                     }
+                    dense.push(polyline);
                 }
             }
         }
@@ -101,7 +114,8 @@ fn seen(stroke: &Stroke, c: &SketchContour, elapsed: Duration) -> Seen {
         .map(|q| {
             dense
                 .iter()
-                .map(|d| (*d - *q).hypot2())
+                .flat_map(|line| line.windows(2))
+                .map(|w| segment_distance2(*q, w[0], w[1]))
                 .fold(f64::INFINITY, f64::min)
         })
         .fold(0.0f64, f64::max)
@@ -357,7 +371,7 @@ fn probe_hand_stroke() {
             r.map(|c| seen(&stroke, &c, t0.elapsed()))
                 .map_err(|e| e.to_string())
         );
-        for px in [3.0] {
+        for px in [2.0, 3.0, 4.0] {
             let t0 = Instant::now();
             let opts = ContourOptions {
                 tolerance: Some(px / stroke.hand.scale),
@@ -382,8 +396,14 @@ fn hand_stroke_rates() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(200);
-    println!("through the editor (its pixel size known):");
-    sweep(n, true);
-    println!("as files (the pixel size read from the points):");
-    sweep(n / 4, false);
+    // `HAND_SWEEPS`: `editor`, `files` or both (the default).
+    let which = std::env::var("HAND_SWEEPS").unwrap_or_else(|_| "editor,files".into());
+    if which.contains("editor") {
+        println!("through the editor (its pixel size known):");
+        sweep(n, true);
+    }
+    if which.contains("files") {
+        println!("as files (the pixel size read from the points):");
+        sweep(n / 4, false);
+    }
 }

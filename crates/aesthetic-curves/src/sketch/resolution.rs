@@ -50,7 +50,7 @@ pub(super) fn quantum(points: &[Point], size: f64) -> f64 {
         .flat_map(|w| [(w[1].x - w[0].x).abs(), (w[1].y - w[0].y).abs()])
         .filter(|d| *d > eps)
         .collect();
-    if points.len() < QUANTUM_MIN_POINTS || steps.is_empty() || !(size > 0.0) {
+    if points.len() < QUANTUM_MIN_POINTS || steps.is_empty() || size.is_nan() || size <= 0.0 {
         return 0.0;
     }
     let mut q = steps[0];
