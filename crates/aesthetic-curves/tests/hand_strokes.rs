@@ -264,10 +264,7 @@ fn sweep(per_kind: u64, editor: bool) -> Vec<(Kind, Rates)> {
         "med ms",
         "max ms"
     );
-    let only = std::env::var("HAND_KIND").ok();
-    Kind::ALL
-        .into_iter()
-        .filter(|kind| only.as_ref().is_none_or(|k| *k == format!("{kind:?}")))
+    kinds_asked()
         .map(|kind| {
             let mut rates = Rates::default();
             for i in 0..per_kind {
@@ -283,7 +280,7 @@ fn sweep(per_kind: u64, editor: bool) -> Vec<(Kind, Rates)> {
 
 /// Hand strokes through the editor (the view's pixel size known), 24 of each kind: the
 /// shares of strokes that come back as drawn. The floors are what this version measures
-/// (docs/math.md §6.4 gives the full table); a change that loses ground fails here.
+/// (docs/math.md §6.2 gives the full table); a change that loses ground fails here.
 #[test]
 fn hand_strokes_through_the_editor_come_back_as_drawn() {
     for (kind, r) in sweep(24, true) {
@@ -317,20 +314,29 @@ fn hand_strokes_through_the_editor_come_back_as_drawn() {
     }
 }
 
+/// The reports' strokes per kind: `HAND_STROKES`, else `default`.
+fn strokes_asked(default: u64) -> u64 {
+    std::env::var("HAND_STROKES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+/// The kinds a report covers: the one `HAND_KIND` names, else all.
+fn kinds_asked() -> impl Iterator<Item = Kind> {
+    let only = std::env::var("HAND_KIND").ok();
+    Kind::ALL
+        .into_iter()
+        .filter(move |kind| only.as_ref().is_none_or(|k| *k == format!("{kind:?}")))
+}
+
 /// The table of what users see, per kind of stroke (run with `--ignored --nocapture`).
 #[test]
 #[ignore = "a report: prints what hand strokes come back as"]
 fn report_hand_strokes() {
-    let n: u64 = std::env::var("HAND_STROKES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(12);
-    let only = std::env::var("HAND_KIND").ok();
+    let n = strokes_asked(12);
     let editor = std::env::var("HAND_EDITOR").ok().map(|v| v == "1");
-    for kind in Kind::ALL {
-        if only.as_ref().is_some_and(|k| *k != format!("{kind:?}")) {
-            continue;
-        }
+    for kind in kinds_asked() {
         for i in 0..n {
             let mut stroke = hand::nth(kind, i);
             if let Some(e) = editor {
@@ -388,14 +394,11 @@ fn probe_hand_stroke() {
 }
 
 /// The rates over `HAND_STROKES` strokes of each kind (default 200) through the editor and
-/// a quarter as many as files (the table of docs/math.md §6.4; `--ignored --nocapture`).
+/// a quarter as many as files (the table of docs/math.md §6.2; `--ignored --nocapture`).
 #[test]
 #[ignore = "a report: a few minutes"]
 fn hand_stroke_rates() {
-    let n: u64 = std::env::var("HAND_STROKES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(200);
+    let n = strokes_asked(200);
     // `HAND_SWEEPS`: `editor`, `files` or both (the default).
     let which = std::env::var("HAND_SWEEPS").unwrap_or_else(|_| "editor,files".into());
     if which.contains("editor") {

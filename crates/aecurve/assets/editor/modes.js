@@ -201,8 +201,8 @@ export const MODES = {
       if (s.length < 8) {
         return { shown: { stroke: s }, nurbs: null, numbers: [['pieces', 'pieces', 0]], verdict: ['draw a stroke'], lcg: { fit: null, note: 'draw a stroke' } };
       }
-      // One screen pixel in world units: the stroke is never taken as finer than that.
       const req = { op: 'sketch.contour', points: s, draw: DRAW.sketch };
+      // One screen pixel in world units: the stroke is never taken as finer than that.
       if (st.resolution > 0) req.resolution = st.resolution;
       if (st.tolerance > 0) req.tolerance = st.tolerance;
       const r = await api(req);

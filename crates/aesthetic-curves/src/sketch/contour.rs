@@ -44,7 +44,7 @@
 //! line: the flank of an S or a wave looks the same.
 
 pub use super::constants::SPARSE_STEP;
-use super::input::{bbox_diagonal, check_points, noise_level, sparse, Noise};
+use super::input::{arc_lengths, bbox_diagonal, check_points, noise_level, sparse, Noise};
 use super::slot::segment_distance;
 use super::straight;
 use super::types::{Sketch, SketchOptions};
@@ -325,13 +325,16 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
             // Every rung but the last with at most RUNG_PIECES pieces a run: a rung that
             // needs more follows the hand's wobble, slowly, and the next, looser one is
             // fairer.
-            let fit = |t: f64| Fit {
-                max_pieces: if t < last {
-                    RUNG_PIECES
-                } else {
-                    Fit::at(t).max_pieces
-                },
-                ..Fit::at(t)
+            let fit = |t: f64| {
+                let base = Fit::at(t);
+                Fit {
+                    max_pieces: if t < last {
+                        RUNG_PIECES
+                    } else {
+                        base.max_pieces
+                    },
+                    ..base
+                }
             };
             super::at_default(
                 default,
@@ -826,7 +829,7 @@ struct ArcLength {
 
 impl ArcLength {
     fn of(points: &[Point], closed: bool) -> ArcLength {
-        let s = straight::arc_lengths(points);
+        let s = arc_lengths(points);
         let last = *s.last().unwrap_or(&0.0);
         let total = if closed {
             last + (points[0] - points[points.len() - 1]).hypot()

@@ -35,6 +35,15 @@ pub(super) fn check_points(points: &[Point]) -> Result<f64> {
     Ok(diagonal)
 }
 
+/// Cumulative arc length along the points.
+pub(super) fn arc_lengths(points: &[Point]) -> Vec<f64> {
+    let mut s = vec![0.0; points.len()];
+    for i in 1..points.len() {
+        s[i] = s[i - 1] + (points[i] - points[i - 1]).hypot();
+    }
+    s
+}
+
 /// Diagonal of the points' bounding box.
 pub(super) fn bbox_diagonal(points: &[Point]) -> f64 {
     let (mut lo, mut hi) = (
@@ -77,10 +86,7 @@ fn residuals(points: &[Point], half: usize) -> Vec<f64> {
     if n < 15 {
         return Vec::new();
     }
-    let mut s = vec![0.0; n];
-    for i in 1..n {
-        s[i] = s[i - 1] + (points[i] - points[i - 1]).hypot();
-    }
+    let s = arc_lengths(points);
     (half..n - half)
         .filter_map(|k| normal_residual(points, &s, k, half))
         .map(f64::abs)

@@ -35,7 +35,7 @@ const WOBBLE_SAMPLES: usize = 160;
 /// The half window of [`wobble`]'s local cubics, in resampled points.
 const WOBBLE_HALF: usize = 5;
 
-use super::input::sigma_of_residuals;
+use super::input::{arc_lengths, sigma_of_residuals};
 use kurbo::Point;
 
 /// The step every coordinate difference of consecutive points is a whole multiple of (to
@@ -44,13 +44,16 @@ use kurbo::Point;
 /// moves by a few such steps at a time (its median step at most [`QUANTUM_STEPS`] of them)
 /// and the step is at least [`QUANTUM_MIN_SHARE`] of its size; else 0.
 pub(super) fn quantum(points: &[Point], size: f64) -> f64 {
+    if points.len() < QUANTUM_MIN_POINTS || size.is_nan() || size <= 0.0 {
+        return 0.0;
+    }
     let eps = 1e-7 * size;
-    let mut steps: Vec<f64> = points
+    let steps: Vec<f64> = points
         .windows(2)
         .flat_map(|w| [(w[1].x - w[0].x).abs(), (w[1].y - w[0].y).abs()])
         .filter(|d| *d > eps)
         .collect();
-    if points.len() < QUANTUM_MIN_POINTS || steps.is_empty() || size.is_nan() || size <= 0.0 {
+    if steps.is_empty() {
         return 0.0;
     }
     let mut q = steps[0];
@@ -83,7 +86,6 @@ pub(super) fn quantum(points: &[Point], size: f64) -> f64 {
         .filter(|d| *d > eps)
         .collect();
     lengths.sort_unstable_by(f64::total_cmp);
-    steps.clear();
     let median = lengths[lengths.len() / 2];
     if median <= QUANTUM_STEPS * q {
         q
@@ -123,11 +125,8 @@ pub(super) fn wobble(points: &[Point]) -> f64 {
 
 /// `n` points at equal arc length along the polyline through `points`.
 fn resampled(points: &[Point], n: usize) -> Vec<Point> {
-    let mut s = vec![0.0];
-    for w in points.windows(2) {
-        s.push(s.last().unwrap() + (w[1] - w[0]).hypot());
-    }
-    let total = *s.last().unwrap();
+    let s = arc_lengths(points);
+    let total = s[s.len() - 1];
     let mut out = Vec::with_capacity(n);
     let mut i = 1;
     for k in 0..n {

@@ -24,7 +24,7 @@
 //! ([`Test::trimmed`]).
 
 use super::constants::FAIR_SHARE;
-use super::input::bbox_diagonal;
+use super::input::{arc_lengths, bbox_diagonal};
 use kurbo::{Point, Vec2};
 
 /// Upper bound of the drop in squared residuals from a line to a cubic, in units of σ²
@@ -519,15 +519,6 @@ fn fair_curvatures(points: &[Point], tolerance: f64) -> Option<Vec<f64>> {
         out.push(track.derivs(*fit.params.get(j)?).kappa());
     }
     Some(out)
-}
-
-/// Cumulative arc length along the points.
-pub(super) fn arc_lengths(points: &[Point]) -> Vec<f64> {
-    let mut s = vec![0.0; points.len()];
-    for i in 1..points.len() {
-        s[i] = s[i - 1] + (points[i] - points[i - 1]).hypot();
-    }
-    s
 }
 
 #[cfg(test)]

@@ -1,5 +1,5 @@
 //! A model of the strokes a hand delivers through a mouse, a trackpad or a pen tablet
-//! (docs/math.md §6.4), written for the tests and benches of the sketch tools. It shares
+//! (docs/math.md §6.2), written for the tests and benches of the sketch tools. It shares
 //! no code with the library.
 //!
 //! A stroke is an intended shape (a parametric curve, with the places where the hand
@@ -481,6 +481,7 @@ pub fn stroke(shape: Shape, hand: Hand, rng: &mut ChaCha8Rng) -> Stroke {
     let dt_event = 1.0 / hand.device.rate();
     let sub = 20;
     let q = hand.device.quantum();
+    let device = |p: Point| Point::new((p.x / q).round() * q, (p.y / q).round() * q);
     let offset = Vec2::new(rng.random_range(0.0..800.0), rng.random_range(0.0..600.0));
     let mut events = vec![];
     let (mut s, mut t) = (0.0, 0.0);
@@ -491,7 +492,7 @@ pub fn stroke(shape: Shape, hand: Hand, rng: &mut ChaCha8Rng) -> Stroke {
         if hand.device == Device::Pen {
             pos += Vec2::new(gauss(rng, 0.15), gauss(rng, 0.15));
         }
-        events.push(Point::new((pos.x / q).round() * q, (pos.y / q).round() * q));
+        events.push(device(pos));
         if s >= end {
             break;
         }
@@ -505,8 +506,7 @@ pub fn stroke(shape: Shape, hand: Hand, rng: &mut ChaCha8Rng) -> Stroke {
                 let n = (dwell / dt_event) as usize;
                 for _ in 0..n {
                     t += dt_event;
-                    let pos = point_at(s) + offset + wobble(t);
-                    events.push(Point::new((pos.x / q).round() * q, (pos.y / q).round() * q));
+                    events.push(device(point_at(s) + offset + wobble(t)));
                 }
                 dwell = rng.random_range(0.03..0.12);
                 stop_i += 1;
