@@ -16,6 +16,11 @@ pub(crate) struct SketchSegment {
     pub(crate) alpha: f64,
     /// α sits on the bound of its fit (the data do not pin it down).
     pub(crate) alpha_at_bound: bool,
+    /// For a "lac" piece, the α values that fit its points as closely as their noise lets
+    /// one tell (within the tolerance); None for an inflection piece.
+    pub(crate) alpha_range: Option<(f64, f64)>,
+    /// The points determine α (alpha_range at most 0.1 wide).
+    pub(crate) alpha_determined: bool,
     /// α estimated from the piece's curvature graph (None for inflection pieces and
     /// pieces of nearly constant curvature).
     pub(crate) alpha_estimate: Option<f64>,
@@ -180,6 +185,8 @@ pub(crate) fn fit_sketch(
                     kind: q.kind.as_str(),
                     alpha: q.alpha,
                     alpha_at_bound: q.alpha_at_bound,
+                    alpha_range: q.alpha_range,
+                    alpha_determined: q.alpha_determined(),
                     alpha_estimate: q.alpha_estimate,
                     control: points_array(py, &q.control).unbind(),
                     end_curvatures: q.end_curvatures,

@@ -21,5 +21,6 @@ mod monotone_properties;
 mod monotone_reference;
 mod pseudo_spline_reference;
 mod pseudo_table_accuracy;
+mod sketch_alpha;
 mod sketch_contour;
 mod sketch_reference;

@@ -40,6 +40,14 @@ pub struct SketchPieceJson {
     pub alpha: f64,
     /// Whether α stopped at the library's bound.
     pub alpha_at_bound: bool,
+    /// For a `lac` piece, the α values whose segment in its triangle fits its points as
+    /// closely as their noise lets one tell (within the tolerance): how far the points pin
+    /// α down.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub alpha_range: Option<[f64; 2]>,
+    /// Whether the points determine α (`alpha_range` at most 0.1 wide): false for a nearly
+    /// circular or straight piece, or too few points for the tolerance.
+    pub alpha_determined: bool,
     /// α estimated from the stroke's curvature graph, where there is one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub alpha_estimate: Option<f64>,
@@ -117,6 +125,8 @@ pub fn sketch_json(sk: &Sketch, tolerance: f64) -> SketchResult {
             ),
             alpha: p.alpha,
             alpha_at_bound: p.alpha_at_bound,
+            alpha_range: p.alpha_range.map(|(lo, hi)| [lo, hi]),
+            alpha_determined: p.alpha_determined(),
             alpha_estimate: p.alpha_estimate.and_then(finite),
             rational_error: finite(p.rational_error),
         })

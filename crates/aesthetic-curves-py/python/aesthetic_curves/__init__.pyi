@@ -315,6 +315,8 @@ class SketchSegment:
     kind: str
     alpha: float
     alpha_at_bound: bool
+    alpha_range: Optional[tuple[float, float]]
+    alpha_determined: bool
     alpha_estimate: Optional[float]
     control: _Array2
     end_curvatures: tuple[float, float]

@@ -124,6 +124,56 @@ pub(super) fn fit_alpha(tri: [Point; 3], all: &[Point], cap: f64) -> Option<(f64
     lac_cost(best, tri, all, cap).map(|c| (best, c.1))
 }
 
+/// The α values around `alpha` (within [`ALPHA_RANGE`]) whose segment in `tri` fits `pts`
+/// as closely as the points can tell: its largest distance within twice `alpha`'s own
+/// or within `alpha`'s own plus 3 times the input's `noise` (σ), and never over
+/// `tolerance` (an infinite `noise`, unknown, leaves the whole tolerance). Exact samples
+/// pin α to their own fit; noisy points of a nearly circular or straight piece leave a
+/// wide range. Each edge is walked to in steps of [`RANGE_STEP`],
+/// then bisected to 1e-4; it stops where a segment stops existing.
+pub(super) fn alpha_range(
+    tri: [Point; 3],
+    pts: &[Point],
+    alpha: f64,
+    noise: f64,
+    tolerance: f64,
+) -> (f64, f64) {
+    let cost = |a: f64| lac_cost(a, tri, pts, f64::INFINITY).map(|c| c.1);
+    let Some(own) = cost(alpha) else {
+        return (alpha, alpha);
+    };
+    let limit = (2.0 * own).max(own + 3.0 * noise).min(tolerance.max(own));
+    let fits = |a: f64| cost(a).is_some_and(|d| d <= limit);
+    let edge = |to: f64| -> f64 {
+        let mut good = alpha;
+        while good != to {
+            let next = if (to - good).abs() <= RANGE_STEP {
+                to
+            } else {
+                good + RANGE_STEP.copysign(to - good)
+            };
+            if !fits(next) {
+                let mut bad = next;
+                while (bad - good).abs() > 1e-4 {
+                    let mid = 0.5 * (good + bad);
+                    if fits(mid) {
+                        good = mid;
+                    } else {
+                        bad = mid;
+                    }
+                }
+                return good;
+            }
+            good = next;
+        }
+        to
+    };
+    (edge(ALPHA_RANGE.0), edge(ALPHA_RANGE.1))
+}
+
+/// The step of [`alpha_range`]'s walk to its edges.
+const RANGE_STEP: f64 = 0.25;
+
 /// `to` when `f` is finite there, else the last α from `from` (where it is finite) towards
 /// `to` where it still is, to 1e-4 (bisection); with its value.
 fn feasible_edge(f: &dyn Fn(f64) -> f64, from: f64, to: f64) -> (f64, f64) {

@@ -10,6 +10,12 @@ pub(super) const PRECISE_NOISE: f64 = 1e-6;
 /// fall as the window's fourth power (to 0.012).
 pub(super) const PRECISE_SCALING: f64 = 0.1;
 
+/// The window scaling below which points are a curve's samples for the choice of spline
+/// (the tight one): 1,200 coarse and dense samples of log-aesthetic curves measured at most
+/// 0.0146 (a polynomial's (5/15)⁴ = 0.012); a regular tremor 0.076, a hand's sparse stroke
+/// 0.029.
+pub(super) const CURVE_SAMPLES_SCALING: f64 = 0.02;
+
 /// A stroke whose steps at a point are longer than this share of its size (the diagonal
 /// of its bounding box: some 50 points or fewer along it) is sparse there: clicked
 /// points, or a pen sampled far apart ([`super::contour`]'s corners).
@@ -83,6 +89,13 @@ pub(super) const FAIR_SHARE_LAST: f64 = 0.95;
 
 /// Share of the tolerance within which two neighbouring pieces merge into one LAC segment.
 pub(super) const MERGE_SHARE: f64 = 0.95;
+
+/// A merge may cross a curvature peak of precise input when the merged segment's largest
+/// deviation is within this many times the larger of the two pieces' own: the peak is then
+/// the spline's (a wave of the tight spline near a free end), not the data's. A true peak
+/// (a segment and its mirror image) leaves one segment across it hundreds of times further
+/// off than its two halves.
+pub(super) const PEAK_MERGE_FACTOR: f64 = 4.0;
 
 /// The least share of a piece's parameter range left on either side of a split at its half
 /// turning (a piece with an inflection end that misses the points): over 240 jittery

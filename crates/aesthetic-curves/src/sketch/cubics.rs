@@ -170,6 +170,7 @@ fn piece(s: &Slot, b: Built, control: [Point; 3], rat: RationalCubicFit) -> Sket
         rational_error: rat.max_error,
         monotone: rat.monotone,
         alpha_at_bound: b.alpha <= ALPHA_RANGE.0 + 1e-9 || b.alpha >= ALPHA_RANGE.1 - 1e-9,
+        alpha_range: None,
         u_range: (s.ua, s.ub),
     }
 }

@@ -1,6 +1,6 @@
 use super::constants::{
-    EXTREME_CUT, EXTREME_FACTOR, FAIR_SHARE, FAIR_SHARE_LAST, NEAR_NOISE, NEAR_NOISE_SHARE,
-    PRECISE_NOISE, PRECISE_SCALING, SPARSE_STEP, TIGHT_SHARE,
+    CURVE_SAMPLES_SCALING, EXTREME_CUT, EXTREME_FACTOR, FAIR_SHARE, FAIR_SHARE_LAST, NEAR_NOISE,
+    NEAR_NOISE_SHARE, PRECISE_NOISE, PRECISE_SCALING, SPARSE_STEP, TIGHT_SHARE,
 };
 use super::resolution;
 use super::slot::EndPoints;
@@ -206,6 +206,15 @@ impl Noise {
     pub(super) fn sampled(&self, size: f64) -> bool {
         self.precise(size) || (self.quantum == 0.0 && self.scaling < PRECISE_SCALING)
     }
+
+    /// Whether enough points (15) show residuals that shrink with the window as a
+    /// sampled curve's do, closely ([`CURVE_SAMPLES_SCALING`]), with no device step: a
+    /// curve's samples, however coarse (25 samples of a 110° arc leave 15-point residuals
+    /// of 4e-4 of the size, far above rounding), which the tight spline follows. A regular
+    /// tremor can shrink too, less (0.03 to 0.08), and gets the fair spline.
+    pub(super) fn curve_samples(&self) -> bool {
+        self.known && self.quantum == 0.0 && self.scaling < CURVE_SAMPLES_SCALING
+    }
 }
 
 /// The residual of point `k` along the normal of the least-squares cubic in chord length
@@ -252,9 +261,13 @@ pub(super) struct Context<'a> {
     /// The unit directions of the lines its ends join, if any (the fair spline's tangent
     /// there, noisy, is not used for those ends' pieces).
     pub(super) line_ends: [Option<kurbo::Vec2>; 2],
-    /// The input is precise to rounding ([`Noise::precise`]): its curvature extrema are
-    /// the data's, wherever they lie.
+    /// The input is precise to rounding ([`Noise::precise`]) or a curve's samples
+    /// ([`Noise::curve_samples`]): its curvature extrema are the data's, wherever they lie.
     pub(super) precise: bool,
+    /// The input's noise (σ) where it is not a curve's samples, 0 where it is, infinite
+    /// where too few points (15) tell which: how closely the points can tell one curve from
+    /// another.
+    pub(super) noise: f64,
 }
 
 impl<'a> Context<'a> {
@@ -278,7 +291,7 @@ impl<'a> Context<'a> {
             return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
         }
         let end_dirs = line_ends(opts)?;
-        let precise = noise.precise(bbox_diagonal(points));
+        let precise = noise.precise(bbox_diagonal(points)) || noise.curve_samples();
         let (fit, fit_tol) = fair_spline(points, opts.tolerance, noise)?;
         let track = Track::new(&fit.spline)?;
         check_turning(&track, opts.min_turn)?;
@@ -297,6 +310,11 @@ impl<'a> Context<'a> {
             ends,
             line_ends: end_dirs,
             precise,
+            noise: match (noise.known, precise) {
+                (false, _) => f64::INFINITY,
+                (true, true) => 0.0,
+                (true, false) => noise.sigma,
+            },
         })
     }
 
@@ -338,7 +356,7 @@ fn line_ends(opts: &SketchOptions) -> Result<[Option<kurbo::Vec2>; 2]> {
 /// noise estimate ignores can keep the tight fit from converging: then half the tolerance.
 fn fair_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(BSplineFit, f64)> {
     let size = bbox_diagonal(points);
-    let noisy = !noise.precise(size);
+    let noisy = !(noise.precise(size) || noise.curve_samples());
     let fit_tol = (4.0 * noise.fine)
         .max(TIGHT_SHARE * size)
         .min(0.5 * tolerance);
@@ -371,7 +389,7 @@ fn fair_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(BSpli
     // Sparse points (a dozen clicks) can leave the tight fit's knots where no point pins
     // the control points: it passes near every point and loops thousands of units away
     // between them. The smoothest spline within the tolerance does not.
-    if !(sparse(points) || fit.0.swings_out()) {
+    if !((sparse(points) && !noise.curve_samples()) || fit.0.swings_out()) {
         return Ok(fit);
     }
     let smooth = smoothing_spline(points, tolerance, noise)?;

@@ -79,7 +79,7 @@ mod types;
 
 pub use types::{
     count_events, FairingReport, PieceCurve, PieceKind, PieceShape, Sketch, SketchOptions,
-    SketchPiece,
+    SketchPiece, ALPHA_DETERMINED_WIDTH,
 };
 
 use constants::{

@@ -2,7 +2,7 @@
 //! round that misses the tolerance (or cannot build its pieces) splits a piece and the next
 //! round starts, a round that meets it delivers the [`Sketch`].
 
-use super::alpha::fit_slot_alpha;
+use super::alpha::{alpha_range, fit_slot_alpha, points_in};
 use super::constants::{BATCH_AFTER, MAX_JUMP_SPLITS, PIECES_OVER_POINTS};
 use super::cubics::{CubicCache, Cubics};
 use super::deviation::{measure, polyline_deviation, Deviation};
@@ -13,7 +13,9 @@ use super::segment::{
     initial_slots, split_at_mid_turn, split_at_peak, split_s_shapes, split_worst,
 };
 use super::slot::{triangle, Slot};
-use super::types::{count_events, FairingReport, PieceShape, Sketch, SketchOptions, SketchPiece};
+use super::types::{
+    count_events, FairingReport, PieceKind, PieceShape, Sketch, SketchOptions, SketchPiece,
+};
 use crate::error::{Error, Result};
 use kurbo::{Point, Vec2};
 use rayon::prelude::*;
@@ -288,10 +290,22 @@ fn lac_deviation(cx: &Context, built: &[Built]) -> Option<(f64, usize, f64)> {
 /// jump (a closed curve's seam included) and its inflections and curvature extrema.
 fn deliver(
     cx: &Context,
-    pieces: Vec<SketchPiece>,
+    mut pieces: Vec<SketchPiece>,
     dev: &Deviation,
     fairing: FairingReport,
 ) -> Sketch {
+    pieces.par_iter_mut().for_each(|p| {
+        if p.kind == PieceKind::Lac {
+            let pts = points_in(&cx.fit, p.u_range.0, p.u_range.1);
+            p.alpha_range = Some(alpha_range(
+                p.control,
+                &pts,
+                p.alpha,
+                cx.noise,
+                cx.opts.tolerance,
+            ));
+        }
+    });
     let kmax = pieces
         .iter()
         .map(|p| {

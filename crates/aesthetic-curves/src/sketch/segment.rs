@@ -1,7 +1,7 @@
 use super::alpha::{curve_distance, fit_slot_alpha, points_in};
 use super::constants::{
     FLAT_STRETCH_SHARE, LINE_END_SHARE, MERGE_SHARE, MID_TURN_ROOM, PEAK_FALL_SPLIT,
-    PEAK_PROMINENCE,
+    PEAK_MERGE_FACTOR, PEAK_PROMINENCE,
 };
 use super::input::Context;
 use super::slot::{slot, slot_ends, triangle, Cut, EndPoints, Slot};
@@ -428,10 +428,21 @@ pub(super) fn merge_slots(
     for s in slots.iter_mut() {
         fit_slot_alpha(track, fit, s, ends, false);
     }
+    // A peak of precise input is the data's unless one segment fits across it as closely
+    // as the two on its sides do (within PEAK_MERGE_FACTOR of the closer fit's deviation):
+    // then the peak is the spline's own (a tight spline's wave at a free end, where exact
+    // samples of one segment have none) and the data show none.
+    let peak_is_noise = |merged: f64, a: &Slot, b: &Slot| {
+        let apart = [a, b].map(|s| {
+            fit_slot_alpha(track, fit, &mut s.clone(), ends, false).unwrap_or(f64::INFINITY)
+        });
+        merged <= PEAK_MERGE_FACTOR * apart[0].max(apart[1])
+    };
     // The merged slot of each neighbouring pair and its deviation (None: no merge),
     // recomputed only next to a merge.
     let pair = |a: &Slot, b: &Slot| -> Option<(Slot, f64)> {
-        if a.cut_b != Cut::Other || track.angle_between(a.ua, b.ub).abs() > max_turn {
+        let crossable = matches!(a.cut_b, Cut::Other | Cut::Peak);
+        if !crossable || track.angle_between(a.ua, b.ub).abs() > max_turn {
             return None;
         }
         let mut m = Slot {
@@ -477,6 +488,9 @@ pub(super) fn merge_slots(
         } else {
             d
         };
+        if a.cut_b == Cut::Peak && !peak_is_noise(d, a, b) {
+            return None;
+        }
         (d <= limit).then_some((m, d))
     };
     let mut pairs: Vec<Option<(Slot, f64)>> =

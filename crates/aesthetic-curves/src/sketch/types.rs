@@ -142,6 +142,19 @@ impl PieceShape for PieceCurve {
     }
 }
 
+/// The widest [`SketchPiece::alpha_range`] of a piece whose α the points determine: α is
+/// then within ±0.05 of every α that fits them.
+pub const ALPHA_DETERMINED_WIDTH: f64 = 0.1;
+
+impl SketchPiece {
+    /// Whether the points determine this piece's α ([`SketchPiece::alpha_range`] at most
+    /// [`ALPHA_DETERMINED_WIDTH`] wide); an inflection piece's α is its triangle's.
+    pub fn alpha_determined(&self) -> bool {
+        self.alpha_range
+            .is_none_or(|(lo, hi)| hi - lo <= ALPHA_DETERMINED_WIDTH)
+    }
+}
+
 /// One piece of the result, in curve order.
 #[derive(Clone, Debug)]
 pub struct SketchPiece {
@@ -169,6 +182,12 @@ pub struct SketchPiece {
     /// inflection piece, whose α its control triangle fixes, α on the range's lower end (no
     /// piece beyond it is built: the fit turns the tangents or splits the piece instead).
     pub alpha_at_bound: bool,
+    /// For a LAC piece, the α values whose segment in this piece's triangle keeps every
+    /// input point of the piece within the fit's tolerance: how far the points pin α down.
+    /// A wide range (see [`SketchPiece::alpha_determined`]) means that the points, at this
+    /// tolerance, do not tell α: a nearly circular or nearly straight piece, or few points.
+    /// `None` for an inflection piece, whose triangle fixes α.
+    pub alpha_range: Option<(f64, f64)>,
     /// Parameter range on the intermediate B-spline.
     pub u_range: (f64, f64),
 }
