@@ -421,44 +421,40 @@ impl Test<'_> {
 
 /// How much better a cubic explains the points than a line, in the line's frame: the drop
 /// in the sum of squared residuals (normal offsets against the position along the line).
+/// One pass gathers the power sums (positions scaled to [-1, 1]); each least-squares fit
+/// explains `cᵀr` of the offsets' squares (`r` the moments of the offsets, `c` the fit's
+/// coefficients), so the drop is the cubic's explained part less the line's, with no
+/// residual sums to take apart.
 fn bend(pts: &[Point], centre: Point, dir: Vec2) -> Option<f64> {
-    let xs: Vec<f64> = pts.iter().map(|q| (*q - centre).dot(dir)).collect();
-    let ys: Vec<f64> = pts.iter().map(|q| (*q - centre).cross(dir)).collect();
-    let half = xs
+    let half = pts
         .iter()
-        .fold(0.0f64, |m, x| m.max(x.abs()))
+        .fold(0.0f64, |m, q| m.max((*q - centre).dot(dir).abs()))
         .max(f64::MIN_POSITIVE);
-    let rss = |degree: usize| -> Option<f64> {
-        let k = degree + 1;
-        let mut m = nalgebra::DMatrix::<f64>::zeros(k, k);
-        let mut r = nalgebra::DVector::<f64>::zeros(k);
-        let row = |x: f64| {
-            (0..k)
-                .map(|p| (x / half).powi(p as i32))
-                .collect::<Vec<f64>>()
-        };
-        for (x, y) in xs.iter().zip(&ys) {
-            let v = row(*x);
-            for i in 0..k {
-                r[i] += v[i] * y;
-                for j in 0..k {
-                    m[(i, j)] += v[i] * v[j];
-                }
+    // x^0..x^6 and y x^0..y x^3.
+    let (mut sx, mut sy) = ([0.0f64; 7], [0.0f64; 4]);
+    for q in pts {
+        let (x, y) = ((*q - centre).dot(dir) / half, (*q - centre).cross(dir));
+        let mut p = 1.0;
+        for (i, v) in sx.iter_mut().enumerate() {
+            *v += p;
+            if i < 4 {
+                sy[i] += p * y;
             }
+            p *= x;
         }
-        let c = m.cholesky()?.solve(&r);
-        Some(
-            xs.iter()
-                .zip(&ys)
-                .map(|(x, y)| {
-                    let v = row(*x);
-                    let fit: f64 = (0..k).map(|i| c[i] * v[i]).sum();
-                    (y - fit) * (y - fit)
-                })
-                .sum(),
-        )
-    };
-    Some((rss(1)? - rss(3)?).max(0.0))
+    }
+    let line = explained::<2>(&sx, &sy)?;
+    let cubic = explained::<4>(&sx, &sy)?;
+    Some((cubic - line).max(0.0))
+}
+
+/// The part of the offsets' sum of squares that the least-squares polynomial with `K`
+/// coefficients explains, from the power sums of [`bend`].
+fn explained<const K: usize>(sx: &[f64; 7], sy: &[f64; 4]) -> Option<f64> {
+    let m = nalgebra::SMatrix::<f64, K, K>::from_fn(|i, j| sx[i + j]);
+    let r = nalgebra::SVector::<f64, K>::from_fn(|i, _| sy[i]);
+    let c = m.cholesky()?.solve(&r);
+    Some(c.dot(&r))
 }
 
 /// The least-squares line of the points: their centroid and the principal axis of their
