@@ -314,6 +314,38 @@ fn hand_strokes_through_the_editor_come_back_as_drawn() {
     }
 }
 
+/// Dense pen strokes as files (6,000 events: a pen tablet's 200 a second, a slow hand):
+/// the contour fits them on points averaged over bins of arc length and measures the
+/// delivered curve against every raw point. Judged here on the raw points by the test's
+/// own evaluator: answered, every raw point within the tolerance, G2, no corner, no hook
+/// above the measured 2.5 times the shape's curvature (the pen's noise is fitted at its
+/// default tolerance, 0.5 to 1 px).
+#[test]
+fn dense_pen_strokes_are_fitted_within_the_tolerance_of_every_raw_point() {
+    use crate::common::hand::Device;
+    for (kind, seed) in [
+        (Kind::S, 3),
+        (Kind::Circle, 4),
+        (Kind::Spiral, 5),
+        (Kind::Wave, 6),
+    ] {
+        let stroke = hand::with_points(kind, Device::Pen, 6000, seed);
+        let t0 = Instant::now();
+        let c = fit_contour(&stroke.points, &ContourOptions::default())
+            .unwrap_or_else(|e| panic!("{kind:?}: {e}"));
+        let s = seen(&stroke, &c, t0.elapsed());
+        println!("{kind:?} {} points: {s:?}", stroke.points.len());
+        assert!(s.deviation <= 1.0 + 1e-9, "{kind:?}: {s:?}");
+        assert!(
+            (c.max_deviation / c.tolerance - s.deviation).abs() < 1e-3,
+            "{kind:?}: reported {}",
+            c.max_deviation / c.tolerance
+        );
+        assert!(s.g2 && s.corners == 0, "{kind:?}: {s:?}");
+        assert!(s.hook <= 2.5, "{kind:?}: {s:?}");
+    }
+}
+
 /// The reports' strokes per kind: `HAND_STROKES`, else `default`.
 fn strokes_asked(default: u64) -> u64 {
     std::env::var("HAND_STROKES")

@@ -47,6 +47,7 @@ pub use super::constants::SPARSE_STEP;
 use super::input::{arc_lengths, bbox_diagonal, check_points, noise_level, sparse, Noise};
 use super::slot::segment_distance;
 use super::straight;
+use super::thinning;
 use super::types::{Sketch, SketchOptions};
 use super::{default_tolerance_of, fit_sketch};
 use crate::error::{Error, Result};
@@ -302,7 +303,7 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     if points.len() < 2 {
         return Err(Error::invalid("points", "a stroke needs at least 2 points"));
     }
-    let size = check_points(points)?;
+    check_points(points)?;
     if !(opts.corner_angle > 0.0 && opts.corner_angle < std::f64::consts::PI) {
         return Err(Error::invalid("corner_angle", "must lie in (0, π) radians"));
     }
@@ -313,14 +314,56 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
         Error::check_positive("resolution", r)?;
     }
     let noise = Noise::of(points).with_resolution(opts.resolution);
+    // The default read from the raw points (it grows with their number).
+    let default = default_tolerance_of(points, &noise);
+    if let Some(c) = thinned_fit(points, opts, &noise, default) {
+        return Ok(c);
+    }
+    contour_with_noise(points, opts, &noise, default)
+}
+
+/// [`fit_contour`] of a dense stroke on its points averaged over bins of a quarter of the
+/// (first) tolerance ([`thinning`]), the noise read from the raw points: its corners' and
+/// trimmed count's indices the raw points', its deviation measured on the raw points.
+/// `None` where the stroke is not dense, the thinned fit fails, or it misses a raw point
+/// by more than its tolerance: the raw points are fitted then.
+fn thinned_fit(
+    points: &[Point],
+    opts: &ContourOptions,
+    noise: &Noise,
+    default: f64,
+) -> Option<SketchContour> {
+    let first = opts.tolerance.unwrap_or(default);
+    let thin = thinning::thin(points, thinning::THIN_SHARE * first)?;
+    let mut c = contour_with_noise(&thin.points, opts, noise, default).ok()?;
+    let kept = thin.raw_kept(thin.points.len() - c.trimmed);
+    let deviation = thinning::worst_distance(&points[..kept], &c.runs);
+    if deviation > c.tolerance {
+        return None;
+    }
+    for corner in &mut c.corners {
+        corner.index = thin.raw_index(corner.index);
+    }
+    c.trimmed = points.len() - kept;
+    c.max_deviation = deviation;
+    Some(c)
+}
+
+/// [`fit_contour`] with the stroke's noise and default tolerance estimated.
+fn contour_with_noise(
+    points: &[Point],
+    opts: &ContourOptions,
+    noise: &Noise,
+    default: f64,
+) -> Result<SketchContour> {
+    let size = bbox_diagonal(points);
     match opts.tolerance {
         Some(t) => {
             Error::check_positive("tolerance", t)?;
-            contour_at(points, opts, Fit::at(t), &noise)
+            contour_at(points, opts, Fit::at(t), noise)
         }
         None if points.len() >= 4 => {
-            let default = default_tolerance_of(points, &noise);
-            let ladder = super::escalation(&noise);
+            let ladder = super::escalation(noise);
             let last = default * ladder[ladder.len() - 1];
             // Every rung but the last with at most RUNG_PIECES pieces a run: a rung that
             // needs more follows the hand's wobble, slowly, and the next, looser one is
@@ -339,7 +382,7 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
             super::at_default(
                 default,
                 ladder,
-                |t| contour_at(points, opts, fit(t), &noise),
+                |t| contour_at(points, opts, fit(t), noise),
                 |c| {
                     let curves = c.runs.iter().filter_map(|r| match r {
                         Run::Curve(s) => Some(s),
@@ -353,7 +396,7 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
             )
             .map(|(c, _)| c)
         }
-        None => contour_at(points, opts, Fit::at(0.005 * size), &noise),
+        None => contour_at(points, opts, Fit::at(0.005 * size), noise),
     }
 }
 

@@ -74,6 +74,7 @@ mod rounds;
 mod segment;
 mod slot;
 mod straight;
+mod thinning;
 mod track;
 mod types;
 
