@@ -235,7 +235,10 @@ export const MODES = {
           ['tolerance', st.tolerance > 0 ? 'tolerance (set)' : 'tolerance (auto: from the noise)', r.tolerance],
           ['g2', 'G2 inside the runs and at smooth joins', g2 && (r.smooth_joins || []).every((j) => j.curvature_jump < 1e-9) ? 'yes' : 'no'],
           ['max_curvature_jump', 'largest curvature jump', jump],
-          ['alphas', 'alphas', segments.map((g) => fmt(g.alpha, 2)).join(' ') || '—'],
+          // A piece whose points fit a wide range of alpha as closely (nearly circular or
+          // straight, or few points) shows its alpha as "~": the stroke does not pin it.
+          ['alphas', segments.some((g) => g.alpha_determined === false) ? 'alphas (~: the stroke does not pin it)' : 'alphas',
+            segments.map((g) => (g.alpha_determined === false ? '~' : '') + fmt(g.alpha, 2)).join(' ') || '—'],
         ],
         verdict: [monotone ? 'every piece: curvature monotone (proven)' : 'some piece is NOT monotone', monotone],
         lcg: { fit: null, note: 'one graph per piece: see the alphas' },
