@@ -322,9 +322,10 @@ pub fn fit_contour(points: &[Point], opts: &ContourOptions) -> Result<SketchCont
     contour_with_noise(points, opts, &noise, default)
 }
 
-/// [`fit_contour`] of a dense stroke on its points averaged over bins of a quarter of the
-/// (first) tolerance ([`thinning`]), the noise read from the raw points: its corners' and
-/// trimmed count's indices the raw points', its deviation measured on the raw points.
+/// [`fit_contour`] of a dense stroke on its points averaged over bins of half the (first)
+/// tolerance ([`thinning`]), the noise and the default read from the raw points: its
+/// corners' and trimmed count's indices the raw points', its deviation measured on the raw
+/// points.
 /// `None` where the stroke is not dense, the thinned fit fails, or it misses a raw point
 /// by more than its tolerance: the raw points are fitted then.
 fn thinned_fit(

@@ -460,7 +460,9 @@ pub(super) fn merge_slots(
         let infl_a = a.cut_a.zero();
         let infl_b = b.cut_b.zero();
         if infl_a || infl_b {
-            if infl_a && infl_b {
+            // A peak next to an inflection end stays: the two pieces' own deviations are
+            // not measured for inflection-end pieces.
+            if (infl_a && infl_b) || a.cut_b == Cut::Peak {
                 return None;
             }
             m.fitted = true;
