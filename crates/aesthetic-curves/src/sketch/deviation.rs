@@ -52,13 +52,13 @@ pub(super) fn measure(pieces: &[SketchPiece], fit: &BSplineFit) -> Deviation {
 }
 
 /// A piece's rational cubic at 65 even parameters, their box and its longest step.
-struct Sampled {
-    samples: Vec<(f64, Point)>,
+pub(super) struct Sampled {
+    pub(super) samples: Vec<(f64, Point)>,
     bounds: (Rect, f64),
 }
 
 impl Sampled {
-    fn new(p: &SketchPiece) -> Sampled {
+    pub(super) fn new(p: &SketchPiece) -> Sampled {
         let samples: Vec<(f64, Point)> = (0..=64)
             .map(|i| {
                 let t = i as f64 / 64.0;
@@ -67,6 +67,13 @@ impl Sampled {
             .collect();
         let bounds = grown_box(&samples);
         Sampled { samples, bounds }
+    }
+
+    /// Whether the cubic may hold a point nearer `q` than `best`: its samples' box, grown
+    /// by their longest step, lies within `best` of `q`.
+    pub(super) fn may_be_nearer(&self, q: Point, best: f64) -> bool {
+        let (bx, step) = self.bounds;
+        box_distance(&bx, q) <= best + step
     }
 }
 
@@ -83,8 +90,7 @@ fn nearest_piece(pieces: &[SketchPiece], sampled: &[Sampled], q: Point, u: f64) 
         home,
     );
     for (i, (p, sm)) in pieces.iter().zip(sampled).enumerate() {
-        let (bx, step) = sm.bounds;
-        if i == home || box_distance(&bx, q) > best.0 + step {
+        if i == home || !sm.may_be_nearer(q, best.0) {
             continue;
         }
         let d = project(&p.rational, q, &sm.samples).0;

@@ -215,6 +215,13 @@ impl Noise {
     pub(super) fn curve_samples(&self) -> bool {
         self.known && self.quantum == 0.0 && self.scaling < CURVE_SAMPLES_SCALING
     }
+
+    /// Whether the fit follows the input tightly: [`Noise::precise`] or
+    /// [`Noise::curve_samples`] (the tight spline, and curvature extrema that are the
+    /// data's).
+    pub(super) fn followed_tightly(&self, size: f64) -> bool {
+        self.precise(size) || self.curve_samples()
+    }
 }
 
 /// The residual of point `k` along the normal of the least-squares cubic in chord length
@@ -291,7 +298,7 @@ impl<'a> Context<'a> {
             return Err(Error::invalid("max_turn", "must lie in (0.1, 3) radians"));
         }
         let end_dirs = line_ends(opts)?;
-        let precise = noise.precise(bbox_diagonal(points)) || noise.curve_samples();
+        let precise = noise.followed_tightly(bbox_diagonal(points));
         let (fit, fit_tol) = fair_spline(points, opts.tolerance, noise)?;
         let track = Track::new(&fit.spline)?;
         check_turning(&track, opts.min_turn)?;
@@ -356,7 +363,7 @@ fn line_ends(opts: &SketchOptions) -> Result<[Option<kurbo::Vec2>; 2]> {
 /// noise estimate ignores can keep the tight fit from converging: then half the tolerance.
 fn fair_spline(points: &[Point], tolerance: f64, noise: &Noise) -> Result<(BSplineFit, f64)> {
     let size = bbox_diagonal(points);
-    let noisy = !(noise.precise(size) || noise.curve_samples());
+    let noisy = !noise.followed_tightly(size);
     let fit_tol = (4.0 * noise.fine)
         .max(TIGHT_SHARE * size)
         .min(0.5 * tolerance);

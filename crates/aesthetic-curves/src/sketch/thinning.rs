@@ -13,9 +13,9 @@
 //! delivered (the caller fits the raw points instead).
 
 use super::contour::Run;
-use super::deviation::project;
+use super::deviation::{project, Sampled};
 use super::slot::segment_distance;
-use crate::bezier::{PlanarCurve, RationalBezier};
+use crate::bezier::RationalBezier;
 use kurbo::Point;
 use rayon::prelude::*;
 
@@ -87,61 +87,17 @@ fn push_bin(out: &mut Thinned, points: &[Point], a: usize, b: usize) {
     out.origin.push((a, b));
 }
 
-/// A delivered piece as [`worst_distance`] searches it: its cubic, 33 even samples (the
-/// projection's starts) and their box grown by the longest sample step (no nearer point
-/// of the cubic lies outside it).
-struct Searched<'a> {
-    curve: &'a RationalBezier,
-    samples: Vec<(f64, Point)>,
-    bounds: kurbo::Rect,
-}
-
-impl<'a> Searched<'a> {
-    fn new(curve: &'a RationalBezier) -> Self {
-        let samples: Vec<(f64, Point)> = (0..=32)
-            .map(|i| {
-                let t = i as f64 / 32.0;
-                (t, curve.eval(t))
-            })
-            .collect();
-        let step = samples
-            .windows(2)
-            .map(|w| (w[1].1 - w[0].1).hypot())
-            .fold(0.0, f64::max);
-        let bounds = samples
-            .iter()
-            .fold(
-                kurbo::Rect::from_points(samples[0].1, samples[0].1),
-                |r, s| r.union_pt(s.1),
-            )
-            .inflate(step, step);
-        Searched {
-            curve,
-            samples,
-            bounds,
-        }
-    }
-
-    /// Distance from `q` to the box (0 inside).
-    fn box_distance(&self, q: Point) -> f64 {
-        let b = &self.bounds;
-        let dx = (b.x0 - q.x).max(q.x - b.x1).max(0.0);
-        let dy = (b.y0 - q.y).max(q.y - b.y1).max(0.0);
-        dx.hypot(dy)
-    }
-}
-
 /// The largest distance from `points` to the nearest of the contour's `runs` (a line's
 /// segment, or a curve's rational cubics, each a nearest-point projection), in parallel.
 pub(super) fn worst_distance(points: &[Point], runs: &[Run]) -> f64 {
-    let pieces: Vec<Searched> = runs
+    let pieces: Vec<(&RationalBezier, Sampled)> = runs
         .iter()
         .filter_map(|r| match r {
             Run::Curve(s) => Some(s.pieces.iter()),
             Run::Line { .. } => None,
         })
         .flatten()
-        .map(|p| Searched::new(&p.rational))
+        .map(|p| (&p.rational, Sampled::new(p)))
         .collect();
     let lines: Vec<(Point, Point)> = runs
         .iter()
@@ -158,9 +114,9 @@ pub(super) fn worst_distance(points: &[Point], runs: &[Run]) -> f64 {
                 .iter()
                 .map(|(a, b)| segment_distance(*q, *a, *b))
                 .fold(f64::INFINITY, f64::min);
-            for p in &pieces {
-                if p.box_distance(*q) <= best {
-                    best = best.min(project(p.curve, *q, &p.samples).0);
+            for (curve, sm) in &pieces {
+                if sm.may_be_nearer(*q, best) {
+                    best = best.min(project(curve, *q, &sm.samples).0);
                 }
             }
             best
