@@ -1,4 +1,5 @@
-//! The table of the rational-cubic fit's local optima (issue 17; docs/math.md §4): for a
+//! The tables of the rational-cubic fits' optima (docs/math.md §4). The second, for the
+//! inflection-end family, is at the end ([`inflection_table`]). The first: for a
 //! grid of LAC segment shapes, every local minimum of the error surface over (f0, f1) that
 //! could be the global one, so that [`crate::approx::fit_rational_cubic`] starts its local
 //! refinements in every valley instead of searching the whole square.
@@ -271,6 +272,162 @@ impl OptimaTable {
     }
 }
 
+/// Inflection-end shapes (`approx::inflection_cubic`'s family): nodes of `r = α/(α - 1)`,
+/// first, step, count (0.05 to 0.85: α from -0.053 to -5.67; inflection ends need α < 0,
+/// and the optima move smoothly with r where they move fast with α near 0).
+pub const INFLECTION_R_AXIS: (f64, f64, usize) = (0.05, 0.025, 33);
+/// Inflection-end shapes: θ_d nodes, those of [`THETA_AXIS`].
+pub const INFLECTION_THETA_AXIS: (f64, f64, usize) = THETA_AXIS;
+
+const INFLECTION_MAGIC: &[u8; 8] = b"AEINF01\n";
+
+/// Number of inflection-end nodes (α slowest).
+pub fn inflection_node_count() -> usize {
+    INFLECTION_R_AXIS.2 * INFLECTION_THETA_AXIS.2
+}
+
+/// The shape (α, θ_d) of inflection-end node `idx`.
+pub fn inflection_node_shape(idx: usize) -> (f64, f64) {
+    let j = idx % INFLECTION_THETA_AXIS.2;
+    let i = idx / INFLECTION_THETA_AXIS.2;
+    let r = node(INFLECTION_R_AXIS, i);
+    (r / (r - 1.0), node(INFLECTION_THETA_AXIS, j))
+}
+
+/// The control triangle of the inflection-end shape (α, θ_d): the inflection end at
+/// (0, 0), the tangent intersection at (1, 0).
+pub fn inflection_triangle(alpha: f64, theta_d: f64) -> Result<[Point; 3]> {
+    let phi = crate::lac::LacInflectionSegment::base_angle(alpha, theta_d)?;
+    let t = phi.sin() / (theta_d - phi).sin();
+    let c1 = Point::new(1.0, 0.0);
+    Ok([
+        Point::ZERO,
+        c1,
+        c1 + kurbo::Vec2::new(theta_d.cos(), theta_d.sin()) * t,
+    ])
+}
+
+/// The optimum `(f0, ln w0)` of the inflection-end fit at every node, the best the
+/// generator found (`cargo run --release -p aecurve --example gen_inflection_optima`):
+/// starting points, like the LAC table's, never results.
+pub struct InflectionOptima {
+    nodes: Vec<[f64; 2]>,
+}
+
+/// The binary form of the inflection-end optima, in node order (None: no monotone cubic
+/// was found there).
+pub fn encode_inflection(nodes: &[Option<(f64, f64)>]) -> Result<Vec<u8>> {
+    if nodes.len() != inflection_node_count() {
+        return Err(Error::invalid(
+            "nodes",
+            format!(
+                "{} nodes, the grid has {}",
+                nodes.len(),
+                inflection_node_count()
+            ),
+        ));
+    }
+    let mut out = INFLECTION_MAGIC.to_vec();
+    for n in [INFLECTION_R_AXIS.2, INFLECTION_THETA_AXIS.2] {
+        out.extend_from_slice(&(n as u16).to_le_bytes());
+    }
+    for m in nodes {
+        let (a, b) = m.unwrap_or((f64::NAN, f64::NAN));
+        out.extend_from_slice(&a.to_le_bytes());
+        out.extend_from_slice(&b.to_le_bytes());
+    }
+    Ok(out)
+}
+
+/// Decode [`encode_inflection`]'s output.
+pub fn decode_inflection(bytes: &[u8]) -> Result<InflectionOptima> {
+    let bad = |why: &str| Error::invalid("inflection optima table", why.to_string());
+    if bytes.len() < 12 || &bytes[..8] != INFLECTION_MAGIC {
+        return Err(bad("not an inflection optima table"));
+    }
+    let dim = |k: usize| u16::from_le_bytes([bytes[8 + 2 * k], bytes[9 + 2 * k]]) as usize;
+    if [dim(0), dim(1)] != [INFLECTION_R_AXIS.2, INFLECTION_THETA_AXIS.2] {
+        return Err(bad("its grid is not this version's"));
+    }
+    let body = &bytes[12..];
+    if body.len() != 16 * inflection_node_count() {
+        return Err(bad("its length is not the grid's"));
+    }
+    let f = |b: &[u8]| f64::from_le_bytes(b.try_into().expect("8 bytes"));
+    Ok(InflectionOptima {
+        nodes: body
+            .chunks_exact(16)
+            .map(|c| [f(&c[..8]), f(&c[8..])])
+            .collect(),
+    })
+}
+
+static INFLECTION_TABLE: OnceLock<InflectionOptima> = OnceLock::new();
+static INFLECTION_BYTES: &[u8] = include_bytes!("../data/inflection_optima.bin");
+
+/// The inflection-end table shipped with the crate, decoded on first use.
+pub fn inflection_table() -> &'static InflectionOptima {
+    INFLECTION_TABLE.get_or_init(|| {
+        decode_inflection(INFLECTION_BYTES).expect("the shipped inflection table is valid")
+    })
+}
+
+impl InflectionOptima {
+    /// The optimum stored at node `idx` (None where the generator found none).
+    pub fn at(&self, idx: usize) -> Option<(f64, f64)> {
+        let [a, b] = *self.nodes.get(idx)?;
+        (a.is_finite() && b.is_finite()).then_some((a, b))
+    }
+
+    /// Starting points `(f0, ln w0)` for the shape (α, θ_d), clamped into the grid: the
+    /// bilinear blend of the four surrounding nodes' optima where they lie within 0.05 of
+    /// one another (one valley), then each node's own optimum, nearest node first (stored
+    /// in full: an optimum on the monotone set's boundary, rounded, can leave it).
+    pub fn candidates(&self, alpha: f64, theta_d: f64, out: &mut Vec<(f64, f64)>) {
+        out.clear();
+        let r = alpha / (alpha - 1.0);
+        let (i, j) = (
+            cell(INFLECTION_R_AXIS, r),
+            cell(INFLECTION_THETA_AXIS, theta_d),
+        );
+        let frac = |axis: (f64, f64, usize), x: f64, i: usize| {
+            ((x - node(axis, i)) / axis.1).clamp(0.0, 1.0)
+        };
+        let (fa, ft) = (
+            frac(INFLECTION_R_AXIS, r, i),
+            frac(INFLECTION_THETA_AXIS, theta_d, j),
+        );
+        let mut corners: Vec<(f64, Option<(f64, f64)>)> = (0..4)
+            .map(|c| {
+                let (di, dj) = (c >> 1, c & 1);
+                let w = |f: f64, bit: usize| if bit == 1 { f } else { 1.0 - f };
+                (
+                    w(fa, di) * w(ft, dj),
+                    self.at((i + di) * INFLECTION_THETA_AXIS.2 + j + dj),
+                )
+            })
+            .collect();
+        corners.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let found: Vec<(f64, (f64, f64))> = corners
+            .iter()
+            .filter_map(|&(w, x)| x.map(|x| (w, x)))
+            .collect();
+        let one_valley = found.len() == 4
+            && found.iter().all(|a| {
+                found
+                    .iter()
+                    .all(|b| (a.1 .0 - b.1 .0).abs().max((a.1 .1 - b.1 .1).abs()) <= 0.05)
+            });
+        if one_valley {
+            let blend = found.iter().fold((0.0, 0.0), |acc, &(w, x)| {
+                (acc.0 + w * x.0, acc.1 + w * x.1)
+            });
+            out.push(blend);
+        }
+        out.extend(found.iter().map(|c| c.1));
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -313,5 +470,43 @@ mod tests {
             .entries
             .iter()
             .all(|e| e[0] > 0.0 && e[0] < 1.0 && e[1] > 0.0 && e[1] < 1.0));
+    }
+
+    #[test]
+    fn inflection_table_round_trips_and_its_optima_are_monotone_cubics() {
+        let mut nodes = vec![None; inflection_node_count()];
+        nodes[7] = Some((0.3, -1.25));
+        let t = decode_inflection(&encode_inflection(&nodes).unwrap()).unwrap();
+        assert_eq!(t.at(7), Some((0.3, -1.25)));
+        assert_eq!(t.at(8), None);
+        assert!(decode_inflection(&encode_inflection(&nodes).unwrap()[..40]).is_err());
+        // The shipped optima: each a curvature-monotone cubic of its node's segment (by the
+        // exact test), f0 in (0, 1); nodes without one are few.
+        use crate::approx::inflection_cubic;
+        use crate::lac::LacInflectionSegment;
+        use crate::monotone::CurvatureMonotone;
+        let t = inflection_table();
+        let mut empty = 0;
+        for idx in 0..inflection_node_count() {
+            let Some((f0, lw)) = t.at(idx) else {
+                empty += 1;
+                continue;
+            };
+            let (alpha, theta_d) = inflection_node_shape(idx);
+            let seg = LacInflectionSegment::new(inflection_triangle(alpha, theta_d).unwrap())
+                .unwrap();
+            assert!(f0 > 0.0 && f0 < 1.0, "node {idx}: f0 {f0}");
+            let c = inflection_cubic(&seg, f0, lw.exp()).unwrap();
+            assert!(
+                c.is_curvature_monotone().unwrap(),
+                "node {idx} ({alpha}, {theta_d}): its optimum is not monotone"
+            );
+        }
+        assert!(empty * 30 < inflection_node_count(), "{empty} empty nodes");
+        // Between nodes: candidates, the nearest node's own among them.
+        let mut out = Vec::new();
+        let (alpha, theta_d) = inflection_node_shape(40);
+        t.candidates(alpha, theta_d + 0.01, &mut out);
+        assert!(out.contains(&t.at(40).unwrap()), "{out:?}");
     }
 }

@@ -93,7 +93,8 @@ use search::{
 
 pub use error_map::{error_map, ErrorMap};
 pub use inflection::fit_inflection_cubic;
-pub(crate) use inflection::{fit_inflection_cubic_from, inflection_cubic};
+pub use inflection::fit_inflection_cubic_from;
+pub(crate) use inflection::inflection_cubic;
 pub use spline::{fit_inflection_spline, fit_rational_spline, RationalSpline};
 
 /// Tuning of [`fit_rational_cubic`].
@@ -113,9 +114,10 @@ pub struct ApproxOptions {
     pub starts: usize,
     /// Iteration limit of each local refinement.
     pub max_iter: usize,
-    /// Start from the shipped table of optima ([`crate::approx_table`]); the grid search
-    /// runs only when the table's best minimum is not curvature-monotone. False: always the
-    /// grid search (slower; kept for comparison).
+    /// Start from the shipped tables of optima ([`crate::approx_table`], one for LAC
+    /// segments and one for inflection-end segments); the grid search runs only when none
+    /// of the table's starts is curvature-monotone. False: always the grid search (slower;
+    /// the tables' generators and comparisons).
     pub table: bool,
 }
 
