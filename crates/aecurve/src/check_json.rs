@@ -163,6 +163,9 @@ pub struct JoinCheckJson {
     /// A curvature grows without bound at the join.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub unbounded_curvature: bool,
+    /// Whether the source marks the point smooth (UFO); absent where it marks none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub smooth_mark: Option<bool>,
 }
 
 impl From<&JoinCheck> for JoinCheckJson {
@@ -176,6 +179,7 @@ impl From<&JoinCheck> for JoinCheckJson {
             near_break: j.near_break,
             curvature_jump: j.curvature_jump,
             unbounded_curvature: j.unbounded_curvature,
+            smooth_mark: j.smooth_mark,
         }
     }
 }

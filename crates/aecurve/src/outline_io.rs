@@ -58,6 +58,10 @@ pub struct Contour {
     pub segments: Vec<RationalBezier>,
     /// Whether it closes on its start.
     pub closed: bool,
+    /// The source's smooth marks, per join: `smooth[i]` for the point after segment `i`
+    /// (a UFO's `smooth="yes"`; implied on-curve points of quadratics are smooth). None
+    /// where the source marks no points (binary fonts, SVG, DXF).
+    pub smooth: Option<Vec<bool>>,
 }
 
 /// A named shape: a glyph or an SVG path.
@@ -67,6 +71,8 @@ pub struct Shape {
     pub name: String,
     /// Its contours.
     pub contours: Vec<Contour>,
+    /// The code points a font maps to the glyph (none for SVG and DXF paths).
+    pub unicodes: Vec<u32>,
 }
 
 /// What a file held.
@@ -125,6 +131,12 @@ impl Collector {
         }
         self.finish(true);
         self.at = self.start;
+    }
+    /// The smooth mark of the point the last segment ends on, where the source has marks.
+    fn mark(&mut self, smooth: bool) {
+        if let Some(m) = &mut self.current.smooth {
+            m.push(smooth);
+        }
     }
     fn finish(&mut self, closed: bool) {
         if !self.current.segments.is_empty() {
@@ -260,6 +272,10 @@ fn read_font_inner(data: &[u8]) -> Result<Outlines> {
     for n in &raw {
         *seen.entry(n.as_str()).or_default() += 1;
     }
+    let mut codes = std::collections::HashMap::<u32, Vec<u32>>::new();
+    for (cp, gid) in font.charmap().mappings() {
+        codes.entry(gid.to_u32()).or_default().push(cp);
+    }
     let mut shapes = Vec::with_capacity(count as usize);
     let mut unreadable = Vec::new();
     for gid in 0..count {
@@ -289,7 +305,11 @@ fn read_font_inner(data: &[u8]) -> Result<Outlines> {
             pen.done().map_err(|e| anyhow::anyhow!("glyph {gid}: {e}"))
         });
         match drawn {
-            Ok(contours) => shapes.push(Shape { name, contours }),
+            Ok(contours) => shapes.push(Shape {
+                name,
+                contours,
+                unicodes: codes.remove(&gid).unwrap_or_default(),
+            }),
             Err(e) => unreadable.push((name, format!("{e:#}"))),
         }
     }
@@ -487,7 +507,11 @@ fn walk_svg(g: &usvg::Group, shapes: &mut Vec<Shape>, unreadable: &mut Vec<(Stri
                     p.id().to_string()
                 };
                 match svg_path_contours(p) {
-                    Ok(contours) => shapes.push(Shape { name, contours }),
+                    Ok(contours) => shapes.push(Shape {
+                        name,
+                        contours,
+                        unicodes: Vec::new(),
+                    }),
                     Err(e) => unreadable.push((name, e)),
                 }
             }
@@ -553,6 +577,7 @@ pub fn read_ufo(path: &Path) -> Result<Outlines> {
             Ok(contours) => shapes.push(Shape {
                 name: name.clone(),
                 contours,
+                unicodes: g.codepoints.iter().map(|c| c as u32).collect(),
             }),
             Err(e) => unreadable.push((name.clone(), e)),
         }
@@ -673,6 +698,7 @@ fn ufo_contour(points: &[norad::ContourPoint], pen: &mut Collector) {
     let n = points.len();
     let order: Vec<&norad::ContourPoint> = (0..n).map(|k| &points[(start + k) % n]).collect();
     pen.move_to(p(order[0]));
+    pen.current.smooth = Some(Vec::new());
     let mut off: Vec<Point> = Vec::new();
     // The on-curve points after the first, and (closed) the first again at the end.
     let rest = order[1..]
@@ -686,7 +712,10 @@ fn ufo_contour(points: &[norad::ContourPoint], pen: &mut Collector) {
                 // Implied on-curve points halfway between consecutive off-curve ones.
                 let end = p(q);
                 match off.len() {
-                    0 => pen.line_to(end),
+                    0 => {
+                        pen.line_to(end);
+                        pen.mark(q.smooth);
+                    }
                     k => {
                         for i in 0..k {
                             let to = if i + 1 < k {
@@ -695,6 +724,7 @@ fn ufo_contour(points: &[norad::ContourPoint], pen: &mut Collector) {
                                 end
                             };
                             pen.quad_to(off[i], to);
+                            pen.mark(i + 1 < k || q.smooth);
                         }
                     }
                 }
@@ -713,6 +743,7 @@ fn ufo_contour(points: &[norad::ContourPoint], pen: &mut Collector) {
                         ));
                     }
                 }
+                pen.mark(q.smooth);
                 off.clear();
             }
         }
@@ -863,6 +894,7 @@ fn dxf_contour(e: &dxf::entities::EntityType) -> std::result::Result<Option<Cont
     let open = |segments| Contour {
         segments,
         closed: false,
+        smooth: None,
     };
     Ok(Some(match e {
         EntityType::Line(l) => {
@@ -893,6 +925,7 @@ fn dxf_contour(e: &dxf::entities::EntityType) -> std::result::Result<Option<Cont
                 std::f64::consts::TAU,
             ),
             closed: true,
+            smooth: None,
         },
         EntityType::LwPolyline(pl) => {
             let v = &pl.vertices;
@@ -909,7 +942,11 @@ fn dxf_contour(e: &dxf::entities::EntityType) -> std::result::Result<Option<Cont
                 let pb = Point::new(finite(b.x, "vertex x")?, finite(b.y, "vertex y")?);
                 segments.extend(bulge_segment(pa, pb, finite(a.bulge, "bulge")?));
             }
-            Contour { segments, closed }
+            Contour {
+                segments,
+                closed,
+                smooth: None,
+            }
         }
         EntityType::Spline(sp) => dxf_spline(sp)?,
         _ => return Ok(None),
@@ -975,7 +1012,11 @@ fn dxf_spline(sp: &dxf::entities::Spline) -> std::result::Result<Contour, String
         (Some(a), Some(b)) => a.points()[0] == b.points()[b.points().len() - 1],
         _ => false,
     };
-    Ok(Contour { segments, closed })
+    Ok(Contour {
+        segments,
+        closed,
+        smooth: None,
+    })
 }
 
 /// Open entities of one layer that meet end to end (within 1e-9 of the drawing's size),
@@ -999,6 +1040,7 @@ fn chain_entities(pieces: Vec<(String, String, Contour)>) -> Vec<Shape> {
         Contour {
             segments,
             closed: c.closed,
+            smooth: None,
         }
     };
     // Open entities' ends in a grid of cells 4 tolerances wide: a search looks at the 3 x 3
@@ -1101,6 +1143,7 @@ fn chain_entities(pieces: Vec<(String, String, Contour)>) -> Vec<Shape> {
         shapes.push(Shape {
             name,
             contours: vec![chain],
+            unicodes: Vec::new(),
         });
     }
     shapes
@@ -1144,7 +1187,13 @@ pub fn check_shapes<'a>(
                 let contours: Vec<ContourCheck> = s
                     .contours
                     .iter()
-                    .map(|c| check_contour(&c.segments, c.closed, opts))
+                    .map(|c| {
+                        let mut k = check_contour(&c.segments, c.closed, opts);
+                        if let Some(m) = &c.smooth {
+                            k.mark_smooth(m);
+                        }
+                        k
+                    })
                     .collect();
                 let findings = findings(&contours, opts);
                 ShapeCheck {
@@ -1239,6 +1288,7 @@ mod tests {
             )
             .unwrap()],
             closed: false,
+            smooth: None,
         };
         // Three sides of a square, the middle one drawn against the others, and a line of
         // another layer at the same place.

@@ -466,7 +466,7 @@ fn ufo_point_streams_read_as_their_segments() {
     );
 }
 
-/// `check --json` on DejaVu Sans (issue 34): findings ranked by severity, each place once
+/// `check --json` on DejaVu Sans: findings ranked by severity and use, each place once
 /// however many glyphs draw it (the `B` of `Beta` and of Cyrillic `В` is `B`'s own finding,
 /// with them in `also_in`), and no two findings for the same place.
 #[test]
@@ -479,8 +479,43 @@ fn findings_are_ranked_by_severity_and_listed_once_per_place() {
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let f = v["findings"].as_array().unwrap();
-    let sev: Vec<f64> = f.iter().map(|x| x["severity"].as_f64().unwrap()).collect();
-    assert!(sev.windows(2).all(|w| w[0] >= w[1]), "not ranked");
+    // The rank: severity times the glyph's use weight, raised by 5 % per other glyph that
+    // shares the place (up to ten); the list falls by it.
+    let rank: Vec<f64> = f
+        .iter()
+        .map(|x| {
+            let others = x["also_in"].as_array().map_or(0, |a| a.len()).min(10);
+            let r = x["severity"].as_f64().unwrap()
+                * x["use_weight"].as_f64().unwrap()
+                * (1.0 + 0.05 * others as f64);
+            assert!(
+                (r - x["rank"].as_f64().unwrap()).abs() <= 1e-12 * r.abs(),
+                "{x}"
+            );
+            r
+        })
+        .collect();
+    assert!(rank.windows(2).all(|w| w[0] >= w[1]), "not ranked");
+    // By use: basic Latin weighs 1, a dingbat 0.2; the top of the list is text, not
+    // symbols (DejaVu Sans has thousands of symbol and non-Latin glyphs).
+    let weight = |name: &str| {
+        f.iter()
+            .find(|x| x["shape"] == name)
+            .map(|x| x["use_weight"].as_f64().unwrap())
+    };
+    assert_eq!(weight("S"), Some(1.0));
+    let dingbat = f
+        .iter()
+        .find(|x| x["shape"].as_str().is_some_and(|n| n.starts_with("uni27")))
+        .unwrap();
+    assert_eq!(dingbat["use_weight"].as_f64(), Some(0.2), "{dingbat}");
+    for x in &f[..20] {
+        assert!(x["use_weight"].as_f64().unwrap() >= 0.4, "{x}");
+    }
+    // Defects apart from the design: the counts' defects and single extrema inside.
+    let counts = &v["counts"];
+    assert!(counts["defects"]["hooks"].as_u64().unwrap() > 0);
+    assert!(counts["one_extremum_inside"].as_u64().unwrap() > 0);
     let b_in_beta = f.iter().any(|x| {
         x["shape"] == "B"
             && x["also_in"]
@@ -498,4 +533,55 @@ fn findings_are_ranked_by_severity_and_listed_once_per_place() {
             assert!(!a.iter().any(|n| *n == x["shape"]), "{x}");
         }
     }
+}
+
+/// A line running tangentially into a curve has a curvature step unless the curve ends
+/// flat: the design of a stem meeting a bowl. It is listed only where the UFO marks the
+/// point smooth; the same outline unmarked lists nothing there.
+#[test]
+fn line_curve_steps_are_listed_only_where_the_ufo_marks_them_smooth() {
+    use norad::{Contour, ContourPoint, Font, Glyph, PointType as T};
+    let glyph = |name: &str, smooth: bool| {
+        let pt = |x: f64, y: f64, t: T, s: bool| ContourPoint::new(x, y, t, s, None, None);
+        let mut g = Glyph::new(name);
+        // A stem from (0, 0) up to (0, 300), then a bowl leaving it tangentially (its
+        // first handle on the stem's line), back down to (0, 0) by a line.
+        g.contours.push(Contour::new(
+            vec![
+                pt(0.0, 0.0, T::Line, false),
+                pt(0.0, 300.0, T::Line, smooth),
+                pt(0.0, 420.0, T::OffCurve, false),
+                pt(250.0, 450.0, T::OffCurve, false),
+                pt(300.0, 200.0, T::Curve, false),
+            ],
+            None,
+        ));
+        g
+    };
+    let mut font = Font::new();
+    font.default_layer_mut().insert_glyph(glyph("marked", true));
+    font.default_layer_mut().insert_glyph(glyph("plain", false));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("aecurve-smooth-{}.ufo", std::process::id()));
+    font.save(&dir).unwrap();
+    let u = read(&dir).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    let shapes: Vec<_> = u.shapes.iter().collect();
+    let checked = check_shapes(&shapes, &options_for(&u), &|| {});
+    let at_stem_top = |name: &str| {
+        let c = checked.iter().find(|c| c.name == name).unwrap();
+        let join = c.contours[0]
+            .joins
+            .iter()
+            .find(|j| j.point == aesthetic_curves::Point::new(0.0, 300.0))
+            .unwrap();
+        assert!(join.g1 && !join.g2, "{join:?}");
+        let listed = c
+            .findings
+            .iter()
+            .any(|f| f.kind == "curvature-jump" && f.point == join.point);
+        (join.smooth_mark, listed)
+    };
+    assert_eq!(at_stem_top("marked"), (Some(true), true));
+    assert_eq!(at_stem_top("plain"), (Some(false), false));
 }

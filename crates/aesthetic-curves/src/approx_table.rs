@@ -493,8 +493,8 @@ mod tests {
                 continue;
             };
             let (alpha, theta_d) = inflection_node_shape(idx);
-            let seg = LacInflectionSegment::new(inflection_triangle(alpha, theta_d).unwrap())
-                .unwrap();
+            let seg =
+                LacInflectionSegment::new(inflection_triangle(alpha, theta_d).unwrap()).unwrap();
             assert!(f0 > 0.0 && f0 < 1.0, "node {idx}: f0 {f0}");
             let c = inflection_cubic(&seg, f0, lw.exp()).unwrap();
             assert!(

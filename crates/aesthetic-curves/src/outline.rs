@@ -284,6 +284,10 @@ pub struct JoinCheck {
     /// At least one side's curvature grows without bound at the join (a retracted handle):
     /// no jump is measured.
     pub unbounded_curvature: bool,
+    /// Whether the source marks the join's point smooth (a UFO's `smooth="yes"`); None
+    /// where the source marks no points (binary fonts, SVG, DXF). [`check_contour`] leaves
+    /// it None; a reader that has the marks sets them ([`ContourCheck::mark_smooth`]).
+    pub smooth_mark: Option<bool>,
 }
 
 /// A non-monotone segment's finding, if its bump is at least `min_bump`: a hook (an
@@ -371,6 +375,14 @@ pub struct ContourCheck {
 }
 
 impl ContourCheck {
+    /// Sets the joins' smooth marks from the source's: `marks[i]` for the join after
+    /// segment `i` (missing entries leave a join unmarked).
+    pub fn mark_smooth(&mut self, marks: &[bool]) {
+        for j in &mut self.joins {
+            j.smooth_mark = marks.get(j.after_segment).copied();
+        }
+    }
+
     /// Segments whose curvature is monotone.
     pub fn monotone_count(&self) -> usize {
         self.segments
@@ -583,6 +595,7 @@ pub fn check_contour(
             g2: jump.is_some_and(|j| j < opts.g2_jump),
             near_break: !g1 && angle < opts.near_break,
             unbounded_curvature: unbounded,
+            smooth_mark: None,
         });
     }
     ContourCheck {
@@ -594,7 +607,9 @@ pub fn check_contour(
 
 /// The places of `contours` most worth a look, worst first: near-breaks (by angle), then
 /// segments whose curvature is not monotone (by their number of extrema), then curvature
-/// jumps at G1 joins (by size), then degenerate segments.
+/// jumps at G1 joins (by size), then degenerate segments. A line meeting a curve
+/// tangentially has a curvature step unless the curve ends flat: that is the design of a
+/// stem running into a bowl, and is listed only where the source marks the join smooth.
 pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding> {
     let mut out = Vec::new();
     for (ci, c) in contours.iter().enumerate() {
@@ -625,6 +640,9 @@ pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding
                     c.segments.get((j.after_segment + 1) % n),
                 );
                 let at_line = [sa, sb].iter().any(|s| s.is_some_and(|s| s.degree == 1));
+                if at_line && j.smooth_mark != Some(true) {
+                    continue;
+                }
                 // A flat end: one side's curvature under a tenth of the other's, same sign.
                 let flat = (0.9..=1.0).contains(&jump);
                 let (weight, why) = if at_line || flat {

@@ -68,7 +68,8 @@ pub(crate) fn check(
         )
         .map_err(json_error)?;
     }
-    let folded = fold_checks(&shapes, &opts, &tick, json.as_mut())?;
+    let font = outlines.kind == "font";
+    let folded = fold_checks((&shapes, font), &opts, &tick, json.as_mut())?;
     bar.finish_and_clear();
     if let Some(r) = report {
         let title = format!(
@@ -124,6 +125,10 @@ struct Tally {
     suggested: usize,
     exact: usize,
     retracted: usize,
+    /// G1 joins of a line and a curve with a curvature step, not marked smooth (not listed).
+    line_steps: usize,
+    /// Findings by kind, every shape's (a place shared by several glyphs counts in each).
+    found: std::collections::BTreeMap<&'static str, usize>,
 }
 
 impl Tally {
@@ -132,6 +137,13 @@ impl Tally {
         for k in &c.contours {
             self.add_contour(k);
         }
+        for f in &c.findings {
+            *self.found.entry(f.kind).or_default() += 1;
+        }
+    }
+
+    fn found(&self, kind: &str) -> usize {
+        self.found.get(kind).copied().unwrap_or(0)
     }
 
     fn add_contour(&mut self, c: &ContourCheck) {
@@ -148,6 +160,17 @@ impl Tally {
         self.g1 += c.joins.iter().filter(|j| j.g1).count();
         self.g2 += c.joins.iter().filter(|j| j.g2).count();
         self.near += c.joins.iter().filter(|j| j.near_break).count();
+        let n = segs.len();
+        self.line_steps += c
+            .joins
+            .iter()
+            .filter(|j| j.g1 && !j.g2 && j.curvature_jump.is_some() && j.smooth_mark != Some(true))
+            .filter(|j| {
+                [j.after_segment, (j.after_segment + 1) % n]
+                    .iter()
+                    .any(|&i| segs[i].degree == 1)
+            })
+            .count();
     }
 
     fn json(&self) -> Value {
@@ -157,6 +180,15 @@ impl Tally {
             "joins": self.joins, "g1_joins": self.g1, "g2_joins": self.g2,
             "near_breaks": self.near, "suggestions": self.suggested,
             "exact_arithmetic": self.exact, "retracted_handles": self.retracted,
+            "defects": {
+                "hooks": self.found("hook"),
+                "several_extrema": self.found("not-monotone"),
+                "curvature_jumps": self.found("curvature-jump"),
+                "near_breaks": self.found("near-break"),
+                "degenerate": self.found("degenerate"),
+            },
+            "one_extremum_inside": self.found("curvature-extremum"),
+            "line_curve_steps": self.line_steps,
         })
     }
 }
@@ -166,6 +198,38 @@ struct Ranked<'a> {
     name: &'a str,
     finding: Finding,
     also_in: Vec<&'a str>,
+    /// The largest use weight of the glyphs that have it ([`use_weight`]).
+    weight: f64,
+}
+
+impl Ranked<'_> {
+    /// The ranking's key: the finding's score times the use weight, raised by 5 %
+    /// for each other glyph that shares the place (up to ten).
+    fn rank(&self) -> f64 {
+        self.finding.score * self.weight * (1.0 + 0.05 * self.also_in.len().min(10) as f64)
+    }
+}
+
+/// How much a glyph's findings weigh in the ranking, by what text uses it: basic Latin
+/// (U+0020 to U+007E) 1; the rest of Latin up to Latin Extended-B, general punctuation and
+/// currency signs 0.6; Greek, Cyrillic, Latin Extended Additional, and glyphs without a
+/// code point (alternates, ligatures, small capitals, components) 0.4; any other code
+/// point (symbols, arrows, dingbats, emoji, other scripts) 0.2. Paths of SVG and DXF files
+/// weigh 1.
+fn use_weight(shape: &Shape, font: bool) -> f64 {
+    if !font {
+        return 1.0;
+    }
+    let of = |cp: u32| match cp {
+        0x20..=0x7E => 1.0,
+        0xA0..=0x24F | 0x2010..=0x206F | 0x20A0..=0x20CF => 0.6,
+        0x370..=0x52F | 0x1E00..=0x1FFF => 0.4,
+        _ => 0.2,
+    };
+    if shape.unicodes.is_empty() {
+        return 0.4;
+    }
+    shape.unicodes.iter().map(|&c| of(c)).fold(0.0, f64::max)
 }
 
 /// The same place in several shapes (a component drawn in each composite that uses it, a
@@ -195,8 +259,8 @@ fn place_key(shape: &Shape, f: &Finding) -> Option<(&'static str, Vec<u64>)> {
 }
 
 /// The findings of every shape, each place once (with the other shapes that have it), worst
-/// first.
-fn rank_once<'a>(found: Vec<(&'a Shape, Finding)>) -> Vec<Ranked<'a>> {
+/// first by [`Ranked::rank`] (`font`: weighed by use).
+fn rank_once<'a>(found: Vec<(&'a Shape, Finding)>, font: bool) -> Vec<Ranked<'a>> {
     let mut seen: std::collections::HashMap<(&str, Vec<u64>), usize> = Default::default();
     let mut out: Vec<Ranked> = Vec::new();
     for (shape, f) in found {
@@ -206,6 +270,7 @@ fn rank_once<'a>(found: Vec<(&'a Shape, Finding)>) -> Vec<Ranked<'a>> {
                 if r.name != shape.name && !r.also_in.contains(&shape.name.as_str()) {
                     r.also_in.push(&shape.name);
                 }
+                r.weight = r.weight.max(use_weight(shape, font));
             }
             key => {
                 if let Some(k) = key {
@@ -215,11 +280,12 @@ fn rank_once<'a>(found: Vec<(&'a Shape, Finding)>) -> Vec<Ranked<'a>> {
                     name: &shape.name,
                     finding: f,
                     also_in: Vec::new(),
+                    weight: use_weight(shape, font),
                 });
             }
         }
     }
-    out.sort_by(|a, b| b.finding.score.total_cmp(&a.finding.score));
+    out.sort_by(|a, b| b.rank().total_cmp(&a.rank()));
     out
 }
 
@@ -240,7 +306,7 @@ const ROUND: usize = 256;
 /// writing its JSON to `json`) before the next round, so that memory grows with the file
 /// and its findings, not with the checks of every segment.
 fn fold_checks<'a>(
-    shapes: &[&'a Shape],
+    (shapes, font): (&[&'a Shape], bool),
     opts: &aesthetic_curves::outline::OutlineOptions,
     tick: &(dyn Fn() + Sync),
     mut json: Option<&mut impl Write>,
@@ -272,7 +338,7 @@ fn fold_checks<'a>(
     if let Some(w) = json.as_mut() {
         w.write_all(b"]").map_err(json_error)?;
     }
-    let ranked = rank_once(ranked);
+    let ranked = rank_once(ranked, font);
     scores.sort_by(|a, b| aecurve::report::worse_rank_first(a.1, b.1));
     Ok(Folded {
         tally,
@@ -300,6 +366,8 @@ fn write_json_tail(
         folded.ranked.iter().map(|r| {
             let mut v = finding_json(r.name, &r.finding);
             v["severity"] = json!(r.finding.score);
+            v["use_weight"] = json!(r.weight);
+            v["rank"] = json!(r.rank());
             if !r.also_in.is_empty() {
                 v["also_in"] = json!(r.also_in);
             }
@@ -338,8 +406,31 @@ fn print_summary(
         t.curved,
         t.joins
     );
+    let defects = [
+        "hook",
+        "not-monotone",
+        "curvature-jump",
+        "near-break",
+        "degenerate",
+    ]
+    .iter()
+    .map(|k| t.found(k))
+    .sum::<usize>();
     println!(
-        "  curvature monotone: {monotone} of {segments} segments ({} not, or flagged); {} inflection(s) inside segments",
+        "  defects: {defects} ({} hooks, {} segments with several curvature extrema, {} curvature jumps at smooth joins, {} near-breaks, {} degenerate segments)",
+        t.found("hook"),
+        t.found("not-monotone"),
+        t.found("curvature-jump"),
+        t.found("near-break"),
+        t.found("degenerate"),
+    );
+    println!(
+        "  design, not counted as defects: {} segments with one curvature extremum inside, {} curvature steps where a line meets a curve at a point not marked smooth",
+        t.found("curvature-extremum"),
+        t.line_steps,
+    );
+    println!(
+        "  curvature monotone: {monotone} of {segments} segments ({} not, or flagged: detours under --min-bump, one extremum inside and the defects above); {} inflection(s) inside segments",
         segments - monotone,
         t.inflections
     );

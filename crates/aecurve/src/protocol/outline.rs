@@ -150,9 +150,11 @@ impl OutlineCheckRequest {
                 kind: "segments",
                 shapes: vec![crate::outline_io::Shape {
                     name: "outline".into(),
+                    unicodes: Vec::new(),
                     contours: vec![crate::outline_io::Contour {
                         segments,
                         closed: self.closed == Some(true),
+                        smooth: None,
                     }],
                 }],
                 unreadable: Vec::new(),
