@@ -7,8 +7,8 @@
 //! there), and the fit whose error on the exact segment is least is kept: a grid search can
 //! miss a narrow valley that its neighbour found.
 //!
-//! `cargo run --release -p aecurve --example gen_inflection_optima` (about a minute on two
-//! cores, with a progress bar).
+//! `cargo run --release -p aecurve --example gen_inflection_optima` (about two minutes on
+//! two cores, with a progress bar).
 
 #[path = "common/parallel.rs"]
 mod parallel;

@@ -383,6 +383,23 @@ impl ContourCheck {
         }
     }
 
+    /// Whether a line is on either side of the join `j` (one of this contour's).
+    pub fn at_line(&self, j: &JoinCheck) -> bool {
+        let n = self.segments.len();
+        [j.after_segment, (j.after_segment + 1) % n]
+            .iter()
+            .any(|&i| self.segments.get(i).is_some_and(|s| s.degree == 1))
+    }
+
+    /// Whether `j` is the curvature step of a line running tangentially into a curve at a
+    /// point the source does not mark smooth: the design, left out of [`findings`].
+    pub fn unlisted_line_step(&self, j: &JoinCheck) -> bool {
+        j.g1 && !j.g2
+            && j.curvature_jump.is_some()
+            && j.smooth_mark != Some(true)
+            && self.at_line(j)
+    }
+
     /// Segments whose curvature is monotone.
     pub fn monotone_count(&self) -> usize {
         self.segments
@@ -634,13 +651,8 @@ pub fn findings(contours: &[ContourCheck], opts: &OutlineOptions) -> Vec<Finding
                 // Next to a line (or a flat end: a 90 to 100 % jump) only a zero end
                 // curvature is G2, and a sign change (over 100 %) is an inflection on the node: both
                 // common and mostly meant, so they rank at a quarter and a half.
-                let n = c.segments.len();
-                let (sa, sb) = (
-                    c.segments.get(j.after_segment),
-                    c.segments.get((j.after_segment + 1) % n),
-                );
-                let at_line = [sa, sb].iter().any(|s| s.is_some_and(|s| s.degree == 1));
-                if at_line && j.smooth_mark != Some(true) {
+                let at_line = c.at_line(j);
+                if c.unlisted_line_step(j) {
                     continue;
                 }
                 // A flat end: one side's curvature under a tenth of the other's, same sign.

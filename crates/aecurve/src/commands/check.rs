@@ -160,17 +160,7 @@ impl Tally {
         self.g1 += c.joins.iter().filter(|j| j.g1).count();
         self.g2 += c.joins.iter().filter(|j| j.g2).count();
         self.near += c.joins.iter().filter(|j| j.near_break).count();
-        let n = segs.len();
-        self.line_steps += c
-            .joins
-            .iter()
-            .filter(|j| j.g1 && !j.g2 && j.curvature_jump.is_some() && j.smooth_mark != Some(true))
-            .filter(|j| {
-                [j.after_segment, (j.after_segment + 1) % n]
-                    .iter()
-                    .any(|&i| segs[i].degree == 1)
-            })
-            .count();
+        self.line_steps += c.joins.iter().filter(|j| c.unlisted_line_step(j)).count();
     }
 
     fn json(&self) -> Value {

@@ -175,7 +175,7 @@ fn table_start(
     crate::approx_table::inflection_table().candidates(seg.alpha, seg.theta_d, &mut candidates);
     let scored: Vec<(f64, (f64, f64))> = candidates
         .iter()
-        .filter(|x| x.0 > 0.0 && x.0 < 1.0 && monotone(**x))
+        .filter(|x| monotone(**x))
         .map(|&x| (cost(x), x))
         .filter(|c| c.0.is_finite())
         .collect();
@@ -197,8 +197,8 @@ const INFLECTION_STEP_FLOOR: f64 = 1e-6;
 /// `inflection_cubic`) for an inflection-end segment: from the shipped table's optima for
 /// the nearest shapes ([`crate::approx_table::inflection_table`], with `opts.table`), or,
 /// where none of them is monotone, from the best curvature-monotone points of a grid over
-/// (f0, ln w0); Levenberg–Marquardt, then a compass search, non-monotone steps refused; where the optimum lies on the boundary of the
-/// monotone set, a walk along it ([`crate::solve::minimize::along_boundary`]). The error is
+/// (f0, ln w0); Levenberg–Marquardt, then a compass search, non-monotone steps refused;
+/// where the optimum lies on the boundary of the monotone set, a walk along it ([`crate::solve::minimize::along_boundary`]). The error is
 /// reported on the exact segment at `opts.report_samples` uniform t. Within 1 % of an
 /// exhaustive search in the tests. The curve starts at the
 /// inflection end (zero curvature) and matches the end point, tangent and curvature at C2:

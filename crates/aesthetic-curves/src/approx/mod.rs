@@ -788,19 +788,6 @@ mod tests {
         }
     }
 
-    /// The inflection-end segment of shape `alpha` turning `theta_d` in a unit-based
-    /// triangle (interior angle φ at the inflection end, θ_d - φ at the other).
-    fn inflection_triangle(alpha: f64, theta_d: f64) -> [Point; 3] {
-        let phi = LacInflectionSegment::base_angle(alpha, theta_d).unwrap();
-        let t = phi.sin() / (theta_d - phi).sin();
-        let c1 = Point::new(1.0, 0.0);
-        [
-            Point::ORIGIN,
-            c1,
-            c1 + Vec2::new(theta_d.cos(), theta_d.sin()) * t,
-        ]
-    }
-
     #[test]
     fn inflection_fit_is_the_global_optimum() {
         // Against an independent exhaustive search of the same family and objective: a
@@ -819,7 +806,10 @@ mod tests {
         for case in 0..40 {
             let alpha = -(0.1f64.ln() + rnd() * (12.0f64.ln() - 0.1f64.ln())).exp();
             let theta_d = 0.03 + rnd() * 2.2;
-            let seg = LacInflectionSegment::new(inflection_triangle(alpha, theta_d)).unwrap();
+            let seg = LacInflectionSegment::new(
+                crate::approx_table::inflection_triangle(alpha, theta_d).unwrap(),
+            )
+            .unwrap();
             let table = InflectionTable::new(&seg, 256).unwrap();
             let tr = Samples::gauss(opts.refine_samples);
             let make = |x: (f64, f64)| inflection_cubic(&seg, x.0, x.1.exp());
