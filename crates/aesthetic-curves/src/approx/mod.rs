@@ -432,6 +432,37 @@ fn arc_fit(seg: &LacSegment, nr: usize) -> Result<Option<RationalCubicFit>> {
 /// documentation); for a circular arc, the arc ([`RationalCubicFit::monotone`]). Errors:
 /// [`Error::NoSegment`] when no candidate is curvature-monotone.
 pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<RationalCubicFit> {
+    fit_lac(seg, opts, true)?.ok_or_else(|| {
+        Error::NoSegment("no curvature-monotone rational cubic of the §4 family".into())
+    })
+}
+
+/// [`fit_rational_cubic`] from the table's starts only (no search of the whole square):
+/// `None` where none of them refines to a curvature-monotone cubic. For a caller that
+/// tries several nearby segments and takes the first that has one (a spline's nearly
+/// circular pieces, tilted until their curvature varies above the rounding): a failing
+/// try then costs a few refinements, not a search with exact verdicts at every point.
+pub(crate) fn fit_rational_cubic_from_table(
+    seg: &LacSegment,
+    opts: &ApproxOptions,
+) -> Result<Option<RationalCubicFit>> {
+    fit_lac(
+        seg,
+        &ApproxOptions {
+            table: true,
+            ..*opts
+        },
+        false,
+    )
+}
+
+/// [`fit_rational_cubic`], with the search of the whole square (`search`) or without it
+/// (`None` where it would be needed).
+fn fit_lac(
+    seg: &LacSegment,
+    opts: &ApproxOptions,
+    search: bool,
+) -> Result<Option<RationalCubicFit>> {
     if opts.grid < 3 || opts.grid > 1000 || opts.grid_samples < 4 || opts.refine_samples < 4 {
         return Err(Error::invalid(
             "options",
@@ -440,7 +471,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
     }
     let nr = opts.report_samples.max(200);
     if let Some(fit) = arc_fit(seg, nr)? {
-        return Ok(fit);
+        return Ok(Some(fit));
     }
     let prob = Problem::new(seg, TABLE_INTERVALS)?;
     let tr = Samples::gauss(opts.refine_samples);
@@ -472,6 +503,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
             // Otherwise the search of the square, keeping the better of the two.
             match monotone_near(&prob, opts, &tr, &from_table, &mut evals) {
                 Some((y, c)) if c <= 1.002 * free => Some((y, c)),
+                near if !search => near,
                 near => {
                     let searched = grid_search(&square, &mut buf, &mut evals, from_table);
                     match (near, searched) {
@@ -487,6 +519,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
                 }
             }
         }
+        _ if !search => return Ok(None),
         _ => grid_search(&square, &mut buf, &mut evals, from_table),
     };
     let Some(((mut f0, mut f1), _)) = best else {
@@ -550,7 +583,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
     } else {
         approximation_error(seg, &curve, nr)?
     };
-    Ok(RationalCubicFit {
+    Ok(Some(RationalCubicFit {
         curve,
         f0,
         f1,
@@ -559,7 +592,7 @@ pub fn fit_rational_cubic(seg: &LacSegment, opts: &ApproxOptions) -> Result<Rati
         monotone: true,
         evaluations: evals,
         converged: converged && pc.is_finite(),
-    })
+    }))
 }
 
 #[cfg(test)]

@@ -5,7 +5,10 @@
 use super::span::{triangle, Shape};
 use super::system::{Problem, Solution};
 use super::LacSpline;
-use crate::approx::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions, RationalCubicFit};
+use crate::approx::{
+    fit_inflection_cubic, fit_rational_cubic, fit_rational_cubic_from_table, ApproxOptions,
+    RationalCubicFit,
+};
 use crate::bezier::RationalBezier;
 use crate::error::{Error, Result};
 use crate::lac::{cdiv, cmul, conj, tangents_meet, LacInflectionSegment, LacSegment};
@@ -447,10 +450,17 @@ const TILTS: i32 = 5;
 /// §2), or a nearly circular or nearly straight piece far from the origin. Its high-
 /// curvature end's tangent turned away from the chord by δ of its base angle makes a
 /// log-aesthetic segment whose curvature varies by about δ more from end to end, which the
-/// exact test proves monotone once δ is well above the coordinates' rounding: δ from
-/// max(1e-13, 10 ε |x|max / chord) up by tens, the first whose cubic is monotone. The
-/// ends stay exact; that end's tangent turns by δ φ and the end curvatures move by about
-/// δ, which the spline's measure of its cubics reports.
+/// exact test proves monotone once δ is well above the coordinates' rounding relative to
+/// the piece's bend (its sagitta, about chord × θ_d / 8, is what its curvature is read
+/// from). Near the rounding the exact test is slow (its f64 filter cannot decide, and the
+/// Sturm sequences of the nearly degenerate polynomial grow long: tens of milliseconds a
+/// try), so the first δ is well above it, δ₀ = 100 ε |x|max / (chord θ_d), between 1e-12
+/// and 1e-9 (the end curvatures move by about δ, which must stay well below the 1e-8 of
+/// [`LacSpline::g2`](super::LacSpline::g2)); then up by tens, the first whose cubic is
+/// monotone. The ends stay exact; that end's tangent turns by δ φ, and the spline's
+/// measure of its cubics reports the curvature steps. The ladder is climbed first with
+/// fits from the table's starts alone ([`fit_from_table`]: a failing try costs a few
+/// refinements), and only where none is monotone with the whole search.
 fn tilted(
     alpha: f64,
     c: [Point; 3],
@@ -460,13 +470,46 @@ fn tilted(
     let reach = c
         .iter()
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let first = (1e-13f64).max(10.0 * f64::EPSILON * reach / chord.hypot());
     let (e0, e2) = base_angles(c);
-    (0..TILTS).find_map(|k| {
-        let turned = turned_triangle(c, e0.abs() >= e2.abs(), first * 10f64.powi(k))?;
-        let tilted = LacSegment::new(alpha, turned).ok()?;
-        let f = fit_cubic(&Part::Lac(tilted.clone(), true), approx).ok()?;
-        f.monotone.then_some((tilted, f))
+    let bend = (e0.abs() + e2.abs()).max(f64::MIN_POSITIVE);
+    let first = (100.0 * f64::EPSILON * reach / (chord.hypot() * bend)).clamp(1e-12, 1e-9);
+    let turned = |k: i32| {
+        let t = turned_triangle(c, e0.abs() >= e2.abs(), first * 10f64.powi(k))?;
+        LacSegment::new(alpha, t).ok()
+    };
+    let quick = (0..TILTS).find_map(|k| {
+        let seg = turned(k)?;
+        let f = fit_from_table(&seg, approx)?;
+        f.monotone.then_some((seg, f))
+    });
+    quick.or_else(|| {
+        (0..TILTS).find_map(|k| {
+            let seg = turned(k)?;
+            let f = fit_cubic(&Part::Lac(seg.clone(), true), approx).ok()?;
+            f.monotone.then_some((seg, f))
+        })
+    })
+}
+
+/// A LAC segment's cubic from the table's starts alone
+/// ([`crate::approx::fit_rational_cubic_from_table`]), fitted with its start at the origin
+/// and moved back as [`fit_cubic`] does; `None` where that gives no cubic proven
+/// monotone in place.
+fn fit_from_table(seg: &LacSegment, approx: &ApproxOptions) -> Option<RationalCubicFit> {
+    use crate::monotone::CurvatureMonotone;
+    let c = seg.control();
+    let o = c[0].to_vec2();
+    let local = LacSegment::new(seg.alpha(), c.map(|p| p - o)).ok()?;
+    let f = fit_rational_cubic_from_table(&local, approx).ok()??;
+    let mut pts: Vec<Point> = f.curve.points().iter().map(|p| *p + o).collect();
+    pts[0] = c[0];
+    pts[3] = c[2];
+    let curve = RationalBezier::new(pts, f.curve.weights().to_vec()).ok()?;
+    let monotone = curve.is_curvature_monotone().ok()?;
+    Some(RationalCubicFit {
+        curve,
+        monotone,
+        ..f
     })
 }
 

@@ -586,6 +586,15 @@ pub(super) enum Branch<'n> {
 /// turns do; tried last, as their Newton runs may wander to such a span where a plain
 /// one exists).
 pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Result<Solution> {
+    solve_in(problem, tol, max_iterations, true)
+}
+
+pub(super) fn solve_in(
+    problem: &Problem,
+    tol: f64,
+    max_iterations: usize,
+    rescue: bool,
+) -> Result<Solution> {
     // The first start whose spans all build: the circles' tangents, those mended where a
     // span cannot be built (tried only then), the bisectors'.
     let circle = problem.circle_guess();
@@ -603,6 +612,9 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
     };
     if let Some(d) = direct.as_ref().filter(|d| d.stop == SystemStop::Converged) {
         return Ok(d.clone());
+    }
+    if !rescue {
+        return direct.ok_or_else(|| problem.first_failure(&circle));
     }
     let wide = problem.widened();
     let mut spent = direct.as_ref().map_or(0, |d| d.iterations);

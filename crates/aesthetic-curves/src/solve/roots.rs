@@ -5,7 +5,8 @@
 //! halved when the same end is kept twice), plus a plain bisection step every fourth
 //! iteration, so the bracket always shrinks at least geometrically. It needs `f(lo)` and
 //! `f(hi)` of opposite signs, stops when the bracket is narrower than `x_tol`, and reports
-//! [`Error::NoConvergence`] instead of looping past `max_iter`.
+//! [`Error::NoConvergence`] instead of looping past `max_iter`; [`illinois_bracket`] gives
+//! the final bracket itself, for a caller that needs a point on one side of the root.
 //!
 //! [`brent`]: Brent's method (inverse quadratic interpolation, secant and bisection steps)
 //! from a bracket narrowed by the caller's guesses, for callers that can guess.
@@ -25,19 +26,53 @@
 use crate::error::{Error, Result};
 
 /// A root of `f` in the bracket `[lo, hi]` (with known values `flo`, `fhi` of opposite
-/// signs) to within `x_tol`. Errors of `f` are passed through.
+/// signs) to within `x_tol`: the middle of [`illinois_bracket`]'s final bracket. Errors of
+/// `f` are passed through.
 pub fn illinois(
+    f: impl FnMut(f64) -> Result<f64>,
+    lo: (f64, f64),
+    hi: (f64, f64),
+    x_tol: f64,
+    max_iter: usize,
+) -> Result<f64> {
+    let b = illinois_bracket(f, lo, hi, x_tol, max_iter)?;
+    Ok(0.5 * (b.lo.0 + b.hi.0))
+}
+
+/// The final bracket of [`illinois_bracket`]: its ends with their values, of opposite
+/// signs (or one of them zero, both ends then that point).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bracket {
+    /// The lower end and its value.
+    pub lo: (f64, f64),
+    /// The upper end and its value.
+    pub hi: (f64, f64),
+    /// Evaluations of `f` made.
+    pub evaluations: usize,
+}
+
+/// The bracket `[lo, hi]` of a sign change of `f` (known values `flo`, `fhi` of opposite
+/// signs) narrowed by [`illinois`]' steps to within `x_tol`, for a caller that needs a point
+/// on a given side of the root (the last `x` where a condition holds). Errors of `f` are
+/// passed through; [`Error::NoConvergence`] where the bracket does not straddle a sign
+/// change or `max_iter` evaluations do not narrow it.
+pub fn illinois_bracket(
     mut f: impl FnMut(f64) -> Result<f64>,
     (mut lo, mut flo): (f64, f64),
     (mut hi, mut fhi): (f64, f64),
     x_tol: f64,
     max_iter: usize,
-) -> Result<f64> {
+) -> Result<Bracket> {
+    let at = |x: f64, evaluations: usize| Bracket {
+        lo: (x, 0.0),
+        hi: (x, 0.0),
+        evaluations,
+    };
     if flo == 0.0 {
-        return Ok(lo);
+        return Ok(at(lo, 0));
     }
     if fhi == 0.0 {
-        return Ok(hi);
+        return Ok(at(hi, 0));
     }
     if (flo > 0.0) == (fhi > 0.0) || flo.is_nan() || fhi.is_nan() {
         return Err(Error::NoConvergence(format!(
@@ -47,9 +82,15 @@ pub fn illinois(
     let mut side = 0i32;
     // The tolerance never asks for less than the spacing of floats in the bracket.
     let tol = |lo: f64, hi: f64| x_tol.max(4.0 * f64::EPSILON * lo.abs().max(hi.abs()));
+    // The values kept are the true ones (the Illinois halving works on copies).
+    let (mut vlo, mut vhi) = (flo, fhi);
     for it in 0..max_iter {
         if hi - lo <= tol(lo, hi) {
-            return Ok(0.5 * (lo + hi));
+            return Ok(Bracket {
+                lo: (lo, vlo),
+                hi: (hi, vhi),
+                evaluations: it,
+            });
         }
         let mut x = (lo * fhi - hi * flo) / (fhi - flo);
         if it % 4 == 3 || !(x > lo && x < hi) {
@@ -57,18 +98,16 @@ pub fn illinois(
         }
         let fx = f(x)?;
         if fx == 0.0 {
-            return Ok(x);
+            return Ok(at(x, it + 1));
         }
         if (fx > 0.0) == (flo > 0.0) {
-            lo = x;
-            flo = fx;
+            (lo, flo, vlo) = (x, fx, fx);
             if side == -1 {
                 fhi *= 0.5;
             }
             side = -1;
         } else {
-            hi = x;
-            fhi = fx;
+            (hi, fhi, vhi) = (x, fx, fx);
             if side == 1 {
                 flo *= 0.5;
             }
@@ -76,7 +115,11 @@ pub fn illinois(
         }
     }
     if hi - lo <= tol(lo, hi) {
-        Ok(0.5 * (lo + hi))
+        Ok(Bracket {
+            lo: (lo, vlo),
+            hi: (hi, vhi),
+            evaluations: max_iter,
+        })
     } else {
         Err(Error::NoConvergence(format!(
             "root not within {x_tol:e} after {max_iter} iterations (bracket [{lo}, {hi}])"
