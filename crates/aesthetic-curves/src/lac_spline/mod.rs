@@ -43,8 +43,9 @@ pub use pieces::{SplinePiece, SplinePieceKind};
 pub const ACCEPTED_JUMP: f64 = 1e-10;
 
 /// Newton steps of the direct solve at the requested α where the spline with the
-/// inflection spans held ([`relax::held`]) has answered already: on the 770 sets of the α
-/// sweep, 10 leave 4 more spans at another α than 60 do, in half the time at α >= 0.
+/// inflection spans held ([`relax::held`]) has answered already: on 770 point sets (the α
+/// sweep's kinds and 20 wavy points), 10 leave 4 more spans at another α than 60 do, in
+/// half the time at α >= 0.
 const HELD_DIRECT_ITERATIONS: usize = 10;
 
 /// Options of [`lac_spline`].

@@ -444,6 +444,10 @@ fn fit(span: usize, part: Part, approx: &ApproxOptions, depth: usize) -> Result<
 /// Tilts tried, in powers of ten from the smallest.
 const TILTS: i32 = 5;
 
+/// The least bend (radians, both tangents' deviations from the chord) of an arc whose
+/// circle cubic is tried first by [`tilted`].
+const ARC_FIRST_BEND: f64 = 0.05;
+
 /// A segment whose cubic the exact test cannot prove monotone because its curvature varies
 /// by less than the rounding of its control points: a circular arc (the f64 arc is an
 /// ellipse's by a relative 1e-16, with a curvature extremum in the middle, docs/math.md
@@ -458,9 +462,11 @@ const TILTS: i32 = 5;
 /// and 1e-9 (the end curvatures move by about δ, which must stay well below the 1e-8 of
 /// [`LacSpline::g2`](super::LacSpline::g2)); then up by tens, the first whose cubic is
 /// monotone. The ends stay exact; that end's tangent turns by δ φ, and the spline's
-/// measure of its cubics reports the curvature steps. The ladder is climbed first with
-/// fits from the table's starts alone ([`fit_from_table`]: a failing try costs a few
-/// refinements), and only where none is monotone with the whole search.
+/// measure of its cubics reports the curvature steps. An arc bent by more than
+/// [`ARC_FIRST_BEND`] tries the circle's own cubic first (tilted by 1e-13, which the fit
+/// still takes for an arc: one cheap verdict, which often proves it). The ladder is then
+/// climbed with fits from the table's starts alone ([`fit_from_table`]: a failing try
+/// costs a few refinements), and only where none is monotone with the whole search.
 fn tilted(
     alpha: f64,
     c: [Point; 3],
@@ -477,10 +483,24 @@ fn tilted(
         let t = turned_triangle(c, e0.abs() >= e2.abs(), first * 10f64.powi(k))?;
         LacSegment::new(alpha, t).ok()
     };
-    let quick = (0..TILTS).find_map(|k| {
-        let seg = turned(k)?;
-        let f = fit_from_table(&seg, approx)?;
-        f.monotone.then_some((seg, f))
+    // A bent arc tilted by 1e-13 keeps its legs equal within the fit's test of an arc, so
+    // its cubic is the circle's own, whose exact verdict is cheap there and often proves
+    // it (the rounding tilts it as well): tried first, where the bend is clear of the
+    // flat arcs whose verdicts are slow.
+    let circle_tilt = (bend > ARC_FIRST_BEND)
+        .then(|| {
+            let t = turned_triangle(c, e0.abs() >= e2.abs(), 1e-13)?;
+            let seg = LacSegment::new(alpha, t).ok()?;
+            let f = fit_from_table(&seg, approx)?;
+            (f.monotone && f.evaluations == 0).then_some((seg, f))
+        })
+        .flatten();
+    let quick = circle_tilt.or_else(|| {
+        (0..TILTS).find_map(|k| {
+            let seg = turned(k)?;
+            let f = fit_from_table(&seg, approx)?;
+            f.monotone.then_some((seg, f))
+        })
     });
     quick.or_else(|| {
         (0..TILTS).find_map(|k| {

@@ -198,8 +198,9 @@ fn one_segment(alpha: f64, a: f64, b: f64) -> Result<Option<Solved>> {
 /// How far below the limit [`nearest_existing`] stays, relative to α: at the limit itself
 /// the segment degenerates (Λ at its largest, the curvature ratio unbounded), and a span
 /// solved there stalled the G2 solve's Newton runs. 1e-4 of α is below what a designer
-/// reads (α 2.9997 for 3); on 770 point sets of the α sweep, the margin at 1e-12 left 866
-/// spans at another α and 8 sets unanswered, at 1e-4 697 and 4, in half the time.
+/// reads (α 2.9997 for 3); on 770 point sets (the α sweep's kinds and 20 wavy points),
+/// the margin at 1e-12 left 866 spans at another α and 8 sets unanswered, at 1e-4 697 and
+/// 4, in half the time.
 const NEAREST_MARGIN: f64 = 1e-4;
 
 /// For α > 1 outside its region: the α' in [1, α) nearest it whose segment exists (α = 1,

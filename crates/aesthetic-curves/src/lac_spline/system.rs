@@ -589,6 +589,8 @@ pub(super) fn solve(problem: &Problem, tol: f64, max_iterations: usize) -> Resul
     solve_in(problem, tol, max_iterations, true)
 }
 
+/// [`solve`] with its rescues (`rescue`: the wider family and the continuations), or the
+/// Newton run from the first start that builds alone (its stop reported in the solution).
 pub(super) fn solve_in(
     problem: &Problem,
     tol: f64,
