@@ -142,6 +142,31 @@ pub fn run_with_timeout<R: BufRead, W: Write>(
 mod tests {
     use super::*;
 
+    /// Every error kind a batch or the editor sends is one the schema of a response line
+    /// accepts (`timeout` and `internal` come from here, `forbidden` from the editor), and
+    /// no other kind is.
+    #[test]
+    fn every_error_kind_sent_is_in_the_schema() {
+        let v = jsonschema::validator_for(&crate::protocol::response_line_schema())
+            .expect("the schema compiles");
+        let answer = |kind: &'static str| {
+            crate::protocol::error_response(
+                Value::from(1),
+                ProtoError {
+                    kind,
+                    message: "why".into(),
+                },
+            )
+        };
+        for kind in crate::protocol::ERROR_KINDS {
+            assert!(v.is_valid(&answer(kind)), "{kind}");
+        }
+        for kind in ["timeout", "internal", "forbidden"] {
+            assert!(crate::protocol::ERROR_KINDS.contains(&kind), "{kind}");
+        }
+        assert!(!v.is_valid(&answer("surprise")));
+    }
+
     fn run_str(input: &[u8], max: usize) -> Vec<Value> {
         let mut out = Vec::new();
         run(input, &mut out, max).unwrap();

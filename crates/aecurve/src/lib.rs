@@ -8,6 +8,7 @@ pub mod bench;
 pub mod bench_targets;
 pub mod cff_exact;
 pub mod check_json;
+pub mod contained;
 pub mod editor;
 /// The exports live in their own crate (shared with the Python package).
 pub use aesthetic_curves_export as export;

@@ -209,21 +209,7 @@ pub fn read(path: &Path) -> Result<Outlines> {
 
 pub use crate::regular_file::read_regular_file;
 
-/// Runs a third-party parser on hostile bytes: a panic inside it (its robustness is not
-/// ours) becomes an error naming it, and the caller goes on.
-pub fn contained<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
-        Ok(r) => r,
-        Err(p) => {
-            let why = p
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| p.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown".into());
-            bail!("the file's parser failed on these bytes (a damaged file?): {why}")
-        }
-    }
-}
+pub use crate::contained::contained;
 
 impl crate::cff_exact::ExactPen for Collector {
     fn move_to(&mut self, p: Point) {

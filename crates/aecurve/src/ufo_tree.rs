@@ -217,15 +217,17 @@ impl UfoTree {
     pub fn font(&self) -> Result<norad::Font> {
         self.layers()?;
         let source = TreeSource(self);
-        norad::Font::load_from_source(&norad::DataRequest::all(), &source).map_err(|e| {
-            match self.first_bad_glif() {
-                Some((file, why)) => anyhow::anyhow!(
-                    "not a readable UFO: {} cannot be read ({why}); fix or remove that glyph \
-                     file",
-                    self.at(&file)
-                ),
-                None => anyhow::anyhow!("not a readable UFO: {}", error_chain(&e)),
-            }
+        crate::contained::contained(|| {
+            norad::Font::load_from_source(&norad::DataRequest::all(), &source).map_err(|e| {
+                match self.first_bad_glif() {
+                    Some((file, why)) => anyhow::anyhow!(
+                        "not a readable UFO: {} cannot be read ({why}); fix or remove that \
+                         glyph file",
+                        self.at(&file)
+                    ),
+                    None => anyhow::anyhow!("not a readable UFO: {}", error_chain(&e)),
+                }
+            })
         })
     }
 

@@ -25,8 +25,9 @@ pub struct Moved {
 /// The glif text with the moved points' coordinates replaced. `contour_sizes` are the point
 /// counts of norad's contours of the glyph (checked against the file's).
 pub fn patch_glif(text: &str, contour_sizes: &[usize], moved: &[Moved]) -> Result<String> {
-    let doc = roxmltree::Document::parse(text)
-        .map_err(|e| anyhow::anyhow!("not an XML document: {e}"))?;
+    let doc = crate::contained::contained(|| {
+        roxmltree::Document::parse(text).map_err(|e| anyhow::anyhow!("not an XML document: {e}"))
+    })?;
     let glyph = doc.root_element();
     let v1 = glyph.attribute("format") == Some("1");
     let Some(outline) = glyph.children().find(|n| n.has_tag_name("outline")) else {

@@ -60,8 +60,10 @@ pub struct DesignspaceFix {
 /// nothing outside the folder is read, and the master could not be written back below the
 /// output's folder).
 fn sources(text: &str, path: &Path) -> Result<Vec<String>> {
-    let doc = roxmltree::Document::parse(text)
-        .with_context(|| format!("{}: not an XML document", path.display()))?;
+    let doc = crate::contained::contained(|| {
+        roxmltree::Document::parse(text)
+            .with_context(|| format!("{}: not an XML document", path.display()))
+    })?;
     let mut out = Vec::new();
     for s in doc.descendants().filter(|n| n.has_tag_name("source")) {
         let Some(file) = s.attribute("filename") else {

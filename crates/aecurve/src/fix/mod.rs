@@ -600,8 +600,10 @@ pub fn fix_svg(
         allow_dtd: true,
         ..Default::default()
     };
-    let doc = roxmltree::Document::parse_with_options(text, popts)
-        .with_context(|| format!("{}: not an XML document", input.display()))?;
+    let doc = crate::contained::contained(|| {
+        roxmltree::Document::parse_with_options(text, popts)
+            .with_context(|| format!("{}: not an XML document", input.display()))
+    })?;
     let hopts = HarmonizeOptions {
         tolerance: opts.tolerance,
         // At least 1e-4 user units: what the written numbers keep.

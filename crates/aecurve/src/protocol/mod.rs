@@ -50,20 +50,27 @@ use serde_json::{json, Map, Value};
 /// A protocol error: kind and message for a person.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProtoError {
-    /// `parse`, `unknown_op`, `invalid_input`, `degenerate`, `no_segment`, `no_convergence`.
+    /// One of [`ERROR_KINDS`].
     pub kind: &'static str,
     /// What went wrong.
     pub message: String,
 }
 
-/// Every error kind a response can carry.
-pub const ERROR_KINDS: [&str; 6] = [
+/// Every error kind a response can carry (docs/protocol.md, "Error kinds"): the six of the
+/// requests themselves, `timeout` (the request's time ran out: the batch's and the
+/// editor's deadline), `forbidden` (the editor's answer to a request from elsewhere) and
+/// `internal` (the request made the program fail: a bug, reported instead of ending the
+/// batch or the editor).
+pub const ERROR_KINDS: [&str; 9] = [
     "parse",
     "unknown_op",
     "invalid_input",
     "degenerate",
     "no_segment",
     "no_convergence",
+    "timeout",
+    "forbidden",
+    "internal",
 ];
 
 impl ProtoError {
