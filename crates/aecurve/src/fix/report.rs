@@ -3,7 +3,7 @@
 //! curvature comb, the moved control points marked in a colour of their own with their
 //! handle lines, and the joins' counts under the pictures. No script: a static page.
 //!
-//! The comb's scale is per contour ([`CombScale`]), the same before and after so that the
+//! The comb's scale is per contour (`CombScale`), the same before and after so that the
 //! two compare: a tooth at the contour's typical curvature (its 90th percentile by arc
 //! length) is an eighth of the contour's size, and teeth past 1.5 times that are cut and
 //! drawn thin in orange. One scale for the whole glyph let a sharp point flatten every
