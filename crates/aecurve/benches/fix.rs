@@ -1,4 +1,4 @@
-//! Criterion benchmark of the repair `aecurve fix` runs per contour (issue 34): the basic
+//! Criterion benchmark of the repair `aecurve fix` runs per contour: the basic
 //! Latin letters of DejaVu Sans (the shipped TrueType font; its quadratics raised to cubics
 //! exactly, then put on the 1-unit grid as a font editor converting to CFF does), every
 //! contour repaired with the defaults (bumps, then the smooth joins harmonized: sweep,

@@ -177,7 +177,7 @@ mod tests {
             .collect()
     }
 
-    /// Issue 33: 20,000 spline points with `draw: 2000` grew `batch` past 17 GB; the exact
+    /// 20,000 spline points with `draw: 2000` grew `batch` past 17 GB; the exact
     /// mode had no budget. Now the first is refused at once naming the drawing budget, the
     /// second stops at the request's deadline, and the batch answers the next line.
     #[test]

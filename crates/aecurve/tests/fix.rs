@@ -1,4 +1,4 @@
-//! `aecurve fix` on a UFO (issue 34): the written UFO has the same structure, only
+//! `aecurve fix` on a UFO: the written UFO has the same structure, only
 //! off-curve points move, the outline within the tolerance and on the grid, no join is worse and no
 //! cubic gains curvature extrema (by the exact check of the output, not the fix's own
 //! numbers); quadratic contours are left alone and said so.

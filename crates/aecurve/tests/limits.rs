@@ -1,4 +1,4 @@
-//! Every op at its limits (issue 33): one answer per request, never `internal`, memory under
+//! Every op at its limits: one answer per request, never `internal`, memory under
 //! a stated bound, and the time of each. Each request runs in its own `aecurve batch`
 //! process, whose peak memory the kernel reports (Linux's `/proc/PID/status`).
 //!

@@ -1,4 +1,4 @@
-//! The readers on hostile files (issue 33): they read only the bytes they are given, never
+//! The readers on hostile files: they read only the bytes they are given, never
 //! block on a special file, never panic, and list what they cannot read instead of dropping
 //! it. Each case here failed before the readers were hardened.
 

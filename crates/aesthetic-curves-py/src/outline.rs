@@ -1,4 +1,4 @@
-//! The outline check and the harmonize repair for Python (issue 34): plain lists and dicts,
+//! The outline check and the harmonize repair for Python: plain lists and dicts,
 //! so that a fontTools pen (`aesthetic_curves.pens`) can feed them glyph by glyph.
 
 use crate::{err, points_arg};

@@ -1,4 +1,4 @@
-//! Criterion benchmarks of log-aesthetic curve evaluation (issue 17 targets: 1000 samples of
+//! Criterion benchmarks of log-aesthetic curve evaluation (targets: 1000 samples of
 //! a solved segment under 20 µs, the segment solve under 3 µs) and of the single-LAC fit
 //! (`lac_fit/*`: a measured Prius line, and 20,000 points, target under 1 s).
 

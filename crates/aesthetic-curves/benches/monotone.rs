@@ -78,7 +78,7 @@ fn bench_rational(c: &mut Criterion) {
 /// Near-degenerate cubics in integer font units that the floating-point filter cannot decide
 /// (a collinear end with a long nearly parallel handle, retracted handles; kept only where
 /// `MonotoneReport::exact` says big-integer arithmetic ran): the exact fallback's cost per
-/// curve (issue 32: under 100 µs).
+/// curve (target: under 100 µs).
 fn bench_exact_fallback(c: &mut Criterion) {
     use aesthetic_curves::{Bezier, Point, RationalBezier};
     let mut curves = Vec::new();

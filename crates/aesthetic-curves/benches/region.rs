@@ -1,4 +1,4 @@
-//! Criterion benchmarks of the editor's shaded regions (issue 8 target: an interaction is
+//! Criterion benchmarks of the editor's shaded regions (target: an interaction is
 //! answered in under 16 ms of server time). One thread, so the numbers are per core; the
 //! editor uses half the cores. Grid 100 x 70 cells, about what a 1000 x 700 view shows at
 //! one cell per 10 pixels.

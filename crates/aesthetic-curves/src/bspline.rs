@@ -823,7 +823,7 @@ mod tests {
     #[test]
     fn sparse_points_do_not_swing_the_spline_out() {
         // Five points of a zigzag, 100 apart: the foot parameters on the first fit gather
-        // at its middle, and the fit through them looped 256,000 away (session 38).
+        // at its middle, and the fit through them looped 256,000 away.
         let pts: Vec<Point> = [(0., 0.), (100., 5.), (0., 10.), (100., 15.), (0., 20.)]
             .iter()
             .map(|&(x, y)| Point::new(x, y))

@@ -132,7 +132,7 @@ fn walk(
     pts
 }
 
-/// A harsher random polyline (issue 36's sweep against libspiro, `tests/spiro_oracle.rs`,
+/// A harsher random polyline (the harsh sweep against libspiro, `tests/spiro_oracle.rs`,
 /// and `tests/lac_spline.rs`): 5 to 16 points, chords log-uniform in 0.1 to 3 (a
 /// thirtyfold spread), each turning from the last by up to ±`turn` radians.
 pub fn harsh_walk(rng: &mut SplitMix64, turn: f64) -> Vec<Point> {

@@ -462,7 +462,7 @@ fn within_one_percent_of_the_exhaustive_optimum_on_1000_segments() {
     for f in failures.iter().take(40) {
         println!("  {f}");
     }
-    // Every case within 1 % (issue 17). The last four misses were near-exact fits next to
+    // Every case within 1 % (the target). The last four misses were near-exact fits next to
     // the circle whose optimum is a twin minimum a few thousandths from another in the same
     // hairline valley; the table's starts there are no longer skipped or abandoned.
     assert!(

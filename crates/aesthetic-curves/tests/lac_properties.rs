@@ -43,7 +43,7 @@ proptest! {
             }
             Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
         };
-        // Known limit (issue 3): near the edge of the existence region Λ approaches Λ_max
+        // Known limit: near the edge of the existence region Λ approaches Λ_max
         // closer than f64 resolves (for alpha near 0 already 1% below theta_lim), and the
         // curve is then not determined to these tolerances. Such triangles are skipped here.
         let lmax = LacSegment::lambda_max(alpha, base.theta_d());

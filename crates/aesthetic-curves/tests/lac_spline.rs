@@ -242,7 +242,7 @@ fn a_closed_curve_is_g2_at_its_seam() {
 }
 
 /// S2's example points taken as a closed curve: a thin zig-zag whose closing chord the
-/// circles' tangents ask to turn 320° (refused before session 33: "cannot start"). The
+/// circles' tangents ask to turn 320° (once refused: "cannot start"). The
 /// mended start (the closing span's ends taken from their short spans) converges to
 /// libspiro's root (the spiro-oracle test compares them); here without libspiro: it passes
 /// through the points G2 with proven pieces, and backwards and under a similarity (rotated,
@@ -508,14 +508,14 @@ fn random_point_sets_converge() {
     assert!(failed * 20 <= total, "{failed} of {total} failed");
 }
 
-/// Issue 36's harsh sets (5 to 16 points, chords 30 times apart, turns to ±149°), open
+/// The harsh sets (5 to 16 points, chords 30 times apart, turns to ±149°), open
 /// and closed. Where the spans' own family (each side of an S-span turning less than a
 /// half turn) holds no solution from the circles' start, the solve goes on in the wider
 /// family (a side up to 1.8 half turns, built as an inflection-end piece and a segment)
 /// and by continuation from the points on a line or a circle, then with spans that wind
-/// (a tangent past a half turn from its chord, a segment up to 1.95 half turns). Before
-/// (session 39's solve), 11 of 150 open and 40 of 150 closed sets failed; session 40's 2
-/// and 9; now 1 and 1. Every result reported G2 (`g2()`, as the sweep against libspiro
+/// (a tangent past a half turn from its chord, a segment up to 1.95 half turns). With
+/// the spans' own family alone, 11 of 150 open and 40 of 150 closed sets failed; with
+/// the wider family and the continuation 2 and 9; now 1 and 1. Every result reported G2 (`g2()`, as the sweep against libspiro
 /// counts) passes every check: the points hit, the segments G2 to 1e-10 and their
 /// cubics to 1e-8 (their own G2 as delivered: chords 30 times apart put the cubics' jumps
 /// near 1e-10), every cubic proven monotone.
@@ -564,7 +564,7 @@ fn span_turning(s: &LacSpline, k: usize) -> f64 {
 /// A closed set of sharp turns whose G2 curve (libspiro's too) has its closing span wind
 /// 340° with its start tangent 168° from its chord: the deviations measured on the branch
 /// of the start (past a half turn), the one segment turning up to 1.95 half turns.
-/// Session 40's solve, with every deviation wrapped into (-180°, 180°], stopped 0.69 of the
+/// A solve with every deviation wrapped into (-180°, 180°] stopped 0.69 of the
 /// largest curvature short of G2 on it.
 #[test]
 fn a_closing_span_that_winds_nearly_a_full_turn_is_solved() {

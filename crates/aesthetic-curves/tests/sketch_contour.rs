@@ -97,7 +97,7 @@ fn a_straight_stroke_is_one_line() {
     }
 }
 
-/// The default tolerance follows the hand (issue 35, item 3): for a jitter of ±a px per
+/// The default tolerance follows the hand : for a jitter of ±a px per
 /// coordinate it is about twice the amplitude (at most 2.4a, and above a: a fair curve can
 /// meet it, as the fits here show), whatever the stroke's size, direction and shape; for
 /// precise points (sampled from the curve) it is 0.5 % of the size.
@@ -139,7 +139,7 @@ fn the_default_tolerance_is_about_twice_the_jitter() {
             assert_eq!(c.tolerance, tol, "{name}");
             assert_within_tolerance(name, &c);
             // Every run meets the next (the wave at ±3 px, its crests read as corners,
-            // left 2.96 px between two runs before session 38).
+            // once left 2.96 px between two runs).
             assert_connected(name, &c);
         }
         let size = {
@@ -343,8 +343,8 @@ fn the_default_tolerance_clears_gaussian_extremes() {
 }
 
 /// A hand's tremor regular enough to read as noise (0.7 px at a 6-point period on a 120-point
-/// stroke): the default tolerance sits inside it and the fit there fails ("no triangle"
-/// before session 33). Without a tolerance the sketch and the contour escalate it to the
+/// stroke): the default tolerance sits inside it and the fit there fails (it once answered
+/// "no triangle"). Without a tolerance the sketch and the contour escalate it to the
 /// first G2 fit and on while that loses events: G2, at most one inflection (the stroke's
 /// own shape has one), every point within the tolerance reported, by an oracle of the
 /// test's own (the nearest of 2,001 samples per piece).
@@ -621,7 +621,7 @@ fn a_sharp_v_and_a_zigzag_have_their_corners() {
 /// Strokes of a few points each (clicked, or a pen sampled far apart: every step longer
 /// than the corner window), at the default tolerance: a polygon's turns of 80° and more
 /// are corners, points along an arc or a wave turn less and stay one curve; every point
-/// within the tolerance. Before session 38 the zigzag came back as one curve looping
+/// within the tolerance. Before the corner window, the zigzag came back as one curve looping
 /// 114,000 units away, the three-point L as one line 70 units from its corner, and 13
 /// points around a circle as an error.
 #[test]
@@ -767,7 +767,7 @@ fn sparse_smooth_strokes_are_fitted_near_their_points() {
         "sparse smooth strokes: {failed} failed, {unfair} not G2 or not proven monotone; \
          worst excursion {worst:.3} steps, {over_half} beyond half a step, {over_step} beyond one"
     );
-    // Measured in session 38: 2 refused (no spline near their points within the
+    // Measured when the sparse strokes were fixed: 2 refused (no spline near their points within the
     // tolerance), 2 unfair, 3 beyond half a step (an end overshooting between two sparse
     // points), none beyond one. Before it: 12-point strokes looped 9,000 units out.
     assert!(
@@ -1025,7 +1025,7 @@ fn a_rounded_rectangle_closes_and_has_no_corners() {
     assert!(found.is_empty(), "{found:?}");
 }
 
-/// The rounded rectangle drawn in one stroke (issue 35): closed, its four straight sides
+/// The rounded rectangle drawn in one stroke: closed, its four straight sides
 /// lines and its four rounded corners fair curves, each joining the lines next to it G2
 /// (leaving the line along it with zero curvature), within the tolerance. It took 54
 /// pieces, 5 s and a seam whose curvature jumped by 0.6 when the stroke was one curve.
@@ -1319,7 +1319,7 @@ fn a_few_noisy_points_get_a_fair_curve_by_default() {
     assert!(failed.is_empty(), "{failed:#?}");
 }
 
-/// Issue 35: no piece outside the bound α shares with every fit. An inflection piece takes
+/// No piece outside the bound α shares with every fit. An inflection piece takes
 /// its α from its control triangle, and a base angle near half the piece's turning asks for
 /// α towards -∞: sparse smooth walks (6 to 24 points 20 to 80 apart, turning up to 57° a
 /// step) came back with inflection pieces of α -7.5 to -7,024, one not proven monotone.
@@ -1544,7 +1544,7 @@ fn random_clicks_come_back_as_contours() {
     assert!(failed.len() <= 1, "{failed:#?}");
 }
 
-/// A random walk of 7 points (the protocol fuzz of session 40, seed 2, stroke 148) whose
+/// A random walk of 7 points (from the protocol fuzz, seed 2, stroke 148) whose
 /// default fit had an inflection piece of α -0.013 turning from zero to its largest
 /// curvature over a thin triangle: no cubic of its family was proven monotone, and the
 /// piece was delivered with the family centre's cubic, reported not monotone. An

@@ -160,7 +160,7 @@ fn symmetric_bump() {
     }
 }
 
-/// Issue 35, item 2: exact samples of a G2 bump made of a LAC segment and its mirror image
+/// Exact samples of a G2 bump made of a LAC segment and its mirror image
 /// (joined at their common curvature maximum) come back as two LAC pieces, cut at the
 /// peak, each with the α of the truth within 0.05, for α from -2 to 3 in steps of 0.5, at
 /// the default tolerance and at a tight one; G2 and proven monotone. The peak of such data

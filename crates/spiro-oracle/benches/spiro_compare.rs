@@ -26,7 +26,7 @@ fn control_points(pts: &[aesthetic_curves::Point], closed: bool) -> Vec<SpiroCp>
     spiro_ffi::control_points(pts, closed, &[])
 }
 
-/// The point sets of issue 17's spline race (the same as `aecurve bench spline`): 15 and
+/// The point sets of the spline race (the same as `aecurve bench spline`): 15 and
 /// 1000 wavy points, 1000 points on a circle (closed), 100,000 wavy points; each through
 /// both, in one run.
 fn bench(c: &mut Criterion) {

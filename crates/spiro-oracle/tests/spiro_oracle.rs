@@ -129,7 +129,7 @@ fn the_clothoid_spline_is_spiros() {
         (wavy_points(15, 7), false, vec![]),
         (s2_points(), false, vec![]),
         // S2's example points taken as a closed curve: a thin zig-zag whose closing chord
-        // the circles' tangents ask to turn 320° (refused before session 33).
+        // the circles' tangents ask to turn 320° (once refused).
         (s2_points(), true, vec![]),
         (
             vec![
@@ -236,20 +236,19 @@ fn harsh_sweep(turn: f64, closed: bool, seed: u64) -> ([usize; 4], f64, [usize; 
     (counts, worst, other)
 }
 
-/// Point sets harsher than [`random_point_sets_agree_with_spiro`]'s (issue 36: "converges
+/// Point sets harsher than [`random_point_sets_agree_with_spiro`]'s (the target: "converges
 /// where libspiro does not", FontForge's "Spiros did not converge"). Open sets with turns
 /// up to ±120° give the same curve from both, asserted, and `lac_spline` must solve at
-/// least 1,150 of the 1,200. The rest is measured: in session 39 libspiro solved 1,197,
-/// `lac_spline` 1,055 (its spans' family held no solution near libspiro's: one side of an
-/// S-span winds past a half turn). In session 40, with the wider family and the
-/// continuation as fallbacks: 1,178, one of them one libspiro did not solve. In session 41,
+/// least 1,150 of the 1,200. The rest is measured: libspiro solved 1,197, `lac_spline`
+/// with its spans' own family alone 1,055 (that family held no solution near libspiro's:
+/// one side of an S-span winds past a half turn); with the wider family and the
+/// continuation as fallbacks, 1,178, one of them one libspiro did not solve; then,
 /// with spans that wind (a tangent past a half turn from its chord, measured on the
 /// branch of the start; a segment up to 1.95 half turns) as the last fallbacks, and the
 /// cubics' end curvatures read from their f64 coordinates repaired (lac_spline/joins.rs;
 /// three sets had jumps of 3e-8 to 4e-7 there): 1,196.
 /// Some of the sets both solve are another solution of the same equations than
-/// libspiro's (curvatures apart by up to 1.6 of the largest), an open defect in the
-/// issue's note.
+/// libspiro's (curvatures apart by up to 1.6 of the largest): an open defect.
 #[test]
 fn harsh_point_sets_against_libspiro() {
     let mut total = [0usize; 4];
@@ -286,8 +285,8 @@ fn harsh_point_sets_against_libspiro() {
     );
     let ours = total[0] + total[2];
     assert!(ours >= 1190, "lac_spline solved {ours} of 1,200");
-    // Where the two reach different solutions, the spline's is the fairer by the issue's
-    // measure in most (session 41: 51 of 57).
+    // Where the two reach different solutions, the spline's is the fairer by the fairness
+    // measure (∫|dκ/ds| ds) in most (measured: 51 of 57).
     eprintln!(
         "other solutions: {}, the spline's curvature varying less in {}",
         others[0], others[1]

@@ -42,7 +42,7 @@ pub(crate) enum BenchCmd {
     Lac(TargetArgs),
     /// The rational cubic fits and the rational monotone test, against their targets.
     Approx(TargetArgs),
-    /// The pseudo-elastic spline in table mode on the point sets, against a tenth of
+    /// The pseudo-elastic spline in table mode on the spline race's point sets, against a tenth of
     /// libspiro's times (the ratio itself: `cargo bench -p spiro-oracle --features libspiro
     /// --bench spiro_compare`, with libspiro installed).
     Spline(TargetArgs),

@@ -1,4 +1,4 @@
-//! The gallery's check of real glyphs (issue 19): a few letters of DejaVu Sans (the font the
+//! The gallery's check of real glyphs: a few letters of DejaVu Sans (the font the
 //! pictures use) through `aecurve check`'s analysis, as its HTML report draws them.
 
 use anyhow::Result;

@@ -38,7 +38,7 @@ use kurbo::Point;
 
 pub use pieces::{SplinePiece, SplinePieceKind};
 
-/// The largest relative curvature jump a result may have (the G2: 1e-10 of the
+/// The largest relative curvature jump a result may have (the spline's G2: 1e-10 of the
 /// largest curvature); the solve aims at [`LacSplineOptions::g2_tolerance`].
 pub const ACCEPTED_JUMP: f64 = 1e-10;
 

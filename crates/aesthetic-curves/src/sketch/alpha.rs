@@ -274,7 +274,7 @@ pub(super) fn fit_slot_alpha(
     // Stopped on the cost alone (its values within 1e-6 of the start's): the cost is flat
     // along α where the data do not pin α down, and asking the simplex to shrink there
     // too (1e-4) took about twice the evaluations for results within 1e-4 of the
-    // tolerance on the Prius lines (issue 35's speed).
+    // tolerance on the Prius lines (for speed).
     let m = crate::solve::minimize::nelder_mead(
         &mut cost,
         &start[..n],
@@ -308,7 +308,7 @@ mod tests {
     /// middle there. Points on the curve (denser samples of it, an oracle of their own)
     /// are within 1e-5 of its size of the parabolic arcs; reading the middle sample as the
     /// chord's middle (as this measure did before) put them up to 6e-3 of the size off,
-    /// which moved the least-squares α of such a piece by 0.08 (issue 35).
+    /// which moved the least-squares α of such a piece by 0.08.
     #[test]
     fn curve_distance_is_exact_on_unevenly_spaced_samples() {
         let tri = [

@@ -565,7 +565,7 @@ mod tests {
     fn precise_input_gets_the_tight_spline_and_noisy_input_the_fair_one() {
         let opts = SketchOptions::with_tolerance(1.0);
         // Dense exact samples (at 60 points the local cubics' residual on an exact arc
-        // passes the noise test: a known limit, issue 35).
+        // passes the noise test: a known limit).
         let clean = arc(300, 100.0);
         let cx = Context::new(&clean, &opts).unwrap();
         // Tight: within 1e-6 of the size (the noise is nil), far below the tolerance; the

@@ -66,7 +66,7 @@ pub(super) fn build_piece(slot: &Slot, pa: Point, da: Vec2, pb: Point, db: Vec2)
 /// The inflection-end segment in `ctrl` (`ctrl[0]` = inflection end) whose α, fixed by
 /// the triangle, lies within [`ALPHA_RANGE`]: a base angle near half the turning asks for
 /// α towards -∞ (a curvature graph too steep for any fit to mean), and such a piece is not
-/// built, as if the triangle held none (issue 35: no piece outside the bound).
+/// built, as if the triangle held none (no piece outside the bound).
 pub(super) fn bounded_inflection(ctrl: [Point; 3]) -> Result<LacInflectionSegment> {
     let segment = LacInflectionSegment::new(ctrl)?;
     if segment.alpha < ALPHA_RANGE.0 {
