@@ -346,9 +346,9 @@ impl Spans {
     }
 
     /// Distance from `q` to the curve near parameter `u0` and the foot's parameter: the
-    /// solver layer's safeguarded Newton ([`crate::solve::line_search::newton_min_1d`]) on the squared
-    /// distance in the global parameter, so its steps cross spans; a step is kept only where
-    /// the distance falls.
+    /// solver layer's safeguarded Newton ([`crate::solve::line_search::newton_min_1d`]) on the
+    /// squared distance in the global parameter, so its steps cross spans; a step is kept only
+    /// where the distance falls.
     fn project_near(&self, q: Point, u0: f64) -> (f64, f64) {
         let q = q.to_vec2();
         let (lo, hi) = (self.breaks[0], self.breaks[self.coef.len()]);

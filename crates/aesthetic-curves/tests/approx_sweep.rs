@@ -16,7 +16,8 @@
 //! (the minimum across the valley as a function of the position along it); the optimum's
 //! rms then by the library's exact `approximation_error`. The optima are
 //! committed in `tests/data/approx_sweep.csv`; regenerate them (a few minutes) with
-//! `AECURVE_WRITE_DATA=1 cargo test --release -p aesthetic-curves --test integration approx_sweep:: -- --ignored`.
+//! `AECURVE_WRITE_DATA=1 cargo test --release -p aesthetic-curves --test integration approx_sweep::
+//! -- --ignored`.
 
 use aesthetic_curves::approx::{approximation_error, construct, fit_rational_cubic, ApproxOptions};
 use aesthetic_curves::lac::LacSegment;

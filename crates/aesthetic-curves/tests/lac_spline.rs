@@ -515,9 +515,9 @@ fn random_point_sets_converge() {
 /// and by continuation from the points on a line or a circle, then with spans that wind
 /// (a tangent past a half turn from its chord, a segment up to 1.95 half turns). With
 /// the spans' own family alone, 11 of 150 open and 40 of 150 closed sets failed; with
-/// the wider family and the continuation 2 and 9; now 1 and 1. Every result reported G2 (`g2()`, as the sweep against libspiro
-/// counts) passes every check: the points hit, the segments G2 to 1e-10 and their
-/// cubics to 1e-8 (their own G2 as delivered: chords 30 times apart put the cubics' jumps
+/// the wider family and the continuation 2 and 9; now 1 and 1. Every result reported G2 (`g2()`, as
+/// the sweep against libspiro counts) passes every check: the points hit, the segments G2 to 1e-10
+/// and their cubics to 1e-8 (their own G2 as delivered: chords 30 times apart put the cubics' jumps
 /// near 1e-10), every cubic proven monotone.
 #[test]
 fn harsh_point_sets_converge_in_the_wider_family() {

@@ -193,8 +193,8 @@ fn ipt(x: i64, y: i64) -> Point {
     Point::new(x as f64, y as f64)
 }
 
-/// The family that broke an earlier verdict: the last three control points collinear (zero curvature at the end)
-/// and a long first handle nearly parallel to them, integer font units.
+/// The family that broke an earlier verdict: the last three control points collinear (zero
+/// curvature at the end) and a long first handle nearly parallel to them, integer font units.
 fn collinear_end(r: &mut ChaCha8Rng) -> Vec<Point> {
     let (x0, y0) = (r.random_range(100..2000), r.random_range(100..2000));
     let dir = if r.random_bool(0.5) { 1 } else { -1 };

@@ -97,7 +97,7 @@ fn a_straight_stroke_is_one_line() {
     }
 }
 
-/// The default tolerance follows the hand : for a jitter of ±a px per
+/// The default tolerance follows the hand: for a jitter of ±a px per
 /// coordinate it is about twice the amplitude (at most 2.4a, and above a: a fair curve can
 /// meet it, as the fits here show), whatever the stroke's size, direction and shape; for
 /// precise points (sampled from the curve) it is 0.5 % of the size.
@@ -767,8 +767,8 @@ fn sparse_smooth_strokes_are_fitted_near_their_points() {
         "sparse smooth strokes: {failed} failed, {unfair} not G2 or not proven monotone; \
          worst excursion {worst:.3} steps, {over_half} beyond half a step, {over_step} beyond one"
     );
-    // Measured when the sparse strokes were fixed: 2 refused (no spline near their points within the
-    // tolerance), 2 unfair, 3 beyond half a step (an end overshooting between two sparse
+    // Measured when the sparse strokes were fixed: 2 refused (no spline near their points within
+    // the tolerance), 2 unfair, 3 beyond half a step (an end overshooting between two sparse
     // points), none beyond one. Before it: 12-point strokes looped 9,000 units out.
     assert!(
         failed <= 2 && unfair <= 2,
@@ -1467,11 +1467,10 @@ fn nine_noisy_points_of_an_arc_get_a_fair_curve_by_default() {
 /// Clicks, not a pen: 15 to 30 points along an arc of 115° to 190° (radius 150 to 400),
 /// each off by up to ±1 to ±4 px. The default tolerance stays about twice the jitter's
 /// amplitude a here too (1.9a on average, asserted 2.1a; at most 2.9a, asserted 3a: a
-/// dozen clicks estimate their noise less surely than a pen's hundreds): 15 such points span so much
-/// of the arc that the noise read over 15 of them was the cubics missing the arc (σ 4.9
-/// for a true 1.7); the stroke of 15 clicks at ±3.2 px got a default of 31.9 px and its
-/// curve strayed 8.3 px from the clicks. Each fit is G2, proven monotone, without an
-/// inflection.
+/// dozen clicks estimate their noise less surely than a pen's hundreds): 15 such points span so
+/// much of the arc that the noise read over 15 of them was the cubics missing the arc (σ 4.9 for a
+/// true 1.7); the stroke of 15 clicks at ±3.2 px got a default of 31.9 px and its curve strayed 8.3
+/// px from the clicks. Each fit is G2, proven monotone, without an inflection.
 #[test]
 fn clicked_arcs_get_a_default_tolerance_near_twice_the_jitter() {
     use aesthetic_curves::sketch::{default_tolerance, fit_sketch_within};

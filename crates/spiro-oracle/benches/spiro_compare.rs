@@ -4,7 +4,8 @@
 //! a different curve (piecewise Euler spirals, G2, a global Newton solve); both interpolate
 //! the points with a fair curve, which is the work compared.
 //!
-//! `apt-get install libspiro-dev && cargo bench -p spiro-oracle --features libspiro --bench spiro_compare`
+//! `apt-get install libspiro-dev && cargo bench -p spiro-oracle --features libspiro --bench
+//! spiro_compare`
 
 use aesthetic_curves::lac_spline::{lac_spline, lac_spline_tangents, LacSplineOptions};
 use aesthetic_curves::pseudo_spline::{pseudo_elastic, Mode};

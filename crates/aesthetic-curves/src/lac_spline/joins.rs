@@ -2,8 +2,8 @@
 //! is read from its first three control points, `(2/3) (w0 w2 / w1²) (P1 - P0) × (P2 - P1)
 //! / |P1 - P0|³`: where a piece is short and far from the origin, the rounding of those
 //! points to f64 moves it by about `ulp / |P1 - P0|²`, above the G2 a user's tool checks
-//! (the harsh sets of `tests/spiro_oracle.rs`: pieces 8e-5 long 2.8 from the origin, whose cubics' curvatures
-//! jumped by 3e-8 to 4e-7 of the largest curvature at smooth joins). Two repairs, each
+//! (the harsh sets of `tests/spiro_oracle.rs`: pieces 8e-5 long 2.8 from the origin, whose cubics'
+//! curvatures jumped by 3e-8 to 4e-7 of the largest curvature at smooth joins). Two repairs, each
 //! kept only where the exact test proves the moved cubic monotone as it did the first:
 //!
 //! - an inflection end (zero curvature): P0 and P2 kept (so both end tangents are), P1

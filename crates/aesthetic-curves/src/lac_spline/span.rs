@@ -35,9 +35,9 @@ pub(super) const WIDE_TURN: f64 = 1.95 * PI;
 pub(super) const HALF_TURN: f64 = PI;
 
 /// The most a half may turn in the wider family: libspiro's clothoid splines through sharp
-/// turns have S-spans whose one side winds past a half turn (the harsh sets of `tests/spiro_oracle.rs`: 130
-/// of the 138 it solved and the narrow family did not), which a half of this family
-/// holds as an inflection-end piece and a segment (pieces.rs).
+/// turns have S-spans whose one side winds past a half turn (the harsh sets of
+/// `tests/spiro_oracle.rs`: 130 of the 138 it solved and the narrow family did not), which a half
+/// of this family holds as an inflection-end piece and a segment (pieces.rs).
 pub(super) const WIDE_HALF: f64 = 1.8 * PI;
 
 /// A pair's mismatch (radians) within this of zero at an end of its range is a root there

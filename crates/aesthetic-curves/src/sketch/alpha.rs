@@ -56,10 +56,11 @@ fn arc_distance([p0, p1, p2]: [Point; 3], q: Point) -> f64 {
 }
 
 /// Sum of squared and largest distance of `pts` to the LAC segment of shape `alpha` in
-/// `tri` (its end curvatures within `cap` and within [`MAX_CURVATURE_RATIO`](super::constants::MAX_CURVATURE_RATIO) of each
-/// other), from 65 samples read as parabolic arcs: within 5e-5 of the segment's size even
-/// where its curvature grows 26-fold (tested; 129 samples gave 6e-6 and a sixth more time
-/// to a Prius line's fit). `None` where the segment does not exist.
+/// `tri` (its end curvatures within `cap` and within
+/// [`MAX_CURVATURE_RATIO`](super::constants::MAX_CURVATURE_RATIO) of each other), from 65 samples
+/// read as parabolic arcs: within 5e-5 of the segment's size even where its curvature grows 26-fold
+/// (tested; 129 samples gave 6e-6 and a sixth more time to a Prius line's fit). `None` where the
+/// segment does not exist.
 pub(super) fn lac_cost(alpha: f64, tri: [Point; 3], pts: &[Point], cap: f64) -> Option<(f64, f64)> {
     let seg = LacSegment::new(alpha, tri).ok()?;
     let (k0, k1) = seg.end_curvatures().ok()?;
