@@ -3,10 +3,11 @@
 //! Each piece of work runs repeatedly for at least a round's time; the works of one group
 //! are timed interleaved, round after round (a slow spell of this shared machine hits them
 //! alike), and each reports the median of its rounds, per call (or per curve for the
-//! monotone test, which runs over a set). The targets are the project's (README); a row says
-//! whether its median meets it. libspiro is not linked into `aecurve`: the spline's ratio to it is
-//! measured by `cargo bench -p spiro-oracle --features libspiro --bench spiro_compare` (the targets
-//! below are a tenth of libspiro's times on this machine class).
+//! monotone test, which runs over a set). The targets are the project's
+//! (docs/performance.md); a row says whether its median meets it. libspiro is not linked
+//! into `aecurve`: the spline's ratio to it is measured by `cargo bench -p spiro-oracle
+//! --features libspiro --bench spiro_compare` (the targets below are a tenth of libspiro's
+//! times on this machine class).
 
 use aesthetic_curves::approx::{fit_inflection_cubic, fit_rational_cubic, ApproxOptions};
 use aesthetic_curves::lac::{LacInflectionSegment, LacSegment};
