@@ -420,6 +420,22 @@ fn nice_length(x: f64) -> f64 {
         .unwrap_or(mag)
 }
 
+/// The value below which the share `q` of the total weight lies, of `(value, weight)`
+/// pairs (a curvature and the arc length it holds for: the 90th percentile of |κ| by arc
+/// length scales a comb); sorts `pairs` by value. `None` when empty.
+pub fn weighted_quantile(pairs: &mut [(f64, f64)], q: f64) -> Option<f64> {
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: f64 = pairs.iter().map(|k| k.1).sum();
+    let mut acc = 0.0;
+    pairs
+        .iter()
+        .find(|k| {
+            acc += k.1;
+            acc >= q * total
+        })
+        .map(|k| k.0)
+}
+
 /// [`comb_svg`] with the unit of the coordinates (`"mm"`, or `""` when they have none),
 /// shown on the scale bar.
 ///
@@ -503,17 +519,9 @@ pub fn comb_svg_in(
         })
         .filter(|k| k.0.is_finite() && k.1.is_finite())
         .collect();
-    ks.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let k90 = weighted_quantile(&mut ks, 0.9);
     let kmax = ks.last().map_or(0.0, |k| k.0);
-    let total: f64 = ks.iter().map(|k| k.1).sum();
-    let mut acc = 0.0;
-    let k90 = ks
-        .iter()
-        .find(|k| {
-            acc += k.1;
-            acc >= 0.9 * total
-        })
-        .map_or(kmax, |k| k.0);
+    let k90 = k90.unwrap_or(kmax);
     let kscale = if kmax > 8.0 * k90 && k90 > 0.0 {
         4.0 * k90
     } else {

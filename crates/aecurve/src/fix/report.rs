@@ -87,11 +87,7 @@ impl CombScale {
     /// The scale of one contour, from its segments before and after (either may be
     /// missing): its typical curvature the 90th percentile of |κ| by arc length over both.
     pub(crate) fn of(contours: &[&[Vec<Point>]]) -> CombScale {
-        let points = contours.iter().flat_map(|c| c.iter()).flatten();
-        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-        for p in points {
-            (x0, x1, y0, y1) = (x0.min(p.x), x1.max(p.x), y0.min(p.y), y1.max(p.y));
-        }
+        let (x0, x1, y0, y1) = extent(contours.iter().flat_map(|c| c.iter()).flatten());
         let size = (x1 - x0).max(y1 - y0).max(1e-9);
         let mut ks: Vec<(f64, f64)> = Vec::new();
         for seg in contours.iter().flat_map(|c| c.iter()) {
@@ -103,16 +99,7 @@ impl CombScale {
                 }
             }
         }
-        ks.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let total: f64 = ks.iter().map(|k| k.1).sum();
-        let mut acc = 0.0;
-        let typical = ks
-            .iter()
-            .find(|k| {
-                acc += k.1;
-                acc >= 0.9 * total
-            })
-            .map_or(0.0, |k| k.0);
+        let typical = crate::plot::weighted_quantile(&mut ks, 0.9).unwrap_or(0.0);
         let nominal = TOOTH_OF_SIZE * size;
         CombScale {
             tooth: if typical > 0.0 {
@@ -137,11 +124,7 @@ impl CombScale {
 
 impl Frame {
     fn of(f: &FixFigure, y_up: bool) -> Frame {
-        let all = f.before.iter().chain(&f.after).flatten().flatten();
-        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-        for p in all {
-            (x0, x1, y0, y1) = (x0.min(p.x), x1.max(p.x), y0.min(p.y), y1.max(p.y));
-        }
+        let (x0, x1, y0, y1) = extent(f.before.iter().chain(&f.after).flatten().flatten());
         let size = (x1 - x0).max(y1 - y0).max(1e-9);
         let pad = 0.2 * size;
         let n = f.before.len().max(f.after.len());
@@ -175,6 +158,14 @@ impl Frame {
             },
         )
     }
+}
+
+/// The box of `points`: (x min, x max, y min, y max).
+fn extent<'a>(points: impl Iterator<Item = &'a Point>) -> (f64, f64, f64, f64) {
+    points.fold(
+        (f64::MAX, f64::MIN, f64::MAX, f64::MIN),
+        |(x0, x1, y0, y1), p| (x0.min(p.x), x1.max(p.x), y0.min(p.y), y1.max(p.y)),
+    )
 }
 
 /// Points of a segment with their curvature and unit normal (none for a line).

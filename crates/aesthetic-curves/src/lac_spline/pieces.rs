@@ -479,32 +479,32 @@ fn tilted(
     let (e0, e2) = base_angles(c);
     let bend = (e0.abs() + e2.abs()).max(f64::MIN_POSITIVE);
     let first = (100.0 * f64::EPSILON * reach / (chord.hypot() * bend)).clamp(1e-12, 1e-9);
-    let turned = |k: i32| {
-        let t = turned_triangle(c, e0.abs() >= e2.abs(), first * 10f64.powi(k))?;
+    let turned = |d: f64| {
+        let t = turned_triangle(c, e0.abs() >= e2.abs(), d)?;
         LacSegment::new(alpha, t).ok()
     };
+    let tilt = |k: i32| first * 10f64.powi(k);
     // A bent arc tilted by 1e-13 keeps its legs equal within the fit's test of an arc, so
     // its cubic is the circle's own, whose exact verdict is cheap there and often proves
     // it (the rounding tilts it as well): tried first, where the bend is clear of the
     // flat arcs whose verdicts are slow.
     let circle_tilt = (bend > ARC_FIRST_BEND)
         .then(|| {
-            let t = turned_triangle(c, e0.abs() >= e2.abs(), 1e-13)?;
-            let seg = LacSegment::new(alpha, t).ok()?;
+            let seg = turned(1e-13)?;
             let f = fit_from_table(&seg, approx)?;
             (f.monotone && f.evaluations == 0).then_some((seg, f))
         })
         .flatten();
     let quick = circle_tilt.or_else(|| {
         (0..TILTS).find_map(|k| {
-            let seg = turned(k)?;
+            let seg = turned(tilt(k))?;
             let f = fit_from_table(&seg, approx)?;
             f.monotone.then_some((seg, f))
         })
     });
     quick.or_else(|| {
         (0..TILTS).find_map(|k| {
-            let seg = turned(k)?;
+            let seg = turned(tilt(k))?;
             let f = fit_cubic(&Part::Lac(seg.clone(), true), approx).ok()?;
             f.monotone.then_some((seg, f))
         })
@@ -516,11 +516,17 @@ fn tilted(
 /// and moved back as [`fit_cubic`] does; `None` where that gives no cubic proven
 /// monotone in place.
 fn fit_from_table(seg: &LacSegment, approx: &ApproxOptions) -> Option<RationalCubicFit> {
-    use crate::monotone::CurvatureMonotone;
     let c = seg.control();
     let o = c[0].to_vec2();
     let local = LacSegment::new(seg.alpha(), c.map(|p| p - o)).ok()?;
     let f = fit_rational_cubic_from_table(&local, approx).ok()??;
+    moved_back(f, c, o)
+}
+
+/// A cubic fitted with its segment's start moved to the origin (by `-o`), moved back onto
+/// the triangle `c` (its ends exactly `c`'s) and proven again in place.
+fn moved_back(f: RationalCubicFit, c: [Point; 3], o: Vec2) -> Option<RationalCubicFit> {
+    use crate::monotone::CurvatureMonotone;
     let mut pts: Vec<Point> = f.curve.points().iter().map(|p| *p + o).collect();
     pts[0] = c[0];
     pts[3] = c[2];
@@ -593,17 +599,8 @@ fn fit_cubic(part: &Part, approx: &ApproxOptions) -> Result<RationalCubicFit> {
         }
     };
     let back = fitted.ok().and_then(|f| {
-        use crate::monotone::CurvatureMonotone;
-        let mut pts: Vec<Point> = f.curve.points().iter().map(|p| *p + o).collect();
-        pts[0] = c[0];
-        pts[3] = c[2];
-        let curve = RationalBezier::new(pts, f.curve.weights().to_vec()).ok()?;
-        let monotone = curve.is_curvature_monotone().ok()?;
-        (monotone || !f.monotone).then_some(RationalCubicFit {
-            curve,
-            monotone,
-            ..f
-        })
+        let was_monotone = f.monotone;
+        moved_back(f, c, o).filter(|b| b.monotone || !was_monotone)
     });
     match back {
         Some(f) => Ok(f),

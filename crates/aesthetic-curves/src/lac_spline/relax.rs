@@ -114,13 +114,25 @@ fn paired(
     alphas: &[f64],
     sol: &Solution,
 ) -> Option<Vec<bool>> {
+    per_span(points, opts, alphas, sol, |p, theta, k| {
+        let s = p.span(k, theta).ok()?;
+        Some(matches!(s.shape, span::Shape::Pair { .. }))
+    })
+}
+
+/// `f` of every span of the problem with `alphas` as `sol` solved it (in its family, on its
+/// branch), at `sol`'s tangents.
+fn per_span<T>(
+    points: &[Point],
+    opts: &LacSplineOptions,
+    alphas: &[f64],
+    sol: &Solution,
+    f: impl Fn(&Problem, &[f64], usize) -> Option<T>,
+) -> Option<Vec<T>> {
     let problem = problem_of(points, &with_alphas(opts, alphas)).ok()?;
     let solved = problem.solved_as(sol);
     (0..alphas.len())
-        .map(|k| {
-            let s = solved.span(k, &sol.theta).ok()?;
-            Some(matches!(s.shape, span::Shape::Pair { .. }))
-        })
+        .map(|k| f(&solved, &sol.theta, k))
         .collect()
 }
 
@@ -141,9 +153,10 @@ fn s_shaped(
     alphas: &[f64],
     sol: &Solution,
 ) -> Option<Vec<bool>> {
-    let problem = problem_of(points, &with_alphas(opts, alphas)).ok()?;
-    let deviations = problem.solved_as(sol).all_deviations(&sol.theta);
-    Some(deviations.iter().map(|&(a, b)| a * b >= 0.0).collect())
+    per_span(points, opts, alphas, sol, |p, theta, k| {
+        let (a, b) = p.deviations(k, theta);
+        Some(a * b >= 0.0)
+    })
 }
 
 /// `alphas` with each span whose curve is the one its target α builds named by its target:
