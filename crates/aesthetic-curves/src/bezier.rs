@@ -136,14 +136,106 @@ fn casteljau_derivs<const D: usize>(pts: &[[f64; D]], t: f64) -> [[f64; D]; 4] {
 /// by `d` moves its cubic by at most 4/9 d (`max 3t(1-t)²`), both handles by `d` each at
 /// most 3/4 d.
 pub fn outline_move(a: &[Point], b: &[Point]) -> f64 {
+    move_bound(a, b, 0.0)
+}
+
+/// The most control points [`move_bound`] keeps on the stack (a cubic's four).
+const MOVE_POINTS: usize = 4;
+
+/// [`outline_move`], refined only as far as a caller comparing it with `enough` needs
+/// (`enough > 0`): a piece whose hull lies within `enough` is not split, and once a point of
+/// the difference lies further than `enough` the bound so far is returned (more than
+/// `enough`). Squared norms throughout; a cubic or lower on the stack, any other degree
+/// through [`split_points`].
+fn move_bound(a: &[Point], b: &[Point], enough: f64) -> f64 {
+    let n = a.len().min(b.len());
+    if n == 0 {
+        return 0.0;
+    }
+    if n > MOVE_POINTS {
+        return move_bound_any(a, b, enough);
+    }
+    let mut d = [[0.0f64; 2]; MOVE_POINTS];
+    for (k, (p, q)) in a.iter().zip(b).enumerate() {
+        d[k] = [q.x - p.x, q.y - p.y];
+    }
+    // Squares of coordinates beyond this range overflow or lose their digits: hypot there.
+    let size = d[..n]
+        .iter()
+        .map(|v| v[0].abs().max(v[1].abs()))
+        .fold(0.0, f64::max);
+    if size == 0.0 {
+        return 0.0;
+    }
+    if !(1e-140..=1e140).contains(&size) {
+        return move_bound_any(a, b, enough);
+    }
+    let norm2 = |v: &[f64; 2]| v[0] * v[0] + v[1] * v[1];
+    let ends = |c: &[[f64; 2]; MOVE_POINTS]| norm2(&c[0]).max(norm2(&c[n - 1]));
+    let (close, enough2) = ((1.0 + 1e-4f64).powi(2), enough * enough);
+    let mut lower = ends(&d);
+    let mut upper = 0.0f64;
+    let mut stack = Vec::with_capacity(2 * 13);
+    stack.push((d, 0u8));
+    while let Some((c, depth)) = stack.pop() {
+        if enough > 0.0 && lower > enough2 {
+            // Further than `enough` for certain: the largest hull still open bounds the rest.
+            upper = stack
+                .iter()
+                .map(|(c, _)| hull2(c, n))
+                .fold(upper.max(hull2(&c, n)), f64::max);
+            break;
+        }
+        let hull = hull2(&c, n);
+        if hull <= lower * close || hull <= enough2 || depth >= 12 {
+            upper = upper.max(hull);
+            continue;
+        }
+        let (l, r) = halves(&c, n);
+        lower = lower.max(ends(&l)).max(ends(&r));
+        stack.push((l, depth + 1));
+        stack.push((r, depth + 1));
+    }
+    // The float rounding of the splits and of the squares, far below any tolerance that
+    // matters.
+    upper.max(lower).sqrt() * (1.0 + 1e-12)
+}
+
+/// The largest squared norm of the first `n` control points.
+fn hull2(c: &[[f64; 2]; MOVE_POINTS], n: usize) -> f64 {
+    c[..n]
+        .iter()
+        .map(|v| v[0] * v[0] + v[1] * v[1])
+        .fold(0.0, f64::max)
+}
+
+/// The first `n` control points split at t = 1/2 (de Casteljau), on the stack.
+fn halves(
+    c: &[[f64; 2]; MOVE_POINTS],
+    n: usize,
+) -> ([[f64; 2]; MOVE_POINTS], [[f64; 2]; MOVE_POINTS]) {
+    let mut work = *c;
+    let (mut left, mut right) = ([[0.0; 2]; MOVE_POINTS], [[0.0; 2]; MOVE_POINTS]);
+    left[0] = work[0];
+    right[n - 1] = work[n - 1];
+    for k in 1..n {
+        for i in 0..n - k {
+            let next = work[i + 1];
+            work[i] = [0.5 * (work[i][0] + next[0]), 0.5 * (work[i][1] + next[1])];
+        }
+        left[k] = work[0];
+        right[n - 1 - k] = work[n - 1 - k];
+    }
+    (left, right)
+}
+
+/// [`move_bound`] for any degree, on the heap.
+fn move_bound_any(a: &[Point], b: &[Point], enough: f64) -> f64 {
     let d: Vec<[f64; 2]> = a
         .iter()
         .zip(b)
         .map(|(p, q)| [q.x - p.x, q.y - p.y])
         .collect();
-    if d.is_empty() {
-        return 0.0;
-    }
     let norm = |v: &[f64; 2]| v[0].hypot(v[1]);
     let ends = |c: &[[f64; 2]]| norm(&c[0]).max(norm(&c[c.len() - 1]));
     let mut lower = ends(&d);
@@ -151,7 +243,12 @@ pub fn outline_move(a: &[Point], b: &[Point]) -> f64 {
     let mut stack = vec![(d, 0u8)];
     while let Some((c, depth)) = stack.pop() {
         let hull = c.iter().map(norm).fold(0.0, f64::max);
-        if hull <= lower * (1.0 + 1e-4) || depth >= 12 {
+        if enough > 0.0 && lower > enough {
+            let open = stack.iter().flat_map(|(c, _)| c.iter().map(norm));
+            upper = open.fold(upper.max(hull), f64::max);
+            break;
+        }
+        if hull <= lower * (1.0 + 1e-4) || hull <= enough || depth >= 12 {
             upper = upper.max(hull);
             continue;
         }
@@ -189,7 +286,7 @@ pub fn outline_within(a: &[Point], b: &[Point], tolerance: f64) -> bool {
 /// [`outline_distance`], refined only as far as a caller comparing it with `enough` needs
 /// ([`matched_distance`]); the bound at equal parameters where that is within `enough`.
 fn shape_bound(a: &[Point], b: &[Point], enough: f64) -> f64 {
-    let equal_parameters = outline_move(a, b);
+    let equal_parameters = move_bound(a, b, enough);
     if equal_parameters <= enough || a.len() != 4 || b.len() != 4 {
         return equal_parameters;
     }
@@ -257,9 +354,10 @@ fn matched_distance(a: &kurbo::CubicBez, b: &kurbo::CubicBez, enough: f64) -> f6
         if lower > enough && enough > 0.0 {
             break;
         }
-        let piece = outline_move(
+        let piece = move_bound(
             &points(a.subsegment(s.0..s.1)),
             &points(b.subsegment(t.0..t.1)),
+            enough,
         );
         if piece <= worst
             || piece <= enough
