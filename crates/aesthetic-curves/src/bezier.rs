@@ -906,6 +906,59 @@ mod tests {
     /// more than outline_move, and is close to the truth where a handle slides along its
     /// tangent: at equal parameters that move counts in full.
     #[test]
+    fn the_move_at_equal_parameters_is_bounded_and_asked_only_as_far_as_needed() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut random = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for k in 0..300 {
+            // Scales from 1e-160 to 1e160: squares of the widest overflow, of the narrowest
+            // vanish; both go through hypot.
+            let scale = 10f64.powi((k % 33) * 10 - 160);
+            let degree = 1 + k as usize % 3;
+            let mut r = || (random() - 0.5) * scale;
+            let a: Vec<Point> = (0..=degree).map(|_| Point::new(r(), r())).collect();
+            let b: Vec<Point> = a.iter().map(|q| *q + Vec2::new(r(), r()) * 0.1).collect();
+            let bound = outline_move(&a, &b);
+            assert!(bound.is_finite() && bound > 0.0, "{a:?} {b:?}");
+            // Sound: no sampled parameter moves further.
+            let at = |p: &[Point], t: f64| {
+                let mut w: Vec<Vec2> = p.iter().map(|q| q.to_vec2()).collect();
+                for n in (1..w.len()).rev() {
+                    for i in 0..n {
+                        w[i] = w[i] * (1.0 - t) + w[i + 1] * t;
+                    }
+                }
+                w[0]
+            };
+            let truth = (0..=400)
+                .map(|i| {
+                    let t = i as f64 / 400.0;
+                    let d = at(&b, t) - at(&a, t);
+                    d.x.hypot(d.y)
+                })
+                .fold(0.0, f64::max);
+            assert!(truth <= bound * (1.0 + 1e-9), "{truth} > {bound}");
+            assert!(
+                bound <= truth * (1.0 + 2e-4) + 1e-300,
+                "{bound} far above {truth}"
+            );
+            // Asked against `enough`, it answers the same question.
+            for share in [0.5, 0.99, 1.01, 2.0] {
+                let enough = share * bound;
+                assert_eq!(
+                    move_bound(&a, &b, enough) <= enough,
+                    share >= 1.0,
+                    "{a:?} {b:?} {share}"
+                );
+            }
+        }
+    }
+
+    #[test]
     fn outline_distance_bounds_the_shape_distance() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
         let mut random = || {
