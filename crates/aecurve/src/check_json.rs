@@ -39,11 +39,6 @@ impl FindingJson {
     }
 }
 
-/// A finding as JSON (shared by `aecurve check --json` and the protocol's `outline.check`).
-pub fn finding_json(name: &str, f: &Finding) -> serde_json::Value {
-    serde_json::to_value(FindingJson::new(name, f)).unwrap_or(serde_json::Value::Null)
-}
-
 /// A place on a segment: its parameter and point.
 #[derive(Debug, Serialize, JsonSchema)]
 pub struct PlaceJson {
@@ -218,4 +213,106 @@ pub fn shape_json(c: &ShapeCheck) -> ShapeJson {
             })
             .collect(),
     }
+}
+
+/// What `aecurve check --json` prints: one document (`x-cli.check` of the schema), its
+/// shapes streamed as they are checked, then the rest ([`CheckTailJson`]).
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct CheckFileJson {
+    /// The file checked.
+    pub file: String,
+    /// What it held: `font`, `ufo`, `svg`, `dxf`, ...
+    pub kind: String,
+    /// Every shape's check, in the file's order.
+    pub shapes: Vec<ShapeJson>,
+    /// The totals, the ranked findings, the times and what could not be read.
+    #[serde(flatten)]
+    pub tail: CheckTailJson,
+}
+
+/// The part of [`CheckFileJson`] written after the shapes.
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct CheckTailJson {
+    /// Totals over every shape.
+    pub counts: CheckCountsJson,
+    /// The findings, each place once, worst (by [`RankedFindingJson::rank`]) first.
+    pub findings: Vec<RankedFindingJson>,
+    /// Where the time went.
+    pub milliseconds: CheckMillisJson,
+    /// The shapes that could not be read, each with why.
+    pub unreadable: Vec<UnreadableJson>,
+}
+
+/// Totals of a check.
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct CheckCountsJson {
+    pub shapes: usize,
+    pub segments: usize,
+    /// Segments of degree 2 or more.
+    pub curved_segments: usize,
+    /// Segments proven monotone.
+    pub monotone_segments: usize,
+    pub inflections: usize,
+    pub joins: usize,
+    pub g1_joins: usize,
+    pub g2_joins: usize,
+    /// Joins whose tangents break by a hair (less than the near-break angle).
+    pub near_breaks: usize,
+    /// Segments given suggested handles.
+    pub suggestions: usize,
+    /// Segments whose verdict needed exact arithmetic.
+    pub exact_arithmetic: usize,
+    /// Segments with a retracted handle.
+    pub retracted_handles: usize,
+    /// The findings that are defects.
+    pub defects: DefectCountsJson,
+    /// Segments with one curvature extremum inside: the design, not a defect.
+    pub one_extremum_inside: usize,
+    /// Curvature steps where a line meets a curve at a point not marked smooth: the design.
+    pub line_curve_steps: usize,
+}
+
+/// The defects of a check, by kind.
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct DefectCountsJson {
+    /// Curvature extrema within the hook zone of an end.
+    pub hooks: usize,
+    /// Segments with several curvature extrema.
+    pub several_extrema: usize,
+    /// Curvature jumps at smooth joins.
+    pub curvature_jumps: usize,
+    pub near_breaks: usize,
+    /// Degenerate segments.
+    pub degenerate: usize,
+}
+
+/// A finding in `check --json`'s ranked list.
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct RankedFindingJson {
+    /// The finding, in the first shape that has it.
+    #[serde(flatten)]
+    pub finding: FindingJson,
+    /// How bad it is, from 0 up.
+    pub severity: f64,
+    /// The largest use weight of the shapes that have it (basic Latin 1, symbols less).
+    pub use_weight: f64,
+    /// Severity times use weight, raised by 5 % for each other shape with it (up to ten).
+    pub rank: f64,
+    /// The other shapes that draw the same place (components, copies).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub also_in: Vec<String>,
+}
+
+/// How long reading and checking took.
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct CheckMillisJson {
+    pub read: f64,
+    pub check: f64,
+}
+
+/// A shape that could not be read.
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct UnreadableJson {
+    pub name: String,
+    pub error: String,
 }

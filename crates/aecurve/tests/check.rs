@@ -585,3 +585,46 @@ fn line_curve_steps_are_listed_only_where_the_ufo_marks_them_smooth() {
     assert_eq!(at_stem_top("marked"), (Some(true), true));
     assert_eq!(at_stem_top("plain"), (Some(false), false));
 }
+
+/// `check --json` is one document of the schema's `x-cli.check` (`CheckFileJson`): every
+/// field it prints is a property there and every property is printed, on a font with
+/// findings shared by several glyphs and on an SVG.
+#[test]
+fn check_json_is_the_documented_type() {
+    use aecurve::check_json::CheckFileJson;
+    let schema = aecurve::protocol::response_schema::<CheckFileJson>();
+    let props = |s: &serde_json::Value| -> std::collections::BTreeSet<String> {
+        s["properties"]
+            .as_object()
+            .unwrap()
+            .keys()
+            .cloned()
+            .collect()
+    };
+    for file in [
+        concat!(env!("CARGO_MANIFEST_DIR"), "/assets/DejaVuSans.ttf"),
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/outline.svg"),
+    ] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_aecurve"))
+            .args(["check", "--json", file])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{file}");
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        crate::schema::valid_as::<CheckFileJson>(&v);
+        let printed: std::collections::BTreeSet<String> =
+            v.as_object().unwrap().keys().cloned().collect();
+        assert_eq!(printed, props(&schema), "{file}");
+        let counts = &schema["$defs"]["CheckCountsJson"];
+        assert_eq!(
+            v["counts"]
+                .as_object()
+                .unwrap()
+                .keys()
+                .cloned()
+                .collect::<std::collections::BTreeSet<_>>(),
+            props(counts),
+            "{file}"
+        );
+    }
+}

@@ -2,7 +2,10 @@
 //! (`aesthetic_curves::outline`), as a summary with the places most worth a look, or JSON.
 
 use crate::commands::Command;
-use aecurve::check_json::{finding_json, shape_json};
+use aecurve::check_json::{
+    shape_json, CheckCountsJson, CheckMillisJson, CheckTailJson, DefectCountsJson, FindingJson,
+    RankedFindingJson, UnreadableJson,
+};
 use aecurve::outline_io::{self, Outlines, Shape, ShapeCheck as Checked};
 use aesthetic_curves::outline::{ContourCheck, Finding};
 use anyhow::Result;
@@ -163,23 +166,30 @@ impl Tally {
         self.line_steps += c.joins.iter().filter(|j| c.unlisted_line_step(j)).count();
     }
 
-    fn json(&self) -> Value {
-        json!({
-            "shapes": self.shapes, "segments": self.segments, "curved_segments": self.curved,
-            "monotone_segments": self.monotone, "inflections": self.inflections,
-            "joins": self.joins, "g1_joins": self.g1, "g2_joins": self.g2,
-            "near_breaks": self.near, "suggestions": self.suggested,
-            "exact_arithmetic": self.exact, "retracted_handles": self.retracted,
-            "defects": {
-                "hooks": self.found("hook"),
-                "several_extrema": self.found("not-monotone"),
-                "curvature_jumps": self.found("curvature-jump"),
-                "near_breaks": self.found("near-break"),
-                "degenerate": self.found("degenerate"),
+    fn json(&self) -> CheckCountsJson {
+        CheckCountsJson {
+            shapes: self.shapes,
+            segments: self.segments,
+            curved_segments: self.curved,
+            monotone_segments: self.monotone,
+            inflections: self.inflections,
+            joins: self.joins,
+            g1_joins: self.g1,
+            g2_joins: self.g2,
+            near_breaks: self.near,
+            suggestions: self.suggested,
+            exact_arithmetic: self.exact,
+            retracted_handles: self.retracted,
+            defects: DefectCountsJson {
+                hooks: self.found("hook"),
+                several_extrema: self.found("not-monotone"),
+                curvature_jumps: self.found("curvature-jump"),
+                near_breaks: self.found("near-break"),
+                degenerate: self.found("degenerate"),
             },
-            "one_extremum_inside": self.found("curvature-extremum"),
-            "line_curve_steps": self.line_steps,
-        })
+            one_extremum_inside: self.found("curvature-extremum"),
+            line_curve_steps: self.line_steps,
+        }
     }
 }
 
@@ -338,39 +348,43 @@ fn fold_checks<'a>(
     })
 }
 
-/// The rest of `check --json` after the streamed shapes.
+/// The rest of `check --json` after the streamed shapes ([`CheckTailJson`]'s fields, each
+/// after a comma: the document's object goes on).
 fn write_json_tail(
     w: &mut impl Write,
     folded: &Folded,
     outlines: &Outlines,
     (read_ms, check_ms): (f64, f64),
 ) -> std::io::Result<()> {
-    let unreadable: Vec<Value> = outlines
-        .unreadable
-        .iter()
-        .map(|(n, e)| json!({"name": n, "error": e}))
-        .collect();
-    write!(w, ",\"counts\":{},\"findings\":", folded.tally.json())?;
-    write_array(
-        w,
-        folded.ranked.iter().map(|r| {
-            let mut v = finding_json(r.name, &r.finding);
-            v["severity"] = json!(r.finding.score);
-            v["use_weight"] = json!(r.weight);
-            v["rank"] = json!(r.rank());
-            if !r.also_in.is_empty() {
-                v["also_in"] = json!(r.also_in);
-            }
-            v
-        }),
-    )?;
-    write!(
-        w,
-        ",\"milliseconds\":{},\"unreadable\":{}}}",
-        json!({"read": read_ms, "check": check_ms}),
-        Value::Array(unreadable)
-    )?;
-    writeln!(w)?;
+    let tail = CheckTailJson {
+        counts: folded.tally.json(),
+        findings: (folded.ranked.iter())
+            .map(|r| RankedFindingJson {
+                finding: FindingJson::new(r.name, &r.finding),
+                severity: r.finding.score,
+                use_weight: r.weight,
+                rank: r.rank(),
+                also_in: r.also_in.iter().map(|n| n.to_string()).collect(),
+            })
+            .collect(),
+        milliseconds: CheckMillisJson {
+            read: read_ms,
+            check: check_ms,
+        },
+        unreadable: (outlines.unreadable.iter())
+            .map(|(n, e)| UnreadableJson {
+                name: n.to_string(),
+                error: e.to_string(),
+            })
+            .collect(),
+    };
+    if let Value::Object(fields) = serde_json::to_value(&tail)? {
+        for (k, v) in fields {
+            write!(w, ",{}:", Value::String(k))?;
+            serde_json::to_writer(&mut *w, &v)?;
+        }
+    }
+    writeln!(w, "}}")?;
     w.flush()
 }
 
@@ -509,21 +523,6 @@ fn print_findings(ranked: &[Ranked], top: usize) {
             r.name, f.contour, f.segment, f.point.x, f.point.y, f.message
         );
     }
-}
-
-/// A JSON array written element by element (none of them held beyond its own writing).
-fn write_array(
-    w: &mut impl std::io::Write,
-    items: impl Iterator<Item = Value>,
-) -> std::io::Result<()> {
-    w.write_all(b"[")?;
-    for (i, v) in items.enumerate() {
-        if i > 0 {
-            w.write_all(b",")?;
-        }
-        serde_json::to_writer(&mut *w, &v)?;
-    }
-    w.write_all(b"]")
 }
 
 /// The arguments of `aecurve check` (the command's help is its entry in `cli.rs`).

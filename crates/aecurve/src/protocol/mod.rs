@@ -275,12 +275,14 @@ pub fn schema() -> Value {
         .for_serialize()
         .into_generator();
     let ops = all_op_schemas(&mut requests, &mut responses);
-    // What the CLI prints beyond the ops' answers (`aecurve fix --json`, `bench --json`).
+    // What the CLI prints beyond the ops' answers (`aecurve check --json`, `fix --json`,
+    // `bench --json`).
     let x_cli = json!({
         "bench": {
             "monotone": responses.subschema_for::<crate::bench::BenchMonotoneResult>().to_value(),
             "targets": responses.subschema_for::<crate::bench_targets::BenchTargetsResult>().to_value(),
         },
+        "check": responses.subschema_for::<crate::check_json::CheckFileJson>().to_value(),
         "fix": {
             "file": responses.subschema_for::<fix_file::FixFileResult>().to_value(),
             "designspace": responses.subschema_for::<fix_file::FixDesignspaceResult>().to_value(),
