@@ -137,10 +137,46 @@ fn bench_exact_fallback(c: &mut Criterion) {
     g.finish();
 }
 
+/// The space curves' exact verdicts (curvature, zero-curvature points, planarity and
+/// torsion: `space::SpaceBezier::check`) over 256 random twisted curves of degree 3 and of
+/// degree 5.
+fn bench_space(c: &mut Criterion) {
+    use aesthetic_curves::space::SpaceBezier;
+    let mut g = c.benchmark_group("space/check");
+    g.throughput(Throughput::Elements(CURVES as u64));
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut random = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0
+    };
+    for degree in [3usize, 5] {
+        let curves: Vec<SpaceBezier> = (0..CURVES)
+            .map(|_| {
+                let p = (0..=degree)
+                    .map(|_| [random(), random(), random()])
+                    .collect();
+                SpaceBezier::new(p).unwrap()
+            })
+            .collect();
+        g.bench_with_input(BenchmarkId::new("degree", degree), &curves, |b, cs| {
+            b.iter(|| {
+                cs.iter()
+                    .map(|c| black_box(c).check())
+                    .filter(|r| r.curvature.monotone)
+                    .count()
+            })
+        });
+    }
+    g.finish();
+}
+
 criterion_group!(
     benches,
     bench_polynomial,
     bench_rational,
-    bench_exact_fallback
+    bench_exact_fallback,
+    bench_space
 );
 criterion_main!(benches);

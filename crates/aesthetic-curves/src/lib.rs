@@ -155,6 +155,7 @@ pub mod region;
 pub mod samples;
 pub mod sketch;
 pub mod solve;
+pub mod space;
 
 pub use bezier::{Bezier, PlanarCurve, RationalBezier};
 pub use curve::{Curve, CurveEval, CurvePoint, Pieces};

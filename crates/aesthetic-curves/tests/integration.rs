@@ -24,3 +24,4 @@ mod pseudo_table_accuracy;
 mod sketch_alpha;
 mod sketch_contour;
 mod sketch_reference;
+mod space_curves;

@@ -129,7 +129,10 @@ const LAYERS: [(&str, &[&str]); 6] = [
             "contour_points",
         ],
     ),
-    ("measures", &["monotone", "lcg", "region", "outline"]),
+    (
+        "measures",
+        &["monotone", "lcg", "region", "outline", "space"],
+    ),
     (
         "constructions",
         &[

@@ -1,0 +1,422 @@
+//! Space curves: Bézier curves in three dimensions, their curvature and torsion decided
+//! exactly for the given f64 control points.
+//!
+//! A car's key line is a space curve: a curvature that is not monotone puts a wobble into
+//! the reflections on the surface, and so does a torsion that turns back. For a polynomial
+//! curve `r(t)` of degree `n` the hodograph is `r' = n z` with `z` of degree `m = n - 1`, and
+//! with `C = z × z'`, `D = det(z, z', z'') = C · z''`:
+//!
+//! - `κ = |C| / (n |z|³)`, so `dκ²/dt` has the sign of
+//!   `N = (|C|²)' |z|² - 6 |C|² (z · z')` (degree `6n - 11`);
+//! - `τ = D / (n |C|²)`, so `dτ/dt` has the sign of `T = D' |C|² - D (|C|²)'` (degree
+//!   `7n - 16` as written here).
+//!
+//! Arc length grows with `t`, so these are the signs along the curve. `C` is computed from
+//! `z`'s two sub-polygons (`Ã_i = (m - i) z_i`, `B̃_i = (i + 1) z_{i+1}`: `m z = (1 - t) Ã +
+//! t B̃`, `z' = B̃ - Ã`, so `Ã × B̃ = m (z × z')` at degree `2m - 2`), all in scaled Bernstein
+//! form ([`crate::exact::ring`]): one formula, run on bounded floats first and on big
+//! integers where those cannot decide ([`crate::exact::certified_signs`]). The verdicts are
+//! those of the curve the numbers describe: no sign is guessed from a rounded value.
+//!
+//! The curvature of a space curve is not signed: where `C` vanishes (a straight stretch's
+//! point, a planar curve's inflection) it touches zero, which is a minimum, and `N` changes
+//! sign there. Such extrema are reported apart ([`SpaceReport::zero_curvature`]), so that a
+//! planar curve's other extrema are those of its signed curvature in the plane. The torsion
+//! is undefined where the curvature is zero, and identically zero on a planar curve (decided
+//! exactly: `D ≡ 0`).
+
+use crate::error::{Error, Result};
+use crate::exact::ring::{self, Scaled};
+use crate::exact::{certified_signs, dyadic_integers, Bounded, Ring, Signs, Want};
+use num_bigint::BigInt;
+
+/// The most control points of a space curve (degree 20).
+pub const MAX_POINTS: usize = 21;
+
+/// A polynomial Bézier curve in three dimensions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpaceBezier {
+    points: Vec<[f64; 3]>,
+}
+
+impl SpaceBezier {
+    /// A curve from its control points: 2 to [`MAX_POINTS`] finite points.
+    pub fn new(points: Vec<[f64; 3]>) -> Result<Self> {
+        if !(2..=MAX_POINTS).contains(&points.len()) {
+            return Err(Error::invalid(
+                "points",
+                format!(
+                    "a space Bézier curve needs 2 to {MAX_POINTS} control points, got {}",
+                    points.len()
+                ),
+            ));
+        }
+        if let Some(i) = points.iter().position(|p| p.iter().any(|v| !v.is_finite())) {
+            return Err(Error::invalid(
+                "points",
+                format!("control point {i} is not finite"),
+            ));
+        }
+        Ok(SpaceBezier { points })
+    }
+
+    /// The degree n (control points minus one).
+    pub fn degree(&self) -> usize {
+        self.points.len() - 1
+    }
+
+    /// The control points.
+    pub fn points(&self) -> &[[f64; 3]] {
+        &self.points
+    }
+
+    /// The point and its first three derivatives at `t` (de Casteljau on the control
+    /// points and their differences, in f64).
+    pub fn derivatives(&self, t: f64) -> [[f64; 3]; 4] {
+        let mut out = [[0.0; 3]; 4];
+        let mut pts: Vec<[f64; 3]> = self.points.clone();
+        let mut factor = 1.0;
+        for (k, slot) in out.iter_mut().enumerate() {
+            if pts.is_empty() {
+                break;
+            }
+            let p = casteljau(&pts, t);
+            *slot = [factor * p[0], factor * p[1], factor * p[2]];
+            let d = pts.len() as f64 - 1.0;
+            factor *= d;
+            pts = pts
+                .windows(2)
+                .map(|w| [w[1][0] - w[0][0], w[1][1] - w[0][1], w[1][2] - w[0][2]])
+                .collect();
+            if k == 3 {
+                break;
+            }
+        }
+        out
+    }
+
+    /// The curvature at `t` in f64 (0 where the speed vanishes).
+    pub fn curvature(&self, t: f64) -> f64 {
+        let [_, d1, d2, _] = self.derivatives(t);
+        let (c, s) = (cross(d1, d2), norm(d1));
+        if s == 0.0 {
+            0.0
+        } else {
+            norm(c) / (s * s * s)
+        }
+    }
+
+    /// The torsion at `t` in f64 (NaN where the curvature vanishes: undefined there).
+    pub fn torsion(&self, t: f64) -> f64 {
+        let [_, d1, d2, d3] = self.derivatives(t);
+        let c = cross(d1, d2);
+        let c2 = dot(c, c);
+        if c2 == 0.0 {
+            f64::NAN
+        } else {
+            dot(c, d3) / c2
+        }
+    }
+
+    /// The exact verdicts on its curvature and torsion (see the module documentation).
+    pub fn check(&self) -> SpaceReport {
+        check(self)
+    }
+}
+
+/// How a space curve lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpaceShape {
+    /// Its curvature is zero everywhere: a straight line (or a point).
+    Straight,
+    /// It lies in a plane: its torsion is zero everywhere.
+    Planar,
+    /// It leaves every plane.
+    Twisted,
+}
+
+/// How a quantity varies along a curve, decided exactly.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variation {
+    /// It does not turn back on (0, 1): its derivative keeps one sign (zero allowed).
+    pub monotone: bool,
+    /// It increases (`Some(true)`) or decreases (`Some(false)`) when monotone and not
+    /// constant.
+    pub increasing: Option<bool>,
+    /// It is constant.
+    pub constant: bool,
+    /// Where its derivative changes sign in (0, 1): its extrema, sorted, each within
+    /// about 1e-13 of the exact one.
+    pub extrema: Vec<f64>,
+    /// The degree of the Bernstein polynomial whose signs decided it.
+    pub test_degree: usize,
+    /// The floating-point filter could not decide: big-integer arithmetic did.
+    pub exact: bool,
+    /// The exact stage would have been over its budget (coordinates spanning hundreds of
+    /// orders of magnitude): nothing above is decided.
+    pub undecided: bool,
+}
+
+impl Variation {
+    fn of(signs: Signs, test_degree: usize) -> Self {
+        if signs.over_budget {
+            return Variation {
+                monotone: false,
+                increasing: None,
+                constant: false,
+                extrema: Vec::new(),
+                test_degree,
+                exact: true,
+                undecided: true,
+            };
+        }
+        let both = signs.positive && signs.negative;
+        Variation {
+            monotone: !both,
+            increasing: (!both && !signs.zero).then_some(signs.positive),
+            constant: signs.zero,
+            extrema: signs.changes,
+            test_degree,
+            exact: signs.exact,
+            undecided: false,
+        }
+    }
+
+    fn constant() -> Self {
+        Variation {
+            monotone: true,
+            increasing: None,
+            constant: true,
+            extrema: Vec::new(),
+            test_degree: 0,
+            exact: false,
+            undecided: false,
+        }
+    }
+}
+
+/// The verdicts on a space curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpaceReport {
+    /// Straight, planar or twisted (exact).
+    pub shape: SpaceShape,
+    /// The curvature (unsigned): monotone or not, its extrema (exact).
+    pub curvature: Variation,
+    /// Those of the curvature's extrema where the curvature is zero (a planar curve's
+    /// inflections, a point where the curve is momentarily straight), judged in f64: the
+    /// curvature there below 1e-3 of its value 1e-6 away. The torsion is undefined there.
+    pub zero_curvature: Vec<f64>,
+    /// The torsion: `None` for a straight or planar curve (identically zero there).
+    pub torsion: Option<Variation>,
+}
+
+fn check(curve: &SpaceBezier) -> SpaceReport {
+    let n = curve.degree();
+    if n < 2 {
+        return SpaceReport {
+            shape: SpaceShape::Straight,
+            curvature: Variation::constant(),
+            zero_curvature: Vec::new(),
+            torsion: None,
+        };
+    }
+    let bounded = numerators(&bounded_differences(curve.points()), n);
+    let exact = std::cell::OnceCell::new();
+    let exact_of = |pick: fn(&Numerators<BigInt>) -> &Scaled<BigInt>| -> Vec<BigInt> {
+        pick(exact.get_or_init(|| numerators(&exact_differences(curve.points()), n))).to_vec()
+    };
+    let square = certified_signs(&bounded.square, || exact_of(|e| &e.square), Want::Signs);
+    if square.zero {
+        return SpaceReport {
+            shape: SpaceShape::Straight,
+            curvature: Variation::constant(),
+            zero_curvature: Vec::new(),
+            torsion: None,
+        };
+    }
+    let signs = certified_signs(
+        &bounded.curvature,
+        || exact_of(|e| &e.curvature),
+        Want::Changes,
+    );
+    let curvature = Variation::of(signs, bounded.curvature.len() - 1);
+    let zero_curvature = (curvature.extrema.iter())
+        .copied()
+        .filter(|&t| touches_zero(curve, t))
+        .collect();
+    let planar =
+        n < 3 || certified_signs(&bounded.twist, || exact_of(|e| &e.twist), Want::Signs).zero;
+    let torsion = (!planar).then(|| {
+        let signs = certified_signs(&bounded.torsion, || exact_of(|e| &e.torsion), Want::Changes);
+        Variation::of(signs, bounded.torsion.len() - 1)
+    });
+    SpaceReport {
+        shape: if planar {
+            SpaceShape::Planar
+        } else {
+            SpaceShape::Twisted
+        },
+        curvature,
+        zero_curvature,
+        torsion,
+    }
+}
+
+/// Whether the curvature at the extremum `t` is zero: below 1e-3 of its value 1e-6 away
+/// on either side. A located extremum is within about 1e-13 of the exact one, so at a zero
+/// of the curvature (a simple zero of `C`) the value there is some 1e-7 of its neighbours';
+/// at a nonzero minimum or maximum they differ by about 1e-12 of it.
+fn touches_zero(curve: &SpaceBezier, t: f64) -> bool {
+    let h = 1e-6;
+    let here = curve.curvature(t);
+    let near = curve
+        .curvature((t - h).max(0.0))
+        .max(curve.curvature((t + h).min(1.0)));
+    here < 1e-3 * near
+}
+
+/// The polynomials whose signs decide a curve (scaled Bernstein form).
+struct Numerators<R> {
+    /// `|Ã × B̃|² = m² |C|²`: zero only where the curvature is.
+    square: Scaled<R>,
+    /// `N`, the sign of `dκ/dt`.
+    curvature: Scaled<R>,
+    /// `Ã × B̃ · z'' = m D`: the torsion's sign (identically zero on a planar curve).
+    twist: Scaled<R>,
+    /// `T`, the sign of `dτ/dt` (degree 0 and zero for a curve of degree below 3).
+    torsion: Scaled<R>,
+}
+
+/// The control points' differences `b_{i+1} - b_i`, per coordinate.
+type Differences<R> = Vec<[R; 3]>;
+
+fn numerators<R: Ring>(d: &Differences<R>, n: usize) -> Numerators<R> {
+    let m = n - 1;
+    // z_i = C(m, i) (b_{i+1} - b_i), per coordinate.
+    let z: [Scaled<R>; 3] = std::array::from_fn(|k| {
+        (0..=m)
+            .map(|i| d[i][k].mul_int(crate::exact::binomial(m, i) as i64))
+            .collect()
+    });
+    let sub = |zk: &Scaled<R>| -> (Scaled<R>, Scaled<R>) {
+        (
+            (0..m).map(|i| zk[i].mul_int((m - i) as i64)).collect(),
+            (0..m).map(|i| zk[i + 1].mul_int(i as i64 + 1)).collect(),
+        )
+    };
+    let (a, b): (Vec<Scaled<R>>, Vec<Scaled<R>>) = z.iter().map(sub).unzip();
+    let c: [Scaled<R>; 3] = std::array::from_fn(|k| {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        ring::sub(&ring::conv(&a[i], &b[j]), &ring::conv(&a[j], &b[i]))
+    });
+    let zp: [Scaled<R>; 3] = std::array::from_fn(|k| ring::sub(&b[k], &a[k]));
+    let dot = |u: &[Scaled<R>; 3], v: &[Scaled<R>; 3]| {
+        let t = |k: usize| ring::conv(&u[k], &v[k]);
+        ring::add(&ring::add(&t(0), &t(1)), &t(2))
+    };
+    let square = dot(&c, &c);
+    let speed2 = dot(&z, &z);
+    let along = dot(&z, &zp);
+    let curvature = if square.len() > 1 {
+        ring::sub(
+            &ring::conv(&ring::deriv(&square), &speed2),
+            &ring::scale(&ring::conv(&square, &along), 6),
+        )
+    } else {
+        // |C|² constant (a quadratic): N = -6 |C|² (z · z').
+        ring::scale(&ring::conv(&square, &along), -6)
+    };
+    if m < 2 {
+        let zero: Scaled<R> = smallvec::smallvec![R::zero()];
+        return Numerators {
+            square,
+            curvature,
+            twist: zero.clone(),
+            torsion: zero,
+        };
+    }
+    let zpp: [Scaled<R>; 3] = std::array::from_fn(|k| ring::deriv(&zp[k]));
+    let twist = dot(&c, &zpp);
+    let torsion = ring::sub(
+        &ring::conv(&ring::deriv(&twist), &square),
+        &ring::conv(&twist, &ring::deriv(&square)),
+    );
+    Numerators {
+        square,
+        curvature,
+        twist,
+        torsion,
+    }
+}
+
+/// The differences as bounded floats, scaled by one power of two so that the largest is
+/// near 1 (the numerators are products of up to eight of them: nothing overflows or
+/// underflows on the way for ordinary coordinates; where it would, the bounds say so and
+/// the exact stage decides).
+fn bounded_differences(p: &[[f64; 3]]) -> Differences<Bounded> {
+    let raw: Vec<[Bounded; 3]> = p
+        .windows(2)
+        .map(|w| std::array::from_fn(|k| Bounded::diff(w[1][k], w[0][k])))
+        .collect();
+    let big = raw
+        .iter()
+        .flat_map(|d| d.iter().map(|b| b.v.abs()))
+        .fold(0.0f64, f64::max);
+    let k = if big > 0.0 && big.is_finite() {
+        -(big.log2().floor() as i32)
+    } else {
+        0
+    };
+    let f = 2f64.powi(k.clamp(-1000, 1000));
+    raw.into_iter()
+        .map(|d| {
+            d.map(|b| {
+                let (v, e) = (b.v * f, b.e * f);
+                // A value pushed below the normal range is rounded there (to zero
+                // included): its bound grows by the rounding.
+                let lost = (b.v != 0.0 && v.abs() < f64::MIN_POSITIVE)
+                    || (b.e != 0.0 && e.abs() < f64::MIN_POSITIVE);
+                Bounded {
+                    v,
+                    e: if lost { e + 2.0 * f64::from_bits(1) } else { e },
+                }
+            })
+        })
+        .collect()
+}
+
+/// The differences as exact integers (all coordinates over one power of two).
+fn exact_differences(p: &[[f64; 3]]) -> Differences<BigInt> {
+    let flat: Vec<f64> = p.iter().flat_map(|q| q.iter().copied()).collect();
+    let (ints, _) = dyadic_integers(&flat);
+    (0..p.len() - 1)
+        .map(|i| std::array::from_fn(|k| &ints[3 * (i + 1) + k] - &ints[3 * i + k]))
+        .collect()
+}
+
+fn casteljau(pts: &[[f64; 3]], t: f64) -> [f64; 3] {
+    let mut w = pts.to_vec();
+    for n in (1..w.len()).rev() {
+        for i in 0..n {
+            let next = w[i + 1];
+            w[i] = std::array::from_fn(|k| w[i][k] * (1.0 - t) + next[k] * t);
+        }
+    }
+    w[0]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    a[0].hypot(a[1]).hypot(a[2])
+}
