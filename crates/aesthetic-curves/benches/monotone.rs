@@ -139,7 +139,7 @@ fn bench_exact_fallback(c: &mut Criterion) {
 
 /// The space curves' exact verdicts (curvature, zero-curvature points, planarity and
 /// torsion: `space::SpaceBezier::check`) over 256 random twisted curves of degree 3 and of
-/// degree 5.
+/// degree 5, polynomial and with weights from 1 to 3.
 fn bench_space(c: &mut Criterion) {
     use aesthetic_curves::space::SpaceBezier;
     let mut g = c.benchmark_group("space/check");
@@ -160,6 +160,26 @@ fn bench_space(c: &mut Criterion) {
                 SpaceBezier::new(p).unwrap()
             })
             .collect();
+        let rational: Vec<SpaceBezier> = (curves.iter())
+            .map(|c| {
+                let w = (0..=degree)
+                    .map(|_| 1.0 + 0.01 * (random() + 100.0))
+                    .collect();
+                SpaceBezier::rational(c.points().to_vec(), w).unwrap()
+            })
+            .collect();
+        g.bench_with_input(
+            BenchmarkId::new("rational_degree", degree),
+            &rational,
+            |b, cs| {
+                b.iter(|| {
+                    (cs.iter())
+                        .map(|c| black_box(c).check())
+                        .filter(|r| r.curvature.monotone)
+                        .count()
+                })
+            },
+        );
         g.bench_with_input(BenchmarkId::new("degree", degree), &curves, |b, cs| {
             b.iter(|| {
                 cs.iter()

@@ -16,7 +16,9 @@
 //! t B̃`, `z' = B̃ - Ã`, so `Ã × B̃ = m (z × z')` at degree `2m - 2`), all in scaled Bernstein
 //! form ([`crate::exact::ring`]): one formula, run on bounded floats first and on big
 //! integers where those cannot decide ([`crate::exact::certified_signs`]). The verdicts are
-//! those of the curve the numbers describe: no sign is guessed from a rounded value.
+//! those of the curve the numbers describe: no sign is guessed from a rounded value. A
+//! rational curve's numerators (`rational_numerators`) follow the same pattern from its
+//! homogeneous form (docs/math.md §2.5).
 //!
 //! The curvature of a space curve is not signed: where `C` vanishes (a straight stretch's
 //! point, a planar curve's inflection) it touches zero, which is a minimum, and `N` changes
@@ -33,10 +35,12 @@ use num_bigint::BigInt;
 /// The most control points of a space curve (degree 20).
 pub const MAX_POINTS: usize = 21;
 
-/// A polynomial Bézier curve in three dimensions.
+/// A Bézier curve in three dimensions, polynomial or rational.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpaceBezier {
     points: Vec<[f64; 3]>,
+    /// The weights of a rational curve (positive); `None` for a polynomial one.
+    weights: Option<Vec<f64>>,
 }
 
 impl SpaceBezier {
@@ -57,7 +61,41 @@ impl SpaceBezier {
                 format!("control point {i} is not finite"),
             ));
         }
-        Ok(SpaceBezier { points })
+        Ok(SpaceBezier {
+            points,
+            weights: None,
+        })
+    }
+
+    /// A rational curve: its control points and one positive finite weight each (weights
+    /// all equal make it the polynomial curve).
+    pub fn rational(points: Vec<[f64; 3]>, weights: Vec<f64>) -> Result<Self> {
+        let mut c = SpaceBezier::new(points)?;
+        if weights.len() != c.points.len() {
+            return Err(Error::invalid(
+                "weights",
+                format!(
+                    "one weight per control point: {} points, {} weights",
+                    c.points.len(),
+                    weights.len()
+                ),
+            ));
+        }
+        if let Some(i) = weights.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
+            return Err(Error::invalid(
+                "weights",
+                format!("weight {i} is not a positive finite number"),
+            ));
+        }
+        if weights.iter().any(|w| *w != weights[0]) {
+            c.weights = Some(weights);
+        }
+        Ok(c)
+    }
+
+    /// The weights of a rational curve, `None` for a polynomial one.
+    pub fn weights(&self) -> Option<&[f64]> {
+        self.weights.as_deref()
     }
 
     /// The degree n (control points minus one).
@@ -70,11 +108,44 @@ impl SpaceBezier {
         &self.points
     }
 
-    /// The point and its first three derivatives at `t` (de Casteljau on the control
-    /// points and their differences, in f64).
+    /// The point and its first three derivatives at `t`, in f64 (a rational curve's from
+    /// its homogeneous form by the quotient rule).
     pub fn derivatives(&self, t: f64) -> [[f64; 3]; 4] {
+        let Some(w) = &self.weights else {
+            return polynomial_derivatives(&self.points, t);
+        };
+        let weighted: Vec<[f64; 3]> = (self.points.iter().zip(w))
+            .map(|(p, w)| p.map(|x| x * w))
+            .collect();
+        let ws: Vec<[f64; 3]> = w.iter().map(|w| [*w, 0.0, 0.0]).collect();
+        let (p, ww) = (
+            polynomial_derivatives(&weighted, t),
+            polynomial_derivatives(&ws, t).map(|v| v[0]),
+        );
+        // r = P / W: r^(k) = (P^(k) - Σ_{j<k} C(k, j) W^(k-j) r^(j)) / W.
+        let mut r = [[0.0; 3]; 4];
+        for k in 0..4 {
+            let binom = [
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [1.0, 2.0, 1.0],
+                [1.0, 3.0, 3.0],
+            ];
+            r[k] = std::array::from_fn(|c| {
+                let rest: f64 = (0..k).map(|j| binom[k][j] * ww[k - j] * r[j][c]).sum();
+                (p[k][c] - rest) / ww[0]
+            });
+        }
+        r
+    }
+}
+
+/// A polynomial Bézier curve's point and first three derivatives at `t` (de Casteljau on
+/// the control points and their differences).
+fn polynomial_derivatives(points: &[[f64; 3]], t: f64) -> [[f64; 3]; 4] {
+    {
         let mut out = [[0.0; 3]; 4];
-        let mut pts: Vec<[f64; 3]> = self.points.clone();
+        let mut pts: Vec<[f64; 3]> = points.to_vec();
         let mut factor = 1.0;
         for (k, slot) in out.iter_mut().enumerate() {
             if pts.is_empty() {
@@ -94,7 +165,9 @@ impl SpaceBezier {
         }
         out
     }
+}
 
+impl SpaceBezier {
     /// The curvature at `t` in f64 (0 where the speed vanishes).
     pub fn curvature(&self, t: f64) -> f64 {
         let [_, d1, d2, _] = self.derivatives(t);
@@ -220,10 +293,23 @@ fn check(curve: &SpaceBezier) -> SpaceReport {
             torsion: None,
         };
     }
-    let bounded = numerators(&bounded_differences(curve.points()), n);
+    let bounded = match curve.weights() {
+        None => numerators(&bounded_differences(curve.points()), n),
+        Some(w) => {
+            let (from_first, ws) = bounded_rational(curve.points(), w);
+            rational_numerators(&from_first, &ws)
+        }
+    };
     let exact = std::cell::OnceCell::new();
+    let exact_numerators = || match curve.weights() {
+        None => numerators(&exact_differences(curve.points()), n),
+        Some(w) => {
+            let (from_first, ws) = exact_rational(curve.points(), w);
+            rational_numerators(&from_first, &ws)
+        }
+    };
     let exact_of = |pick: fn(&Numerators<BigInt>) -> &Scaled<BigInt>| -> Vec<BigInt> {
-        pick(exact.get_or_init(|| numerators(&exact_differences(curve.points()), n))).to_vec()
+        pick(exact.get_or_init(exact_numerators)).to_vec()
     };
     let square = certified_signs(&bounded.square, || exact_of(|e| &e.square), Want::Signs);
     if square.zero {
@@ -349,15 +435,181 @@ fn numerators<R: Ring>(d: &Differences<R>, n: usize) -> Numerators<R> {
     }
 }
 
+/// The numerators of a rational curve from its control points less the first, `c_i = b_i -
+/// b_0` (the verdicts do not depend on where the curve lies, and the products stay small),
+/// and its weights. With `P = Σ w_i c_i` and `W` in scaled Bernstein form and the
+/// hodograph's numerator `D1 = W P' - P W'` (`r' = D1 / W²`), `E = D1 × D1'` (`r' × r'' =
+/// E / W⁴`, computed from D1's sub-polygons as `q E`, `q` its degree), and
+/// `Δ = det(H, H', H'', H''')` of the homogeneous `H = (P, W)` (`det(r', r'', r''') =
+/// -Δ / W⁴`):
+/// - `κ² = W⁴ |E|² / |D1|⁶`, so `dκ/dt` has the sign of
+///   `(4 W' |E|² + W (|E|²)') |D1|² - 6 W |E|² (D1 · D1')`;
+/// - `τ = -W⁴ Δ / |E|²`, so `dτ/dt` has the sign of `-((4 W' Δ + W Δ') |E|² - W Δ (|E|²)')`.
+fn rational_numerators<R: Ring>(c: &[[R; 3]], w: &[R]) -> Numerators<R> {
+    let n = c.len() - 1;
+    let binom = |n: usize, k: usize| crate::exact::binomial(n, k) as i64;
+    // D1 = n Σ_{i,j} C(n-1, i) C(n-1, j) w_i w_{j+1} (c_{j+1} - c_i) t^{i+j} (1-t)^{..}.
+    let q = 2 * n - 2;
+    let d1: [Scaled<R>; 3] = std::array::from_fn(|k| {
+        let mut out: Scaled<R> = (0..=q).map(|_| R::zero()).collect();
+        for i in 0..n {
+            for j in 0..n {
+                let f = w[i]
+                    .mul(&w[j + 1])
+                    .mul_int(binom(n - 1, i) * binom(n - 1, j));
+                out[i + j] = out[i + j].add(&f.mul(&c[j + 1][k].sub(&c[i][k])));
+            }
+        }
+        out
+    });
+    let h: [Scaled<R>; 4] = std::array::from_fn(|k| {
+        (0..=n)
+            .map(|i| {
+                let v = if k < 3 {
+                    w[i].mul(&c[i][k])
+                } else {
+                    w[i].clone()
+                };
+                v.mul_int(binom(n, i))
+            })
+            .collect()
+    });
+    let weight = &h[3];
+    let (a, b): (Vec<Scaled<R>>, Vec<Scaled<R>>) = d1
+        .iter()
+        .map(|z| {
+            (
+                (0..q).map(|i| z[i].mul_int((q - i) as i64)).collect(),
+                (0..q).map(|i| z[i + 1].mul_int(i as i64 + 1)).collect(),
+            )
+        })
+        .unzip();
+    let e: [Scaled<R>; 3] = std::array::from_fn(|k| {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        ring::sub(&ring::conv(&a[i], &b[j]), &ring::conv(&a[j], &b[i]))
+    });
+    let d1p: [Scaled<R>; 3] = std::array::from_fn(|k| ring::sub(&b[k], &a[k]));
+    let dot = |u: &[Scaled<R>; 3], v: &[Scaled<R>; 3]| {
+        let t = |k: usize| ring::conv(&u[k], &v[k]);
+        ring::add(&ring::add(&t(0), &t(1)), &t(2))
+    };
+    let square = dot(&e, &e);
+    let dsquare = ring::deriv(&square);
+    let wp = ring::deriv(weight);
+    let lead = ring::add(
+        &ring::scale(&ring::conv(&wp, &square), 4),
+        &ring::conv(weight, &dsquare),
+    );
+    let w_square = ring::conv(weight, &square);
+    let curvature = ring::sub(
+        &ring::conv(&lead, &dot(&d1, &d1)),
+        &ring::scale(&ring::conv(&w_square, &dot(&d1, &d1p)), 6),
+    );
+    let twist = det4(&h);
+    let tlead = ring::add(
+        &ring::scale(&ring::conv(&wp, &twist), 4),
+        &ring::conv(weight, &ring::deriv(&twist)),
+    );
+    let torsion = ring::sub(
+        &ring::conv(&ring::conv(weight, &twist), &dsquare),
+        &ring::conv(&tlead, &square),
+    );
+    Numerators {
+        square,
+        curvature,
+        twist,
+        torsion,
+    }
+}
+
+/// `det(H, H', H'', H''')` of four polynomials (rows: the derivatives), by its 24 terms.
+fn det4<R: Ring>(h: &[Scaled<R>; 4]) -> Scaled<R> {
+    let mut rows: Vec<[Scaled<R>; 4]> = vec![h.clone()];
+    for _ in 0..3 {
+        let last = rows.last().expect("one row at least");
+        let next: [Scaled<R>; 4] = std::array::from_fn(|k| ring::deriv(&last[k]));
+        rows.push(next);
+    }
+    let mut out: Option<Scaled<R>> = None;
+    for perm in permutations4() {
+        let (cols, odd) = perm;
+        let term = ring::conv(
+            &ring::conv(&rows[0][cols[0]], &rows[1][cols[1]]),
+            &ring::conv(&rows[2][cols[2]], &rows[3][cols[3]]),
+        );
+        out = Some(match out {
+            None if odd => ring::scale(&term, -1),
+            None => term,
+            Some(acc) if odd => ring::sub(&acc, &term),
+            Some(acc) => ring::add(&acc, &term),
+        });
+    }
+    out.expect("24 terms")
+}
+
+/// The 24 permutations of 0..4, each with whether it is odd.
+fn permutations4() -> Vec<([usize; 4], bool)> {
+    let mut out = Vec::with_capacity(24);
+    for a in 0..4 {
+        for b in 0..4 {
+            for c in 0..4 {
+                let d = 6 - a - b - c;
+                let p = [a, b, c, d];
+                if a == b || a == c || b == c || d > 3 || [a, b, c].contains(&d) {
+                    continue;
+                }
+                let inversions = (0..4)
+                    .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+                    .filter(|&(i, j)| p[i] > p[j])
+                    .count();
+                out.push((p, inversions % 2 == 1));
+            }
+        }
+    }
+    out
+}
+
+/// A rational curve's control points less the first and its weights as bounded floats,
+/// each scaled by one power of two (exact, as for [`bounded_differences`]).
+fn bounded_rational(p: &[[f64; 3]], w: &[f64]) -> (Vec<[Bounded; 3]>, Vec<Bounded>) {
+    let raw: Vec<[Bounded; 3]> = (p.iter())
+        .map(|q| std::array::from_fn(|k| Bounded::diff(q[k], p[0][k])))
+        .collect();
+    let ws: Vec<Bounded> = w.iter().map(|v| Bounded::exact(*v)).collect();
+    (
+        scaled_bounded(raw),
+        scaled_bounded(ws.into_iter().map(|b| [b]).collect())
+            .into_iter()
+            .map(|[b]| b)
+            .collect(),
+    )
+}
+
+/// A rational curve's control points less the first and its weights as exact integers
+/// (each over its own power of two: the verdicts do not depend on either scale).
+fn exact_rational(p: &[[f64; 3]], w: &[f64]) -> (Vec<[BigInt; 3]>, Vec<BigInt>) {
+    let flat: Vec<f64> = p.iter().flat_map(|q| q.iter().copied()).collect();
+    let (ints, _) = dyadic_integers(&flat);
+    let c = (0..p.len())
+        .map(|i| std::array::from_fn(|k| &ints[3 * i + k] - &ints[k]))
+        .collect();
+    (c, dyadic_integers(w).0)
+}
+
 /// The differences as bounded floats, scaled by one power of two so that the largest is
 /// near 1 (the numerators are products of up to eight of them: nothing overflows or
 /// underflows on the way for ordinary coordinates; where it would, the bounds say so and
 /// the exact stage decides).
 fn bounded_differences(p: &[[f64; 3]]) -> Differences<Bounded> {
-    let raw: Vec<[Bounded; 3]> = p
-        .windows(2)
-        .map(|w| std::array::from_fn(|k| Bounded::diff(w[1][k], w[0][k])))
-        .collect();
+    scaled_bounded(
+        p.windows(2)
+            .map(|w| std::array::from_fn(|k| Bounded::diff(w[1][k], w[0][k])))
+            .collect(),
+    )
+}
+
+/// Bounded values scaled by one power of two so that the largest is near 1.
+fn scaled_bounded<const K: usize>(raw: Vec<[Bounded; K]>) -> Vec<[Bounded; K]> {
     let big = raw
         .iter()
         .flat_map(|d| d.iter().map(|b| b.v.abs()))

@@ -278,3 +278,168 @@ fn a_helix_arc_is_twisted_with_the_helixs_curvature_and_torsion() {
     assert!((c.torsion(0.5) - 0.4).abs() < 0.1, "{}", c.torsion(0.5));
     assert!(!r.curvature.undecided && r.zero_curvature.is_empty());
 }
+
+fn random_weights(rng: &mut ChaCha8Rng, n: usize, spread: f64) -> Vec<f64> {
+    (0..=n)
+        .map(|_| rng.random_range(1.0 / spread..spread))
+        .collect()
+}
+
+/// Planar rational curves in each coordinate plane against the plane's exact test of a
+/// rational curve: the same extrema (the inflections aside), no torsion.
+#[test]
+fn planar_rational_curves_get_the_planes_verdict() {
+    use aesthetic_curves::RationalBezier;
+    let mut rng = ChaCha8Rng::seed_from_u64(0x2a7);
+    for case in 0..150 {
+        let n = 2 + case % 4;
+        let plane = case % 3;
+        let p = random_curve(&mut rng, n, Some(plane));
+        let w = random_weights(&mut rng, n, 4.0);
+        let (i, j) = ((plane + 1) % 3, (plane + 2) % 3);
+        let flat: Vec<Point> = p.iter().map(|q| Point::new(q[i], q[j])).collect();
+        let r2 = RationalBezier::new(flat, w.clone())
+            .unwrap()
+            .curvature_monotone()
+            .unwrap();
+        let r3 = SpaceBezier::rational(p.clone(), w.clone()).unwrap().check();
+        assert_eq!(r3.shape, SpaceShape::Planar, "{p:?} {w:?}");
+        let rest: Vec<f64> = (r3.curvature.extrema.iter())
+            .copied()
+            .filter(|t| !r3.zero_curvature.contains(t))
+            .collect();
+        assert_eq!(
+            rest.len(),
+            r2.extrema.len(),
+            "{p:?} {w:?}: {r3:?} against {r2:?}"
+        );
+        for (a, b) in rest.iter().zip(&r2.extrema) {
+            assert!((a - b).abs() < 1e-9, "{p:?} {w:?}: {a} against {b}");
+        }
+    }
+}
+
+/// A rational curve is the same curve with its weights times `λ^i` (a reparametrization,
+/// `t/(1-t) = λ s/(1-s)`) and with all weights scaled: the same verdicts, the extrema at the
+/// mapped parameters; and it agrees with 4,001 samples where they decide.
+#[test]
+fn rational_space_curves_keep_their_verdicts_under_reparametrization() {
+    let mut rng = ChaCha8Rng::seed_from_u64(0x3a7);
+    let (mut monotone, mut decided) = (0, 0);
+    for case in 0..120 {
+        let n = 3 + case % 3;
+        // Wild curves with weights from 1/4 to 4, fair spirals with weights near 1.
+        let (p, w) = if case % 2 == 0 {
+            let p = random_curve(&mut rng, n, None);
+            (p, random_weights(&mut rng, n, 4.0))
+        } else {
+            let p = spiral(&mut rng, n);
+            (p, random_weights(&mut rng, n, 1.1))
+        };
+        let r = SpaceBezier::rational(p.clone(), w.clone()).unwrap().check();
+        assert_eq!(r.shape, SpaceShape::Twisted, "{p:?} {w:?}");
+        let lambda: f64 = 2.0;
+        let w2: Vec<f64> = (w.iter().enumerate())
+            .map(|(i, v)| v * lambda.powi(i as i32) * 0.125)
+            .collect();
+        let r2 = SpaceBezier::rational(p.clone(), w2).unwrap().check();
+        assert_eq!(r2.shape, r.shape);
+        assert_eq!(r2.curvature.monotone, r.curvature.monotone, "{p:?} {w:?}");
+        assert_eq!(r2.curvature.extrema.len(), r.curvature.extrema.len());
+        for (s, t) in r2.curvature.extrema.iter().zip(&r.curvature.extrema) {
+            let mapped = lambda * s / (1.0 - s + lambda * s);
+            assert!(
+                (mapped - t).abs() < 1e-9,
+                "{p:?} {w:?}: {mapped} against {t}"
+            );
+        }
+        let (t1, t2) = (r.torsion.clone().unwrap(), r2.torsion.unwrap());
+        assert_eq!(t1.monotone, t2.monotone, "{p:?} {w:?}");
+        assert_eq!(t1.extrema.len(), t2.extrema.len(), "{p:?} {w:?}");
+        // Samples of the rational curve, from its homogeneous power basis.
+        let c = SpaceBezier::rational(p.clone(), w.clone()).unwrap();
+        let k: Vec<f64> = (0..=4000)
+            .map(|i| rational_curvature(&p, &w, i as f64 / 4000.0))
+            .collect();
+        if turns_back(&k, 1e-6) {
+            assert!(!r.curvature.monotone, "{p:?} {w:?}");
+        }
+        if r.curvature.monotone {
+            assert!(!turns_back(&k, 1e-3), "{p:?} {w:?}");
+        }
+        // The library's own evaluation agrees with the test's.
+        let mid = rational_curvature(&p, &w, 0.37);
+        assert!(
+            (c.curvature(0.37) - mid).abs() <= 1e-9 * mid.max(1e-300),
+            "{p:?}"
+        );
+        monotone += usize::from(r.curvature.monotone);
+        decided += usize::from(!r.curvature.undecided);
+    }
+    println!("of 120 rational curves: curvature monotone {monotone}, decided {decided}");
+    assert!(
+        monotone > 5 && monotone < 115 && decided == 120,
+        "{monotone} {decided}"
+    );
+}
+
+/// The curvature of the rational curve at `t` from the power basis of `P = Σ w_i b_i` and
+/// `W` (quotient rule), not the library's.
+fn rational_curvature(p: &[[f64; 3]], w: &[f64], t: f64) -> f64 {
+    let weighted: Vec<[f64; 3]> = p.iter().zip(w).map(|(q, w)| q.map(|x| x * w)).collect();
+    let ws: Vec<[f64; 3]> = w.iter().map(|v| [*v, 0.0, 0.0]).collect();
+    let value = |pts: &[[f64; 3]]| -> [f64; 3] {
+        let n = pts.len() - 1;
+        let binom = |n: usize, k: usize| -> f64 {
+            (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64)
+        };
+        let mut out = [0.0; 3];
+        for (i, q) in pts.iter().enumerate() {
+            let b = binom(n, i) * t.powi(i as i32) * (1.0 - t).powi((n - i) as i32);
+            for k in 0..3 {
+                out[k] += b * q[k];
+            }
+        }
+        out
+    };
+    let (p0, pd) = (value(&weighted), derivs(&weighted, t));
+    let (w0, wd) = (value(&ws)[0], derivs(&ws, t).map(|v| v[0]));
+    let r1: [f64; 3] = std::array::from_fn(|k| (pd[0][k] - wd[0] * p0[k] / w0) / w0);
+    let r0: [f64; 3] = std::array::from_fn(|k| p0[k] / w0);
+    let r2: [f64; 3] =
+        std::array::from_fn(|k| (pd[1][k] - 2.0 * wd[0] * r1[k] - wd[1] * r0[k]) / w0);
+    let c = cross(r1, r2);
+    dot(c, c).sqrt() / dot(r1, r1).powf(1.5)
+}
+
+/// Weights a hair from equal (one of them 1 + 2^-30) give the polynomial curve's verdicts,
+/// the directions of a monotone curvature and torsion included: the rational formula's
+/// signs are the polynomial one's.
+#[test]
+fn nearly_equal_weights_give_the_polynomial_verdicts() {
+    let mut rng = ChaCha8Rng::seed_from_u64(0x4a7);
+    let mut compared = 0;
+    for case in 0..80 {
+        let n = 3 + case % 3;
+        let p = spiral(&mut rng, n);
+        let poly = SpaceBezier::new(p.clone()).unwrap().check();
+        let mut w = vec![1.0; n + 1];
+        w[case % (n + 1)] += 2f64.powi(-30);
+        let rat = SpaceBezier::rational(p.clone(), w).unwrap().check();
+        assert!(SpaceBezier::rational(p.clone(), vec![1.0; n + 1])
+            .unwrap()
+            .weights()
+            .is_none());
+        assert_eq!(rat.shape, poly.shape);
+        if poly.curvature.monotone && poly.curvature.extrema.is_empty() {
+            assert_eq!(rat.curvature.increasing, poly.curvature.increasing, "{p:?}");
+            compared += 1;
+        }
+        let (pt, rt) = (poly.torsion.unwrap(), rat.torsion.unwrap());
+        if pt.monotone && pt.extrema.is_empty() {
+            assert_eq!(rt.increasing, pt.increasing, "{p:?}");
+            compared += 1;
+        }
+    }
+    assert!(compared > 40, "{compared}");
+}
