@@ -143,28 +143,26 @@ impl SpaceBezier {
 /// A polynomial Bézier curve's point and first three derivatives at `t` (de Casteljau on
 /// the control points and their differences).
 fn polynomial_derivatives(points: &[[f64; 3]], t: f64) -> [[f64; 3]; 4] {
-    {
-        let mut out = [[0.0; 3]; 4];
-        let mut pts: Vec<[f64; 3]> = points.to_vec();
-        let mut factor = 1.0;
-        for (k, slot) in out.iter_mut().enumerate() {
-            if pts.is_empty() {
-                break;
-            }
-            let p = casteljau(&pts, t);
-            *slot = [factor * p[0], factor * p[1], factor * p[2]];
-            let d = pts.len() as f64 - 1.0;
-            factor *= d;
-            pts = pts
-                .windows(2)
-                .map(|w| [w[1][0] - w[0][0], w[1][1] - w[0][1], w[1][2] - w[0][2]])
-                .collect();
-            if k == 3 {
-                break;
-            }
+    let mut out = [[0.0; 3]; 4];
+    let mut pts: Vec<[f64; 3]> = points.to_vec();
+    let mut factor = 1.0;
+    for (k, slot) in out.iter_mut().enumerate() {
+        if pts.is_empty() {
+            break;
         }
-        out
+        let p = casteljau(&pts, t);
+        *slot = [factor * p[0], factor * p[1], factor * p[2]];
+        let d = pts.len() as f64 - 1.0;
+        factor *= d;
+        pts = pts
+            .windows(2)
+            .map(|w| [w[1][0] - w[0][0], w[1][1] - w[0][1], w[1][2] - w[0][2]])
+            .collect();
+        if k == 3 {
+            break;
+        }
     }
+    out
 }
 
 impl SpaceBezier {
@@ -384,25 +382,10 @@ fn numerators<R: Ring>(d: &Differences<R>, n: usize) -> Numerators<R> {
             .map(|i| d[i][k].mul_int(crate::exact::binomial(m, i) as i64))
             .collect()
     });
-    let sub = |zk: &Scaled<R>| -> (Scaled<R>, Scaled<R>) {
-        (
-            (0..m).map(|i| zk[i].mul_int((m - i) as i64)).collect(),
-            (0..m).map(|i| zk[i + 1].mul_int(i as i64 + 1)).collect(),
-        )
-    };
-    let (a, b): (Vec<Scaled<R>>, Vec<Scaled<R>>) = z.iter().map(sub).unzip();
-    let c: [Scaled<R>; 3] = std::array::from_fn(|k| {
-        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-        ring::sub(&ring::conv(&a[i], &b[j]), &ring::conv(&a[j], &b[i]))
-    });
-    let zp: [Scaled<R>; 3] = std::array::from_fn(|k| ring::sub(&b[k], &a[k]));
-    let dot = |u: &[Scaled<R>; 3], v: &[Scaled<R>; 3]| {
-        let t = |k: usize| ring::conv(&u[k], &v[k]);
-        ring::add(&ring::add(&t(0), &t(1)), &t(2))
-    };
-    let square = dot(&c, &c);
-    let speed2 = dot(&z, &z);
-    let along = dot(&z, &zp);
+    let (c, zp) = cross_with_derivative(&z);
+    let square = dot3(&c, &c);
+    let speed2 = dot3(&z, &z);
+    let along = dot3(&z, &zp);
     let curvature = if square.len() > 1 {
         ring::sub(
             &ring::conv(&ring::deriv(&square), &speed2),
@@ -422,7 +405,7 @@ fn numerators<R: Ring>(d: &Differences<R>, n: usize) -> Numerators<R> {
         };
     }
     let zpp: [Scaled<R>; 3] = std::array::from_fn(|k| ring::deriv(&zp[k]));
-    let twist = dot(&c, &zpp);
+    let twist = dot3(&c, &zpp);
     let torsion = ring::sub(
         &ring::conv(&ring::deriv(&twist), &square),
         &ring::conv(&twist, &ring::deriv(&square)),
@@ -475,25 +458,8 @@ fn rational_numerators<R: Ring>(c: &[[R; 3]], w: &[R]) -> Numerators<R> {
             .collect()
     });
     let weight = &h[3];
-    let (a, b): (Vec<Scaled<R>>, Vec<Scaled<R>>) = d1
-        .iter()
-        .map(|z| {
-            (
-                (0..q).map(|i| z[i].mul_int((q - i) as i64)).collect(),
-                (0..q).map(|i| z[i + 1].mul_int(i as i64 + 1)).collect(),
-            )
-        })
-        .unzip();
-    let e: [Scaled<R>; 3] = std::array::from_fn(|k| {
-        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-        ring::sub(&ring::conv(&a[i], &b[j]), &ring::conv(&a[j], &b[i]))
-    });
-    let d1p: [Scaled<R>; 3] = std::array::from_fn(|k| ring::sub(&b[k], &a[k]));
-    let dot = |u: &[Scaled<R>; 3], v: &[Scaled<R>; 3]| {
-        let t = |k: usize| ring::conv(&u[k], &v[k]);
-        ring::add(&ring::add(&t(0), &t(1)), &t(2))
-    };
-    let square = dot(&e, &e);
+    let (e, d1p) = cross_with_derivative(&d1);
+    let square = dot3(&e, &e);
     let dsquare = ring::deriv(&square);
     let wp = ring::deriv(weight);
     let lead = ring::add(
@@ -502,8 +468,8 @@ fn rational_numerators<R: Ring>(c: &[[R; 3]], w: &[R]) -> Numerators<R> {
     );
     let w_square = ring::conv(weight, &square);
     let curvature = ring::sub(
-        &ring::conv(&lead, &dot(&d1, &d1)),
-        &ring::scale(&ring::conv(&w_square, &dot(&d1, &d1p)), 6),
+        &ring::conv(&lead, &dot3(&d1, &d1)),
+        &ring::scale(&ring::conv(&w_square, &dot3(&d1, &d1p)), 6),
     );
     let twist = det4(&h);
     let tlead = ring::add(
@@ -520,6 +486,28 @@ fn rational_numerators<R: Ring>(c: &[[R; 3]], w: &[R]) -> Numerators<R> {
         twist,
         torsion,
     }
+}
+
+/// `q (z × z')` at its true degree `2q - 2` and `z'`, for `z` of degree `q` (at least 1),
+/// from z's two sub-polygons `Ã_i = (q - i) z_i`, `B̃_i = (i + 1) z_{i+1}`: `q z = (1 - t) Ã
+/// + t B̃` and `z' = B̃ - Ã`, so `Ã × B̃ = q (z × z')`.
+fn cross_with_derivative<R: Ring>(z: &[Scaled<R>; 3]) -> ([Scaled<R>; 3], [Scaled<R>; 3]) {
+    let q = z[0].len() - 1;
+    let a: [Scaled<R>; 3] =
+        std::array::from_fn(|k| (0..q).map(|i| z[k][i].mul_int((q - i) as i64)).collect());
+    let b: [Scaled<R>; 3] =
+        std::array::from_fn(|k| (0..q).map(|i| z[k][i + 1].mul_int(i as i64 + 1)).collect());
+    let cross = std::array::from_fn(|k| {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        ring::sub(&ring::conv(&a[i], &b[j]), &ring::conv(&a[j], &b[i]))
+    });
+    (cross, std::array::from_fn(|k| ring::sub(&b[k], &a[k])))
+}
+
+/// The dot product of two polynomial vectors.
+fn dot3<R: Ring>(u: &[Scaled<R>; 3], v: &[Scaled<R>; 3]) -> Scaled<R> {
+    let t = |k: usize| ring::conv(&u[k], &v[k]);
+    ring::add(&ring::add(&t(0), &t(1)), &t(2))
 }
 
 /// `det(H, H', H'', H''')` of four polynomials (rows: the derivatives), by its 24 terms.
